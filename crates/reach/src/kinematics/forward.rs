@@ -1,0 +1,98 @@
+use nalgebra::{Isometry3, IsometryMatrix3, UnitQuaternion};
+
+use super::chain::apply_motion;
+use super::{KinematicsError, check_q};
+use crate::model::Robot;
+
+impl Robot {
+    /// Tool pose in the world frame for joint values `q` (radians / metres).
+    ///
+    /// # Errors
+    /// [`KinematicsError`] when `q` has the wrong length or a non-finite value.
+    ///
+    /// # Performance
+    /// No allocation; one `sin_cos` and two small matrix products per joint, plus one
+    /// rotation-matrix-to-quaternion conversion ([`Robot::fk_matrix`] skips it).
+    pub fn fk(&self, q: &[f64]) -> Result<Isometry3<f64>, KinematicsError> {
+        let t = self.fk_matrix(q)?;
+        Ok(Isometry3::from_parts(
+            t.translation,
+            UnitQuaternion::from_rotation_matrix(&t.rotation),
+        ))
+    }
+
+    /// Tool pose in the world frame, with the rotation as a matrix.
+    ///
+    /// # Errors
+    /// [`KinematicsError`] when `q` has the wrong length or a non-finite value.
+    #[inline]
+    pub fn fk_matrix(&self, q: &[f64]) -> Result<IsometryMatrix3<f64>, KinematicsError> {
+        check_q(self.dof(), q)?;
+        let mut t = self.chain.first;
+        for (link, &v) in self.chain.links.iter().zip(q) {
+            apply_motion(&mut t, link.prismatic, link.sign * v);
+            t *= link.after;
+        }
+        Ok(t)
+    }
+
+    /// Every link frame in the world frame: `out[i]` is the frame of link `i + 1`
+    /// (standard DH: frame *i*; MDH: frame *i*; URDF: the joint's child link frame).
+    /// Returns the tool pose.
+    ///
+    /// # Errors
+    /// [`KinematicsError`] for a bad `q` or when `out` does not have one entry per joint.
+    pub fn frames_into(
+        &self,
+        q: &[f64],
+        out: &mut [IsometryMatrix3<f64>],
+    ) -> Result<IsometryMatrix3<f64>, KinematicsError> {
+        check_q(self.dof(), q)?;
+        if out.len() != self.dof() {
+            return Err(KinematicsError::BufferSize {
+                buffer: "frames",
+                expected: self.dof(),
+                found: out.len(),
+            });
+        }
+        let mut t = self.chain.first;
+        for ((link, &v), slot) in self.chain.links.iter().zip(q).zip(out.iter_mut()) {
+            apply_motion(&mut t, link.prismatic, link.sign * v);
+            *slot = t * link.to_frame;
+            t *= link.after;
+        }
+        Ok(t)
+    }
+
+    /// Every link frame in the world frame (see [`Robot::frames_into`]), allocating the vector.
+    ///
+    /// # Errors
+    /// [`KinematicsError`] when `q` has the wrong length or a non-finite value.
+    pub fn frames(&self, q: &[f64]) -> Result<Vec<IsometryMatrix3<f64>>, KinematicsError> {
+        let mut out = vec![IsometryMatrix3::identity(); self.dof()];
+        self.frames_into(q, &mut out)?;
+        Ok(out)
+    }
+
+    /// World positions of the base origin, every link-frame origin and the tool point:
+    /// the polyline a drawing or a segment collision model uses (`dof + 2` points).
+    ///
+    /// # Errors
+    /// [`KinematicsError`] when `q` has the wrong length or a non-finite value.
+    pub fn joint_positions(
+        &self,
+        q: &[f64],
+    ) -> Result<Vec<nalgebra::Point3<f64>>, KinematicsError> {
+        let frames = self.frames(q)?;
+        let tool = self.fk_matrix(q)?;
+        let mut pts = Vec::with_capacity(self.dof() + 2);
+        pts.push(nalgebra::Point3::from(self.base().translation.vector));
+        pts.extend(
+            frames
+                .iter()
+                .map(|f| nalgebra::Point3::from(f.translation.vector)),
+        );
+        pts.push(nalgebra::Point3::from(tool.translation.vector));
+        Ok(pts)
+    }
+}

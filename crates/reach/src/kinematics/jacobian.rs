@@ -1,0 +1,65 @@
+use nalgebra::{Matrix6xX, Vector3};
+
+use super::chain::apply_motion;
+use super::{KinematicsError, check_q};
+use crate::model::Robot;
+
+/// The 6×n geometric Jacobian: rows `vx vy vz ωx ωy ωz` in the world frame, one column per joint.
+pub type Jacobian = Matrix6xX<f64>;
+
+impl Robot {
+    /// Geometric Jacobian of the tool point in the world frame (allocates the matrix).
+    ///
+    /// Column *i* is `[zᵢ × (p − oᵢ); zᵢ]` for a revolute joint and `[zᵢ; 0]` for a
+    /// prismatic one, where `zᵢ` is the joint axis and `oᵢ` a point on it (negated for
+    /// flipped joints).
+    ///
+    /// # Errors
+    /// [`KinematicsError`] when `q` has the wrong length or a non-finite value.
+    pub fn jacobian(&self, q: &[f64]) -> Result<Jacobian, KinematicsError> {
+        let mut j = Jacobian::zeros(self.dof());
+        self.jacobian_into(q, &mut j)?;
+        Ok(j)
+    }
+
+    /// Geometric Jacobian written into `out` (6×dof), without allocating.
+    ///
+    /// # Errors
+    /// [`KinematicsError`] for a bad `q` or when `out` does not have `dof` columns.
+    pub fn jacobian_into(&self, q: &[f64], out: &mut Jacobian) -> Result<(), KinematicsError> {
+        check_q(self.dof(), q)?;
+        if out.ncols() != self.dof() {
+            return Err(KinematicsError::BufferSize {
+                buffer: "jacobian columns",
+                expected: self.dof(),
+                found: out.ncols(),
+            });
+        }
+        let mut t = self.chain.first;
+        // First pass: store the axis in the angular rows and the axis point in the linear rows.
+        for (i, (link, &v)) in self.chain.links.iter().zip(q).enumerate() {
+            let z: Vector3<f64> = t.rotation.matrix().column(2).into_owned();
+            let o = t.translation.vector;
+            let mut col = out.column_mut(i);
+            col.fixed_rows_mut::<3>(0).copy_from(&o);
+            col.fixed_rows_mut::<3>(3).copy_from(&z);
+            apply_motion(&mut t, link.prismatic, link.sign * v);
+            t *= link.after;
+        }
+        let p = t.translation.vector;
+        for (i, link) in self.chain.links.iter().enumerate() {
+            let mut col = out.column_mut(i);
+            let z = Vector3::new(col[3], col[4], col[5]);
+            if link.prismatic {
+                col.fixed_rows_mut::<3>(0).copy_from(&(z * link.sign));
+                col.fixed_rows_mut::<3>(3).fill(0.0);
+            } else {
+                let o = Vector3::new(col[0], col[1], col[2]);
+                col.fixed_rows_mut::<3>(0)
+                    .copy_from(&(z.cross(&(p - o)) * link.sign));
+                col.fixed_rows_mut::<3>(3).copy_from(&(z * link.sign));
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,59 @@
+//! # reach — plan and check the motions of robot manipulators
+//!
+//! `reach` takes a robot (a Denavit–Hartenberg table or a URDF chain), computes its forward
+//! kinematics and Jacobian, and — in later modules — its inverse kinematics, motions, motor
+//! commands and reports. The method follows five research papers ("seeds"); where a paper's
+//! formula is wrong, the corrected one is implemented and recorded in
+//! `docs/seeds-and-corrections.md`.
+//!
+//! This crate is pure computation: no file, terminal or network I/O. The `reach` command
+//! line (crate `reach-cli`) reads files and prints results.
+//!
+//! ## Conventions (stated once)
+//!
+//! * **Units:** SI throughout — metres, seconds, kilograms — and **radians**. Degrees and
+//!   millimetres exist only at the edges (description files, CLI), where field names carry
+//!   the unit (`q_deg`, `xyz_m`).
+//! * **Numbers:** `f64` everywhere. NaN and infinity are rejected at every entry point.
+//! * **Frames:** right-handed. Poses are `nalgebra::Isometry3<f64>` (world ← frame); the
+//!   matrix form `IsometryMatrix3<f64>` is offered on hot paths. A 4×4 matrix is printed
+//!   row-major.
+//! * **Joints:** the joint vector `q` has one value per movable joint, base to tip: radians
+//!   for revolute joints, metres for prismatic joints. Joint numbers in messages are 1-based.
+//! * **DH:** standard (distal) DH is the default, `Aᵢ = Rz(θᵢ)·Tz(dᵢ)·Tx(aᵢ)·Rx(αᵢ)` with
+//!   `θᵢ = qᵢ + offsetᵢ`; modified (proximal, Craig) DH is explicit,
+//!   `Aᵢ = Rx(αᵢ₋₁)·Tx(aᵢ₋₁)·Rz(θᵢ)·Tz(dᵢ)`. The chain is `T = base · A₁ ⋯ Aₙ · tool`.
+//! * **Orientation triples:** `rpy` is roll–pitch–yaw about fixed axes X, Y, Z, i.e.
+//!   `R = Rz(yaw)·Ry(pitch)·Rx(roll)` (URDF's convention). Quaternions are `w, x, y, z`.
+//! * **Jacobian:** geometric, 6×n, in the world frame, rows `vx vy vz ωx ωy ωz`, for the
+//!   tool point.
+//! * **Angles** are wrapped into (−π, π] by [`angle::wrap`] only.
+//! * **Tolerances** are named constants in [`tolerance`].
+//!
+//! ## Module map
+//!
+//! * [`model`] — `Robot`, joints, limits, TOML and URDF parsing, presets.
+//! * [`kinematics`] — forward kinematics, Jacobian, manipulability.
+//! * [`angle`] — wrapping and angle differences.
+//! * [`tolerance`] — the numeric tolerances.
+//!
+//! ## Example
+//!
+//! ```
+//! use reach::model::presets;
+//! let puma = presets::get("puma560").unwrap();
+//! let pose = puma.fk(&[0.0; 6]).unwrap();
+//! let j = puma.jacobian(&[0.1, 0.2, 0.3, 0.4, 0.5, 0.6]).unwrap();
+//! assert_eq!(j.shape(), (6, 6));
+//! assert!(pose.translation.vector.norm() > 0.5);
+//! ```
+
+#![warn(missing_docs)]
+
+pub mod angle;
+pub mod kinematics;
+pub mod model;
+pub mod tolerance;
+
+pub use kinematics::{Jacobian, KinematicsError, Manipulability};
+pub use model::{ModelError, Robot, RobotSpec};

@@ -1,0 +1,23 @@
+//! Robot models: joints, DH/MDH/URDF geometry, limits, validation, description files.
+//!
+//! A [`Robot`] is a serial chain of revolute and prismatic joints between a base transform
+//! and a tool transform. It is built from a [`RobotSpec`] (plain data, all SI units and
+//! radians) by [`Robot::new`], which validates every number and names the offending joint
+//! and field on failure. Description files are parsed from strings by
+//! [`Robot::from_toml_str`] and [`Robot::from_urdf_str`]; the shipped presets are in
+//! [`presets`].
+
+mod error;
+mod joint;
+mod robot;
+mod toml_format;
+mod urdf;
+
+pub mod presets;
+pub mod seed000;
+
+pub use error::ModelError;
+pub use joint::{Convention, DhParams, Joint, JointGeometry, JointKind, Limits, LinkGeometry};
+pub use robot::{Robot, RobotSpec};
+pub use toml_format::{AngleUnit, FileUnits, LengthUnit};
+pub use urdf::UrdfChain;

@@ -1,0 +1,288 @@
+//! The TOML robot description format (documented in `docs/robot-format.md`).
+
+use nalgebra::{Isometry3, Translation3, UnitQuaternion};
+use serde::Deserialize;
+
+use super::{
+    Convention, DhParams, Joint, JointGeometry, JointKind, Limits, LinkGeometry, ModelError, Robot,
+    RobotSpec,
+};
+
+/// Length unit of a description file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
+pub enum LengthUnit {
+    /// Metres.
+    #[serde(rename = "m")]
+    Metre,
+    /// Millimetres.
+    #[serde(rename = "mm")]
+    Millimetre,
+}
+
+impl LengthUnit {
+    /// Metres per unit.
+    #[must_use]
+    pub fn to_si(self) -> f64 {
+        match self {
+            LengthUnit::Metre => 1.0,
+            LengthUnit::Millimetre => 1e-3,
+        }
+    }
+
+    /// `m` or `mm`.
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            LengthUnit::Metre => "m",
+            LengthUnit::Millimetre => "mm",
+        }
+    }
+}
+
+/// Angle unit of a description file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
+pub enum AngleUnit {
+    /// Degrees.
+    #[serde(rename = "deg")]
+    Degree,
+    /// Radians.
+    #[serde(rename = "rad")]
+    Radian,
+}
+
+impl AngleUnit {
+    /// Radians per unit.
+    #[must_use]
+    pub fn to_si(self) -> f64 {
+        match self {
+            AngleUnit::Degree => std::f64::consts::PI / 180.0,
+            AngleUnit::Radian => 1.0,
+        }
+    }
+
+    /// `deg` or `rad`.
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            AngleUnit::Degree => "deg",
+            AngleUnit::Radian => "rad",
+        }
+    }
+}
+
+/// The units a robot was written in, kept so that tools can print it back the same way.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FileUnits {
+    /// Length unit.
+    pub length: LengthUnit,
+    /// Angle unit.
+    pub angle: AngleUnit,
+}
+
+impl Default for FileUnits {
+    fn default() -> Self {
+        FileUnits {
+            length: LengthUnit::Metre,
+            angle: AngleUnit::Degree,
+        }
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum FileConvention {
+    Dh,
+    Mdh,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RobotFile {
+    name: String,
+    #[serde(default)]
+    description: String,
+    #[serde(default = "default_convention")]
+    convention: FileConvention,
+    length_unit: LengthUnit,
+    angle_unit: AngleUnit,
+    base: Option<TransformField>,
+    tool: Option<TransformField>,
+    joints: Vec<JointField>,
+    #[serde(default)]
+    links: Vec<LinkField>,
+}
+
+fn default_convention() -> FileConvention {
+    FileConvention::Dh
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TransformField {
+    #[serde(default)]
+    xyz: [f64; 3],
+    #[serde(default)]
+    rpy: [f64; 3],
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct JointField {
+    name: Option<String>,
+    #[serde(default = "default_kind")]
+    kind: JointKind,
+    #[serde(default)]
+    a: f64,
+    #[serde(default)]
+    alpha: f64,
+    #[serde(default)]
+    d: f64,
+    #[serde(default)]
+    theta: f64,
+    limits: Option<[f64; 2]>,
+    max_velocity: Option<f64>,
+    max_velocity_rpm: Option<f64>,
+    home: Option<f64>,
+    #[serde(default)]
+    flip: bool,
+}
+
+fn default_kind() -> JointKind {
+    JointKind::Revolute
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LinkField {
+    radius: f64,
+}
+
+/// Converts an `xyz` (file length unit) + `rpy` (file angle unit, fixed axes X then Y then Z,
+/// i.e. `R = Rz(yaw)·Ry(pitch)·Rx(roll)` as in URDF) pair to an isometry in SI units.
+pub(crate) fn xyz_rpy(xyz: [f64; 3], rpy: [f64; 3], length: f64, angle: f64) -> Isometry3<f64> {
+    Isometry3::from_parts(
+        Translation3::new(xyz[0] * length, xyz[1] * length, xyz[2] * length),
+        UnitQuaternion::from_euler_angles(rpy[0] * angle, rpy[1] * angle, rpy[2] * angle),
+    )
+}
+
+/// 1-based line and column of a byte offset.
+fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let column = before.rfind('\n').map_or(before.chars().count(), |nl| {
+        before[nl + 1..].chars().count()
+    }) + 1;
+    (line, column)
+}
+
+impl Robot {
+    /// Parses a TOML robot description (format in `docs/robot-format.md`).
+    ///
+    /// # Errors
+    /// [`ModelError::Parse`] with line and column for syntax errors, unknown fields, missing
+    /// fields and wrong types; the validation errors of [`Robot::new`] for bad values.
+    pub fn from_toml_str(text: &str) -> Result<Robot, ModelError> {
+        Self::from_toml_str_with_units(text).map(|(robot, _)| robot)
+    }
+
+    /// Like [`Robot::from_toml_str`], also returning the units the file was written in.
+    ///
+    /// # Errors
+    /// See [`Robot::from_toml_str`].
+    pub fn from_toml_str_with_units(text: &str) -> Result<(Robot, FileUnits), ModelError> {
+        let file: RobotFile = toml::from_str(text).map_err(|e| {
+            let (line, column) = e.span().map_or((1, 1), |s| line_column(text, s.start));
+            ModelError::Parse {
+                line,
+                column,
+                message: e.message().trim().to_string(),
+            }
+        })?;
+        let units = FileUnits {
+            length: file.length_unit,
+            angle: file.angle_unit,
+        };
+        let (ls, an) = (units.length.to_si(), units.angle.to_si());
+        let convention = match file.convention {
+            FileConvention::Dh => Convention::Dh,
+            FileConvention::Mdh => Convention::Mdh,
+        };
+        let mut joints = Vec::with_capacity(file.joints.len());
+        for (i, j) in file.joints.into_iter().enumerate() {
+            let name = j.name.unwrap_or_else(|| format!("joint{}", i + 1));
+            let var_scale = match j.kind {
+                JointKind::Revolute => an,
+                JointKind::Prismatic => ls,
+            };
+            let max_velocity = match (j.max_velocity, j.max_velocity_rpm, j.kind) {
+                (Some(_), Some(_), _) => {
+                    let message = "give `max_velocity` or `max_velocity_rpm`, not both".into();
+                    return Err(ModelError::Joint {
+                        joint: i + 1,
+                        name,
+                        message,
+                    });
+                }
+                (_, Some(_), JointKind::Prismatic) => {
+                    let message = "`max_velocity_rpm` applies to revolute joints only".into();
+                    return Err(ModelError::Joint {
+                        joint: i + 1,
+                        name,
+                        message,
+                    });
+                }
+                (Some(v), None, _) => Some(v * var_scale),
+                (None, Some(rpm), _) => Some(rpm * std::f64::consts::TAU / 60.0),
+                (None, None, _) => None,
+            };
+            let limits = j.limits.map_or(Limits::UNLIMITED, |[lo, hi]| {
+                Limits::new(lo * var_scale, hi * var_scale)
+            });
+            // Default home: 0 when inside the limits, else the middle of the range.
+            let home = j.home.map_or_else(
+                || {
+                    if limits.contains(0.0, 0.0) {
+                        0.0
+                    } else {
+                        0.5 * (limits.lower + limits.upper)
+                    }
+                },
+                |h| h * var_scale,
+            );
+            joints.push(Joint {
+                name,
+                home,
+                kind: j.kind,
+                geometry: JointGeometry::Dh(DhParams {
+                    a: j.a * ls,
+                    alpha: j.alpha * an,
+                    d: j.d * ls,
+                    theta_offset: j.theta * an,
+                }),
+                limits,
+                max_velocity,
+                flip: j.flip,
+            });
+        }
+        let transform = |t: Option<TransformField>| {
+            t.map_or_else(Isometry3::identity, |t| xyz_rpy(t.xyz, t.rpy, ls, an))
+        };
+        let spec = RobotSpec {
+            name: file.name,
+            description: file.description,
+            convention,
+            joints,
+            base: transform(file.base),
+            tool: transform(file.tool),
+            links: file
+                .links
+                .into_iter()
+                .map(|l| LinkGeometry {
+                    radius: l.radius * ls,
+                })
+                .collect(),
+        };
+        Ok((Robot::new(spec)?, units))
+    }
+}

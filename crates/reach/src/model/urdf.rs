@@ -1,0 +1,203 @@
+//! URDF import of serial chains (through `urdf-rs`).
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use nalgebra::{Isometry3, Unit, Vector3};
+
+use super::toml_format::xyz_rpy;
+use super::{Convention, Joint, JointGeometry, JointKind, Limits, ModelError, Robot, RobotSpec};
+use crate::tolerance::AXIS_MIN_NORM;
+
+/// Which serial chain of a URDF tree to import.
+///
+/// With both names `None`, the file must be a single unbranched chain; its root link is the
+/// base and its only leaf the tip.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct UrdfChain {
+    /// Name of the base link (default: the tree's root link).
+    pub base: Option<String>,
+    /// Name of the tip link (default: the only leaf below the base).
+    pub tip: Option<String>,
+}
+
+impl Robot {
+    /// Imports the serial chain from `chain.base` to `chain.tip` of a URDF document.
+    ///
+    /// Revolute, continuous and prismatic joints become joints (continuous ones unlimited);
+    /// fixed joints fold into the next joint's origin, or into the tool transform after the
+    /// last movable joint. The base link frame is the world frame.
+    ///
+    /// # Errors
+    /// [`ModelError::Urdf`] for XML errors, unknown link names, a branched tree without a
+    /// chosen tip, a tip not below the base, floating/planar/spherical or mimic joints, a
+    /// zero axis; plus the validation errors of [`Robot::new`].
+    pub fn from_urdf_str(text: &str, chain: &UrdfChain) -> Result<Robot, ModelError> {
+        let urdf = urdf_rs::read_from_string(text)
+            .map_err(|e| ModelError::Urdf(one_line(&e.to_string())))?;
+        let links: BTreeSet<&str> = urdf.links.iter().map(|l| l.name.as_str()).collect();
+        let mut parent_joint: BTreeMap<&str, &urdf_rs::Joint> = BTreeMap::new();
+        let mut children: BTreeMap<&str, Vec<&str>> = BTreeMap::new();
+        for j in &urdf.joints {
+            if parent_joint.insert(j.child.link.as_str(), j).is_some() {
+                return Err(ModelError::Urdf(format!(
+                    "link `{}` has two parent joints",
+                    j.child.link
+                )));
+            }
+            children
+                .entry(j.parent.link.as_str())
+                .or_default()
+                .push(j.child.link.as_str());
+        }
+        let known = |name: &str| -> Result<(), ModelError> {
+            if links.contains(name) {
+                Ok(())
+            } else {
+                let list: Vec<&str> = links.iter().copied().collect();
+                Err(ModelError::Urdf(format!(
+                    "no link named `{name}` (links: {})",
+                    list.join(", ")
+                )))
+            }
+        };
+        let base: &str = match &chain.base {
+            Some(b) => {
+                known(b)?;
+                b
+            }
+            None => {
+                let roots: Vec<&str> = links
+                    .iter()
+                    .copied()
+                    .filter(|l| !parent_joint.contains_key(l))
+                    .collect();
+                match roots.as_slice() {
+                    [root] => root,
+                    [] => {
+                        return Err(ModelError::Urdf(
+                            "the link tree has no root (a cycle?)".into(),
+                        ));
+                    }
+                    many => {
+                        return Err(ModelError::Urdf(format!(
+                            "several root links ({}); choose the base link",
+                            many.join(", ")
+                        )));
+                    }
+                }
+            }
+        };
+        let tip: &str = match &chain.tip {
+            Some(t) => {
+                known(t)?;
+                t
+            }
+            None => {
+                // Walk down from the base while the chain does not branch.
+                let mut link = base;
+                loop {
+                    match children.get(link).map(Vec::as_slice) {
+                        None | Some([]) => break link,
+                        Some([only]) => link = only,
+                        Some(many) => {
+                            return Err(ModelError::Urdf(format!(
+                                "the tree branches at link `{link}` (children: {}); choose the tip link",
+                                many.join(", ")
+                            )));
+                        }
+                    }
+                }
+            }
+        };
+        // Walk up from the tip to the base.
+        let mut path: Vec<&urdf_rs::Joint> = Vec::new();
+        let mut link = tip;
+        while link != base {
+            match parent_joint.get(link) {
+                Some(j) => {
+                    path.push(j);
+                    link = j.parent.link.as_str();
+                }
+                None => {
+                    return Err(ModelError::Urdf(format!(
+                        "link `{tip}` is not below link `{base}`"
+                    )));
+                }
+            }
+        }
+        path.reverse();
+
+        let mut joints = Vec::new();
+        let mut pending = Isometry3::identity();
+        for j in path {
+            let origin = pending * xyz_rpy(j.origin.xyz.0, j.origin.rpy.0, 1.0, 1.0);
+            let kind = match j.joint_type {
+                urdf_rs::JointType::Fixed => {
+                    pending = origin;
+                    continue;
+                }
+                urdf_rs::JointType::Revolute | urdf_rs::JointType::Continuous => {
+                    JointKind::Revolute
+                }
+                urdf_rs::JointType::Prismatic => JointKind::Prismatic,
+                ref other => {
+                    return Err(ModelError::Urdf(format!(
+                        "joint `{}` is of type {other:?}; only revolute, continuous, prismatic and fixed joints form a serial chain",
+                        j.name
+                    )));
+                }
+            };
+            if j.mimic.is_some() {
+                return Err(ModelError::Urdf(format!(
+                    "joint `{}` mimics another joint; mimic joints are not supported",
+                    j.name
+                )));
+            }
+            let axis = Vector3::from(j.axis.xyz.0);
+            if !(axis.norm() > AXIS_MIN_NORM) {
+                return Err(ModelError::Urdf(format!(
+                    "joint `{}`: axis {:?} has no direction",
+                    j.name, j.axis.xyz.0
+                )));
+            }
+            let limits = if j.joint_type == urdf_rs::JointType::Continuous {
+                Limits::UNLIMITED
+            } else {
+                Limits::new(j.limit.lower, j.limit.upper)
+            };
+            let max_velocity = (j.limit.velocity.is_finite() && j.limit.velocity > 0.0)
+                .then_some(j.limit.velocity);
+            joints.push(Joint {
+                name: j.name.clone(),
+                kind,
+                geometry: JointGeometry::Axis {
+                    origin,
+                    axis: Unit::new_normalize(axis),
+                },
+                limits,
+                max_velocity,
+                home: if limits.contains(0.0, 0.0) {
+                    0.0
+                } else {
+                    0.5 * (limits.lower + limits.upper)
+                },
+                flip: false,
+            });
+            pending = Isometry3::identity();
+        }
+        let spec = RobotSpec {
+            name: urdf.name.clone(),
+            description: format!("imported from URDF, chain {base} → {tip}"),
+            convention: Convention::Urdf,
+            joints,
+            base: Isometry3::identity(),
+            tool: pending,
+            links: Vec::new(),
+        };
+        Robot::new(spec)
+    }
+}
+
+fn one_line(s: &str) -> String {
+    s.split_whitespace().collect::<Vec<_>>().join(" ")
+}
