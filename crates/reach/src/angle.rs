@@ -37,6 +37,34 @@ pub fn deg(value: f64) -> f64 {
     value.to_radians()
 }
 
+/// Represents `angle` inside `limits` if any representative `angle + 2πk` lies there,
+/// preferring the one in (−π, π]; otherwise returns the wrapped value (still outside).
+///
+/// This is how IK results are reported: wrapped into (−π, π], or moved by whole turns into a
+/// joint range that does not contain the wrapped value (e.g. seed 001's q1 ∈ [0, 2π]).
+#[must_use]
+pub fn fit_into_limits(angle: f64, limits: &crate::model::Limits, slack: f64) -> f64 {
+    let w = wrap(angle);
+    if limits.contains(w, slack) {
+        return w;
+    }
+    for k in 1..=3 {
+        for candidate in [w + f64::from(k) * TAU, w - f64::from(k) * TAU] {
+            if limits.contains(candidate, slack) {
+                return candidate;
+            }
+        }
+    }
+    w
+}
+
+/// The representative `angle + 2πk` closest to `reference` (for continuity along paths).
+#[must_use]
+#[inline]
+pub fn nearest_equivalent(angle: f64, reference: f64) -> f64 {
+    reference + wrap(angle - reference)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

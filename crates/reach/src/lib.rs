@@ -34,6 +34,7 @@
 //!
 //! * [`model`] — `Robot`, joints, limits, TOML and URDF parsing, presets.
 //! * [`kinematics`] — forward kinematics, Jacobian, manipulability.
+//! * [`ik`] — inverse kinematics: closed forms with all branches, numeric solver.
 //! * [`angle`] — wrapping and angle differences.
 //! * [`tolerance`] — the numeric tolerances.
 //!
@@ -51,6 +52,7 @@
 #![warn(missing_docs)]
 
 pub mod angle;
+pub mod ik;
 pub mod kinematics;
 pub mod model;
 pub mod tolerance;

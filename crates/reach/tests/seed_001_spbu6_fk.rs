@@ -28,11 +28,7 @@ fn fk_of_90_0_0_90_0_0_is_the_papers_t1() {
                           0.0, 0.0, 1.0, 3.0,
                           0.0, -1.0, 0.0, 5.0,
                           0.0, 0.0, 0.0, 1.0);
-    assert_relative_eq!(
-        matrix(&robot, [90.0, 0.0, 0.0, 90.0, 0.0, 0.0]),
-        t1,
-        epsilon = 1e-12
-    );
+    assert_relative_eq!(matrix(&robot, [90.0, 0.0, 0.0, 90.0, 0.0, 0.0]), t1, epsilon = 1e-12);
 }
 
 /// Notes 001 §5.2 "extra FK vectors" (radians), computed from the printed link matrices.
@@ -79,10 +75,6 @@ fn wrist_centre_distance_follows_the_closed_form() {
     for &(q2, q3) in &[(0.0, 0.0), (0.3, -0.7), (-1.0, 1.2), (0.5, -1.5)] {
         let q = [0.4, q2, q3, 0.1, 0.2, 0.3];
         let p = robot.fk_matrix(&q).unwrap().translation.vector;
-        assert_relative_eq!(
-            p.norm_squared(),
-            25.0 + 9.0 - 30.0 * f64::sin(q3),
-            epsilon = 1e-12
-        );
+        assert_relative_eq!(p.norm_squared(), 25.0 + 9.0 - 30.0 * f64::sin(q3), epsilon = 1e-12);
     }
 }

@@ -21,7 +21,7 @@
 //! `Mi` times a constant `Gi` (the DH fixed part for standard DH, identity for MDH, `Raᵀ`
 //! for URDF). Base and tool fold into `F0` and `Fn`.
 
-use nalgebra::{Isometry3, IsometryMatrix3, Rotation3, Translation3, Unit, Vector3};
+use nalgebra::{Isometry3, IsometryMatrix3, Matrix3, Rotation3, Translation3, Unit, Vector3};
 
 use crate::model::{Convention, JointGeometry, JointKind, RobotSpec};
 
@@ -51,27 +51,37 @@ fn matrix(iso: &Isometry3<f64>) -> IsometryMatrix3<f64> {
 }
 
 fn rot_x(angle: f64) -> IsometryMatrix3<f64> {
-    IsometryMatrix3::from_parts(
-        Translation3::identity(),
-        Rotation3::from_axis_angle(&Vector3::x_axis(), angle),
-    )
+    IsometryMatrix3::from_parts(Translation3::identity(), Rotation3::from_axis_angle(&Vector3::x_axis(), angle))
 }
 
 fn rot_z(angle: f64) -> IsometryMatrix3<f64> {
-    IsometryMatrix3::from_parts(
-        Translation3::identity(),
-        Rotation3::from_axis_angle(&Vector3::z_axis(), angle),
-    )
+    IsometryMatrix3::from_parts(Translation3::identity(), Rotation3::from_axis_angle(&Vector3::z_axis(), angle))
 }
 
 fn trans(x: f64, y: f64, z: f64) -> IsometryMatrix3<f64> {
     IsometryMatrix3::from_parts(Translation3::new(x, y, z), Rotation3::identity())
 }
 
-/// A rotation taking +z onto `axis`.
+/// A rotation taking +z onto `axis`, accurate to rounding for every direction.
+///
+/// For a unit vector `b` with `c = b·z > −1`, the rotation about `z × b = (−b_y, b_x, 0)` that
+/// takes z onto b is `I + [v]× + [v]×²/(1 + c)` (Rodrigues' formula without trigonometry; an
+/// angle from `acos(c)` would lose half the digits for axes within ~1e-8 of ±z). For `c < 0`
+/// the formula is applied to `−axis` and followed by `Rx(π)`, which maps z to −z.
 fn z_onto(axis: &Unit<Vector3<f64>>) -> Rotation3<f64> {
-    Rotation3::rotation_between(&Vector3::z(), axis)
-        .unwrap_or_else(|| Rotation3::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI))
+    let flip = axis.z < 0.0;
+    let b = if flip { -axis.into_inner() } else { axis.into_inner() };
+    let (x, y, c) = (b.x, b.y, b.z);
+    let k = 1.0 / (1.0 + c);
+    let s = if flip { -1.0 } else { 1.0 };
+    // Columns 2 and 3 change sign under the trailing Rx(π) = diag(1, −1, −1).
+    #[rustfmt::skip]
+    let m = Matrix3::new(
+        1.0 - k * x * x, -s * k * x * y,        s * x,
+        -k * x * y,      s * (1.0 - k * y * y), s * y,
+        -x,              -s * y,                s * c,
+    );
+    Rotation3::from_matrix_unchecked(m)
 }
 
 impl Chain {
@@ -89,28 +99,20 @@ impl Chain {
         for joint in &spec.joints {
             match (&joint.geometry, spec.convention) {
                 (JointGeometry::Dh(p), Convention::Dh) => {
-                    let fixed = rot_z(p.theta_offset)
-                        * trans(0.0, 0.0, p.d)
-                        * trans(p.a, 0.0, 0.0)
-                        * rot_x(p.alpha);
+                    let fixed = rot_z(p.theta_offset) * trans(0.0, 0.0, p.d) * trans(p.a, 0.0, 0.0) * rot_x(p.alpha);
                     before_next.push(IsometryMatrix3::identity());
                     to_frames.push(fixed);
                     dh_after.push(fixed);
                 }
                 (JointGeometry::Dh(p), _) => {
-                    let fixed = rot_x(p.alpha)
-                        * trans(p.a, 0.0, 0.0)
-                        * rot_z(p.theta_offset)
-                        * trans(0.0, 0.0, p.d);
+                    let fixed = rot_x(p.alpha) * trans(p.a, 0.0, 0.0) * rot_z(p.theta_offset) * trans(0.0, 0.0, p.d);
                     before_next.push(fixed);
                     to_frames.push(IsometryMatrix3::identity());
                     dh_after.push(IsometryMatrix3::identity());
                 }
                 (JointGeometry::Axis { origin, axis }, _) => {
                     let ra = z_onto(axis);
-                    before_next.push(
-                        matrix(origin) * IsometryMatrix3::from_parts(Translation3::identity(), ra),
-                    );
+                    before_next.push(matrix(origin) * IsometryMatrix3::from_parts(Translation3::identity(), ra));
                     let back = IsometryMatrix3::from_parts(Translation3::identity(), ra.inverse());
                     to_frames.push(back);
                     dh_after.push(back);
@@ -146,6 +148,34 @@ pub(crate) fn apply_motion(t: &mut IsometryMatrix3<f64>, prismatic: bool, v: f64
             let y = m[(r, 1)];
             m[(r, 0)] = c * x + s * y;
             m[(r, 1)] = c * y - s * x;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn z_onto_is_a_proper_rotation_taking_z_to_the_axis() {
+        let axes = [
+            Vector3::z(),
+            -Vector3::z(),
+            Vector3::x(),
+            -Vector3::y(),
+            Vector3::new(1.0, 0.0, 1.0),
+            Vector3::new(0.3, -0.5, -0.8),
+            Vector3::new(1e-9, 2e-9, 1.0),
+            Vector3::new(-1e-9, 3e-10, -1.0),
+            Vector3::new(1.0, 1e-12, -1e-12),
+        ];
+        for a in axes {
+            let axis = Unit::new_normalize(a);
+            let r = z_onto(&axis);
+            let m = r.matrix();
+            assert!((m * Vector3::z() - axis.into_inner()).amax() < 1e-15, "{a:?}");
+            assert!((m.transpose() * m - Matrix3::identity()).amax() < 1e-15, "{a:?}");
+            assert!((m.determinant() - 1.0).abs() < 1e-15, "{a:?}");
         }
     }
 }

@@ -15,10 +15,7 @@ impl Robot {
     /// rotation-matrix-to-quaternion conversion ([`Robot::fk_matrix`] skips it).
     pub fn fk(&self, q: &[f64]) -> Result<Isometry3<f64>, KinematicsError> {
         let t = self.fk_matrix(q)?;
-        Ok(Isometry3::from_parts(
-            t.translation,
-            UnitQuaternion::from_rotation_matrix(&t.rotation),
-        ))
+        Ok(Isometry3::from_parts(t.translation, UnitQuaternion::from_rotation_matrix(&t.rotation)))
     }
 
     /// Tool pose in the world frame, with the rotation as a matrix.
@@ -49,11 +46,7 @@ impl Robot {
     ) -> Result<IsometryMatrix3<f64>, KinematicsError> {
         check_q(self.dof(), q)?;
         if out.len() != self.dof() {
-            return Err(KinematicsError::BufferSize {
-                buffer: "frames",
-                expected: self.dof(),
-                found: out.len(),
-            });
+            return Err(KinematicsError::BufferSize { buffer: "frames", expected: self.dof(), found: out.len() });
         }
         let mut t = self.chain.first;
         for ((link, &v), slot) in self.chain.links.iter().zip(q).zip(out.iter_mut()) {
@@ -79,19 +72,12 @@ impl Robot {
     ///
     /// # Errors
     /// [`KinematicsError`] when `q` has the wrong length or a non-finite value.
-    pub fn joint_positions(
-        &self,
-        q: &[f64],
-    ) -> Result<Vec<nalgebra::Point3<f64>>, KinematicsError> {
+    pub fn joint_positions(&self, q: &[f64]) -> Result<Vec<nalgebra::Point3<f64>>, KinematicsError> {
         let frames = self.frames(q)?;
         let tool = self.fk_matrix(q)?;
         let mut pts = Vec::with_capacity(self.dof() + 2);
         pts.push(nalgebra::Point3::from(self.base().translation.vector));
-        pts.extend(
-            frames
-                .iter()
-                .map(|f| nalgebra::Point3::from(f.translation.vector)),
-        );
+        pts.extend(frames.iter().map(|f| nalgebra::Point3::from(f.translation.vector)));
         pts.push(nalgebra::Point3::from(tool.translation.vector));
         Ok(pts)
     }

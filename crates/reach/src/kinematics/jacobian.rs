@@ -55,8 +55,7 @@ impl Robot {
                 col.fixed_rows_mut::<3>(3).fill(0.0);
             } else {
                 let o = Vector3::new(col[0], col[1], col[2]);
-                col.fixed_rows_mut::<3>(0)
-                    .copy_from(&(z.cross(&(p - o)) * link.sign));
+                col.fixed_rows_mut::<3>(0).copy_from(&(z.cross(&(p - o)) * link.sign));
                 col.fixed_rows_mut::<3>(3).copy_from(&(z * link.sign));
             }
         }

@@ -44,27 +44,18 @@ impl Manipulability {
             JacobianAxes::Translation => 0..3,
             JacobianAxes::Rotation => 3..6,
         };
-        let m = DMatrix::from_fn(rows.len(), jacobian.ncols(), |r, c| {
-            jacobian[(rows.start + r, c)]
-        });
+        let m = DMatrix::from_fn(rows.len(), jacobian.ncols(), |r, c| jacobian[(rows.start + r, c)]);
         let mut sv: Vec<f64> = m.singular_values().iter().copied().collect();
         sv.sort_by(|a, b| b.total_cmp(a));
         sv.truncate(rows.len().min(jacobian.ncols()));
         let sigma_max = sv.first().copied().unwrap_or(0.0);
         let sigma_min = sv.last().copied().unwrap_or(0.0);
-        let rank = sv
-            .iter()
-            .filter(|&&s| s > SINGULAR_VALUE_RELATIVE * sigma_max.max(f64::MIN_POSITIVE))
-            .count();
+        let rank = sv.iter().filter(|&&s| s > SINGULAR_VALUE_RELATIVE * sigma_max.max(f64::MIN_POSITIVE)).count();
         Manipulability {
             yoshikawa: sv.iter().product(),
             sigma_min,
             sigma_max,
-            condition: if sigma_min > 0.0 {
-                sigma_max / sigma_min
-            } else {
-                f64::INFINITY
-            },
+            condition: if sigma_min > 0.0 { sigma_max / sigma_min } else { f64::INFINITY },
             rank,
             singular_values: sv,
         }

@@ -61,16 +61,10 @@ pub enum KinematicsError {
 /// Checks that `q` has `dof` finite values.
 pub(crate) fn check_q(dof: usize, q: &[f64]) -> Result<(), KinematicsError> {
     if q.len() != dof {
-        return Err(KinematicsError::JointCount {
-            expected: dof,
-            found: q.len(),
-        });
+        return Err(KinematicsError::JointCount { expected: dof, found: q.len() });
     }
     if let Some(i) = q.iter().position(|v| !v.is_finite()) {
-        return Err(KinematicsError::NonFinite {
-            joint: i + 1,
-            value: q[i],
-        });
+        return Err(KinematicsError::NonFinite { joint: i + 1, value: q[i] });
     }
     Ok(())
 }

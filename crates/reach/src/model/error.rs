@@ -54,9 +54,7 @@ pub enum ModelError {
         message: String,
     },
     /// The joint description does not match the robot's convention (e.g. a URDF joint in a DH robot).
-    #[error(
-        "joint {joint} ({name}): its geometry is not described in the robot's convention `{convention}`"
-    )]
+    #[error("joint {joint} ({name}): its geometry is not described in the robot's convention `{convention}`")]
     MixedConvention {
         /// 1-based joint number.
         joint: usize,

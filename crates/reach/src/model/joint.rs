@@ -62,10 +62,7 @@ pub struct Limits {
 
 impl Limits {
     /// An unlimited (continuous) joint.
-    pub const UNLIMITED: Limits = Limits {
-        lower: f64::NEG_INFINITY,
-        upper: f64::INFINITY,
-    };
+    pub const UNLIMITED: Limits = Limits { lower: f64::NEG_INFINITY, upper: f64::INFINITY };
 
     /// `[lower, upper]`.
     #[must_use]
@@ -84,6 +81,24 @@ impl Limits {
     #[inline]
     pub fn contains(&self, value: f64, tolerance: f64) -> bool {
         value >= self.lower - tolerance && value <= self.upper + tolerance
+    }
+
+    /// The home position used when a description gives none: 0 when inside the limits, else
+    /// the middle of a bounded range, else the finite bound nearest to 0 (for a range open on
+    /// one side, whose middle would be infinite).
+    #[must_use]
+    pub(crate) fn default_home(&self) -> f64 {
+        if self.contains(0.0, 0.0) {
+            0.0
+        } else if self.is_bounded() {
+            0.5 * (self.lower + self.upper)
+        } else if self.lower > 0.0 {
+            self.lower
+        } else if self.upper < 0.0 {
+            self.upper
+        } else {
+            0.0 // NaN limits: rejected by validation
+        }
     }
 
     /// Width of the interval (infinite for unlimited joints).
@@ -151,12 +166,7 @@ impl Joint {
         Joint {
             name: String::new(),
             kind: JointKind::Revolute,
-            geometry: JointGeometry::Dh(DhParams {
-                a,
-                alpha,
-                d,
-                theta_offset,
-            }),
+            geometry: JointGeometry::Dh(DhParams { a, alpha, d, theta_offset }),
             limits: Limits::UNLIMITED,
             max_velocity: None,
             home: 0.0,
@@ -167,10 +177,7 @@ impl Joint {
     /// A prismatic DH joint (variable along z, added to `d`) with no limits.
     #[must_use]
     pub fn prismatic(a: f64, alpha: f64, d: f64, theta_offset: f64) -> Self {
-        Joint {
-            kind: JointKind::Prismatic,
-            ..Joint::revolute(a, alpha, d, theta_offset)
-        }
+        Joint { kind: JointKind::Prismatic, ..Joint::revolute(a, alpha, d, theta_offset) }
     }
 
     /// Sets the position limits (builder style).

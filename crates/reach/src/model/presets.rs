@@ -16,10 +16,7 @@ use super::{ModelError, Robot};
 /// `(name, TOML source)` of every preset, in display order.
 pub const PRESETS: &[(&str, &str)] = &[
     ("planar3", include_str!("../../../../robots/planar3.toml")),
-    (
-        "log-loader",
-        include_str!("../../../../robots/log-loader.toml"),
-    ),
+    ("log-loader", include_str!("../../../../robots/log-loader.toml")),
     ("spbu6", include_str!("../../../../robots/spbu6.toml")),
     ("puma560", include_str!("../../../../robots/puma560.toml")),
     ("welder6r", include_str!("../../../../robots/welder6r.toml")),
@@ -51,10 +48,8 @@ pub fn source(name: &str) -> Option<&'static str> {
 /// assert_eq!(puma.dof(), 6);
 /// ```
 pub fn get(name: &str) -> Result<Robot, ModelError> {
-    let text = source(name).ok_or_else(|| ModelError::UnknownPreset {
-        name: name.to_string(),
-        known: names().join(", "),
-    })?;
+    let text =
+        source(name).ok_or_else(|| ModelError::UnknownPreset { name: name.to_string(), known: names().join(", ") })?;
     Robot::from_toml_str(text)
 }
 
@@ -65,10 +60,7 @@ mod tests {
         for (name, _) in super::PRESETS {
             let robot = super::get(name).unwrap_or_else(|e| panic!("{name}: {e}"));
             assert_eq!(robot.name(), *name);
-            assert!(
-                !robot.description().is_empty(),
-                "{name} needs a description"
-            );
+            assert!(!robot.description().is_empty(), "{name} needs a description");
         }
     }
 

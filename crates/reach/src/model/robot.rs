@@ -163,10 +163,7 @@ impl Robot {
     /// # Errors
     /// [`ModelError::Transform`] when `tool` is not finite.
     pub fn with_tool(&self, tool: Isometry3<f64>) -> Result<Robot, ModelError> {
-        Robot::new(RobotSpec {
-            tool,
-            ..self.spec.clone()
-        })
+        Robot::new(RobotSpec { tool, ..self.spec.clone() })
     }
 
     /// A copy of this robot with another base transform.
@@ -174,10 +171,7 @@ impl Robot {
     /// # Errors
     /// [`ModelError::Transform`] when `base` is not finite.
     pub fn with_base(&self, base: Isometry3<f64>) -> Result<Robot, ModelError> {
-        Robot::new(RobotSpec {
-            base,
-            ..self.spec.clone()
-        })
+        Robot::new(RobotSpec { base, ..self.spec.clone() })
     }
 
     /// The home (rest) configuration: each joint's `home` value.
@@ -191,11 +185,7 @@ impl Robot {
     /// Returns the 0-based index of the first joint outside its limits, or `None`.
     #[must_use]
     pub fn first_joint_outside_limits(&self, q: &[f64], tolerance: f64) -> Option<usize> {
-        self.spec
-            .joints
-            .iter()
-            .zip(q)
-            .position(|(j, &v)| !j.limits.contains(v, tolerance))
+        self.spec.joints.iter().zip(q).position(|(j, &v)| !j.limits.contains(v, tolerance))
     }
 }
 
@@ -208,12 +198,7 @@ fn validate_joint(number: usize, joint: &Joint, convention: Convention) -> Resul
     };
     match (&joint.geometry, convention) {
         (JointGeometry::Dh(p), Convention::Dh | Convention::Mdh) => {
-            for (field, value) in [
-                ("a", p.a),
-                ("alpha", p.alpha),
-                ("d", p.d),
-                ("theta", p.theta_offset),
-            ] {
+            for (field, value) in [("a", p.a), ("alpha", p.alpha), ("d", p.d), ("theta", p.theta_offset)] {
                 if !value.is_finite() {
                     return Err(non_finite(field, value));
                 }
@@ -251,33 +236,22 @@ fn validate_joint(number: usize, joint: &Joint, convention: Convention) -> Resul
         return Err(ModelError::Joint {
             joint: number,
             name: joint.name.clone(),
-            message: format!(
-                "home position {} is outside the limits [{}, {}]",
-                joint.home, limits.lower, limits.upper
-            ),
+            message: format!("home position {} is outside the limits [{}, {}]", joint.home, limits.lower, limits.upper),
         });
     }
     if let Some(v) = joint.max_velocity
         && !(v.is_finite() && v > 0.0)
     {
-        return Err(ModelError::VelocityLimit {
-            joint: number,
-            name: joint.name.clone(),
-            value: v,
-        });
+        return Err(ModelError::VelocityLimit { joint: number, name: joint.name.clone(), value: v });
     }
     Ok(())
 }
 
 fn check_transform(which: &str, t: &Isometry3<f64>) -> Result<(), ModelError> {
-    let finite = t.translation.vector.iter().all(|v| v.is_finite())
-        && t.rotation.coords.iter().all(|v| v.is_finite());
+    let finite = t.translation.vector.iter().all(|v| v.is_finite()) && t.rotation.coords.iter().all(|v| v.is_finite());
     if finite {
         Ok(())
     } else {
-        Err(ModelError::Transform {
-            which: which.to_string(),
-            reason: "contains NaN or infinity".into(),
-        })
+        Err(ModelError::Transform { which: which.to_string(), reason: "contains NaN or infinity".into() })
     }
 }

@@ -45,11 +45,7 @@ impl PlanarPaperAngles {
     /// The paper's angles from DH joint angles `[q1, q2, q3]`.
     #[must_use]
     pub fn from_joints(q: [f64; 3]) -> Self {
-        PlanarPaperAngles {
-            gamma: q[0],
-            beta: q[1] + PI,
-            alpha: q[2] + PI,
-        }
+        PlanarPaperAngles { gamma: q[0], beta: q[1] + PI, alpha: q[2] + PI }
     }
 }
 
@@ -74,11 +70,7 @@ impl LogLoaderPaperAngles {
     /// The paper's angles from DH joint angles.
     #[must_use]
     pub fn from_joints(q: [f64; 3]) -> Self {
-        LogLoaderPaperAngles {
-            alpha: q[0],
-            gamma: q[1],
-            beta: q[2] + PI,
-        }
+        LogLoaderPaperAngles { alpha: q[0], gamma: q[1], beta: q[2] + PI }
     }
 }
 
@@ -88,20 +80,10 @@ mod tests {
 
     #[test]
     fn conversions_round_trip() {
-        let p = PlanarPaperAngles {
-            alpha: 1.0,
-            beta: 2.0,
-            gamma: 0.5,
-        };
+        let p = PlanarPaperAngles { alpha: 1.0, beta: 2.0, gamma: 0.5 };
         assert_eq!(PlanarPaperAngles::from_joints(p.to_joints()), p);
-        let l = LogLoaderPaperAngles {
-            alpha: -0.3,
-            beta: 2.5,
-            gamma: 0.7,
-        };
+        let l = LogLoaderPaperAngles { alpha: -0.3, beta: 2.5, gamma: 0.7 };
         let back = LogLoaderPaperAngles::from_joints(l.to_joints());
-        assert!(
-            (back.beta - l.beta).abs() < 1e-15 && back.alpha == l.alpha && back.gamma == l.gamma
-        );
+        assert!((back.beta - l.beta).abs() < 1e-15 && back.alpha == l.alpha && back.gamma == l.gamma);
     }
 }

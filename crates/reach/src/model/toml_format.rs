@@ -4,8 +4,7 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 use serde::Deserialize;
 
 use super::{
-    Convention, DhParams, Joint, JointGeometry, JointKind, Limits, LinkGeometry, ModelError, Robot,
-    RobotSpec,
+    Convention, DhParams, Joint, JointGeometry, JointKind, Limits, LinkGeometry, ModelError, Robot, RobotSpec,
 };
 
 /// Length unit of a description file.
@@ -81,10 +80,7 @@ pub struct FileUnits {
 
 impl Default for FileUnits {
     fn default() -> Self {
-        FileUnits {
-            length: LengthUnit::Metre,
-            angle: AngleUnit::Degree,
-        }
+        FileUnits { length: LengthUnit::Metre, angle: AngleUnit::Degree }
     }
 }
 
@@ -170,9 +166,7 @@ pub(crate) fn xyz_rpy(xyz: [f64; 3], rpy: [f64; 3], length: f64, angle: f64) -> 
 fn line_column(text: &str, offset: usize) -> (usize, usize) {
     let before = &text[..offset.min(text.len())];
     let line = before.matches('\n').count() + 1;
-    let column = before.rfind('\n').map_or(before.chars().count(), |nl| {
-        before[nl + 1..].chars().count()
-    }) + 1;
+    let column = before.rfind('\n').map_or(before.chars().count(), |nl| before[nl + 1..].chars().count()) + 1;
     (line, column)
 }
 
@@ -193,16 +187,9 @@ impl Robot {
     pub fn from_toml_str_with_units(text: &str) -> Result<(Robot, FileUnits), ModelError> {
         let file: RobotFile = toml::from_str(text).map_err(|e| {
             let (line, column) = e.span().map_or((1, 1), |s| line_column(text, s.start));
-            ModelError::Parse {
-                line,
-                column,
-                message: e.message().trim().to_string(),
-            }
+            ModelError::Parse { line, column, message: e.message().trim().to_string() }
         })?;
-        let units = FileUnits {
-            length: file.length_unit,
-            angle: file.angle_unit,
-        };
+        let units = FileUnits { length: file.length_unit, angle: file.angle_unit };
         let (ls, an) = (units.length.to_si(), units.angle.to_si());
         let convention = match file.convention {
             FileConvention::Dh => Convention::Dh,
@@ -218,38 +205,18 @@ impl Robot {
             let max_velocity = match (j.max_velocity, j.max_velocity_rpm, j.kind) {
                 (Some(_), Some(_), _) => {
                     let message = "give `max_velocity` or `max_velocity_rpm`, not both".into();
-                    return Err(ModelError::Joint {
-                        joint: i + 1,
-                        name,
-                        message,
-                    });
+                    return Err(ModelError::Joint { joint: i + 1, name, message });
                 }
                 (_, Some(_), JointKind::Prismatic) => {
                     let message = "`max_velocity_rpm` applies to revolute joints only".into();
-                    return Err(ModelError::Joint {
-                        joint: i + 1,
-                        name,
-                        message,
-                    });
+                    return Err(ModelError::Joint { joint: i + 1, name, message });
                 }
                 (Some(v), None, _) => Some(v * var_scale),
                 (None, Some(rpm), _) => Some(rpm * std::f64::consts::TAU / 60.0),
                 (None, None, _) => None,
             };
-            let limits = j.limits.map_or(Limits::UNLIMITED, |[lo, hi]| {
-                Limits::new(lo * var_scale, hi * var_scale)
-            });
-            // Default home: 0 when inside the limits, else the middle of the range.
-            let home = j.home.map_or_else(
-                || {
-                    if limits.contains(0.0, 0.0) {
-                        0.0
-                    } else {
-                        0.5 * (limits.lower + limits.upper)
-                    }
-                },
-                |h| h * var_scale,
-            );
+            let limits = j.limits.map_or(Limits::UNLIMITED, |[lo, hi]| Limits::new(lo * var_scale, hi * var_scale));
+            let home = j.home.map_or_else(|| limits.default_home(), |h| h * var_scale);
             joints.push(Joint {
                 name,
                 home,
@@ -265,9 +232,8 @@ impl Robot {
                 flip: j.flip,
             });
         }
-        let transform = |t: Option<TransformField>| {
-            t.map_or_else(Isometry3::identity, |t| xyz_rpy(t.xyz, t.rpy, ls, an))
-        };
+        let transform =
+            |t: Option<TransformField>| t.map_or_else(Isometry3::identity, |t| xyz_rpy(t.xyz, t.rpy, ls, an));
         let spec = RobotSpec {
             name: file.name,
             description: file.description,
@@ -275,13 +241,7 @@ impl Robot {
             joints,
             base: transform(file.base),
             tool: transform(file.tool),
-            links: file
-                .links
-                .into_iter()
-                .map(|l| LinkGeometry {
-                    radius: l.radius * ls,
-                })
-                .collect(),
+            links: file.links.into_iter().map(|l| LinkGeometry { radius: l.radius * ls }).collect(),
         };
         Ok((Robot::new(spec)?, units))
     }

@@ -32,32 +32,22 @@ impl Robot {
     /// chosen tip, a tip not below the base, floating/planar/spherical or mimic joints, a
     /// zero axis; plus the validation errors of [`Robot::new`].
     pub fn from_urdf_str(text: &str, chain: &UrdfChain) -> Result<Robot, ModelError> {
-        let urdf = urdf_rs::read_from_string(text)
-            .map_err(|e| ModelError::Urdf(one_line(&e.to_string())))?;
+        let urdf = urdf_rs::read_from_string(text).map_err(|e| ModelError::Urdf(one_line(&e.to_string())))?;
         let links: BTreeSet<&str> = urdf.links.iter().map(|l| l.name.as_str()).collect();
         let mut parent_joint: BTreeMap<&str, &urdf_rs::Joint> = BTreeMap::new();
         let mut children: BTreeMap<&str, Vec<&str>> = BTreeMap::new();
         for j in &urdf.joints {
             if parent_joint.insert(j.child.link.as_str(), j).is_some() {
-                return Err(ModelError::Urdf(format!(
-                    "link `{}` has two parent joints",
-                    j.child.link
-                )));
+                return Err(ModelError::Urdf(format!("link `{}` has two parent joints", j.child.link)));
             }
-            children
-                .entry(j.parent.link.as_str())
-                .or_default()
-                .push(j.child.link.as_str());
+            children.entry(j.parent.link.as_str()).or_default().push(j.child.link.as_str());
         }
         let known = |name: &str| -> Result<(), ModelError> {
             if links.contains(name) {
                 Ok(())
             } else {
                 let list: Vec<&str> = links.iter().copied().collect();
-                Err(ModelError::Urdf(format!(
-                    "no link named `{name}` (links: {})",
-                    list.join(", ")
-                )))
+                Err(ModelError::Urdf(format!("no link named `{name}` (links: {})", list.join(", "))))
             }
         };
         let base: &str = match &chain.base {
@@ -66,17 +56,11 @@ impl Robot {
                 b
             }
             None => {
-                let roots: Vec<&str> = links
-                    .iter()
-                    .copied()
-                    .filter(|l| !parent_joint.contains_key(l))
-                    .collect();
+                let roots: Vec<&str> = links.iter().copied().filter(|l| !parent_joint.contains_key(l)).collect();
                 match roots.as_slice() {
                     [root] => root,
                     [] => {
-                        return Err(ModelError::Urdf(
-                            "the link tree has no root (a cycle?)".into(),
-                        ));
+                        return Err(ModelError::Urdf("the link tree has no root (a cycle?)".into()));
                     }
                     many => {
                         return Err(ModelError::Urdf(format!(
@@ -93,12 +77,18 @@ impl Robot {
                 t
             }
             None => {
-                // Walk down from the base while the chain does not branch.
+                // Walk down from the base while the chain does not branch. A path visits each
+                // joint at most once, so more steps than joints means a cycle.
                 let mut link = base;
+                let mut steps = 0;
                 loop {
                     match children.get(link).map(Vec::as_slice) {
                         None | Some([]) => break link,
-                        Some([only]) => link = only,
+                        Some([_]) if steps > urdf.joints.len() => return Err(cycle(link)),
+                        Some([only]) => {
+                            link = only;
+                            steps += 1;
+                        }
                         Some(many) => {
                             return Err(ModelError::Urdf(format!(
                                 "the tree branches at link `{link}` (children: {}); choose the tip link",
@@ -114,14 +104,13 @@ impl Robot {
         let mut link = tip;
         while link != base {
             match parent_joint.get(link) {
+                Some(_) if path.len() > urdf.joints.len() => return Err(cycle(link)),
                 Some(j) => {
                     path.push(j);
                     link = j.parent.link.as_str();
                 }
                 None => {
-                    return Err(ModelError::Urdf(format!(
-                        "link `{tip}` is not below link `{base}`"
-                    )));
+                    return Err(ModelError::Urdf(format!("link `{tip}` is not below link `{base}`")));
                 }
             }
         }
@@ -136,9 +125,7 @@ impl Robot {
                     pending = origin;
                     continue;
                 }
-                urdf_rs::JointType::Revolute | urdf_rs::JointType::Continuous => {
-                    JointKind::Revolute
-                }
+                urdf_rs::JointType::Revolute | urdf_rs::JointType::Continuous => JointKind::Revolute,
                 urdf_rs::JointType::Prismatic => JointKind::Prismatic,
                 ref other => {
                     return Err(ModelError::Urdf(format!(
@@ -154,33 +141,23 @@ impl Robot {
                 )));
             }
             let axis = Vector3::from(j.axis.xyz.0);
-            if !(axis.norm() > AXIS_MIN_NORM) {
-                return Err(ModelError::Urdf(format!(
-                    "joint `{}`: axis {:?} has no direction",
-                    j.name, j.axis.xyz.0
-                )));
+            let norm = axis.norm();
+            if norm.is_nan() || norm <= AXIS_MIN_NORM {
+                return Err(ModelError::Urdf(format!("joint `{}`: axis {:?} has no direction", j.name, j.axis.xyz.0)));
             }
             let limits = if j.joint_type == urdf_rs::JointType::Continuous {
                 Limits::UNLIMITED
             } else {
                 Limits::new(j.limit.lower, j.limit.upper)
             };
-            let max_velocity = (j.limit.velocity.is_finite() && j.limit.velocity > 0.0)
-                .then_some(j.limit.velocity);
+            let max_velocity = (j.limit.velocity.is_finite() && j.limit.velocity > 0.0).then_some(j.limit.velocity);
             joints.push(Joint {
                 name: j.name.clone(),
                 kind,
-                geometry: JointGeometry::Axis {
-                    origin,
-                    axis: Unit::new_normalize(axis),
-                },
+                geometry: JointGeometry::Axis { origin, axis: Unit::new_normalize(axis) },
                 limits,
                 max_velocity,
-                home: if limits.contains(0.0, 0.0) {
-                    0.0
-                } else {
-                    0.5 * (limits.lower + limits.upper)
-                },
+                home: limits.default_home(),
                 flip: false,
             });
             pending = Isometry3::identity();
@@ -196,6 +173,10 @@ impl Robot {
         };
         Robot::new(spec)
     }
+}
+
+fn cycle(link: &str) -> ModelError {
+    ModelError::Urdf(format!("the link tree has a cycle through link `{link}`"))
 }
 
 fn one_line(s: &str) -> String {

@@ -1,0 +1,60 @@
+//! `reach demo` — a short tour of what `reach` computes, as a list of sections.
+//!
+//! Each section is a title and a function writing its body; later capabilities (IK,
+//! motion, drives) add their section to [`SECTIONS`].
+
+use std::io::Write;
+
+use clap::Args;
+
+use crate::error::CliError;
+use crate::numbers::{q_text, q_to_display};
+use crate::output::write_pose;
+use crate::robot_arg::load_preset;
+
+/// Arguments of `reach demo`.
+#[derive(Debug, Clone, Args)]
+pub struct DemoArgs {}
+
+/// One part of the demo.
+pub struct Section {
+    /// Heading printed above the section.
+    pub title: &'static str,
+    /// Writes the section's body.
+    pub run: fn(&mut dyn Write) -> Result<(), CliError>,
+}
+
+/// The demo's sections, in order.
+pub const SECTIONS: &[Section] =
+    &[Section { title: "Forward kinematics of every preset at its home pose", run: fk_at_home }];
+
+/// Runs every section.
+///
+/// # Errors
+/// [`CliError::Output`] when writing fails; [`CliError::Internal`] if a preset breaks.
+pub fn run(_args: &DemoArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    writeln!(out, "reach demo — robot manipulator kinematics")?;
+    writeln!(out, "Units: metres and degrees; rpy means R = Rz(yaw)·Ry(pitch)·Rx(roll); quaternions are w x y z.")?;
+    for (i, section) in SECTIONS.iter().enumerate() {
+        writeln!(out)?;
+        let heading = format!("{}. {}", i + 1, section.title);
+        writeln!(out, "{heading}")?;
+        writeln!(out, "{}", "=".repeat(heading.chars().count()))?;
+        (section.run)(out)?;
+    }
+    Ok(())
+}
+
+/// Section 1: the tool pose of each preset at `Robot::home()`.
+fn fk_at_home(out: &mut dyn Write) -> Result<(), CliError> {
+    for name in reach::model::presets::names() {
+        let robot = load_preset(name)?.robot;
+        let q = robot.home();
+        let pose = robot.fk(&q)?;
+        writeln!(out)?;
+        writeln!(out, "{name} — {} ({} joints)", robot.description(), robot.dof())?;
+        writeln!(out, "  {:<12}  {}", "home q", q_text(&robot, &q_to_display(&robot, &q)))?;
+        write_pose(out, &pose, "  ")?;
+    }
+    Ok(())
+}

@@ -1,0 +1,346 @@
+//! `reach robot show` — the parsed model of a robot.
+
+use std::io::Write;
+
+use clap::{Args, Subcommand};
+use nalgebra::Isometry3;
+use reach::Robot;
+use reach::model::{Convention, FileUnits, Joint, JointGeometry, JointKind};
+use serde::Serialize;
+
+use crate::error::CliError;
+use crate::output::{Align, Matrix4Rows, Table, limits_json, matrix_rows, num, nums, rpy_deg, rpy_rad, write_json};
+use crate::robot_arg::{LoadedRobot, RobotArgs};
+
+/// Subcommands of `reach robot`.
+#[derive(Debug, Clone, Subcommand)]
+pub enum RobotCommand {
+    /// Print a robot's parsed model: DH table (in the file's units) or URDF joints.
+    #[command(
+        long_about = "Print a robot's parsed model.\n\n\
+            DH/MDH robots are shown as a table in the units of their description file \
+            (presets are TOML files, e.g. varan4 is in mm and deg); URDF robots as joint \
+            origins (xyz in m, rpy in deg) and axes. With --json, every number is SI \
+            (metres, radians, rad/s or m/s): {\"name\", \"description\", \"convention\", \
+            \"joints\": [{\"name\", \"kind\", \"a_m\", \"alpha_rad\", \"d_m\", \
+            \"theta_offset_rad\", \"limits\": [lo, hi] or null, \"max_velocity\", \"home\", \
+            \"flip\"}], \"base\": 4x4, \"tool\": 4x4} (URDF joints carry \"origin\": 4x4 and \
+            \"axis\": [x, y, z] instead of a/alpha/d/theta). Matrices are row-major.",
+        after_help = "Examples:\n  \
+            reach robot show puma560\n  \
+            reach robot show varan4 --json\n  \
+            reach robot show arm.urdf --base base_link --tip tool0"
+    )]
+    Show(ShowArgs),
+}
+
+/// Arguments of `reach robot show`.
+#[derive(Debug, Clone, Args)]
+pub struct ShowArgs {
+    /// The robot.
+    #[command(flatten)]
+    pub robot: RobotArgs,
+
+    /// Print JSON in SI units instead of the table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Runs a `reach robot …` subcommand.
+///
+/// # Errors
+/// [`CliError::BadInput`] for a robot that cannot be loaded; [`CliError::Output`].
+pub fn run(command: &RobotCommand, out: &mut dyn Write) -> Result<(), CliError> {
+    match command {
+        RobotCommand::Show(args) => show(args, out),
+    }
+}
+
+fn show(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let loaded = args.robot.load()?;
+    if args.json { write_json(out, &RobotJson::of(&loaded.robot)) } else { write_human(&loaded, out) }
+}
+
+/// The JSON form of a robot model (SI units).
+#[derive(Debug, Clone, Serialize)]
+pub struct RobotJson {
+    /// Robot name.
+    pub name: String,
+    /// One-line description.
+    pub description: String,
+    /// `dh`, `mdh` or `urdf`.
+    pub convention: &'static str,
+    /// Number of joints.
+    pub dof: usize,
+    /// The joints, base to tip.
+    pub joints: Vec<JointJson>,
+    /// Base transform (world ← first frame), row-major.
+    pub base: Matrix4Rows,
+    /// Tool transform (last frame ← tool point), row-major.
+    pub tool: Matrix4Rows,
+}
+
+/// One joint in [`RobotJson`].
+#[derive(Debug, Clone, Serialize)]
+pub struct JointJson {
+    /// Joint name.
+    pub name: String,
+    /// `revolute` or `prismatic`.
+    pub kind: &'static str,
+    /// DH parameters or URDF origin and axis.
+    #[serde(flatten)]
+    pub geometry: GeometryJson,
+    /// `[lower, upper]` (rad or m; `null` for an infinite bound), or `null` when unlimited.
+    pub limits: Option<[Option<f64>; 2]>,
+    /// Speed limit, rad/s or m/s, or `null`.
+    pub max_velocity: Option<f64>,
+    /// Home position, rad or m.
+    pub home: f64,
+    /// Whether the joint direction is reversed.
+    pub flip: bool,
+}
+
+/// Joint geometry in [`JointJson`].
+#[derive(Debug, Clone, Serialize)]
+#[serde(untagged)]
+pub enum GeometryJson {
+    /// DH or MDH parameters.
+    Dh {
+        /// Link length, metres.
+        a_m: f64,
+        /// Link twist, radians.
+        alpha_rad: f64,
+        /// Link offset, metres.
+        d_m: f64,
+        /// Joint angle offset, radians.
+        theta_offset_rad: f64,
+    },
+    /// URDF origin and axis.
+    Axis {
+        /// Joint frame in the previous joint frame, row-major.
+        origin: Matrix4Rows,
+        /// Unit axis in the joint frame.
+        axis: [f64; 3],
+    },
+}
+
+impl RobotJson {
+    /// The JSON form of `robot`.
+    #[must_use]
+    pub fn of(robot: &Robot) -> Self {
+        RobotJson {
+            name: robot.name().to_string(),
+            description: robot.description().to_string(),
+            convention: robot.convention().as_str(),
+            dof: robot.dof(),
+            joints: robot.joints().iter().map(JointJson::of).collect(),
+            base: matrix_rows(robot.base()),
+            tool: matrix_rows(robot.tool()),
+        }
+    }
+}
+
+impl JointJson {
+    /// The JSON form of `joint`.
+    #[must_use]
+    pub fn of(joint: &Joint) -> Self {
+        let geometry = match &joint.geometry {
+            JointGeometry::Dh(p) => {
+                GeometryJson::Dh { a_m: p.a, alpha_rad: p.alpha, d_m: p.d, theta_offset_rad: p.theta_offset }
+            }
+            JointGeometry::Axis { origin, axis } => {
+                GeometryJson::Axis { origin: matrix_rows(origin), axis: [axis.x, axis.y, axis.z] }
+            }
+        };
+        JointJson {
+            name: joint.name.clone(),
+            kind: joint.kind.as_str(),
+            geometry,
+            limits: limits_json(&joint.limits),
+            max_velocity: joint.max_velocity,
+            home: joint.home,
+            flip: joint.flip,
+        }
+    }
+}
+
+/// Display units: the file's (TOML) or metres and degrees (URDF).
+struct Units {
+    /// Metres per display length unit.
+    length: f64,
+    /// `m` or `mm`.
+    length_name: &'static str,
+    /// Radians per display angle unit.
+    angle: f64,
+    /// `deg` or `rad`.
+    angle_name: &'static str,
+}
+
+impl Units {
+    fn of(file: Option<FileUnits>) -> Self {
+        let file = file.unwrap_or_default();
+        Units {
+            length: file.length.to_si(),
+            length_name: file.length.as_str(),
+            angle: file.angle.to_si(),
+            angle_name: file.angle.as_str(),
+        }
+    }
+
+    fn length_text(&self, si: f64) -> String {
+        num(si / self.length)
+    }
+
+    fn angle_text(&self, si: f64) -> String {
+        num(si / self.angle)
+    }
+
+    /// Scale and unit name of a joint variable.
+    fn var(&self, kind: JointKind) -> (f64, &'static str) {
+        match kind {
+            JointKind::Revolute => (self.angle, self.angle_name),
+            JointKind::Prismatic => (self.length, self.length_name),
+        }
+    }
+
+    fn transform(&self, t: &Isometry3<f64>) -> String {
+        let xyz: Vec<f64> = t.translation.vector.iter().map(|v| v / self.length).collect();
+        let rpy: Vec<f64> = rpy_rad(&t.rotation).iter().map(|r| r / self.angle).collect();
+        format!("xyz [{}] {}   rpy [{}] {}", self.length_name, nums(&xyz), self.angle_name, nums(&rpy))
+    }
+}
+
+fn convention_line(convention: Convention) -> &'static str {
+    match convention {
+        Convention::Dh => "dh — standard Denavit–Hartenberg, A = Rz(θ)·Tz(d)·Tx(a)·Rx(α), θ = q + theta",
+        Convention::Mdh => {
+            "mdh — modified (Craig) DH, A = Rx(α)·Tx(a)·Rz(θ)·Tz(d), θ = q + theta; a and alpha belong to the link before the joint"
+        }
+        Convention::Urdf => "urdf — joint = fixed origin, then motion about/along the axis",
+    }
+}
+
+fn write_human(loaded: &LoadedRobot, out: &mut dyn Write) -> Result<(), CliError> {
+    let robot = &loaded.robot;
+    let u = Units::of(loaded.units);
+    let mut head = Table::key_value();
+    head.pair("name", robot.name());
+    if !robot.description().is_empty() {
+        head.pair("description", robot.description());
+    }
+    head.pair("source", loaded.source.to_string());
+    head.pair("convention", convention_line(robot.convention()));
+    let units = match loaded.units {
+        Some(_) => format!("lengths in {}, angles in {} (as in the file)", u.length_name, u.angle_name),
+        None => "lengths in m, angles in deg".to_string(),
+    };
+    head.pair("units", units);
+    head.pair("joints", robot.dof().to_string());
+    head.write(out, "")?;
+    writeln!(out)?;
+
+    let joint_common = |j: &Joint| -> [String; 4] {
+        let (scale, unit) = u.var(j.kind);
+        let limits = if j.limits.lower.is_finite() || j.limits.upper.is_finite() {
+            format!("{} .. {} {unit}", num(j.limits.lower / scale), num(j.limits.upper / scale))
+        } else {
+            "unlimited".into()
+        };
+        let home = format!("{} {unit}", num(j.home / scale));
+        let vel = j.max_velocity.map_or_else(|| "-".into(), |v| format!("{} {unit}/s", num(v / scale)));
+        let flip = if j.flip { "yes" } else { "no" }.to_string();
+        [limits, home, vel, flip]
+    };
+    let has_links = !robot.links().is_empty();
+    let radius_header = format!("radius [{}]", u.length_name);
+    if robot.convention() == Convention::Urdf {
+        let mut table = Table::new(&[
+            ("#", Align::Right),
+            ("name", Align::Left),
+            ("kind", Align::Left),
+            ("origin xyz [m]", Align::Left),
+            ("origin rpy [deg]", Align::Left),
+            ("axis", Align::Left),
+            ("limits", Align::Left),
+            ("home", Align::Left),
+            ("max velocity", Align::Left),
+            ("flip", Align::Left),
+        ]);
+        for (i, j) in robot.joints().iter().enumerate() {
+            let (xyz, rpy, axis) = match &j.geometry {
+                JointGeometry::Axis { origin, axis } => {
+                    let xyz: Vec<f64> = origin.translation.vector.iter().copied().collect();
+                    (nums(&xyz), nums(&rpy_deg(&origin.rotation)), nums(&[axis.x, axis.y, axis.z]))
+                }
+                JointGeometry::Dh(_) => ("-".into(), "-".into(), "-".into()),
+            };
+            let [limits, home, vel, flip] = joint_common(j);
+            table.row(vec![
+                (i + 1).to_string(),
+                j.name.clone(),
+                j.kind.as_str().into(),
+                xyz,
+                rpy,
+                axis,
+                limits,
+                home,
+                vel,
+                flip,
+            ]);
+        }
+        table.write(out, "")?;
+    } else {
+        let a_h = format!("a [{}]", u.length_name);
+        let alpha_h = format!("alpha [{}]", u.angle_name);
+        let d_h = format!("d [{}]", u.length_name);
+        let theta_h = format!("theta [{}]", u.angle_name);
+        let mut columns = vec![
+            ("#", Align::Right),
+            ("name", Align::Left),
+            ("kind", Align::Left),
+            (a_h.as_str(), Align::Right),
+            (alpha_h.as_str(), Align::Right),
+            (d_h.as_str(), Align::Right),
+            (theta_h.as_str(), Align::Right),
+            ("limits", Align::Left),
+            ("home", Align::Left),
+            ("max velocity", Align::Left),
+            ("flip", Align::Left),
+        ];
+        if has_links {
+            columns.push((radius_header.as_str(), Align::Right));
+        }
+        let mut table = Table::new(&columns);
+        for (i, j) in robot.joints().iter().enumerate() {
+            let (a, alpha, d, theta) = match &j.geometry {
+                JointGeometry::Dh(p) => {
+                    (u.length_text(p.a), u.angle_text(p.alpha), u.length_text(p.d), u.angle_text(p.theta_offset))
+                }
+                JointGeometry::Axis { .. } => ("-".into(), "-".into(), "-".into(), "-".into()),
+            };
+            let [limits, home, vel, flip] = joint_common(j);
+            let mut row = vec![
+                (i + 1).to_string(),
+                j.name.clone(),
+                j.kind.as_str().into(),
+                a,
+                alpha,
+                d,
+                theta,
+                limits,
+                home,
+                vel,
+                flip,
+            ];
+            if let Some(link) = robot.links().get(i) {
+                row.push(u.length_text(link.radius));
+            }
+            table.row(row);
+        }
+        table.write(out, "")?;
+    }
+    writeln!(out)?;
+    writeln!(out, "base  {}", u.transform(robot.base()))?;
+    writeln!(out, "tool  {}", u.transform(robot.tool()))?;
+    Ok(())
+}

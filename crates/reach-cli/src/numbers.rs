@@ -1,0 +1,196 @@
+//! Numbers given on the command line: parsing, finiteness, joint units.
+//!
+//! Joint values are typed in **degrees** for revolute joints by default (radians with
+//! `--rad`) and always in **metres** for prismatic joints; inside the program they are SI
+//! (radians, metres). Every value must be a finite number: `nan`, `inf` and overflowing
+//! literals such as `1e400` are rejected with a message naming the joint.
+
+use clap::Args;
+use reach::Robot;
+use reach::model::JointKind;
+
+use crate::error::CliError;
+
+/// How revolute joint values are written on the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum AngleInput {
+    /// Degrees (the default).
+    #[default]
+    Degrees,
+    /// Radians (`--rad`).
+    Radians,
+}
+
+/// Joint-value arguments (flatten into a command): `Q…` and `--rad`.
+///
+/// Values may be negative without `--`: `reach fk ur5 -90 -45.5 0 0 0 0`.
+#[derive(Debug, Clone, Args)]
+pub struct JointArgs {
+    /// Joint values, base to tip: degrees for revolute joints (radians with --rad), metres
+    /// for prismatic joints. Negative values need no `--`.
+    #[arg(value_name = "Q")]
+    pub q: Vec<String>,
+
+    /// Revolute joint values are in radians instead of degrees.
+    #[arg(long)]
+    pub rad: bool,
+}
+
+impl JointArgs {
+    /// The unit the revolute values are written in.
+    #[must_use]
+    pub fn angle_input(&self) -> AngleInput {
+        if self.rad { AngleInput::Radians } else { AngleInput::Degrees }
+    }
+
+    /// Parses the values for `robot`.
+    ///
+    /// # Errors
+    /// See [`parse_joint_values`].
+    pub fn resolve(&self, robot: &Robot) -> Result<JointValues, CliError> {
+        parse_joint_values(robot, &self.q, self.angle_input())
+    }
+}
+
+/// A joint vector read from the command line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointValues {
+    /// SI units: radians, metres (what the library takes).
+    pub si: Vec<f64>,
+    /// Display units: revolute joints in degrees, prismatic joints in metres. Values typed
+    /// in degrees are kept exactly as typed (no round trip through radians).
+    pub deg: Vec<f64>,
+}
+
+/// Parses one number; `label` names it in the error (`joint 3`, `--speed`).
+///
+/// Surrounding blanks are ignored. Accepts what Rust's `f64` parser accepts (`-1.5`, `2e-3`,
+/// `.5`) except non-finite values.
+///
+/// # Errors
+/// [`CliError::BadInput`]: `joint 3: expected a number, got "abc"` or
+/// `joint 3: expected a finite number, got "inf"`.
+pub fn parse_finite(label: &str, text: &str) -> Result<f64, CliError> {
+    let value: f64 =
+        text.trim().parse().map_err(|_| CliError::bad_input(format!("{label}: expected a number, got {text:?}")))?;
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(CliError::bad_input(format!("{label}: expected a finite number, got {text:?}")))
+    }
+}
+
+/// Parses one value per joint of `robot` and converts it to SI units (revolute: from
+/// degrees unless `unit` is [`AngleInput::Radians`]; prismatic: metres as given).
+///
+/// # Errors
+/// [`CliError::BadInput`] when the number of values differs from the robot's joint count
+/// (checked first), or a value is not a finite number (naming the 1-based joint).
+pub fn parse_joint_values(robot: &Robot, texts: &[String], unit: AngleInput) -> Result<JointValues, CliError> {
+    if texts.len() != robot.dof() {
+        return Err(CliError::bad_input(format!(
+            "robot `{}` has {} joints, got {} joint value{}",
+            robot.name(),
+            robot.dof(),
+            texts.len(),
+            if texts.len() == 1 { "" } else { "s" }
+        )));
+    }
+    let mut values = JointValues { si: Vec::with_capacity(texts.len()), deg: Vec::with_capacity(texts.len()) };
+    for (i, (joint, text)) in robot.joints().iter().zip(texts).enumerate() {
+        let typed = parse_finite(&format!("joint {}", i + 1), text)?;
+        // Degrees to radians shrinks the value, so a finite input stays finite.
+        let si = to_si(joint.kind, typed, unit);
+        values.si.push(si);
+        values.deg.push(if unit == AngleInput::Degrees { typed } else { from_si(joint.kind, si, AngleInput::Degrees) });
+    }
+    Ok(values)
+}
+
+/// Converts a joint value typed by the user to SI units.
+#[must_use]
+pub fn to_si(kind: JointKind, value: f64, unit: AngleInput) -> f64 {
+    match (kind, unit) {
+        (JointKind::Revolute, AngleInput::Degrees) => value.to_radians(),
+        _ => value,
+    }
+}
+
+/// Converts an SI joint value to the user's units (inverse of [`to_si`]).
+#[must_use]
+pub fn from_si(kind: JointKind, value: f64, unit: AngleInput) -> f64 {
+    match (kind, unit) {
+        (JointKind::Revolute, AngleInput::Degrees) => value.to_degrees(),
+        _ => value,
+    }
+}
+
+/// The joint vector in display units: revolute joints in degrees, prismatic in metres.
+#[must_use]
+pub fn q_to_display(robot: &Robot, q: &[f64]) -> Vec<f64> {
+    robot.joints().iter().zip(q).map(|(j, &v)| from_si(j.kind, v, AngleInput::Degrees)).collect()
+}
+
+/// The unit name of a joint's display value: `deg` or `m`.
+#[must_use]
+pub fn display_unit(kind: JointKind) -> &'static str {
+    match kind {
+        JointKind::Revolute => "deg",
+        JointKind::Prismatic => "m",
+    }
+}
+
+/// Slack allowed when checking joint values against limits, rad or m. Converting typed
+/// degrees to radians rounds at the 1e-16 relative level, so a value typed equal to a limit
+/// must not count as outside; 1e-9 rad (or m) is far below any mechanical meaning.
+pub const LIMIT_SLACK: f64 = 1e-9;
+
+/// 1-based numbers of the joints whose value (SI) lies outside their limits.
+#[must_use]
+pub fn joints_outside_limits(robot: &Robot, q: &[f64]) -> Vec<usize> {
+    robot
+        .joints()
+        .iter()
+        .zip(q)
+        .enumerate()
+        .filter(|(_, (j, v))| !j.limits.contains(**v, LIMIT_SLACK))
+        .map(|(i, _)| i + 1)
+        .collect()
+}
+
+/// A joint vector in display units (see [`JointValues::deg`]) for people: `0 -90 45 [deg]`
+/// when all joints share a unit, else `90 deg, 0.25 m`.
+#[must_use]
+pub fn q_text(robot: &Robot, shown: &[f64]) -> String {
+    let units: Vec<&str> = robot.joints().iter().map(|j| display_unit(j.kind)).collect();
+    if units.windows(2).all(|w| w[0] == w[1]) {
+        format!("{} [{}]", crate::output::nums(shown), units.first().copied().unwrap_or(""))
+    } else {
+        shown.iter().zip(units).map(|(v, u)| format!("{} {u}", crate::output::num(*v))).collect::<Vec<_>>().join(", ")
+    }
+}
+
+/// One line saying whether `q` (SI) respects the joint limits, naming the offenders.
+#[must_use]
+pub fn limits_text(robot: &Robot, q: &[f64]) -> String {
+    let outside = joints_outside_limits(robot, q);
+    if outside.is_empty() {
+        return "all joints within limits".into();
+    }
+    let parts: Vec<String> = outside
+        .iter()
+        .map(|&n| {
+            let j = &robot.joints()[n - 1];
+            let lo = from_si(j.kind, j.limits.lower, AngleInput::Degrees);
+            let hi = from_si(j.kind, j.limits.upper, AngleInput::Degrees);
+            format!(
+                "joint {n} ({}) outside {} .. {} {}",
+                j.name,
+                crate::output::num(lo),
+                crate::output::num(hi),
+                display_unit(j.kind)
+            )
+        })
+        .collect();
+    parts.join("; ")
+}

@@ -1,0 +1,437 @@
+//! Output helpers shared by the commands: number formatting, matrices, poses, tables, JSON.
+//!
+//! Conventions of the printed output:
+//!
+//! * human-readable output names its units (`[m]`, `[deg]`); JSON field names carry the unit
+//!   (`xyz_m`, `rpy_deg`), and JSON numbers are SI unless the name says otherwise;
+//! * 4×4 matrices are row-major (`matrix[row][column]`);
+//! * `rpy` is roll–pitch–yaw about fixed axes, `R = Rz(yaw)·Ry(pitch)·Rx(roll)`;
+//! * quaternions are `w x y z` with `w ≥ 0` (of the two equivalent signs, the one with a
+//!   non-negative scalar part is printed).
+
+use std::io::Write;
+
+use nalgebra::{Isometry3, IsometryMatrix3, UnitQuaternion};
+use reach::model::Limits;
+use serde::Serialize;
+
+use crate::error::CliError;
+
+/// A 4×4 homogeneous matrix, row-major.
+pub type Matrix4Rows = [[f64; 4]; 4];
+
+/// The homogeneous matrix of a pose, row-major.
+#[must_use]
+pub fn matrix_rows(pose: &Isometry3<f64>) -> Matrix4Rows {
+    rows_of(&pose.to_homogeneous())
+}
+
+/// The homogeneous matrix of a pose with a rotation matrix, row-major.
+#[must_use]
+pub fn matrix_rows_m(pose: &IsometryMatrix3<f64>) -> Matrix4Rows {
+    rows_of(&pose.to_homogeneous())
+}
+
+fn rows_of(m: &nalgebra::Matrix4<f64>) -> Matrix4Rows {
+    std::array::from_fn(|r| std::array::from_fn(|c| m[(r, c)]))
+}
+
+/// Roll, pitch, yaw in radians with `R = Rz(yaw)·Ry(pitch)·Rx(roll)`.
+#[must_use]
+pub fn rpy_rad(rotation: &UnitQuaternion<f64>) -> [f64; 3] {
+    let (roll, pitch, yaw) = rotation.euler_angles();
+    [roll, pitch, yaw]
+}
+
+/// Roll, pitch, yaw in degrees (see [`rpy_rad`]).
+#[must_use]
+pub fn rpy_deg(rotation: &UnitQuaternion<f64>) -> [f64; 3] {
+    rpy_rad(rotation).map(f64::to_degrees)
+}
+
+/// The quaternion as `[w, x, y, z]` with `w ≥ 0`.
+#[must_use]
+pub fn quat_wxyz(rotation: &UnitQuaternion<f64>) -> [f64; 4] {
+    let q = rotation.quaternion();
+    let s = if q.w < 0.0 { -1.0 } else { 1.0 };
+    [s * q.w, s * q.i, s * q.j, s * q.k]
+}
+
+/// A pose in the JSON output: `{"matrix", "xyz_m", "rpy_deg", "quat_wxyz"}`.
+#[derive(Debug, Clone, Serialize)]
+pub struct PoseJson {
+    /// Homogeneous matrix, row-major.
+    pub matrix: Matrix4Rows,
+    /// Position, metres.
+    pub xyz_m: [f64; 3],
+    /// Roll, pitch, yaw in degrees, `R = Rz(yaw)·Ry(pitch)·Rx(roll)`.
+    pub rpy_deg: [f64; 3],
+    /// Unit quaternion `w, x, y, z` with `w ≥ 0`.
+    pub quat_wxyz: [f64; 4],
+}
+
+impl PoseJson {
+    /// The JSON form of a pose.
+    #[must_use]
+    pub fn of(pose: &Isometry3<f64>) -> Self {
+        PoseJson {
+            matrix: matrix_rows(pose),
+            xyz_m: pose.translation.vector.into(),
+            rpy_deg: rpy_deg(&pose.rotation),
+            quat_wxyz: quat_wxyz(&pose.rotation),
+        }
+    }
+}
+
+/// Limits as JSON: `null` when unlimited, else `[lower, upper]` with `null` for an
+/// infinite bound (JSON has no infinity).
+#[must_use]
+pub fn limits_json(limits: &Limits) -> Option<[Option<f64>; 2]> {
+    let bound = |v: f64| v.is_finite().then_some(v);
+    if limits.lower.is_finite() || limits.upper.is_finite() {
+        Some([bound(limits.lower), bound(limits.upper)])
+    } else {
+        None
+    }
+}
+
+/// Writes `value` as indented JSON followed by a newline.
+///
+/// Like `serde_json`'s pretty printer (fields in declaration order), except that arrays of
+/// plain values (numbers, `null`, booleans, strings) stay on one line, so a 4×4 matrix
+/// takes four lines, not 24.
+///
+/// # Errors
+/// [`CliError::Output`] when writing fails; [`CliError::Internal`] if `value` cannot be
+/// represented as JSON.
+pub fn write_json<T: Serialize>(out: &mut dyn Write, value: &T) -> Result<(), CliError> {
+    let compact = serde_json::to_string(value)?;
+    let mut text = String::with_capacity(compact.len() * 2);
+    let mut parser = Compact { text: compact.as_bytes(), pos: 0 };
+    parser.value(0, &mut text);
+    text.push('\n');
+    out.write_all(text.as_bytes())?;
+    Ok(())
+}
+
+/// Re-indents the compact JSON written by `serde_json::to_string` (which is valid, has no
+/// blanks outside strings, and keeps the field order).
+struct Compact<'a> {
+    text: &'a [u8],
+    pos: usize,
+}
+
+impl Compact<'_> {
+    fn peek(&self) -> u8 {
+        self.text.get(self.pos).copied().unwrap_or(b']')
+    }
+
+    /// Copies one scalar (string, number, literal) to `out`.
+    fn scalar(&mut self, out: &mut String) {
+        let start = self.pos;
+        if self.peek() == b'"' {
+            self.pos += 1;
+            while self.pos < self.text.len() {
+                match self.text[self.pos] {
+                    b'\\' => self.pos += 2,
+                    b'"' => {
+                        self.pos += 1;
+                        break;
+                    }
+                    _ => self.pos += 1,
+                }
+            }
+        } else {
+            while self.pos < self.text.len() && !matches!(self.text[self.pos], b',' | b']' | b'}' | b':') {
+                self.pos += 1;
+            }
+        }
+        out.push_str(&String::from_utf8_lossy(&self.text[start..self.pos.min(self.text.len())]));
+    }
+
+    /// Whether the array starting at `self.pos` (on its `[`) holds only scalars.
+    fn flat_array(&self) -> bool {
+        let mut in_string = false;
+        let mut escaped = false;
+        for &c in &self.text[self.pos + 1..] {
+            match (in_string, escaped, c) {
+                (true, true, _) => escaped = false,
+                (true, false, b'\\') => escaped = true,
+                (true, false, b'"') | (false, _, b'"') => in_string = !in_string,
+                (false, _, b'[' | b'{') => return false,
+                (false, _, b']') => return true,
+                _ => {}
+            }
+        }
+        true
+    }
+
+    fn value(&mut self, depth: usize, out: &mut String) {
+        let indent = |d: usize| "  ".repeat(d);
+        match self.peek() {
+            open @ (b'[' | b'{') => {
+                let close = if open == b'[' { b']' } else { b'}' };
+                let flat = open == b'[' && self.flat_array();
+                self.pos += 1;
+                out.push(char::from(open));
+                if self.peek() == close {
+                    self.pos += 1;
+                    out.push(char::from(close));
+                    return;
+                }
+                loop {
+                    if flat {
+                        self.scalar(out);
+                    } else {
+                        out.push('\n');
+                        out.push_str(&indent(depth + 1));
+                        if open == b'{' {
+                            self.scalar(out); // key
+                            self.pos += 1; // ':'
+                            out.push_str(": ");
+                        }
+                        self.value(depth + 1, out);
+                    }
+                    let c = self.peek();
+                    self.pos += 1;
+                    if c == b',' {
+                        out.push_str(if flat { ", " } else { "," });
+                    } else {
+                        break;
+                    }
+                }
+                if !flat {
+                    out.push('\n');
+                    out.push_str(&indent(depth));
+                }
+                out.push(char::from(close));
+            }
+            _ => self.scalar(out),
+        }
+    }
+}
+
+/// `x` with a fixed number of decimals, never printing `-0.000`.
+#[must_use]
+pub fn fixed(x: f64, decimals: usize) -> String {
+    let s = format!("{x:.decimals$}");
+    if s.starts_with('-') && s[1..].chars().all(|c| c == '0' || c == '.') { s[1..].to_string() } else { s }
+}
+
+/// `x` with at most 9 decimals and no trailing zeros: `90`, `0.4318`, `-1.570796327`.
+///
+/// Meant for values that were typed by a person (description files), where conversion
+/// noise such as `90.00000000000001` should not show.
+#[must_use]
+pub fn num(x: f64) -> String {
+    if !x.is_finite() {
+        return if x.is_nan() {
+            "NaN".into()
+        } else if x > 0.0 {
+            "inf".into()
+        } else {
+            "-inf".into()
+        };
+    }
+    let s = fixed(x, 9);
+    let s = if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s };
+    if s == "-0" { "0".into() } else { s }
+}
+
+/// Joins values formatted by [`num`] with single spaces.
+#[must_use]
+pub fn nums(values: &[f64]) -> String {
+    values.iter().map(|&v| num(v)).collect::<Vec<_>>().join(" ")
+}
+
+/// Joins values formatted by [`fixed`] with single spaces.
+#[must_use]
+pub fn fixeds(values: &[f64], decimals: usize) -> String {
+    values.iter().map(|&v| fixed(v, decimals)).collect::<Vec<_>>().join(" ")
+}
+
+/// Writes the rows of a matrix with aligned columns, each line starting with `indent`.
+///
+/// # Errors
+/// [`CliError::Output`] when writing fails.
+pub fn write_matrix<R: AsRef<[f64]>>(
+    out: &mut dyn Write,
+    rows: &[R],
+    decimals: usize,
+    indent: &str,
+) -> Result<(), CliError> {
+    let cells: Vec<Vec<String>> =
+        rows.iter().map(|r| r.as_ref().iter().map(|&v| fixed(v, decimals)).collect()).collect();
+    let width = cells.iter().flatten().map(String::len).max().unwrap_or(0);
+    for row in cells {
+        let line: Vec<String> = row.iter().map(|c| format!("{c:>width$}")).collect();
+        writeln!(out, "{indent}{}", line.join("  "))?;
+    }
+    Ok(())
+}
+
+/// Writes a pose for people: position [m], rpy [deg], quaternion, 4×4 matrix. Every line
+/// starts with `indent`.
+///
+/// # Errors
+/// [`CliError::Output`] when writing fails.
+pub fn write_pose(out: &mut dyn Write, pose: &Isometry3<f64>, indent: &str) -> Result<(), CliError> {
+    let xyz: [f64; 3] = pose.translation.vector.into();
+    let mut lines = Table::key_value();
+    lines.pair("position [m]", format!("{}   (x y z)", fixeds(&xyz, 6)));
+    lines.pair(
+        "rpy [deg]",
+        format!("{}   (roll pitch yaw: R = Rz(yaw)·Ry(pitch)·Rx(roll))", fixeds(&rpy_deg(&pose.rotation), 4)),
+    );
+    lines.pair("quaternion", format!("{}   (w x y z)", fixeds(&quat_wxyz(&pose.rotation), 6)));
+    lines.pair("matrix", "(row-major, world ← tool)");
+    lines.write(out, indent)?;
+    write_matrix(out, &matrix_rows(pose), 6, &format!("{indent}  "))
+}
+
+/// Alignment of a table column.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Align {
+    /// Pad on the right.
+    Left,
+    /// Pad on the left (numbers).
+    Right,
+}
+
+/// A plain-text table with a header row and aligned columns.
+#[derive(Debug, Clone, Default)]
+pub struct Table {
+    header: Vec<String>,
+    align: Vec<Align>,
+    rows: Vec<Vec<String>>,
+    show_header: bool,
+}
+
+impl Table {
+    /// A table with these column headers and alignments.
+    #[must_use]
+    pub fn new(columns: &[(&str, Align)]) -> Self {
+        Table {
+            header: columns.iter().map(|(h, _)| (*h).to_string()).collect(),
+            align: columns.iter().map(|(_, a)| *a).collect(),
+            rows: Vec::new(),
+            show_header: true,
+        }
+    }
+
+    /// A two-column `key  value` list without a header row.
+    #[must_use]
+    pub fn key_value() -> Self {
+        Table { show_header: false, ..Table::new(&[("", Align::Left), ("", Align::Left)]) }
+    }
+
+    /// Appends a `key  value` row.
+    pub fn pair(&mut self, key: &str, value: impl Into<String>) {
+        self.rows.push(vec![key.to_string(), value.into()]);
+    }
+
+    /// Appends a row (missing cells are blank, extra cells are ignored).
+    pub fn row(&mut self, cells: Vec<String>) {
+        self.rows.push(cells);
+    }
+
+    /// Writes the table, each line starting with `indent`, columns two spaces apart.
+    ///
+    /// # Errors
+    /// [`CliError::Output`] when writing fails.
+    pub fn write(&self, out: &mut dyn Write, indent: &str) -> Result<(), CliError> {
+        let n = self.header.len();
+        let cell = |row: &Vec<String>, c: usize| row.get(c).cloned().unwrap_or_default();
+        let header = self.show_header.then_some(&self.header);
+        let widths: Vec<usize> = (0..n)
+            .map(|c| header.into_iter().chain(&self.rows).map(|r| cell(r, c).chars().count()).max().unwrap_or(0))
+            .collect();
+        for row in header.into_iter().chain(&self.rows) {
+            let mut line = String::from(indent);
+            for (c, (width, align)) in widths.iter().zip(&self.align).enumerate() {
+                let text = cell(row, c);
+                let pad = width - text.chars().count();
+                if c > 0 {
+                    line.push_str("  ");
+                }
+                match align {
+                    Align::Left => {
+                        line.push_str(&text);
+                        line.push_str(&" ".repeat(pad));
+                    }
+                    Align::Right => {
+                        line.push_str(&" ".repeat(pad));
+                        line.push_str(&text);
+                    }
+                }
+            }
+            writeln!(out, "{}", line.trim_end())?;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::FRAC_PI_2;
+
+    #[test]
+    fn rpy_follows_fixed_axis_convention() {
+        // R = Rz(yaw)·Ry(pitch)·Rx(roll), built from elementary rotations.
+        let (roll, pitch, yaw) = (0.3, -0.4, 1.1);
+        let r = UnitQuaternion::from_axis_angle(&nalgebra::Vector3::z_axis(), yaw)
+            * UnitQuaternion::from_axis_angle(&nalgebra::Vector3::y_axis(), pitch)
+            * UnitQuaternion::from_axis_angle(&nalgebra::Vector3::x_axis(), roll);
+        let got = rpy_rad(&r);
+        for (g, w) in got.iter().zip([roll, pitch, yaw]) {
+            assert!((g - w).abs() < 1e-12, "{got:?}");
+        }
+    }
+
+    #[test]
+    fn quaternion_has_non_negative_w() {
+        let r = UnitQuaternion::from_axis_angle(&nalgebra::Vector3::z_axis(), 1.5 * std::f64::consts::PI);
+        assert!(quat_wxyz(&r)[0] >= 0.0);
+        let r = UnitQuaternion::from_axis_angle(&nalgebra::Vector3::z_axis(), FRAC_PI_2);
+        let q = quat_wxyz(&r);
+        assert!((q[0] - q[3]).abs() < 1e-15 && q[3] > 0.0);
+    }
+
+    #[test]
+    fn numbers_print_without_noise_or_negative_zero() {
+        assert_eq!(num(FRAC_PI_2.to_degrees()), "90");
+        assert_eq!(num(0.4 / 1e-3), "400");
+        assert_eq!(num(-1e-12), "0");
+        assert_eq!(num(0.4318), "0.4318");
+        assert_eq!(fixed(-1e-9, 3), "0.000");
+        assert_eq!(fixed(-0.5, 1), "-0.5");
+        assert_eq!(num(f64::INFINITY), "inf");
+    }
+
+    #[test]
+    fn json_keeps_number_arrays_on_one_line() {
+        let mut buf = Vec::new();
+        let value = serde_json::json!({
+            "m": [[1.0, 2.0], [3.0, -0.5]],
+            "s": "a\"b],{\\",
+            "e": [],
+            "o": {},
+            "n": null,
+            "l": [{"k": ["x,", "]"]}, true]
+        });
+        write_json(&mut buf, &value).unwrap();
+        let text = String::from_utf8(buf).unwrap();
+        assert!(text.contains("    [1.0, 2.0],\n    [3.0, -0.5]\n"), "{text}");
+        assert!(text.contains(r#""k": ["x,", "]"]"#), "{text}");
+        let back: serde_json::Value = serde_json::from_str(&text).unwrap();
+        assert_eq!(back, value);
+    }
+
+    #[test]
+    fn limits_json_uses_null_for_infinite_bounds() {
+        assert_eq!(limits_json(&Limits::UNLIMITED), None);
+        assert_eq!(limits_json(&Limits::new(-1.0, 2.0)), Some([Some(-1.0), Some(2.0)]));
+        assert_eq!(limits_json(&Limits::new(f64::NEG_INFINITY, 2.0)), Some([None, Some(2.0)]));
+    }
+}

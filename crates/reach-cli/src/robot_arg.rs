@@ -1,0 +1,179 @@
+//! The `<ROBOT>` argument: a preset name or a path to a `.toml` or `.urdf` description file.
+//!
+//! Every command that takes a robot flattens [`RobotArgs`] into its arguments and calls
+//! [`RobotArgs::load`]. Resolution order:
+//!
+//! 1. a preset name (`reach robots` lists them) — presets win over files of the same name;
+//!    write `./ur5` to force a file;
+//! 2. otherwise a file path. The format follows the extension (`.toml`; `.urdf` or `.xml`);
+//!    any other extension is sniffed (a document starting with `<` is URDF, else TOML);
+//! 3. a name that is neither a preset nor an existing file, and does not look like a path,
+//!    is reported as an unknown preset with the list of known names.
+//!
+//! `--base LINK` / `--tip LINK` choose the chain of a URDF tree and are rejected for TOML
+//! robots.
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+use reach::Robot;
+use reach::model::{FileUnits, UrdfChain, presets};
+
+use crate::error::{CliError, one_line};
+
+/// Arguments that name a robot (flatten into a command with `#[command(flatten)]`).
+#[derive(Debug, Clone, Args)]
+pub struct RobotArgs {
+    /// Preset name (see `reach robots`) or path to a `.toml` or `.urdf` robot file.
+    #[arg(value_name = "ROBOT")]
+    pub robot: String,
+
+    /// URDF only: the link the chain starts at (default: the tree's root link).
+    #[arg(long, value_name = "LINK")]
+    pub base: Option<String>,
+
+    /// URDF only: the link the chain ends at (default: the only leaf below the base).
+    #[arg(long, value_name = "LINK")]
+    pub tip: Option<String>,
+}
+
+/// Which description format a robot file is written in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FileFormat {
+    /// `reach`'s TOML robot format (`docs/robot-format.md`).
+    Toml,
+    /// URDF (XML).
+    Urdf,
+}
+
+/// Where a robot came from.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum RobotSource {
+    /// A preset embedded in the binary.
+    Preset(String),
+    /// A description file.
+    File {
+        /// The path as given.
+        path: PathBuf,
+        /// Its format.
+        format: FileFormat,
+    },
+}
+
+impl fmt::Display for RobotSource {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RobotSource::Preset(name) => write!(f, "preset `{name}`"),
+            RobotSource::File { path, format } => {
+                let kind = match format {
+                    FileFormat::Toml => "TOML",
+                    FileFormat::Urdf => "URDF",
+                };
+                write!(f, "{kind} file `{}`", path.display())
+            }
+        }
+    }
+}
+
+/// A robot together with where it came from and the units its file was written in.
+#[derive(Debug, Clone)]
+pub struct LoadedRobot {
+    /// The validated model (SI units, radians).
+    pub robot: Robot,
+    /// Preset or file.
+    pub source: RobotSource,
+    /// Units of the TOML description (`None` for URDF, which is always metres and radians).
+    pub units: Option<FileUnits>,
+}
+
+impl RobotArgs {
+    /// Resolves the argument to a robot (see the module docs for the rules).
+    ///
+    /// # Errors
+    /// [`CliError::BadInput`] for an unknown preset, an unreadable or malformed file, or
+    /// `--base`/`--tip` given for a TOML robot.
+    pub fn load(&self) -> Result<LoadedRobot, CliError> {
+        let loaded = load_robot(&self.robot, &self.urdf_chain())?;
+        if loaded.units.is_some() && (self.base.is_some() || self.tip.is_some()) {
+            let flag = if self.base.is_some() { "--base" } else { "--tip" };
+            return Err(CliError::bad_input(format!(
+                "{flag} applies to URDF robots only, but `{}` is a {}",
+                self.robot,
+                match loaded.source {
+                    RobotSource::Preset(_) => "preset",
+                    RobotSource::File { .. } => "TOML file",
+                }
+            )));
+        }
+        Ok(loaded)
+    }
+
+    /// The URDF chain selection given by `--base` and `--tip`.
+    #[must_use]
+    pub fn urdf_chain(&self) -> UrdfChain {
+        UrdfChain { base: self.base.clone(), tip: self.tip.clone() }
+    }
+}
+
+/// Loads a preset by name (with its file units).
+///
+/// # Errors
+/// [`CliError::BadInput`] naming the unknown preset and listing the known ones.
+pub fn load_preset(name: &str) -> Result<LoadedRobot, CliError> {
+    let text = presets::source(name).ok_or_else(|| {
+        CliError::bad_input(format!(
+            "unknown robot `{name}`: not a preset (known: {}) and not a robot file",
+            presets::names().join(", ")
+        ))
+    })?;
+    let (robot, units) = Robot::from_toml_str_with_units(text)
+        .map_err(|e| CliError::internal(format!("preset `{name}` does not parse: {}", one_line(&e.to_string()))))?;
+    Ok(LoadedRobot { robot, source: RobotSource::Preset(name.to_string()), units: Some(units) })
+}
+
+/// Resolves a preset name or file path to a robot; `chain` selects the chain of a URDF file.
+///
+/// # Errors
+/// [`CliError::BadInput`] for an unknown preset or an unreadable or malformed file.
+pub fn load_robot(arg: &str, chain: &UrdfChain) -> Result<LoadedRobot, CliError> {
+    if presets::source(arg).is_some() {
+        return load_preset(arg);
+    }
+    let path = Path::new(arg);
+    if !path.exists() && !looks_like_path(arg) {
+        return load_preset(arg); // reports the unknown name
+    }
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| CliError::bad_input(format!("cannot read robot file `{arg}`: {}", one_line(&e.to_string()))))?;
+    let format = file_format(path, &text);
+    let source = RobotSource::File { path: path.to_path_buf(), format };
+    let bad = |e: reach::ModelError| CliError::bad_input(format!("{arg}: {}", one_line(&e.to_string())));
+    match format {
+        FileFormat::Toml => {
+            let (robot, units) = Robot::from_toml_str_with_units(&text).map_err(bad)?;
+            Ok(LoadedRobot { robot, source, units: Some(units) })
+        }
+        FileFormat::Urdf => {
+            let robot = Robot::from_urdf_str(&text, chain).map_err(bad)?;
+            Ok(LoadedRobot { robot, source, units: None })
+        }
+    }
+}
+
+/// Whether a robot argument is meant as a path rather than a preset name.
+fn looks_like_path(arg: &str) -> bool {
+    arg.contains('/') || arg.contains(std::path::MAIN_SEPARATOR) || Path::new(arg).extension().is_some()
+}
+
+/// The format of a robot file: by extension, else by its first non-blank character.
+#[must_use]
+pub fn file_format(path: &Path, text: &str) -> FileFormat {
+    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("toml") => FileFormat::Toml,
+        Some("urdf" | "xml") => FileFormat::Urdf,
+        _ if text.trim_start().starts_with('<') => FileFormat::Urdf,
+        _ => FileFormat::Toml,
+    }
+}

@@ -1,0 +1,232 @@
+//! Inverse kinematics: every closed form of the seeds with all branches, and a numeric solver.
+//!
+//! Every solver returns the same [`IkSolutions`]: all branches found, each verified by
+//! forward kinematics, labelled ([`Branch`]), flagged for limits and singularities, and a
+//! typed [`IkFailure`] when none is within limits. "No solution" is an answer, not an error;
+//! [`IkError`] is for bad input (NaN, wrong length) and for asking a closed form to solve a
+//! robot it does not fit.
+//!
+//! | solver | robots | seed |
+//! |---|---|---|
+//! | [`planar::PlanarRedundant`] | three parallel revolute axes in a plane (`planar3`) | 000 |
+//! | [`yaw_two_link::YawTwoLink`] | base yaw + two links in a vertical plane (`log-loader`) | 000 appendix |
+//! | [`yaw_planar3::YawPlanar3`] | base yaw + three links in a vertical plane (`varan4`) | 004 |
+//! | [`two_link_wrist::TwoLinkWrist`] | two-link arm + spherical wrist, no offsets (`spbu6`) | 001 |
+//! | [`spherical_wrist::SphericalWrist`] | PUMA-type 6R with spherical wrist (`puma560`) | 002 |
+//! | [`parallel_axes::ParallelAxes`] | RERR 6R, axes 2-3-4 parallel (`welder6r`) | 003 |
+//! | [`numeric::Numeric`] | any chain | — |
+//!
+//! [`solve`] picks a solver from the robot's structure ([`SolverKind::detect`]) or uses the
+//! one named; a robot with no closed form falls back to the numeric solver.
+
+mod solution;
+
+pub mod numeric;
+pub mod parallel_axes;
+pub mod planar;
+pub mod spherical_wrist;
+pub mod two_link_wrist;
+pub mod yaw_planar3;
+pub mod yaw_two_link;
+
+pub use solution::{Branch, IkFailure, IkSolution, IkSolutions, LimitViolation, SingularityKind};
+pub(crate) use solution::{Candidate, chain_target, finish};
+
+use nalgebra::{Isometry3, Point3};
+use thiserror::Error;
+
+use crate::kinematics::KinematicsError;
+use crate::model::Robot;
+
+/// What the tool should reach.
+#[derive(Debug, Clone, PartialEq)]
+pub enum IkTarget {
+    /// Full pose of the tool in the world frame.
+    Pose(Isometry3<f64>),
+    /// Tool position only (arms that cannot set orientation, e.g. seed 000's planar arm).
+    Position(Point3<f64>),
+}
+
+impl IkTarget {
+    /// The target position.
+    #[must_use]
+    pub fn position(&self) -> Point3<f64> {
+        match self {
+            IkTarget::Pose(p) => Point3::from(p.translation.vector),
+            IkTarget::Position(p) => *p,
+        }
+    }
+
+    /// Rejects NaN and infinity.
+    ///
+    /// # Errors
+    /// [`IkError::InvalidInput`] naming the component.
+    pub fn validate(&self) -> Result<(), IkError> {
+        let p = self.position();
+        for (name, v) in [("x", p.x), ("y", p.y), ("z", p.z)] {
+            if !v.is_finite() {
+                return Err(IkError::InvalidInput(format!("target {name} must be finite, got {v}")));
+            }
+        }
+        if let IkTarget::Pose(pose) = self
+            && pose.rotation.coords.iter().any(|v| !v.is_finite())
+        {
+            return Err(IkError::InvalidInput("target orientation contains NaN or infinity".into()));
+        }
+        Ok(())
+    }
+}
+
+/// Options shared by the solvers. `Default` gives the documented defaults.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IkOptions {
+    /// The current (previous) configuration: kept for undetermined angles at singularities
+    /// (e.g. the wrist roll when θ5 = 0) and used as the numeric solver's first guess.
+    pub seed: Option<Vec<f64>>,
+    /// Value of the redundancy parameter for redundant arms (radians; e.g. the absolute angle
+    /// of the last link of a planar 3-link arm). `None`: sample the self-motion.
+    pub free_parameter: Option<f64>,
+    /// Step for sampling a self-motion manifold (radians). Default 1°.
+    pub redundancy_step: f64,
+    /// Numeric solver: iterations per start. Default 200.
+    pub max_iterations: usize,
+    /// Numeric solver: number of starts (the seed, then deterministic pseudo-random ones). Default 16.
+    pub restarts: usize,
+}
+
+impl Default for IkOptions {
+    fn default() -> Self {
+        IkOptions {
+            seed: None,
+            free_parameter: None,
+            redundancy_step: 1f64.to_radians(),
+            max_iterations: 200,
+            restarts: 16,
+        }
+    }
+}
+
+/// Bad input or a solver that does not fit the robot.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum IkError {
+    /// The target or an option is NaN, infinite or out of its domain.
+    #[error("invalid IK input: {0}")]
+    InvalidInput(String),
+    /// The named closed-form solver does not fit this robot's structure.
+    #[error("solver `{solver}` does not fit robot `{robot}`: {reason}")]
+    Unsupported {
+        /// Solver name.
+        solver: &'static str,
+        /// Robot name.
+        robot: String,
+        /// Which structural condition failed.
+        reason: String,
+    },
+    /// The seed configuration (or a kinematics call) was rejected.
+    #[error(transparent)]
+    Kinematics(#[from] KinematicsError),
+}
+
+/// A solver for one family of robots.
+pub trait IkSolver {
+    /// Short name (`spherical-wrist`).
+    fn name(&self) -> &'static str;
+    /// Every solution for `target`.
+    ///
+    /// # Errors
+    /// [`IkError`] for invalid input.
+    fn solve(&self, robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError>;
+}
+
+/// The solvers, by name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum SolverKind {
+    /// [`planar::PlanarRedundant`].
+    Planar,
+    /// [`yaw_two_link::YawTwoLink`].
+    YawTwoLink,
+    /// [`yaw_planar3::YawPlanar3`].
+    YawPlanar3,
+    /// [`two_link_wrist::TwoLinkWrist`].
+    TwoLinkWrist,
+    /// [`spherical_wrist::SphericalWrist`].
+    SphericalWrist,
+    /// [`parallel_axes::ParallelAxes`].
+    ParallelAxes,
+    /// [`numeric::Numeric`].
+    Numeric,
+}
+
+impl SolverKind {
+    /// Every solver, in the order [`SolverKind::detect`] tries them.
+    pub const ALL: [SolverKind; 7] = [
+        SolverKind::Planar,
+        SolverKind::YawTwoLink,
+        SolverKind::YawPlanar3,
+        SolverKind::TwoLinkWrist,
+        SolverKind::SphericalWrist,
+        SolverKind::ParallelAxes,
+        SolverKind::Numeric,
+    ];
+
+    /// Name used on the command line.
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            SolverKind::Planar => "planar",
+            SolverKind::YawTwoLink => "yaw-two-link",
+            SolverKind::YawPlanar3 => "yaw-planar3",
+            SolverKind::TwoLinkWrist => "two-link-wrist",
+            SolverKind::SphericalWrist => "spherical-wrist",
+            SolverKind::ParallelAxes => "parallel-axes",
+            SolverKind::Numeric => "numeric",
+        }
+    }
+
+    /// Parses a name as printed by [`SolverKind::as_str`].
+    #[must_use]
+    pub fn parse(name: &str) -> Option<SolverKind> {
+        SolverKind::ALL.into_iter().find(|k| k.as_str() == name)
+    }
+
+    /// Builds this solver for `robot`.
+    ///
+    /// # Errors
+    /// [`IkError::Unsupported`] when the robot's structure does not fit the closed form.
+    pub fn build(self, robot: &Robot) -> Result<Box<dyn IkSolver>, IkError> {
+        Ok(match self {
+            SolverKind::Planar => Box::new(planar::PlanarRedundant::from_robot(robot)?),
+            SolverKind::YawTwoLink => Box::new(yaw_two_link::YawTwoLink::from_robot(robot)?),
+            SolverKind::YawPlanar3 => Box::new(yaw_planar3::YawPlanar3::from_robot(robot)?),
+            SolverKind::TwoLinkWrist => Box::new(two_link_wrist::TwoLinkWrist::from_robot(robot)?),
+            SolverKind::SphericalWrist => Box::new(spherical_wrist::SphericalWrist::from_robot(robot)?),
+            SolverKind::ParallelAxes => Box::new(parallel_axes::ParallelAxes::from_robot(robot)?),
+            SolverKind::Numeric => Box::new(numeric::Numeric::from_robot(robot)?),
+        })
+    }
+
+    /// The first closed form that fits `robot`, or [`SolverKind::Numeric`].
+    #[must_use]
+    pub fn detect(robot: &Robot) -> SolverKind {
+        SolverKind::ALL.into_iter().find(|k| k.build(robot).is_ok()).unwrap_or(SolverKind::Numeric)
+    }
+}
+
+/// Solves IK with the solver that fits the robot (see [`SolverKind::detect`]).
+///
+/// # Errors
+/// [`IkError`] for invalid input.
+///
+/// # Example
+/// ```
+/// use reach::ik::{self, IkOptions, IkTarget};
+/// let puma = reach::model::presets::get("puma560").unwrap();
+/// let q = [0.1, 0.4, -0.3, 0.5, 0.6, 0.7];
+/// let target = IkTarget::Pose(puma.fk(&q).unwrap());
+/// let all = ik::solve(&puma, &target, &IkOptions::default()).unwrap();
+/// assert!(all.solutions.iter().any(|s| s.q.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9)));
+/// ```
+pub fn solve(robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError> {
+    SolverKind::detect(robot).build(robot)?.solve(robot, target, options)
+}

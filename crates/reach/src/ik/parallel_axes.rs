@@ -1,0 +1,860 @@
+//! RERR 6R arms whose axes 2, 3 and 4 are parallel: seed 003's vector method
+//! (Knapczyk & Kisiel 1987, notes 003 §3), generalised to the whole UR-type family.
+//!
+//! # The family
+//!
+//! Six revolute joints in a standard DH table with
+//!
+//! * α1 = ±90° (axis 2 perpendicular to the column axis 1),
+//! * α2, α3 ∈ {0°, 180°} (axes 2, 3, 4 parallel: the planar pair "E" of the paper),
+//! * α4 = ±90°, α5 = ±90° (axis 5 perpendicular to axes 4 and 6),
+//! * a5 = 0 (axes 5 and 6 meet at the wrist point C), a2 ≠ 0, a3 ≠ 0,
+//!
+//! and any d1, a1, d2, d3, d4, a4, d5, d6, a6, α6, joint offsets and flipped joints. The
+//! lateral offset of the arm plane, `D = d2 + d3·cos α2 + d4·cos α2·cos α3`, may be non-zero.
+//! Seed 003's welding robot (`welder6r`: α = (90, 0, 180, −90, 90, 90)°) and the UR5
+//! (α = (90, 0, 0, 90, −90, 0)°, a2, a3 < 0, D = d4) are both members; the PUMA 560
+//! (α3 = −90°) and seed 001's `spbu6` are not.
+//!
+//! # The method (notes 003 §3.3–3.4, in the DH frames of the robot)
+//!
+//! In the paper's notation e_i = z_{i−1} is the axis of joint i and a_i = x_i the common
+//! normal; the target gives `n = x6` and `l = z6` (the tool frame, after removing base and
+//! tool transforms with `chain_target`).
+//!
+//! 1. e6 = z5 = sin α6·y6 + cos α6·z6 (eq. 6: `l × n` for α6 = 90°); the wrist point
+//!    C = P − a6·n − d6·e6 (eq. 7).
+//! 2. The arm-plane normal w = e2 = z1 = sin α1·(sin θ1, −cos θ1, 0) must satisfy
+//!    C·w = D (all points O1…O4 lie in a plane offset D along w). With ρ, φ the polar
+//!    coordinates of C this is `ρ·sin(θ1 − φ) = sin α1·D`: two roots, the paper's `w`
+//!    (eq. 10; θ1 = φ when D = 0) and the shoulder flip `−w` (θ1 + 180°).
+//! 3. e5 = z4 = ±(w × e6)/sin∠(w, e6) (eq. 11; the paper takes `+`, the wrist flip is `−`).
+//! 4. B = C − d5·e5 (eq. 12), then the point behind the wrist-pitch link,
+//!    O3 = B − d4·z3 − a4·x4, and the in-plane vector r2·e_r2 = O3 − O1 − d2·z1 − d3·z2 from
+//!    the shoulder O1 = d1·k + a1·x1 (for the welder simply r2·e_r2 = B, eq. 13).
+//! 5. Δ = (a2² + r2² − a3²)/(2|a2|·r2) = cos β (eq. 14); |Δ| > 1 is out of reach.
+//! 6. The direction of link 2 from Chace's formula (eq. 4 with the corrected normalisation,
+//!    notes 003 §3.2/§6.4; [`chace`]) with e_i = e_r2, e_j = w, c_ik = Δ, c_jk = 0:
+//!    `a2 = e_r2·cos β ± (e_r2 × w)·sin β` (eqs. 17, 20); `+` is configuration "+β".
+//! 7. a3 = (r2·e_r2 − l2·a2)/l3 (eq. 18), a4 = (z3 × e5)/sin α4, a5 = (e5 × e6)/sin α5
+//!    (eq. 19; for the welder `w × e5` and `e5 × e6`), a6 = n.
+//! 8. θ_{i+1} = atan2(e_{i+1}·(a_i × a_{i+1}), a_i·a_{i+1}) (eq. 21).
+//!
+//! # Branches
+//!
+//! Up to 8 solutions, labelled with the paper's names:
+//!
+//! * `shoulder` = `w` (the paper's normal `w = (e_r1 × k)/‖e_r1 × k‖`, i.e. z1·(C × k) > 0)
+//!   or `−w` (θ1 + 180° when D = 0) — the paper fixes `w` silently (notes 003 §3.7);
+//! * `config` = `+β` (the triple (a2, e_r2, w) is right-handed, w = z1 of that solution) or
+//!   `−β` (left-handed) — the paper's two configurations (eq. 20, Fig. 3);
+//! * `wrist` = `e5` (z4 = +(z1 × z5)/‖·‖, the paper's choice, θ5 ∈ [−180°, 0°] for the welder)
+//!   or `−e5` (the wrist flip).
+//!
+//! # Singularities
+//!
+//! * **elbow**: |Δ| = 1 (links 2 and 3 collinear; for |a2| = |a3| also r2 = 0): "+β" and "−β"
+//!   coincide (notes 003 §3.6). Flagged (and the two merged) when the cosine of the elbow
+//!   angle is within [`BOUNDARY`] of ±1, i.e. |θ3| or |θ3 ∓ 180°| below ≈ 4.5e-5 rad.
+//!   For r2 = 0, θ2 is undetermined and taken from the seed.
+//! * **shoulder**: C on the column axis (ρ = 0, D = 0): θ1 is undetermined and taken from the
+//!   seed (and seed + 180° for `−w`); with D ≠ 0, ρ = |D| where the two roots merge.
+//! * **wrist**: e6 ∥ w (sin∠(w, e6) = 0): e5 is undetermined; θ6 is taken from the seed
+//!   (`e5`) and seed + 180° (`−e5`), and θ2…θ5 follow.
+//!
+//! [`ParallelAxes::measures`] returns Δ and these singularity measures for a target without
+//! solving, for path tracking (notes 003 §4 step 2: detect singular positions along a path).
+//!
+//! # Failure reasons
+//!
+//! * ρ < |D| (C inside the cylinder the arm plane cannot reach):
+//!   `Unreachable { distance: ρ, reach: |D| }`;
+//! * |Δ| > 1 for every shoulder/wrist branch: `Unreachable { distance: r2, reach }` with
+//!   `reach` = |a2| + |a3| or ||a2| − |a3|| (the branch closest to reachable is reported).
+//!
+//! # Position-only targets
+//!
+//! A 6R arm has a 3-parameter family of solutions for a position; this solver keeps the tool
+//! orientation of `options.seed` (else of the home configuration) and solves that pose.
+
+use nalgebra::{Isometry3, Rotation3, Vector3};
+use serde::Serialize;
+
+use super::{
+    Branch, Candidate, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, chain_target,
+    finish,
+};
+use crate::kinematics::check_q;
+use crate::model::{Convention, JointKind, Robot};
+use crate::tolerance::{BOUNDARY, IK_AXIS_DISTANCE, IK_PARALLEL_SINE, STRUCTURE_ANGLE, STRUCTURE_LENGTH};
+
+const NAME: &str = "parallel-axes";
+
+/// Chace's solution of the vector tetrahedron (seed 003, eq. 4): the unit vectors `e_k` with
+/// `e_i·e_k = c_ik` and `e_j·e_k = c_jk`, for known unit vectors `e_i`, `e_j`.
+///
+/// `e_k = [(c_ik − c_ij·c_jk)·e_i + (c_jk − c_ij·c_ik)·e_j ± √D·(e_i × e_j)] / s_ij²` with
+/// `D = 1 − c_ij² − c_ik² − c_jk² + 2·c_ij·c_ik·c_jk` and `s_ij = sin∠(e_i, e_j)`.
+/// This is the corrected normalisation (notes 003 §3.2 and §6.4: the paper prints no
+/// division of the first two terms and `/s_ij` on the last, right only when `s_ij = 1`).
+///
+/// # Returns
+/// `[plus, minus]`: `plus` makes `(e_i, e_j, e_k)` right-handed (`(e_i × e_j)·e_k ≥ 0`), the
+/// paper's "+" root; `None` when `e_i ∥ e_j` (`s_ij` below [`IK_PARALLEL_SINE`]) or
+/// `D < −2·BOUNDARY` (no such vector; `D` is clamped to 0 inside that tolerance, the
+/// tolerance of cosines within `BOUNDARY` of ±1).
+///
+/// # Example
+/// ```
+/// use nalgebra::Vector3;
+/// use reach::ik::parallel_axes::chace;
+/// let (ei, ej) = (Vector3::x(), Vector3::new(0.6, 0.8, 0.0)); // 53.13° apart
+/// let [plus, minus] = chace(&ei, &ej, 0.5, 0.3).unwrap();
+/// for ek in [plus, minus] {
+///     approx::assert_relative_eq!(ek.norm(), 1.0, epsilon = 1e-12);
+///     approx::assert_relative_eq!(ek.dot(&ei), 0.5, epsilon = 1e-12);
+///     approx::assert_relative_eq!(ek.dot(&ej), 0.3, epsilon = 1e-12);
+/// }
+/// assert!(ei.cross(&ej).dot(&plus) > 0.0 && ei.cross(&ej).dot(&minus) < 0.0);
+/// ```
+#[must_use]
+pub fn chace(e_i: &Vector3<f64>, e_j: &Vector3<f64>, c_ik: f64, c_jk: f64) -> Option<[Vector3<f64>; 2]> {
+    let c_ij = e_i.dot(e_j);
+    let n = e_i.cross(e_j);
+    let s2 = n.norm_squared();
+    if !s2.is_finite() || s2 <= IK_PARALLEL_SINE * IK_PARALLEL_SINE {
+        return None;
+    }
+    let d = 1.0 - c_ij * c_ij - c_ik * c_ik - c_jk * c_jk + 2.0 * c_ij * c_ik * c_jk;
+    if !d.is_finite() || d < -2.0 * BOUNDARY {
+        return None;
+    }
+    let base = e_i * (c_ik - c_ij * c_jk) + e_j * (c_jk - c_ij * c_ik);
+    let side = n * d.max(0.0).sqrt();
+    Some([(base + side) / s2, (base - side) / s2])
+}
+
+/// Shoulder branch: the sign of the arm-plane normal w = e2 = z1 (notes 003 §3.7).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+pub enum Shoulder {
+    /// The paper's `w = (e_r1 × k)/‖e_r1 × k‖` (z1·(C × k) > 0).
+    W,
+    /// The opposite normal: θ1 + 180° when the arm plane has no lateral offset.
+    MinusW,
+}
+
+impl Shoulder {
+    /// The branch label: `w` or `−w`.
+    #[must_use]
+    pub fn label(self) -> &'static str {
+        match self {
+            Shoulder::W => "w",
+            Shoulder::MinusW => "−w",
+        }
+    }
+}
+
+/// Wrist branch: the sign of e5 = z4 (notes 003 §3.7).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+pub enum Wrist {
+    /// The paper's `e5 = (w × e6)/‖w × e6‖` (eq. 11).
+    E5,
+    /// The wrist flip, `−e5`.
+    MinusE5,
+}
+
+impl Wrist {
+    /// The branch label: `e5` or `−e5`.
+    #[must_use]
+    pub fn label(self) -> &'static str {
+        match self {
+            Wrist::E5 => "e5",
+            Wrist::MinusE5 => "−e5",
+        }
+    }
+
+    fn sign(self) -> f64 {
+        match self {
+            Wrist::E5 => 1.0,
+            Wrist::MinusE5 => -1.0,
+        }
+    }
+}
+
+/// The paper's configuration of links 2 and 3 (eq. 20, Fig. 3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+pub enum Config {
+    /// ξ = +1: (a2, e_r2, w) right-handed.
+    PlusBeta,
+    /// ξ = −1: (a2, e_r2, w) left-handed.
+    MinusBeta,
+}
+
+impl Config {
+    /// The branch label: `+β` or `−β`.
+    #[must_use]
+    pub fn label(self) -> &'static str {
+        match self {
+            Config::PlusBeta => "+β",
+            Config::MinusBeta => "−β",
+        }
+    }
+}
+
+/// Seed 003's quantities of one target for one shoulder and wrist branch (notes 003 §3.3).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ArmMeasures {
+    /// Shoulder branch.
+    pub shoulder: Shoulder,
+    /// Wrist branch.
+    pub wrist: Wrist,
+    /// `r2`: length of the in-plane vector from the shoulder to the elbow-triangle apex
+    /// (|OB| for the welder), metres.
+    pub r2: f64,
+    /// The paper's `Δ = (l2² + r2² − l3²)/(2·l2·r2) = cos β` (eq. 14, l = |a|). |Δ| ≤ 1 is
+    /// reachable, |Δ| = 1 an elbow singularity. For r2 = 0 it is computed with r2 =
+    /// `f64::MIN_POSITIVE` (huge, or 0 when l2 = l3 — see [`ArmMeasures::elbow_margin`]).
+    pub delta: f64,
+    /// Cosine of the angle between links 2 and 3 (`(r2² − a2² − a3²)/(2·a2·a3)`): ±1 at the
+    /// elbow singularity, also for l2 = l3 where Δ misses the folded arm.
+    pub cos_elbow: f64,
+    /// `sin∠(w, e6) = ‖z1 × z5‖`: 0 at the wrist singularity.
+    pub wrist_sine: f64,
+}
+
+impl ArmMeasures {
+    /// β = arccos Δ (radians) when |Δ| ≤ 1 (within [`BOUNDARY`]), else `None`.
+    #[must_use]
+    pub fn beta(&self) -> Option<f64> {
+        (self.delta.abs() <= 1.0 + BOUNDARY).then(|| self.delta.clamp(-1.0, 1.0).acos())
+    }
+
+    /// `1 − |cos_elbow|`: positive inside the workspace, 0 at the elbow singularity
+    /// (|Δ| = 1), negative when the target is out of reach on this branch.
+    #[must_use]
+    pub fn elbow_margin(&self) -> f64 {
+        1.0 - self.cos_elbow.abs()
+    }
+}
+
+/// Δ and the singularity measures of a target (see [`ParallelAxes::measures`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TargetMeasures {
+    /// Horizontal distance ρ of the wrist point C from the column axis, metres.
+    pub column_distance: f64,
+    /// |D| = |d2 + d3·cos α2 + d4·cos α2·cos α3|, metres: the shoulder is singular at
+    /// ρ = |D| (0 for the welder: C on the column axis).
+    pub lateral_offset: f64,
+    /// Per branch, in the order (w, e5), (w, −e5), (−w, e5), (−w, −e5); `None` when the
+    /// shoulder equation has no root (ρ < |D|).
+    pub arms: [Option<ArmMeasures>; 4],
+}
+
+impl TargetMeasures {
+    /// ρ − |D|: 0 at the shoulder singularity, negative when out of reach.
+    #[must_use]
+    pub fn shoulder_margin(&self) -> f64 {
+        self.column_distance - self.lateral_offset
+    }
+
+    /// The measures of one branch.
+    #[must_use]
+    pub fn arm(&self, shoulder: Shoulder, wrist: Wrist) -> Option<&ArmMeasures> {
+        let i = match (shoulder, wrist) {
+            (Shoulder::W, Wrist::E5) => 0,
+            (Shoulder::W, Wrist::MinusE5) => 1,
+            (Shoulder::MinusW, Wrist::E5) => 2,
+            (Shoulder::MinusW, Wrist::MinusE5) => 3,
+        };
+        self.arms[i].as_ref()
+    }
+
+    /// The branch the paper uses (shoulder `w`, wrist `e5`): its Δ is the paper's Δ.
+    #[must_use]
+    pub fn paper(&self) -> Option<&ArmMeasures> {
+        self.arm(Shoulder::W, Wrist::E5)
+    }
+}
+
+/// Closed-form IK for RERR 6R arms with axes 2, 3, 4 parallel (seed 003; see the module docs).
+#[derive(Debug, Clone)]
+pub struct ParallelAxes {
+    /// a_i, d_i (metres).
+    a: [f64; 6],
+    d: [f64; 6],
+    /// sin α1, sin α4, sin α5 (each ±1), cos α2, cos α3 (each ±1), sin/cos α6.
+    s_alpha1: f64,
+    c_alpha2: f64,
+    c_alpha3: f64,
+    s_alpha4: f64,
+    s_alpha5: f64,
+    s_alpha6: f64,
+    c_alpha6: f64,
+    /// Lateral offset D of the arm plane along z1.
+    lateral: f64,
+    /// θ offsets and joint signs (−1 for flipped joints): θ = sign·q + offset.
+    offset: [f64; 6],
+    sign: [f64; 6],
+}
+
+/// A root of the shoulder equation.
+#[derive(Debug, Clone, Copy)]
+struct ShoulderRoot {
+    theta1: f64,
+    label: Shoulder,
+    singular: bool,
+}
+
+/// Everything of one (shoulder, wrist) branch before the elbow configuration is chosen.
+#[derive(Debug, Clone, Copy)]
+struct Arm {
+    x1: Vector3<f64>,
+    z1: Vector3<f64>,
+    z4: Vector3<f64>,
+    x4: Vector3<f64>,
+    /// In-plane vector r2·e_r2 (perpendicular to z1).
+    v: Vector3<f64>,
+    r2: f64,
+    wrist_sine: f64,
+    wrist_singular: bool,
+}
+
+/// The chain-frame target: tool point and axes.
+#[derive(Debug, Clone, Copy)]
+struct Frame {
+    p: Vector3<f64>,
+    x6: Vector3<f64>,
+    y6: Vector3<f64>,
+    z6: Vector3<f64>,
+}
+
+/// atan2(axis·(from × to), from·to): the angle from `from` to `to` about `axis` (eq. 21).
+#[inline]
+fn angle_about(axis: &Vector3<f64>, from: &Vector3<f64>, to: &Vector3<f64>) -> f64 {
+    axis.dot(&from.cross(to)).atan2(from.dot(to))
+}
+
+fn is_angle(value: f64, target: f64) -> bool {
+    crate::angle::wrap(value - target).abs() <= STRUCTURE_ANGLE
+}
+
+impl ParallelAxes {
+    /// Checks that `robot` is a 6R standard-DH arm with axes 2, 3, 4 parallel as described in
+    /// the module docs, and extracts its parameters.
+    ///
+    /// # Errors
+    /// [`IkError::Unsupported`] naming the failed condition.
+    pub fn from_robot(robot: &Robot) -> Result<Self, IkError> {
+        let unsupported =
+            |reason: String| IkError::Unsupported { solver: NAME, robot: robot.name().to_string(), reason };
+        if robot.convention() != Convention::Dh {
+            return Err(unsupported(format!(
+                "the robot is described in `{}`; this solver reads a standard DH table",
+                robot.convention().as_str()
+            )));
+        }
+        if robot.dof() != 6 {
+            return Err(unsupported(format!("needs 6 joints, the robot has {}", robot.dof())));
+        }
+        let mut a = [0.0; 6];
+        let mut d = [0.0; 6];
+        let mut alpha = [0.0; 6];
+        let mut offset = [0.0; 6];
+        let mut sign = [1.0; 6];
+        for (i, joint) in robot.joints().iter().enumerate() {
+            if joint.kind != JointKind::Revolute {
+                return Err(unsupported(format!("joint {} ({}) is not revolute", i + 1, joint.name)));
+            }
+            let Some(p) = joint.dh() else {
+                return Err(unsupported(format!("joint {} ({}) has no DH parameters", i + 1, joint.name)));
+            };
+            a[i] = p.a;
+            d[i] = p.d;
+            alpha[i] = p.alpha;
+            offset[i] = p.theta_offset;
+            sign[i] = if joint.flip { -1.0 } else { 1.0 };
+        }
+        let deg = |i: usize| alpha[i].to_degrees();
+        let right = std::f64::consts::FRAC_PI_2;
+        let pm90 = |i: usize, what: &str| -> Result<f64, IkError> {
+            if is_angle(alpha[i], right) {
+                Ok(1.0)
+            } else if is_angle(alpha[i], -right) {
+                Ok(-1.0)
+            } else {
+                Err(unsupported(format!("α{} = {:.6}° (needs ±90°: {what})", i + 1, deg(i))))
+            }
+        };
+        let parallel = |i: usize| -> Result<f64, IkError> {
+            if is_angle(alpha[i], 0.0) {
+                Ok(1.0)
+            } else if is_angle(alpha[i], std::f64::consts::PI) {
+                Ok(-1.0)
+            } else {
+                Err(unsupported(format!(
+                    "α{} = {:.6}° (needs 0° or 180°: axes 2, 3 and 4 must be parallel)",
+                    i + 1,
+                    deg(i)
+                )))
+            }
+        };
+        let s_alpha1 = pm90(0, "axis 2 perpendicular to the column axis 1")?;
+        let c_alpha2 = parallel(1)?;
+        let c_alpha3 = parallel(2)?;
+        let s_alpha4 = pm90(3, "axis 5 perpendicular to the parallel axes")?;
+        let s_alpha5 = pm90(4, "axis 6 perpendicular to axis 5")?;
+        if a[4].abs() > STRUCTURE_LENGTH {
+            return Err(unsupported(format!(
+                "a5 = {} m ≠ 0: axes 5 and 6 do not meet, so the wrist point C is not fixed by the pose",
+                a[4]
+            )));
+        }
+        for i in [1, 2] {
+            if a[i].abs() <= STRUCTURE_LENGTH {
+                return Err(unsupported(format!(
+                    "a{} = 0: the arm plane has no link {} (no elbow triangle)",
+                    i + 1,
+                    i + 1
+                )));
+            }
+        }
+        let (s_alpha6, c_alpha6) = alpha[5].sin_cos();
+        Ok(ParallelAxes {
+            a,
+            d,
+            s_alpha1,
+            c_alpha2,
+            c_alpha3,
+            s_alpha4,
+            s_alpha5,
+            s_alpha6,
+            c_alpha6,
+            lateral: d[1] + d[2] * c_alpha2 + d[3] * c_alpha2 * c_alpha3,
+            offset,
+            sign,
+        })
+    }
+
+    /// Δ (cos β) and the singularity measures of `target` without solving (notes 003 §3.3,
+    /// §3.6), for every shoulder and wrist branch: the motion module tracks these along a
+    /// path to find the singular positions (|Δ| = 1, ρ = |D|, sin∠(w, e6) = 0).
+    ///
+    /// # Arguments
+    /// * `target` — tool pose in the world frame;
+    /// * `options` — only `seed` is used, for the undetermined angles at singularities
+    ///   (θ1 when C is on the column axis, θ6 when e6 ∥ w).
+    ///
+    /// # Errors
+    /// [`IkError::InvalidInput`] for a non-finite target, [`IkError::Kinematics`] for a bad seed.
+    ///
+    /// # Example
+    /// ```
+    /// use reach::ik::parallel_axes::ParallelAxes;
+    /// let welder = reach::model::presets::get("welder6r").unwrap();
+    /// let solver = ParallelAxes::from_robot(&welder).unwrap();
+    /// let pose = welder.fk(&[0.3, 0.2, 0.9, -1.0, -0.8, 0.4]).unwrap();
+    /// let m = solver.measures(&welder, &pose, &Default::default()).unwrap();
+    /// let paper = m.paper().unwrap();
+    /// assert!(paper.delta.abs() < 1.0 && paper.elbow_margin() > 0.0);
+    /// ```
+    pub fn measures(
+        &self,
+        robot: &Robot,
+        target: &Isometry3<f64>,
+        options: &IkOptions,
+    ) -> Result<TargetMeasures, IkError> {
+        IkTarget::Pose(*target).validate()?;
+        let seed = self.seed_theta(robot, options)?;
+        let frame = frame_of(&chain_target(robot, target));
+        let (z5, c) = self.wrist_point(&frame);
+        let rho = c.x.hypot(c.y);
+        let mut out = TargetMeasures { column_distance: rho, lateral_offset: self.lateral.abs(), arms: [None; 4] };
+        if let Ok(roots) = self.shoulder_roots(&c, seed[0]) {
+            for root in &roots {
+                for (j, wrist) in [Wrist::E5, Wrist::MinusE5].into_iter().enumerate() {
+                    let arm = self.arm(&frame, &z5, &c, root, wrist, seed[5]);
+                    let (l2, l3) = (self.a[1], self.a[2]);
+                    let delta =
+                        (l2 * l2 + arm.r2 * arm.r2 - l3 * l3) / (2.0 * l2.abs() * arm.r2.max(f64::MIN_POSITIVE));
+                    let cos_elbow = (arm.r2 * arm.r2 - l2 * l2 - l3 * l3) / (2.0 * l2 * l3);
+                    let slot = match root.label {
+                        Shoulder::W => j,
+                        Shoulder::MinusW => 2 + j,
+                    };
+                    out.arms[slot] = Some(ArmMeasures {
+                        shoulder: root.label,
+                        wrist,
+                        r2: arm.r2,
+                        delta,
+                        cos_elbow,
+                        wrist_sine: arm.wrist_sine,
+                    });
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// The seed as DH angles θ = sign·q + offset (zeros when there is no seed).
+    fn seed_theta(&self, robot: &Robot, options: &IkOptions) -> Result<[f64; 6], IkError> {
+        let mut theta = self.offset;
+        if let Some(seed) = &options.seed {
+            check_q(robot.dof(), seed)?;
+            for i in 0..6 {
+                theta[i] = self.sign[i] * seed[i] + self.offset[i];
+            }
+        }
+        Ok(theta)
+    }
+
+    /// e6 = z5 and the wrist point C (eqs. 6, 7).
+    fn wrist_point(&self, f: &Frame) -> (Vector3<f64>, Vector3<f64>) {
+        let z5 = f.y6 * self.s_alpha6 + f.z6 * self.c_alpha6;
+        let c = f.p - f.x6 * self.a[5] - z5 * self.d[5];
+        (z5, c)
+    }
+
+    /// The two roots of `C·z1(θ1) = D` (eq. 10 generalised), labelled; `Err` = unreachable.
+    fn shoulder_roots(&self, c: &Vector3<f64>, seed_theta1: f64) -> Result<[ShoulderRoot; 2], IkFailure> {
+        let rho = c.x.hypot(c.y);
+        let lateral = self.lateral;
+        if rho <= IK_AXIS_DISTANCE && lateral.abs() <= IK_AXIS_DISTANCE {
+            // C on the column axis: w undetermined; keep the seed's θ1 (notes 003 §3.6, [R]).
+            let t = seed_theta1;
+            return Ok([
+                ShoulderRoot { theta1: t, label: Shoulder::W, singular: true },
+                ShoulderRoot { theta1: t + std::f64::consts::PI, label: Shoulder::MinusW, singular: true },
+            ]);
+        }
+        let ratio = self.s_alpha1 * lateral / rho;
+        if ratio.is_nan() || ratio.abs() > 1.0 + BOUNDARY {
+            return Err(IkFailure::Unreachable { distance: rho, reach: lateral.abs() });
+        }
+        let singular = ratio.abs() >= 1.0 - BOUNDARY;
+        let gamma = ratio.clamp(-1.0, 1.0).asin();
+        let phi = c.y.atan2(c.x);
+        let near = phi + gamma; // z1·(C × k) = sin α1·ρ·cos γ: the paper's `w` when sin α1 > 0
+        let far = phi + std::f64::consts::PI - gamma;
+        let (w, minus_w) = if self.s_alpha1 > 0.0 { (near, far) } else { (far, near) };
+        Ok([
+            ShoulderRoot { theta1: w, label: Shoulder::W, singular },
+            ShoulderRoot { theta1: minus_w, label: Shoulder::MinusW, singular },
+        ])
+    }
+
+    /// Steps 3–4 of the method for one shoulder root and wrist sign.
+    fn arm(
+        &self,
+        f: &Frame,
+        z5: &Vector3<f64>,
+        c: &Vector3<f64>,
+        root: &ShoulderRoot,
+        wrist: Wrist,
+        seed_theta6: f64,
+    ) -> Arm {
+        let (s1, c1) = root.theta1.sin_cos();
+        let x1 = Vector3::new(c1, s1, 0.0);
+        let z1 = Vector3::new(s1, -c1, 0.0) * self.s_alpha1;
+        let z2 = z1 * self.c_alpha2;
+        let z3 = z2 * self.c_alpha3;
+        // e5 = ±(w × e6)/sin∠(w, e6)  (eq. 11).
+        let u = z1.cross(z5);
+        let wrist_sine = u.norm();
+        let wrist_singular = wrist_sine <= IK_PARALLEL_SINE;
+        let z4 = if wrist_singular {
+            // e6 ∥ w: e5 is any vector ⟂ w; the seed's θ6 fixes frame 5 and with it
+            // e5 = sin α5·y5 (z_{i−1} = sin α_i·y_i + cos α_i·z_i, α5 = ±90°).
+            let (s6, c6) = seed_theta6.sin_cos();
+            let x5 = f.x6 * c6 - (f.y6 * self.c_alpha6 - f.z6 * self.s_alpha6) * s6;
+            let y5 = z5.cross(&x5);
+            let e5 = y5 * self.s_alpha5;
+            (e5 - z1 * e5.dot(&z1)).normalize() * wrist.sign()
+        } else {
+            u * (wrist.sign() / wrist_sine)
+        };
+        let x4 = z3.cross(&z4) * self.s_alpha4;
+        // B = C − d5·e5 (eq. 12), then back along the wrist-pitch link and the lateral offsets.
+        let o4 = c - z4 * self.d[4];
+        let o3 = o4 - z3 * self.d[3] - x4 * self.a[3];
+        let o1 = Vector3::new(0.0, 0.0, self.d[0]) + x1 * self.a[0];
+        let v = o3 - o1 - z1 * self.d[1] - z2 * self.d[2];
+        let v = v - z1 * v.dot(&z1); // exact in-plane part (the residue is round-off or ≤ ρ at the shoulder singularity)
+        Arm { x1, z1, z4, x4, v, r2: v.norm(), wrist_sine, wrist_singular }
+    }
+
+    /// Steps 5–8 for one arm and configuration: DH angles θ1…θ6, or `Err` = out of reach.
+    fn angles(
+        &self,
+        f: &Frame,
+        z5: &Vector3<f64>,
+        arm: &Arm,
+        config: Config,
+        seed_theta2: f64,
+    ) -> Result<([f64; 6], bool), IkFailure> {
+        let (l2, l3) = (self.a[1].abs(), self.a[2].abs());
+        let z1 = arm.z1;
+        let z2 = z1 * self.c_alpha2;
+        let z3 = z2 * self.c_alpha3;
+        // Direction of link 2 (from the shoulder towards the elbow), a2 of the paper.
+        let (link2, elbow_singular) = if arm.r2 <= IK_AXIS_DISTANCE {
+            // r2 = 0: only possible for l2 = l3 (else |Δ| = ∞): the folded arm, θ2 free.
+            if (l2 - l3).abs() > IK_AXIS_DISTANCE {
+                return Err(IkFailure::Unreachable { distance: arm.r2, reach: (l2 - l3).abs() });
+            }
+            let (s2, c2) = seed_theta2.sin_cos();
+            let x2 = arm.x1 * c2 + z1.cross(&arm.x1) * s2;
+            (x2 * self.a[1].signum(), true)
+        } else {
+            // Reachability and the elbow singularity are decided on the cosine of the elbow
+            // angle, c3 = (r2² − a2² − a3²)/(2·a2·a3), which is ±1 exactly when |Δ| = 1 and
+            // is what `ArmMeasures::elbow_margin` reports, so both agree.
+            let c3 = (arm.r2 * arm.r2 - l2 * l2 - l3 * l3) / (2.0 * self.a[1] * self.a[2]);
+            if c3.is_nan() || c3.abs() > 1.0 + BOUNDARY {
+                let reach = if arm.r2 > l2 + l3 { l2 + l3 } else { (l2 - l3).abs() };
+                return Err(IkFailure::Unreachable { distance: arm.r2, reach });
+            }
+            let singular = c3.abs() >= 1.0 - BOUNDARY;
+            // Δ = cos β (eq. 14); ±1 at the singularity (β = 0, or 180° when folded with l2 < l3).
+            let delta = ((l2 * l2 + arm.r2 * arm.r2 - l3 * l3) / (2.0 * l2 * arm.r2)).clamp(-1.0, 1.0);
+            let delta = if singular { delta.signum() } else { delta };
+            let e_r2 = arm.v / arm.r2;
+            // a2 = e_r2·cos β ± (e_r2 × w)·sin β  (eqs. 17, 20 via Chace's formula, eq. 4):
+            // e_i = e_r2 ⟂ e_j = w, c_ik = Δ, c_jk = 0; the "+" root makes (e_r2, w, a2) and
+            // hence (a2, e_r2, w) right-handed: configuration "+β".
+            let Some([plus, minus]) = chace(&e_r2, &z1, delta, 0.0) else {
+                return Err(IkFailure::Singular { kind: SingularityKind::Elbow });
+            };
+            let dir = match config {
+                Config::PlusBeta => plus,
+                Config::MinusBeta => minus,
+            };
+            (dir.normalize(), singular)
+        };
+        let x2 = link2 * self.a[1].signum();
+        // a3 = (r2·e_r2 − l2·a2)/l3  (eq. 18), with signed DH lengths.
+        let x3 = ((arm.v - x2 * self.a[1]) / self.a[2]).normalize();
+        let x5 = arm.z4.cross(z5) * self.s_alpha5;
+        let x5 = x5 / x5.norm();
+        let x0 = Vector3::x();
+        let z0 = Vector3::z();
+        let theta = [
+            angle_about(&z0, &x0, &arm.x1),
+            angle_about(&z1, &arm.x1, &x2),
+            angle_about(&z2, &x2, &x3),
+            angle_about(&z3, &x3, &arm.x4),
+            angle_about(&arm.z4, &arm.x4, &x5),
+            angle_about(z5, &x5, &f.x6),
+        ];
+        Ok((theta, elbow_singular))
+    }
+
+    /// Every candidate (up to 8) for a chain-frame target, and the failure reason if none.
+    fn candidates(&self, frame: &Frame, seed: &[f64; 6]) -> (Vec<Candidate>, Option<IkFailure>) {
+        let (z5, c) = self.wrist_point(frame);
+        let roots = match self.shoulder_roots(&c, seed[0]) {
+            Ok(r) => r,
+            Err(failure) => return (Vec::new(), Some(failure)),
+        };
+        let mut out = Vec::with_capacity(8);
+        let mut failure: Option<(f64, IkFailure)> = None;
+        for root in &roots {
+            for wrist in [Wrist::E5, Wrist::MinusE5] {
+                let arm = self.arm(frame, &z5, &c, root, wrist, seed[5]);
+                for config in [Config::PlusBeta, Config::MinusBeta] {
+                    match self.angles(frame, &z5, &arm, config, seed[1]) {
+                        Ok((theta, elbow_singular)) => {
+                            let q: Vec<f64> = (0..6).map(|i| self.sign[i] * (theta[i] - self.offset[i])).collect();
+                            let mut cand = Candidate::new(
+                                q,
+                                Branch::new([
+                                    ("shoulder", root.label.label()),
+                                    ("config", config.label()),
+                                    ("wrist", wrist.label()),
+                                ]),
+                            );
+                            if root.singular {
+                                cand.singularities.push(SingularityKind::Shoulder);
+                            }
+                            if elbow_singular {
+                                cand.singularities.push(SingularityKind::Elbow);
+                            }
+                            if arm.wrist_singular {
+                                cand.singularities.push(SingularityKind::Wrist);
+                            }
+                            out.push(cand);
+                        }
+                        Err(f) => {
+                            let excess = match &f {
+                                IkFailure::Unreachable { distance, reach } => (distance - reach).abs(),
+                                _ => f64::INFINITY,
+                            };
+                            if failure.as_ref().is_none_or(|(e, _)| excess < *e) {
+                                failure = Some((excess, f));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        (out, failure.map(|(_, f)| f))
+    }
+}
+
+fn frame_of(t: &Isometry3<f64>) -> Frame {
+    let r: Rotation3<f64> = t.rotation.to_rotation_matrix();
+    let m = r.matrix();
+    Frame {
+        p: t.translation.vector,
+        x6: m.column(0).into_owned(),
+        y6: m.column(1).into_owned(),
+        z6: m.column(2).into_owned(),
+    }
+}
+
+impl IkSolver for ParallelAxes {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+
+    fn solve(&self, robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError> {
+        target.validate()?;
+        let seed = self.seed_theta(robot, options)?;
+        let pose = match target {
+            IkTarget::Pose(p) => *p,
+            IkTarget::Position(p) => {
+                let q = options.seed.clone().unwrap_or_else(|| robot.home());
+                let current = robot.fk(&q)?;
+                Isometry3::from_parts(nalgebra::Translation3::from(p.coords), current.rotation)
+            }
+        };
+        let frame = frame_of(&chain_target(robot, &pose));
+        let (candidates, failure) = self.candidates(&frame, &seed);
+        let if_empty = failure.unwrap_or_else(|| {
+            let kind =
+                candidates.iter().find_map(|c| c.singularities.first().copied()).unwrap_or(SingularityKind::Jacobian);
+            IkFailure::Singular { kind }
+        });
+        finish(robot, target, candidates, NAME, if_empty)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Joint;
+    use crate::model::presets;
+
+    #[test]
+    fn chace_solves_non_orthogonal_tetrahedra() {
+        // Notes 003 §6.2 item 6: the corrected normalisation on non-orthogonal e_i, e_j.
+        let cases = [
+            (Vector3::new(1.0, 0.0, 0.0), Vector3::new(0.6, 0.8, 0.0), 0.5, 0.3),
+            (Vector3::new(0.0, 0.0, 1.0), Vector3::new(0.0, 0.9, 0.19f64.sqrt()), -0.2, 0.7),
+            (Vector3::new(0.3, -0.4, 0.866), Vector3::new(0.5, 0.1, 0.8), 0.5, 0.6),
+        ];
+        for (ei, ej, cik, cjk) in cases {
+            let (ei, ej) = (ei.normalize(), ej.normalize());
+            let [p, m] = chace(&ei, &ej, cik, cjk).expect("solvable");
+            for ek in [p, m] {
+                assert!((ek.norm() - 1.0).abs() < 1e-12, "{ek}");
+                assert!((ek.dot(&ei) - cik).abs() < 1e-12);
+                assert!((ek.dot(&ej) - cjk).abs() < 1e-12);
+            }
+            assert!(ei.cross(&ej).dot(&p) > 0.0 && ei.cross(&ej).dot(&m) < 0.0);
+            // The literally printed form (no /s² on the first terms, /s on the last) is not unit.
+            let c_ij = ei.dot(&ej);
+            let s = ei.cross(&ej).norm();
+            let d = 1.0 - c_ij * c_ij - cik * cik - cjk * cjk + 2.0 * c_ij * cik * cjk;
+            let printed = ei * (cik - c_ij * cjk) + ej * (cjk - c_ij * cik) + ei.cross(&ej) * (d.sqrt() / s);
+            assert!((printed.dot(&ei) - cik).abs() > 1e-2, "printed form should fail for s_ij ≠ 1");
+        }
+        // No solution: cosines incompatible with the angle between e_i and e_j.
+        assert!(chace(&Vector3::x(), &Vector3::y(), 0.9, 0.9).is_none());
+        // Parallel e_i, e_j.
+        assert!(chace(&Vector3::x(), &Vector3::x(), 0.5, 0.5).is_none());
+    }
+
+    #[test]
+    fn accepts_the_family_and_rejects_others() {
+        for name in ["welder6r", "ur5"] {
+            let robot = presets::get(name).unwrap();
+            ParallelAxes::from_robot(&robot).unwrap_or_else(|e| panic!("{name}: {e}"));
+        }
+        for (name, needle) in [("puma560", "α3"), ("spbu6", "α3"), ("planar3", "6 joints"), ("panda", "mdh")] {
+            let robot = presets::get(name).unwrap();
+            let err = ParallelAxes::from_robot(&robot).unwrap_err().to_string();
+            assert!(err.contains(needle), "{name}: {err}");
+        }
+    }
+
+    fn welder_with(change: impl FnOnce(&mut Vec<Joint>)) -> Result<ParallelAxes, IkError> {
+        let mut spec = presets::get("welder6r").unwrap().spec().clone();
+        change(&mut spec.joints);
+        ParallelAxes::from_robot(&Robot::new(spec).unwrap())
+    }
+
+    #[test]
+    fn names_the_failed_condition() {
+        let set = |i: usize, f: fn(&mut crate::model::DhParams)| {
+            move |j: &mut Vec<Joint>| {
+                if let crate::model::JointGeometry::Dh(p) = &mut j[i].geometry {
+                    f(p);
+                }
+            }
+        };
+        let err = welder_with(set(4, |p| p.a = 0.01)).unwrap_err().to_string();
+        assert!(err.contains("a5"), "{err}");
+        let err = welder_with(set(1, |p| p.a = 0.0)).unwrap_err().to_string();
+        assert!(err.contains("a2 = 0"), "{err}");
+        let err = welder_with(set(0, |p| p.alpha = 0.0)).unwrap_err().to_string();
+        assert!(err.contains("α1"), "{err}");
+        let err = welder_with(set(1, |p| p.alpha = 0.3)).unwrap_err().to_string();
+        assert!(err.contains("α2"), "{err}");
+        let err = welder_with(set(3, |p| p.alpha = 1.0)).unwrap_err().to_string();
+        assert!(err.contains("α4"), "{err}");
+        let err = welder_with(set(4, |p| p.alpha = 0.0)).unwrap_err().to_string();
+        assert!(err.contains("α5"), "{err}");
+        let err = welder_with(|j| j[2].kind = JointKind::Prismatic).unwrap_err().to_string();
+        assert!(err.contains("joint 3"), "{err}");
+        // Offsets the method supports.
+        welder_with(|j| {
+            for (i, joint) in j.iter_mut().enumerate() {
+                if let crate::model::JointGeometry::Dh(p) = &mut joint.geometry {
+                    p.d += 0.01 * (i as f64 + 1.0);
+                    p.theta_offset = 0.1 * i as f64;
+                    if i != 4 {
+                        p.a += 0.02;
+                    }
+                }
+            }
+        })
+        .unwrap();
+    }
+
+    #[test]
+    fn welder_start_point_plus_beta() {
+        // Notes 003 §5.3, start P, configuration "+β".
+        let robot = presets::get("welder6r").unwrap();
+        let solver = ParallelAxes::from_robot(&robot).unwrap();
+        let n = Vector3::new(450.0, -540.0, 630.0).normalize();
+        let e6 = Vector3::new(540.0, 450.0, 0.0).normalize();
+        let l = n.cross(&e6);
+        let r = Rotation3::from_matrix_unchecked(nalgebra::Matrix3::from_columns(&[n, e6, l]));
+        let pose = Isometry3::from_parts(nalgebra::Translation3::new(0.050, 0.740, 0.070), r.into());
+        let all = solver.solve(&robot, &IkTarget::Pose(pose), &IkOptions::default()).unwrap();
+        assert_eq!(all.solutions.len(), 8);
+        let s = all
+            .solutions
+            .iter()
+            .find(|s| {
+                s.branch.get("config") == Some("+β")
+                    && s.branch.get("shoulder") == Some("w")
+                    && s.branch.get("wrist") == Some("e5")
+            })
+            .unwrap();
+        let expected = [105.2482, -32.9417, 43.3392, -169.6025, -155.4427, 138.1315];
+        for (q, e) in s.q.iter().zip(expected) {
+            assert!((q.to_degrees() - e).abs() < 1e-4, "{} vs {e}", q.to_degrees());
+        }
+    }
+}

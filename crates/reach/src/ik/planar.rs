@@ -1,0 +1,815 @@
+//! Seed 000: the planar redundant three-link arm (`planar3`) — its self-motion in closed form
+//! and the thesis's α-scan.
+//!
+//! # The arm
+//!
+//! Three revolute joints whose axes are parallel (and point the same way); the tool point
+//! moves in a plane normal to them. The structure is read from the compiled chain, so any
+//! description fits: standard or modified DH, URDF, base and tool transforms, angle offsets,
+//! flipped joints, and arbitrary link lengths `l1, l2, l3` (the thesis has three equal links).
+//! The *plane frame* is the frame in which joint 1 turns about z (the base frame for the
+//! `planar3` preset); the *absolute link angles* `φ1, φ2, φ3` are the directions of the links
+//! (joint 1 → joint 2, joint 2 → joint 3, joint 3 → tool point) from its x axis. For `planar3`
+//! `φ1 = q1`, `φ2 = q1 + q2`, `φ3 = q1 + q2 + q3`.
+//!
+//! # The redundancy
+//!
+//! A position target leaves one degree of freedom. It is parameterised by `φ = φ3`, the
+//! absolute angle of the last link: for each `φ` the wrist point `W = p − l3·(cos φ, sin φ)` is
+//! fixed and a two-link IK gives two elbow branches. `W` is reachable when
+//! `|l1 − l2| ≤ |W| ≤ l1 + l2`; with `|W|² = r² + l3² − 2·r·l3·cos(φ − ψ)` (`r, ψ` the polar
+//! coordinates of the target) this is `c_lo ≤ cos(φ − ψ) ≤ c_hi`, so the feasible `φ` form at
+//! most two intervals symmetric about `ψ` ([`PlanarRedundant::feasible_intervals`]). At their
+//! ends the elbow is stretched or folded (a singularity). The workspace is the annulus
+//! `max(0, l_max − (sum of the other two)) ≤ r ≤ l1 + l2 + l3`.
+//!
+//! # The thesis's method
+//!
+//! [`PlanarRedundant::paper_scan`] reproduces the thesis's enumeration (notes 000 §3.1, §4.1):
+//! the interior angle `α` at joint A is stepped from `α_min` (eq. 3) to 180°, and `γ`, `β`
+//! follow from the law-of-cosines formulas (6)–(14) with the corrected `γ2 = atan2(y, x)`
+//! (notes 000 §6.1, D1). [`PaperScan::select_min_s`] picks the row of least total joint change
+//! `S` (notes 000 §6.3). The paper's angle convention is [`PlanarPaperAngles`].
+
+use std::f64::consts::{PI, TAU};
+
+use nalgebra::{IsometryMatrix3, Point3, Rotation3, Vector3};
+
+use super::{
+    Branch, Candidate, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, finish,
+};
+use crate::angle::fit_into_limits;
+use crate::kinematics::KinematicsError;
+use crate::kinematics::chain::ChainLink;
+use crate::model::seed000::PlanarPaperAngles;
+use crate::model::{Limits, Robot};
+use crate::tolerance::{
+    BOUNDARY, IK_AXIS_DISTANCE, IK_DUPLICATE, IK_POSITION, LIMIT_SLACK, SCAN_GRID, STRUCTURE_ANGLE, STRUCTURE_LENGTH,
+};
+
+const NAME: &str = "planar";
+
+/// Most rows [`PlanarRedundant::paper_scan`] builds (≈ 64 MB of rows): a step of 0.0001°
+/// (ten times finer than the finest step of the thesis) still fits.
+pub const MAX_SCAN_ROWS: usize = 1_000_000;
+
+/// Most self-motion samples per full turn of the redundancy parameter (a step of at least
+/// 0.1°). Every sample yields up to two (four with a base yaw) candidates, and the solution
+/// set is de-duplicated pairwise, so the cost grows with the square of this number.
+pub const MAX_SELF_MOTION_SAMPLES: usize = 3600;
+
+// ---------------------------------------------------------------------------------------------
+// Shared planar machinery (also used by the yaw solvers).
+// ---------------------------------------------------------------------------------------------
+
+/// One link of a chain of joints whose axes are parallel to z of the frame they start in.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct PlanarLink {
+    /// Distance from this joint's axis to the next joint's axis (or to the tool point).
+    pub length: f64,
+    /// Direction of the link in the frame turned by the joint (DH: 0; MDH/URDF offsets).
+    pub delta: f64,
+    /// Rotation about z from the frame turned by the joint to the next joint's motion frame.
+    pub psi: f64,
+    /// −1 for a flipped joint, +1 otherwise: the physical angle is `sign·q`.
+    pub sign: f64,
+}
+
+/// A chain of `N` revolute joints with parallel axes, read from the compiled chain.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct PlanarChain<const N: usize> {
+    pub links: [PlanarLink; N],
+    /// Offset of the tool point along the common axis (sum of the offsets along z).
+    pub height: f64,
+    /// Rotation of the last fixed transform (tool included), after the last joint's motion.
+    pub last_rotation: Rotation3<f64>,
+}
+
+impl<const N: usize> PlanarChain<N> {
+    /// Reads `links` (the compiled chain's joints `first_joint ..= first_joint + N − 1`,
+    /// 1-based numbers for messages). Fails with the violated condition.
+    pub fn from_chain(links: &[ChainLink], first_joint: usize) -> Result<Self, String> {
+        if links.len() != N {
+            return Err(format!("expected {N} planar joints, got {}", links.len()));
+        }
+        let mut out = [PlanarLink { length: 0.0, delta: 0.0, psi: 0.0, sign: 1.0 }; N];
+        let mut height = 0.0;
+        let mut last_rotation = Rotation3::identity();
+        for (i, link) in links.iter().enumerate() {
+            let number = first_joint + i;
+            if link.prismatic {
+                return Err(format!("joint {number} is prismatic (a revolute joint is needed)"));
+            }
+            let r = link.after.rotation;
+            let p = link.after.translation.vector;
+            let length = p.x.hypot(p.y);
+            out[i] = PlanarLink {
+                length,
+                delta: if length > STRUCTURE_LENGTH { p.y.atan2(p.x) } else { 0.0 },
+                psi: 0.0,
+                sign: link.sign,
+            };
+            height += p.z;
+            if i + 1 < N {
+                let z = r * Vector3::z();
+                if (z - Vector3::z()).norm() > STRUCTURE_ANGLE {
+                    let angle = z.z.clamp(-1.0, 1.0).acos().to_degrees();
+                    return Err(if (z + Vector3::z()).norm() <= STRUCTURE_ANGLE {
+                        format!("joint {} axis is antiparallel to joint {number} axis (not supported)", number + 1)
+                    } else {
+                        format!("joint {} axis is not parallel to joint {number} axis (angle {angle:.6}°)", number + 1)
+                    });
+                }
+                out[i].psi = r[(1, 0)].atan2(r[(0, 0)]);
+            } else {
+                last_rotation = r;
+            }
+        }
+        Ok(PlanarChain { links: out, height, last_rotation })
+    }
+
+    /// Link lengths.
+    pub fn lengths(&self) -> [f64; N] {
+        self.links.map(|l| l.length)
+    }
+
+    /// Absolute link angles `φ` (in the frame the first joint turns in) of joint values `q`.
+    pub fn link_angles(&self, q: &[f64]) -> [f64; N] {
+        let mut phi = [0.0; N];
+        let mut acc = 0.0;
+        for (i, (link, &v)) in self.links.iter().zip(q).enumerate() {
+            let theta = link.sign * v;
+            phi[i] = acc + theta + link.delta;
+            acc += theta + link.psi;
+        }
+        phi
+    }
+
+    /// Joint values (unwrapped) that give the absolute link angles `phi`.
+    pub fn joints(&self, phi: &[f64; N]) -> [f64; N] {
+        let mut q = [0.0; N];
+        let mut acc = 0.0;
+        for (i, link) in self.links.iter().enumerate() {
+            let theta = phi[i] - link.delta - acc;
+            q[i] = link.sign * theta;
+            acc += theta + link.psi;
+        }
+        q
+    }
+
+    /// Absolute angle of the last link when the last joint's frame is turned by `heading`
+    /// about z (`φ_N = Θ + δ_N`).
+    pub fn heading_to_last_angle(&self, heading: f64) -> f64 {
+        heading + self.links[N - 1].delta
+    }
+}
+
+/// One solution of a planar two-link problem.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Elbow {
+    /// Absolute angles of the two links.
+    pub phi: [f64; 2],
+    /// Relative angle of link 2 to link 1 (`φ2 − φ1`), in [−π, π].
+    pub bend: f64,
+    /// Singularity of this solution (stretched/folded elbow, or wrist on the shoulder axis).
+    pub singular: Option<SingularityKind>,
+}
+
+/// Result of a planar two-link IK.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum TwoLink {
+    /// The point is outside the annulus `|l1 − l2| ≤ r ≤ l1 + l2`.
+    Out { distance: f64, reach: f64 },
+    /// One (singular) or two solutions.
+    In([Option<Elbow>; 2]),
+}
+
+/// The angle between sides `a` and `b` of a triangle whose third side is `c` (law of
+/// cosines), `None` when the sides violate the triangle inequality by more than [`BOUNDARY`]
+/// (relative). Evaluated as `atan2(4·area, a² + b² − c²)` with Kahan's stable Heron formula,
+/// so that angles near 0 and π keep full precision (`acos` loses half the digits there).
+pub(crate) fn triangle_angle(a: f64, b: f64, c: f64) -> Option<f64> {
+    let slack = BOUNDARY * (a + b + c);
+    if c > a + b + slack || c < (a - b).abs() - slack {
+        return None;
+    }
+    let mut s = [a, b, c];
+    s.sort_by(|x, y| y.total_cmp(x));
+    let [x, y, z] = s;
+    // Kahan: 16·area² = (x+(y+z))(z−(x−y))(z+(x−y))(x+(y−z)), x ≥ y ≥ z.
+    let f = (x + (y + z)) * (z - (x - y)).max(0.0) * (z + (x - y)) * (x + (y - z));
+    Some(f.max(0.0).sqrt().atan2(a * a + b * b - c * c))
+}
+
+/// Planar two-link IK: links `l1, l2` from the origin to the point `w`. `seed_phi1` is the
+/// first link's angle used when it is undetermined (`w` on the shoulder axis, `l1 = l2`).
+pub(crate) fn two_link(l1: f64, l2: f64, w: [f64; 2], seed_phi1: f64) -> TwoLink {
+    let r2 = w[0] * w[0] + w[1] * w[1];
+    let r = r2.sqrt();
+    let c = (r2 - l1 * l1 - l2 * l2) / (2.0 * l1 * l2);
+    if c > 1.0 + BOUNDARY {
+        return TwoLink::Out { distance: r, reach: l1 + l2 };
+    }
+    if c < -1.0 - BOUNDARY {
+        return TwoLink::Out { distance: r, reach: (l1 - l2).abs() };
+    }
+    if r <= IK_AXIS_DISTANCE {
+        // Folded with l1 = l2: the wrist is on the shoulder axis and φ1 is free.
+        let e = Elbow { phi: [seed_phi1, seed_phi1 + PI], bend: PI, singular: Some(SingularityKind::Shoulder) };
+        return TwoLink::In([Some(e), None]);
+    }
+    let base = w[1].atan2(w[0]);
+    let solve = |bend: f64, singular: Option<SingularityKind>| {
+        let phi1 = base - (l2 * bend.sin()).atan2(l1 + l2 * bend.cos());
+        Elbow { phi: [phi1, phi1 + bend], bend, singular }
+    };
+    // Bend angle by the half-angle form tan²(e/2) = ((l1+l2)² − r²)/(r² − (l1−l2)²): full
+    // precision near 0 and π, where acos(c) keeps only half the digits (an exactly stretched
+    // or folded arm gives e = 0 or π and one solution).
+    let (sum, diff) = (l1 + l2, (l1 - l2).abs());
+    let e = 2.0 * ((sum - r) * (sum + r)).max(0.0).sqrt().atan2(((r - diff) * (r + diff)).max(0.0).sqrt());
+    let singular = (c.abs() >= 1.0 - BOUNDARY).then_some(SingularityKind::Elbow);
+    // Branches closer than IK_DUPLICATE are one solution (`finish` would merge them): report
+    // it exactly stretched or folded. (Not for a folded equal-link arm: there the snap would
+    // move the wrist by |w| onto the shoulder axis.)
+    if e <= IK_DUPLICATE / 2.0 {
+        return TwoLink::In([Some(solve(0.0, singular)), None]);
+    }
+    if PI - e <= IK_DUPLICATE / 2.0 && diff > STRUCTURE_LENGTH {
+        return TwoLink::In([Some(solve(PI, singular)), None]);
+    }
+    TwoLink::In([Some(solve(-e, singular)), Some(solve(e, singular))])
+}
+
+/// A closed interval of the redundancy parameter `φ` (radians, `start ≤ end`; the values are
+/// not wrapped, an interval may cross ±π).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PhiInterval {
+    /// Lower end.
+    pub start: f64,
+    /// Upper end.
+    pub end: f64,
+}
+
+impl PhiInterval {
+    /// Width, radians.
+    #[must_use]
+    pub fn width(&self) -> f64 {
+        self.end - self.start
+    }
+}
+
+/// The angles `φ` of the last link (length `l3`) for which a two-link arm `l1, l2` at the
+/// origin reaches the wrist `p − l3·(cos φ, sin φ)`: at most two intervals, or one full turn.
+pub(crate) fn phi_intervals(l1: f64, l2: f64, l3: f64, p: [f64; 2]) -> Vec<PhiInterval> {
+    let r = p[0].hypot(p[1]);
+    let (outer, inner) = (l1 + l2, (l1 - l2).abs());
+    let inside = |d: f64| d <= outer * (1.0 + BOUNDARY) && d >= inner * (1.0 - BOUNDARY);
+    let psi = p[1].atan2(p[0]);
+    let full = vec![PhiInterval { start: psi - PI, end: psi + PI }];
+    if l3 <= STRUCTURE_LENGTH {
+        return if inside(r) { full } else { Vec::new() };
+    }
+    if r <= IK_AXIS_DISTANCE {
+        return if inside(l3) { full } else { Vec::new() };
+    }
+    // |W|² = r² + l3² − 2·r·l3·cos ω, ω = φ − ψ; inner² ≤ |W|² ≤ outer².
+    let c_lo = (r * r + l3 * l3 - outer * outer) / (2.0 * r * l3);
+    let c_hi = (r * r + l3 * l3 - inner * inner) / (2.0 * r * l3);
+    if c_lo > 1.0 + BOUNDARY || c_hi < -1.0 - BOUNDARY {
+        return Vec::new();
+    }
+    let w_max = c_lo.clamp(-1.0, 1.0).acos();
+    let w_min = c_hi.clamp(-1.0, 1.0).acos();
+    if w_min > w_max {
+        return Vec::new();
+    }
+    match (w_min <= 0.0, w_max >= PI) {
+        (true, true) => full,
+        (true, false) => vec![PhiInterval { start: psi - w_max, end: psi + w_max }],
+        (false, true) => vec![PhiInterval { start: psi + w_min, end: psi + TAU - w_min }],
+        (false, false) => vec![
+            PhiInterval { start: psi - w_max, end: psi - w_min },
+            PhiInterval { start: psi + w_min, end: psi + w_max },
+        ],
+    }
+}
+
+/// Sample values of `intervals`, spaced at most `step`, both ends included (a full turn
+/// without repeating its end).
+pub(crate) fn sample_intervals(intervals: &[PhiInterval], step: f64) -> Vec<f64> {
+    let mut out = Vec::new();
+    for iv in intervals {
+        let width = iv.width();
+        let full_turn = width >= TAU * (1.0 - BOUNDARY);
+        // Bounded by MAX_SELF_MOTION_SAMPLES through `check_options`.
+        let n = (width / step).ceil().max(0.0) as usize;
+        if n == 0 {
+            out.push(iv.start);
+            continue;
+        }
+        let last = if full_turn { n - 1 } else { n };
+        out.extend((0..=last).map(|k| iv.start + width * (k as f64) / (n as f64)));
+    }
+    out
+}
+
+/// Validates the options shared by the planar and yaw solvers.
+pub(crate) fn check_options(robot: &Robot, options: &IkOptions) -> Result<(), IkError> {
+    if let Some(seed) = &options.seed {
+        if seed.len() != robot.dof() {
+            return Err(KinematicsError::JointCount { expected: robot.dof(), found: seed.len() }.into());
+        }
+        if let Some((i, &v)) = seed.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(KinematicsError::NonFinite { joint: i + 1, value: v }.into());
+        }
+    }
+    if let Some(phi) = options.free_parameter
+        && !phi.is_finite()
+    {
+        return Err(IkError::InvalidInput(format!("free_parameter must be finite, got {phi}")));
+    }
+    Ok(())
+}
+
+/// Validates [`IkOptions::redundancy_step`] before the self-motion is sampled.
+pub(crate) fn check_step(options: &IkOptions) -> Result<(), IkError> {
+    let step = options.redundancy_step;
+    let min_step = TAU / MAX_SELF_MOTION_SAMPLES as f64;
+    if !(step.is_finite() && step >= min_step * (1.0 - BOUNDARY)) {
+        return Err(IkError::InvalidInput(format!(
+            "redundancy_step must be a finite angle of at least {:.3}° ({MAX_SELF_MOTION_SAMPLES} samples per turn), got {step} rad",
+            min_step.to_degrees()
+        )));
+    }
+    Ok(())
+}
+
+/// Label value of the elbow: `up` when link 2 turns clockwise from link 1 as seen with the arm
+/// reaching to the right (`reach_sign` = −1 mirrors it), `down` otherwise, `stretched` /
+/// `folded` for the single solution at the workspace boundary.
+pub(crate) fn elbow_label(e: &Elbow, reach_sign: f64) -> &'static str {
+    if e.bend == 0.0 {
+        "stretched"
+    } else if e.bend.abs() == PI {
+        "folded"
+    } else if reach_sign * e.bend < 0.0 {
+        "up"
+    } else {
+        "down"
+    }
+}
+
+/// Label value of the redundancy parameter, degrees.
+pub(crate) fn phi_label(phi: f64) -> String {
+    format!("{:.4}", crate::angle::wrap(phi).to_degrees())
+}
+
+// ---------------------------------------------------------------------------------------------
+// The planar solver.
+// ---------------------------------------------------------------------------------------------
+
+/// Closed-form IK of a planar arm of three parallel revolute joints (seed 000, `planar3`),
+/// with its self-motion parameterised by the absolute angle of the last link.
+///
+/// * [`IkTarget::Pose`]: position in the arm's plane and the in-plane heading of the tool
+///   (the target orientation must be the tool's orientation turned about the plane normal):
+///   up to two solutions, `elbow=up` / `elbow=down`.
+/// * [`IkTarget::Position`]: with [`IkOptions::free_parameter`] `= Some(φ)` the (up to two)
+///   solutions whose last link points at `φ`; otherwise the self-motion sampled at
+///   [`IkOptions::redundancy_step`] over its feasible intervals, both branches, each labelled
+///   `phi_deg=… elbow=…`.
+///
+/// Failure reasons: `Unreachable` (outside the annulus, with the violated radius; or off the
+/// arm's plane, with `distance` = the offset and `reach` = 0), `OrientationUnreachable` (the
+/// position is reachable but not with the requested heading or `φ`), `OutsideLimits`.
+/// Singular flags: `elbow` (links 1 and 2 within `acos(1 − BOUNDARY)` ≈ 2.6e-3° of aligned,
+/// e.g. at the ends of the feasible `φ` intervals: exactly there one solution labelled
+/// `elbow=stretched` or `elbow=folded`, near there both exact branches), `shoulder` (wrist on
+/// the joint-1 axis with `l1 = l2`: φ1 is free and taken from the seed, else 0).
+///
+/// Sampled self-motions contain every sample, within limits or not (flagged by
+/// [`IkSolution::within_limits`](super::IkSolution::within_limits)); the step must allow at
+/// most [`MAX_SELF_MOTION_SAMPLES`] samples per turn.
+#[derive(Debug, Clone)]
+pub struct PlanarRedundant {
+    chain: PlanarChain<3>,
+    first: IsometryMatrix3<f64>,
+    limits: [Limits; 3],
+}
+
+impl PlanarRedundant {
+    /// Reads the arm from `robot`: three revolute joints, axes 2 and 3 parallel to axis 1 and
+    /// pointing the same way, links 1 and 2 of non-zero length (link 3 may be zero).
+    ///
+    /// # Errors
+    /// [`IkError::Unsupported`] naming the failed condition.
+    pub fn from_robot(robot: &Robot) -> Result<Self, IkError> {
+        let unsupported =
+            |reason: String| IkError::Unsupported { solver: NAME, robot: robot.name().to_string(), reason };
+        if robot.dof() != 3 {
+            return Err(unsupported(format!("needs exactly 3 joints, the robot has {}", robot.dof())));
+        }
+        let chain = PlanarChain::<3>::from_chain(&robot.chain.links, 1).map_err(unsupported)?;
+        for (i, l) in chain.links.iter().take(2).enumerate() {
+            if l.length <= STRUCTURE_LENGTH {
+                return Err(unsupported(format!("link {} has zero length in the plane", i + 1)));
+            }
+        }
+        let j = robot.joints();
+        Ok(PlanarRedundant { chain, first: robot.chain.first, limits: [j[0].limits, j[1].limits, j[2].limits] })
+    }
+
+    /// Link lengths `[l1, l2, l3]` (metres).
+    #[must_use]
+    pub fn lengths(&self) -> [f64; 3] {
+        self.chain.lengths()
+    }
+
+    /// Inner and outer radius of the workspace annulus: `max(0, l_max − (sum of the others))`
+    /// and `l1 + l2 + l3` (joint limits ignored).
+    #[must_use]
+    pub fn workspace(&self) -> (f64, f64) {
+        let l = self.lengths();
+        let sum = l[0] + l[1] + l[2];
+        let max = l[0].max(l[1]).max(l[2]);
+        ((2.0 * max - sum).max(0.0), sum)
+    }
+
+    /// Coordinates of a world point in the plane frame: `(x, y, offset)`, the offset being the
+    /// signed distance from the arm's plane.
+    #[must_use]
+    pub fn plane_coordinates(&self, world: &Point3<f64>) -> (f64, f64, f64) {
+        let p = self.first.inverse_transform_point(world);
+        (p.x, p.y, p.z - self.chain.height)
+    }
+
+    /// Absolute link angles `[φ1, φ2, φ3]` (plane frame) of joint values `q` (3 values).
+    #[must_use]
+    pub fn link_angles(&self, q: &[f64; 3]) -> [f64; 3] {
+        self.chain.link_angles(q)
+    }
+
+    /// Joint values (not wrapped) giving the absolute link angles `phi`.
+    #[must_use]
+    pub fn joints_from_link_angles(&self, phi: &[f64; 3]) -> [f64; 3] {
+        self.chain.joints(phi)
+    }
+
+    /// The feasible intervals of `φ` (absolute angle of the last link) for a target given in
+    /// plane coordinates, joint limits ignored: empty outside the workspace annulus, one full
+    /// turn when every `φ` works, else one or two intervals symmetric about the target's
+    /// direction. At interval ends the elbow is stretched or folded.
+    #[must_use]
+    pub fn feasible_intervals(&self, target_xy: [f64; 2]) -> Vec<PhiInterval> {
+        let [l1, l2, l3] = self.lengths();
+        phi_intervals(l1, l2, l3, target_xy)
+    }
+
+    fn unreachable(&self, p: [f64; 2]) -> Option<IkFailure> {
+        let r = p[0].hypot(p[1]);
+        let (inner, outer) = self.workspace();
+        if r > outer * (1.0 + BOUNDARY) {
+            Some(IkFailure::Unreachable { distance: r, reach: outer })
+        } else if r < inner * (1.0 - BOUNDARY) {
+            Some(IkFailure::Unreachable { distance: r, reach: inner })
+        } else {
+            None
+        }
+    }
+
+    /// The (≤ 2) candidates whose last link points at `phi`.
+    fn at_phi(&self, p: [f64; 2], phi: f64, seed_phi1: f64, label_phi: bool, out: &mut Vec<Candidate>) {
+        let [l1, l2, l3] = self.lengths();
+        let w = [p[0] - l3 * phi.cos(), p[1] - l3 * phi.sin()];
+        let TwoLink::In(sols) = two_link(l1, l2, w, seed_phi1) else { return };
+        for e in sols.into_iter().flatten() {
+            let q = self.chain.joints(&[e.phi[0], e.phi[1], phi]);
+            let mut pairs = Vec::with_capacity(2);
+            if label_phi {
+                pairs.push(("phi_deg", phi_label(phi)));
+            }
+            pairs.push(("elbow", elbow_label(&e, 1.0).to_string()));
+            let mut c = Candidate::new(q.to_vec(), Branch::new(pairs));
+            if let Some(k) = e.singular {
+                c.singularities.push(k);
+            }
+            out.push(c);
+        }
+    }
+
+    /// One row of the thesis's table (notes 000 §3.1, eqs. 6–14, generalised to unequal
+    /// lengths) for the interior angle `alpha` at joint A; `None` where a triangle of the
+    /// construction does not exist or the chain would bend counter-clockwise at B (β > 180°).
+    ///
+    /// `target_xy` is in plane coordinates. The row's `q` are this robot's joint values,
+    /// wrapped (or moved by whole turns) into the joint ranges when possible.
+    #[must_use]
+    pub fn paper_row(&self, target_xy: [f64; 2], alpha: f64) -> Option<ScanRow> {
+        let [l1, l2, l3] = self.lengths();
+        let [x, y] = target_xy;
+        let r2 = x * x + y * y;
+        let r = r2.sqrt();
+        if !(alpha.is_finite() && r > IK_AXIS_DISTANCE) || l3 <= STRUCTURE_LENGTH {
+            return None;
+        }
+        // Eq. (4): KB² in triangle ABK (AB = l2, AK = l3, angle α at A).
+        let kb2 = l2 * l2 + l3 * l3 - 2.0 * l2 * l3 * alpha.cos();
+        let kb = kb2.sqrt();
+        if kb <= IK_AXIS_DISTANCE {
+            return None;
+        }
+        // The law-of-cosines angles are evaluated in a stable form (`triangle_angle`): the
+        // same values as the printed acos expressions, without their loss of precision near
+        // 0° and 180° (β1 → 180° at α_min, β2 → 0° at α = 180°).
+        // Eqs. (5)–(6): γ1 = angle KOB in triangle OBK (sides OK = r, OB = l1, KB).
+        let gamma1 = triangle_angle(r, l1, kb)?;
+        // Eqs. (7)–(8), corrected (notes 000 §6.1 D1): γ2 = atan2(y, x), not atan(x/y).
+        let gamma = gamma1 + y.atan2(x);
+        // Eqs. (11)–(12): β1 = angle OBK (sides BK, BO = l1, opposite OK = r).
+        let beta1 = triangle_angle(kb, l1, r)?;
+        // Eq. (13): β2 = angle ABK; (180° − α)/2 for l2 = l3, in general
+        // atan2(l3·sin α, l2 − l3·cos α).
+        let beta2 = (l3 * alpha.sin()).atan2(l2 - l3 * alpha.cos());
+        let mut beta = beta1 + beta2;
+        if beta > PI * (1.0 + BOUNDARY) {
+            return None;
+        }
+        beta = beta.min(PI);
+        let paper = PlanarPaperAngles { alpha, beta, gamma };
+        let phi1 = gamma;
+        let phi2 = phi1 + beta - PI;
+        let phi3 = phi2 + alpha - PI;
+        let raw = self.chain.joints(&[phi1, phi2, phi3]);
+        let mut q = [0.0; 3];
+        let mut within_limits = true;
+        for i in 0..3 {
+            q[i] = fit_into_limits(raw[i], &self.limits[i], LIMIT_SLACK);
+            within_limits &= self.limits[i].contains(q[i], LIMIT_SLACK);
+        }
+        Some(ScanRow { paper, q, within_limits })
+    }
+
+    /// The thesis's IK by enumeration (notes 000 §4.1): `α = α_min + i·step`, `i = 0, 1, …`
+    /// while `α ≤ 180°`, with `γ`, `β` per row from the corrected formulas.
+    ///
+    /// # Behavior
+    /// * Workspace test as in the thesis, strict: `|l1 + l2 − l3| < r < l1 + l2 + l3` (for three
+    ///   equal links `L < r < 3L`). A target outside gives an empty table and
+    ///   `failure = Unreachable` with the violated bound (the thesis "waits for new input").
+    /// * `α_min` is eq. (3), generalised: `acos(((l1 + l2)² + l3² − r²) / (2·(l1 + l2)·l3))`,
+    ///   where `β = 180°`.
+    /// * The last row is the largest grid value not above 180° (within [`SCAN_GRID`] of a
+    ///   step), so the thesis's last row (α = 180°, notes 000 §5 Table 3, D3) is included
+    ///   when the grid hits it.
+    /// * Rows are not filtered by joint limits (the thesis does not, notes 000 §6.1 D11); each
+    ///   row says whether it is within them. For unequal lengths rows where a triangle of the
+    ///   construction does not exist are left out.
+    ///
+    /// # Arguments
+    /// * `target_xy` — target in plane coordinates (metres);
+    /// * `step` — `Δα` in radians (thesis: 0.01°, P2012: 0.001°).
+    ///
+    /// # Errors
+    /// [`IkError::InvalidInput`] for a non-finite target, a step that is not positive, or more
+    /// than [`MAX_SCAN_ROWS`] rows.
+    ///
+    /// # Example
+    /// ```
+    /// use reach::ik::planar::PlanarRedundant;
+    /// let arm = PlanarRedundant::from_robot(&reach::model::presets::get("planar3").unwrap()).unwrap();
+    /// let scan = arm.paper_scan([2.0, 1.0], 0.01f64.to_radians()).unwrap();
+    /// assert_eq!(scan.rows.len(), 9001); // α from 90° to 180°
+    /// approx::assert_relative_eq!(scan.rows[9000].paper.gamma.to_degrees(), 90.0, epsilon = 1e-9);
+    /// ```
+    pub fn paper_scan(&self, target_xy: [f64; 2], step: f64) -> Result<PaperScan, IkError> {
+        for (name, v) in [("x", target_xy[0]), ("y", target_xy[1])] {
+            if !v.is_finite() {
+                return Err(IkError::InvalidInput(format!("target {name} must be finite, got {v}")));
+            }
+        }
+        if !(step.is_finite() && step > 0.0) {
+            return Err(IkError::InvalidInput(format!("scan step must be a positive angle, got {step} rad")));
+        }
+        let [l1, l2, l3] = self.lengths();
+        let r = target_xy[0].hypot(target_xy[1]);
+        let (outer, inner) = (l1 + l2 + l3, (l1 + l2 - l3).abs());
+        // Thesis §4.1 step 2: 3L > KO > L, strict.
+        let failure = if r >= outer {
+            Some(IkFailure::Unreachable { distance: r, reach: outer })
+        } else if r <= inner || l3 <= STRUCTURE_LENGTH {
+            Some(IkFailure::Unreachable { distance: r, reach: inner })
+        } else {
+            None
+        };
+        if let Some(failure) = failure {
+            return Ok(PaperScan { alpha_min: None, rows: Vec::new(), failure: Some(failure) });
+        }
+        // Eq. (3), generalised to l1 + l2 ≠ 2·l3.
+        let s = l1 + l2;
+        let alpha_min = ((s * s + l3 * l3 - r * r) / (2.0 * s * l3)).clamp(-1.0, 1.0).acos();
+        let count = ((PI - alpha_min) / step + SCAN_GRID).floor() + 1.0;
+        if count > MAX_SCAN_ROWS as f64 {
+            return Err(IkError::InvalidInput(format!(
+                "scan step {step} rad gives {count} rows, more than {MAX_SCAN_ROWS}"
+            )));
+        }
+        let count = count as usize;
+        let mut rows = Vec::with_capacity(count);
+        for i in 0..count {
+            // α_i = α_min + i·Δα (no accumulated sum; notes 000 §6).
+            if let Some(row) = self.paper_row(target_xy, alpha_min + (i as f64) * step) {
+                rows.push(row);
+            }
+        }
+        Ok(PaperScan { alpha_min: Some(alpha_min), rows, failure: None })
+    }
+}
+
+/// One row of the thesis's configuration table (notes 000 §5 Table 3).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ScanRow {
+    /// The thesis's angles `α, β, γ` (radians; `γ` not wrapped, it may leave [0, π], D11).
+    pub paper: PlanarPaperAngles,
+    /// The robot's joint values for this row.
+    pub q: [f64; 3],
+    /// Whether `q` is within the robot's joint limits.
+    pub within_limits: bool,
+}
+
+/// The thesis's configuration table for one target.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PaperScan {
+    /// `α_min` (radians), where `β = 180°`; `None` when the target failed the workspace test.
+    pub alpha_min: Option<f64>,
+    /// The rows, `α` increasing.
+    pub rows: Vec<ScanRow>,
+    /// Why the table is empty.
+    pub failure: Option<IkFailure>,
+}
+
+impl PaperScan {
+    /// The row with the least total joint change from `current` (notes 000 §4.1 step 5, §6.3):
+    /// `S = |α − α0| + |β − β0| + |γ − γ0|` (radians, no wrapping, as in the thesis); the first
+    /// minimum wins. Returns the row index and `S`.
+    #[must_use]
+    pub fn select_min_s(&self, current: &PlanarPaperAngles) -> Option<(usize, f64)> {
+        let mut best: Option<(usize, f64)> = None;
+        for (i, row) in self.rows.iter().enumerate() {
+            let p = &row.paper;
+            let s = (p.alpha - current.alpha).abs() + (p.beta - current.beta).abs() + (p.gamma - current.gamma).abs();
+            if best.is_none_or(|(_, b)| s < b) {
+                best = Some((i, s));
+            }
+        }
+        best
+    }
+}
+
+impl IkSolver for PlanarRedundant {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+
+    fn solve(&self, robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError> {
+        target.validate()?;
+        check_options(robot, options)?;
+        let (x, y, offset) = self.plane_coordinates(&target.position());
+        if offset.abs() > IK_POSITION {
+            let failure = IkFailure::Unreachable { distance: offset.abs(), reach: 0.0 };
+            return finish(robot, target, Vec::new(), NAME, failure);
+        }
+        let p = [x, y];
+        let seed_phi1 = options.seed.as_ref().map_or(0.0, |s| self.chain.link_angles(s)[0]);
+        let mut candidates = Vec::new();
+        match target {
+            IkTarget::Pose(pose) => {
+                // Rz(Θ)·R_last = R_local, with Θ the rotation of the last joint's frame.
+                let r_local = self.first.rotation.inverse() * pose.rotation.to_rotation_matrix();
+                let m = r_local * self.chain.last_rotation.inverse();
+                let phi = self.chain.heading_to_last_angle(m[(1, 0)].atan2(m[(0, 0)]));
+                self.at_phi(p, phi, seed_phi1, false, &mut candidates);
+            }
+            IkTarget::Position(_) => match options.free_parameter {
+                Some(phi) => self.at_phi(p, phi, seed_phi1, true, &mut candidates),
+                None => {
+                    check_step(options)?;
+                    for phi in sample_intervals(&self.feasible_intervals(p), options.redundancy_step) {
+                        self.at_phi(p, phi, seed_phi1, true, &mut candidates);
+                    }
+                }
+            },
+        }
+        let if_empty = self.unreachable(p).unwrap_or(IkFailure::OrientationUnreachable);
+        finish(robot, target, candidates, NAME, if_empty)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::presets;
+
+    fn arm() -> (Robot, PlanarRedundant) {
+        let robot = presets::get("planar3").unwrap();
+        let arm = PlanarRedundant::from_robot(&robot).unwrap();
+        (robot, arm)
+    }
+
+    #[test]
+    fn reads_the_preset() {
+        let (_, arm) = arm();
+        assert_eq!(arm.lengths(), [1.0, 1.0, 1.0]);
+        assert_eq!(arm.workspace(), (0.0, 3.0));
+        let q = [0.3, -0.4, 0.5];
+        let phi = arm.link_angles(&q);
+        assert!((phi[0] - 0.3).abs() < 1e-15 && (phi[1] + 0.1).abs() < 1e-15 && (phi[2] - 0.4).abs() < 1e-15);
+        let back = arm.joints_from_link_angles(&phi);
+        assert!(back.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-15));
+    }
+
+    #[test]
+    fn rejects_other_structures() {
+        for name in ["log-loader", "varan4", "puma560", "spbu6", "ur5", "panda", "welder6r"] {
+            let robot = presets::get(name).unwrap();
+            let err = PlanarRedundant::from_robot(&robot).unwrap_err();
+            assert!(matches!(err, IkError::Unsupported { .. }), "{name}: {err}");
+        }
+        let err = PlanarRedundant::from_robot(&presets::get("log-loader").unwrap()).unwrap_err();
+        assert!(err.to_string().contains("not parallel"), "{err}");
+    }
+
+    #[test]
+    fn two_link_branches_and_boundaries() {
+        // l1 = 2, l2 = 1 to (2, 1): elbow angles ±acos((5 − 4 − 1)/4) = ±90°.
+        let TwoLink::In([Some(a), Some(b)]) = two_link(2.0, 1.0, [2.0, 1.0], 0.0) else { panic!() };
+        for e in [a, b] {
+            let x = 2.0 * e.phi[0].cos() + e.phi[1].cos();
+            let y = 2.0 * e.phi[0].sin() + e.phi[1].sin();
+            assert!((x - 2.0).abs() < 1e-12 && (y - 1.0).abs() < 1e-12);
+            assert!((e.bend.abs() - PI / 2.0).abs() < 1e-12);
+        }
+        assert_eq!(two_link(2.0, 1.0, [3.5, 0.0], 0.0), TwoLink::Out { distance: 3.5, reach: 3.0 });
+        assert_eq!(two_link(2.0, 1.0, [0.5, 0.0], 0.0), TwoLink::Out { distance: 0.5, reach: 1.0 });
+        let TwoLink::In([Some(s), None]) = two_link(2.0, 1.0, [0.0, 3.0], 0.0) else { panic!() };
+        assert_eq!(s.singular, Some(SingularityKind::Elbow));
+        assert!((s.phi[0] - PI / 2.0).abs() < 1e-12 && s.bend == 0.0);
+        let TwoLink::In([Some(f), None]) = two_link(1.0, 1.0, [0.0, 0.0], 0.7) else { panic!() };
+        assert_eq!(f.singular, Some(SingularityKind::Shoulder));
+        assert_eq!(f.phi[0], 0.7);
+    }
+
+    #[test]
+    fn intervals_match_a_brute_force_scan() {
+        for (l, p) in [
+            ([1.0, 1.0, 1.0], [2.0, 1.0]),
+            ([1.0, 1.0, 1.0], [0.3, 0.2]),
+            ([2.0, 0.5, 1.0], [1.0, 0.4]),
+            ([2.0, 0.5, 1.0], [3.2, -0.5]),
+            ([0.5, 0.7, 2.0], [0.1, 0.0]),
+            ([0.5, 0.7, 2.0], [2.9, 0.0]),
+            ([1.0, 1.0, 3.0], [0.5, 0.5]),
+        ] {
+            let ivs = phi_intervals(l[0], l[1], l[2], p);
+            for k in 0..3600 {
+                let phi = -PI + (k as f64 + 0.5) * TAU / 3600.0;
+                let w = [p[0] - l[2] * phi.cos(), p[1] - l[2] * phi.sin()];
+                let d = w[0].hypot(w[1]);
+                let feasible = d <= l[0] + l[1] && d >= (l[0] - l[1]).abs();
+                let inside = ivs.iter().any(|iv| {
+                    let t = iv.start + (phi - iv.start).rem_euclid(TAU);
+                    t <= iv.end
+                });
+                assert_eq!(feasible, inside, "lengths {l:?} target {p:?} φ {phi}");
+            }
+        }
+    }
+
+    #[test]
+    fn pose_target_gives_both_elbows() {
+        let (robot, arm) = arm();
+        let q = [0.4, -0.9, -0.6];
+        let target = IkTarget::Pose(robot.fk(&q).unwrap());
+        let sols = arm.solve(&robot, &target, &IkOptions::default()).unwrap();
+        assert_eq!(sols.solutions.len(), 2);
+        let up = sols.solutions.iter().find(|s| s.branch.get("elbow") == Some("up")).unwrap();
+        assert!(up.q.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9), "{:?}", up.q);
+    }
+
+    #[test]
+    fn bad_options_are_rejected() {
+        let (robot, arm) = arm();
+        let target = IkTarget::Position(Point3::new(2.0, 1.0, 0.0));
+        let tiny = IkOptions { redundancy_step: 1e-6, ..IkOptions::default() };
+        assert!(matches!(arm.solve(&robot, &target, &tiny), Err(IkError::InvalidInput(_))));
+        // The step only matters when the self-motion is sampled.
+        let fixed = IkOptions { free_parameter: Some(0.5), ..tiny };
+        assert!(arm.solve(&robot, &target, &fixed).unwrap().solutions.len() == 2);
+        let nan = IkOptions { free_parameter: Some(f64::NAN), ..IkOptions::default() };
+        assert!(matches!(arm.solve(&robot, &target, &nan), Err(IkError::InvalidInput(_))));
+        let seed = IkOptions { seed: Some(vec![0.0; 2]), ..IkOptions::default() };
+        assert!(matches!(arm.solve(&robot, &target, &seed), Err(IkError::Kinematics(_))));
+        assert!(matches!(arm.paper_scan([2.0, 1.0], 0.0), Err(IkError::InvalidInput(_))));
+        assert!(matches!(arm.paper_scan([2.0, 1.0], 1e-9), Err(IkError::InvalidInput(_))));
+    }
+}

@@ -1,0 +1,313 @@
+//! The one solution type shared by every IK solver.
+
+use std::fmt;
+
+use nalgebra::{Isometry3, Point3};
+use serde::Serialize;
+
+use crate::angle::fit_into_limits;
+use crate::model::{JointKind, Robot};
+use crate::tolerance::{IK_DUPLICATE, IK_ORIENTATION, IK_POSITION, LIMIT_SLACK};
+
+use super::{IkError, IkTarget};
+
+/// Kinds of singular configuration an IK solver reports.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+#[non_exhaustive]
+pub enum SingularityKind {
+    /// Wrist axes aligned (e.g. θ5 = 0 in a spherical wrist): roll angles not separable.
+    Wrist,
+    /// Elbow fully stretched or folded (workspace boundary).
+    Elbow,
+    /// Wrist centre (or tool point) on the first joint axis: base angle undetermined.
+    Shoulder,
+    /// The Jacobian lost rank for another reason (numeric detection).
+    Jacobian,
+}
+
+impl SingularityKind {
+    /// Lower-case name.
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            SingularityKind::Wrist => "wrist",
+            SingularityKind::Elbow => "elbow",
+            SingularityKind::Shoulder => "shoulder",
+            SingularityKind::Jacobian => "jacobian",
+        }
+    }
+}
+
+/// A readable branch label: ordered `key=value` pairs, e.g. `shoulder=left elbow=up wrist=flip`
+/// or the paper's own names such as `config=+β`.
+#[derive(Debug, Clone, PartialEq, Eq, Hash, Default, Serialize)]
+pub struct Branch(pub Vec<(String, String)>);
+
+impl Branch {
+    /// A label from pairs.
+    #[must_use]
+    pub fn new<K: Into<String>, V: Into<String>>(pairs: impl IntoIterator<Item = (K, V)>) -> Self {
+        Branch(pairs.into_iter().map(|(k, v)| (k.into(), v.into())).collect())
+    }
+
+    /// The value of `key`, if present.
+    #[must_use]
+    pub fn get(&self, key: &str) -> Option<&str> {
+        self.0.iter().find(|(k, _)| k == key).map(|(_, v)| v.as_str())
+    }
+}
+
+impl fmt::Display for Branch {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, (k, v)) in self.0.iter().enumerate() {
+            if i > 0 {
+                f.write_str(" ")?;
+            }
+            write!(f, "{k}={v}")?;
+        }
+        Ok(())
+    }
+}
+
+/// A joint outside its limits.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LimitViolation {
+    /// 1-based joint number.
+    pub joint: usize,
+    /// Joint name.
+    pub name: String,
+    /// The value (radians / metres).
+    pub value: f64,
+    /// Lower limit.
+    pub lower: f64,
+    /// Upper limit.
+    pub upper: f64,
+}
+
+/// One IK solution, verified by forward kinematics.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct IkSolution {
+    /// Joint values (radians / metres); revolute angles wrapped into (−π, π] or moved by whole
+    /// turns into the joint range.
+    pub q: Vec<f64>,
+    /// Which branch (configuration) this is.
+    pub branch: Branch,
+    /// ‖p(q) − p_target‖, metres.
+    pub position_error: f64,
+    /// Angle of `R_targetᵀ·R(q)`, radians (0 for position-only targets).
+    pub orientation_error: f64,
+    /// Whether every joint is within its limits.
+    pub within_limits: bool,
+    /// Every joint outside its limits.
+    pub violations: Vec<LimitViolation>,
+    /// Singular configurations this solution sits at.
+    pub singularities: Vec<SingularityKind>,
+}
+
+/// Why an IK problem has no solution within limits.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "reason", rename_all = "snake_case")]
+#[non_exhaustive]
+pub enum IkFailure {
+    /// The target position is outside the workspace: `distance` is the relevant distance of
+    /// the target (e.g. from the shoulder), `reach` the bound it violates (maximum or minimum reach).
+    Unreachable {
+        /// Distance of the target (metres).
+        distance: f64,
+        /// The violated bound (metres).
+        reach: f64,
+    },
+    /// The position is reachable but not with the requested orientation.
+    OrientationUnreachable,
+    /// The target is a singular configuration the solver cannot resolve.
+    Singular {
+        /// Which singularity.
+        kind: SingularityKind,
+    },
+    /// Solutions exist, but every one violates a joint limit (the first violated joint of the
+    /// first solution is named).
+    OutsideLimits {
+        /// 1-based joint number.
+        joint: usize,
+        /// Joint name.
+        name: String,
+    },
+    /// The numeric solver did not converge.
+    NoConvergence {
+        /// Iterations spent (over all restarts).
+        iterations: usize,
+        /// Best residual reached (metres + radians).
+        residual: f64,
+    },
+}
+
+impl fmt::Display for IkFailure {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            IkFailure::Unreachable { distance, reach } => {
+                write!(f, "target out of reach: distance {distance:.6} m, workspace bound {reach:.6} m")
+            }
+            IkFailure::OrientationUnreachable => f.write_str("position reachable, orientation not"),
+            IkFailure::Singular { kind } => write!(f, "target is a {} singularity", kind.as_str()),
+            IkFailure::OutsideLimits { joint, name } => {
+                write!(f, "every solution violates a joint limit (first: joint {joint} ({name}))")
+            }
+            IkFailure::NoConvergence { iterations, residual } => {
+                write!(f, "numeric IK did not converge ({iterations} iterations, residual {residual:.3e})")
+            }
+        }
+    }
+}
+
+/// All solutions of one IK problem, and the reason when none is within limits.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct IkSolutions {
+    /// Name of the solver that produced them.
+    pub solver: &'static str,
+    /// Every branch found, verified by FK (within-limits and outside-limits ones alike).
+    pub solutions: Vec<IkSolution>,
+    /// Set when no solution is within limits.
+    pub failure: Option<IkFailure>,
+}
+
+impl IkSolutions {
+    /// The solutions within joint limits.
+    pub fn feasible(&self) -> impl Iterator<Item = &IkSolution> {
+        self.solutions.iter().filter(|s| s.within_limits)
+    }
+
+    /// Whether there is no solution within limits.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.feasible().next().is_none()
+    }
+
+    /// The feasible solution with the smallest weighted joint change from `from`
+    /// (`Σ wᵢ |qᵢ − fromᵢ|`, angle differences wrapped; seed 000's and 001's rule).
+    /// `weights` shorter than the joint vector count as 1 for the missing joints.
+    #[must_use]
+    pub fn closest_to(&self, from: &[f64], weights: &[f64]) -> Option<&IkSolution> {
+        let cost = |s: &IkSolution| -> f64 {
+            s.q.iter()
+                .zip(from)
+                .enumerate()
+                .map(|(i, (a, b))| weights.get(i).copied().unwrap_or(1.0) * crate::angle::wrap(a - b).abs())
+                .sum()
+        };
+        self.feasible().min_by(|a, b| cost(a).total_cmp(&cost(b)))
+    }
+}
+
+/// A raw solver output before verification.
+#[derive(Debug, Clone)]
+pub(crate) struct Candidate {
+    pub q: Vec<f64>,
+    pub branch: Branch,
+    pub singularities: Vec<SingularityKind>,
+}
+
+impl Candidate {
+    pub fn new(q: Vec<f64>, branch: Branch) -> Self {
+        Candidate { q, branch, singularities: Vec::new() }
+    }
+}
+
+/// Pose error of `q` against `target`: (position metres, orientation radians).
+pub(crate) fn pose_error(robot: &Robot, q: &[f64], target: &IkTarget) -> Result<(f64, f64), IkError> {
+    let t = robot.fk_matrix(q)?;
+    Ok(match target {
+        IkTarget::Pose(pose) => {
+            let dp = (t.translation.vector - pose.translation.vector).norm();
+            let r = pose.rotation.to_rotation_matrix().inverse() * t.rotation;
+            // Not `r.angle()`: its `acos((tr − 1)/2)` is NaN when rounding puts the trace above 3
+            // (an exact solution), and imprecise near 0. atan2(½‖vee(R − Rᵀ)‖, (tr − 1)/2) is neither.
+            let m = r.matrix();
+            let vee = nalgebra::Vector3::new(m[(2, 1)] - m[(1, 2)], m[(0, 2)] - m[(2, 0)], m[(1, 0)] - m[(0, 1)]);
+            let sin = 0.5 * vee.norm();
+            (dp, sin.atan2(0.5 * (m.trace() - 1.0)))
+        }
+        IkTarget::Position(p) => ((Point3::from(t.translation.vector) - p).norm(), 0.0),
+    })
+}
+
+/// Verifies, normalises and de-duplicates candidates, and states the failure reason.
+///
+/// * revolute angles are wrapped (or moved by whole turns into the joint range);
+/// * candidates whose FK misses the target by more than `IK_POSITION` / `IK_ORIENTATION`
+///   are dropped (a closed form evaluated outside its domain);
+/// * candidates equal within `IK_DUPLICATE` are merged (their singularity flags united);
+/// * `if_empty` is the reason reported when no candidate survives; when some survive but all
+///   violate limits the reason is [`IkFailure::OutsideLimits`].
+pub(crate) fn finish(
+    robot: &Robot,
+    target: &IkTarget,
+    candidates: Vec<Candidate>,
+    solver: &'static str,
+    if_empty: IkFailure,
+) -> Result<IkSolutions, IkError> {
+    let mut solutions: Vec<IkSolution> = Vec::with_capacity(candidates.len());
+    for mut c in candidates {
+        if c.q.iter().any(|v| !v.is_finite()) {
+            continue;
+        }
+        for (v, joint) in c.q.iter_mut().zip(robot.joints()) {
+            if joint.kind == JointKind::Revolute {
+                *v = fit_into_limits(*v, &joint.limits, LIMIT_SLACK);
+            }
+        }
+        let (position_error, orientation_error) = pose_error(robot, &c.q, target)?;
+        if position_error > IK_POSITION || orientation_error > IK_ORIENTATION {
+            continue;
+        }
+        if let Some(existing) = solutions
+            .iter_mut()
+            .find(|s| s.q.iter().zip(&c.q).all(|(a, b)| crate::angle::wrap(a - b).abs() < IK_DUPLICATE))
+        {
+            for k in c.singularities {
+                if !existing.singularities.contains(&k) {
+                    existing.singularities.push(k);
+                }
+            }
+            continue;
+        }
+        let violations: Vec<LimitViolation> = robot
+            .joints()
+            .iter()
+            .zip(&c.q)
+            .enumerate()
+            .filter(|(_, (j, v))| !j.limits.contains(**v, LIMIT_SLACK))
+            .map(|(i, (j, v))| LimitViolation {
+                joint: i + 1,
+                name: j.name.clone(),
+                value: *v,
+                lower: j.limits.lower,
+                upper: j.limits.upper,
+            })
+            .collect();
+        solutions.push(IkSolution {
+            q: c.q,
+            branch: c.branch,
+            position_error,
+            orientation_error,
+            within_limits: violations.is_empty(),
+            violations,
+            singularities: c.singularities,
+        });
+    }
+    let failure = if solutions.is_empty() {
+        Some(if_empty)
+    } else if solutions.iter().all(|s| !s.within_limits) {
+        let v = &solutions[0].violations[0];
+        Some(IkFailure::OutsideLimits { joint: v.joint, name: v.name.clone() })
+    } else {
+        None
+    };
+    Ok(IkSolutions { solver, solutions, failure })
+}
+
+/// The flange pose in the chain's own frame: `base⁻¹ · target · tool⁻¹`.
+#[must_use]
+pub(crate) fn chain_target(robot: &Robot, target: &Isometry3<f64>) -> Isometry3<f64> {
+    robot.base().inverse() * target * robot.tool().inverse()
+}

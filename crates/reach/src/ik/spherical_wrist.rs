@@ -1,0 +1,640 @@
+//! PUMA-type 6R arms with a spherical wrist: seed 002's geometric method (Khudoliy et al.,
+//! notes 002 §3–4), corrected, generalised and extended to all 8 solutions.
+//!
+//! # The family
+//!
+//! Six revolute joints in a standard DH table with
+//!
+//! * a spherical wrist: a4 = a5 = a6 = 0 and d5 = 0 (axes 4, 5, 6 meet at the wrist centre,
+//!   the origin of frames 4 and 5), α6 = 0 (the flange is d6 along the approach vector);
+//! * α1 = ±90° (shoulder axis 2 perpendicular to the base axis 1), α2 = 0 (axes 2 and 3
+//!   parallel), α3 = ±90°, α4 = ±90°, α5 = ±90°;
+//! * a2 ≠ 0 and L2 = √(a3² + d4²) ≠ 0 (the elbow triangle of eqs. 10–16).
+//!
+//! d1, a1, d6, the joint offsets and flipped joints are free. The paper's formulas also need
+//! d2 = d3 = 0 (notes 002 §2.2 item 4); this solver drops that condition and handles the
+//! lateral (shoulder) offset `d = d2 + d3` of the classic PUMA 560 (`puma560`: d3 = 0.15005 m).
+//! The α-sign conventions of notes 002 §4.3 are read from the table, so the paper's reference
+//! table (α = 90, 0, −90, 90, −90, 0°), Corke's `puma560` and seed 001's `spbu6`
+//! (α = −90, 0, −90, −90, 90, 0°) all fit; the UR5 (d5 ≠ 0, α3 = 0) does not.
+//!
+//! # The method (notes 002 §4.2, order θ1 → θ2 → θ3 → θ5 → θ4 → θ6)
+//!
+//! The target (base and tool removed with `chain_target`) gives n = x6, a = z6 and p.
+//!
+//! 1. Wrist centre `w = p − d6·a` (eq. 2).
+//! 2. θ1 (eq. 4, generalised): in frame 1 the wrist centre has the out-of-plane coordinate
+//!    `d = d2 + d3`, so its horizontal base coordinates are `Rz(θ1)·(h, −sgn(α1)·d)` with
+//!    `h = ±√(wx² + wy² − d²)`: `θ1 = atan2(wy, wx) − atan2(−sgn(α1)·d, h)`, two shoulder
+//!    solutions (for d = 0 the paper's `atan2(wy, wx)` and its back-shoulder twin θ1 + π).
+//! 3. `P11 = A1⁻¹·w = (u, v, d)` (eq. 9), `R = √(u² + v²)` (eq. 12), `L2 = √(a3² + d4²)`
+//!    (eq. 13), `β = atan2(u, v)` (eq. 7), `φ = acos((a2² + L2² − R²)/(2·a2·L2))` (eq. 16),
+//!    `γ = acos((a2² + R² − L2²)/(2·a2·R))` (eq. 11; evaluated as
+//!    `atan2(L2·sin φ, a2 − L2·cos φ)`, the same angle of the same triangle, which stays
+//!    consistent with φ near the stretched elbow), `α = atan2(d4, a3)` (eq. 15 corrected).
+//! 4. `θ2 = π/2 − β − s·γ`, `θ3 = s·(π − φ) + sgn(α3)·α` for s = ±1 (eqs. 5, 14 corrected and
+//!    generalised, notes 002 §4.3).
+//! 5. `T03 = A1·A2·A3`; `z4' = z3 × a` (eq. 26) has length |sin θ5| and
+//!    `θ5 = atan2(±|z4'|, −sgn(α4)·sgn(α5)·(a·z3))` (eq. 22: `acos(a·z3)` for the paper's
+//!    α5 = −α4, written with atan2 to stay accurate near 0 and π).
+//! 6. `θ4 = atan2(g·(z4'·x3), g·(z4'·(−y3)))` with `g = −sgn(α5)·sgn(sin θ5)` (eqs. 23–25
+//!    with the arguments in the corrected order; g = 1 for the paper's wrist).
+//! 7. `T05 = T03·A4·A5`; `θ6 = atan2(n·y5, n·x5)` (eqs. 31–37 with x6 = n and the arguments
+//!    in the corrected order).
+//!
+//! # Corrections of the paper (notes 002 §6)
+//!
+//! * eq. 15: denominator `2·a3·L2`, not `2·a2·L2` (item 1), i.e. `α = atan2(d4, a3)`;
+//! * eq. 14: the second elbow branch is `−(π − φ + α)` (item 2, for α3 = −90°);
+//! * eq. 23: `atan2(sq_x, sq_y)`, not `atan2(sq_y, sq_x)` (item 3);
+//! * eq. 31: `atan2(cq_y, cq_x)`, not `atan2(cq_x, cq_y)` (item 4);
+//! * eq. 34: `x6 = n6` (the normal), not the approach vector a6 (item 5).
+//!
+//! # Branches
+//!
+//! Up to 8 solutions: 2 shoulder × 2 elbow × 2 wrist, labelled
+//!
+//! * `shoulder`: with a lateral offset `right` / `left` — the arm plane lies to the right /
+//!   left of the base axis, seen from +z0 looking from the base axis towards the wrist centre
+//!   (`sgn(α1)·d·h > 0` is right); without one `front` (h > 0: the upper arm reaches towards
+//!   the wrist centre) / `back` (reaching over backwards, θ1 + π);
+//! * `elbow`: `up` / `down` — the elbow (the joint-3 axis) above / below the line from the
+//!   shoulder (joint-2 axis) to the wrist centre, in the vertical arm plane seen with the
+//!   reach direction to the right;
+//! * `wrist`: `noflip` (DH θ5 ∈ (0, π), the paper's `acos` branch) / `flip`
+//!   (θ4 + π, −θ5, θ6 + π).
+//!
+//! The paper's elbow branch "A" (s = +1) is `elbow=down` for α1 = +90° (notes 002 §3).
+//!
+//! # Singularities (flags on the solutions)
+//!
+//! * **wrist**: |sin θ5| < [`IK_PARALLEL_SINE`] (axes 4 and 6 aligned): θ4 is kept from
+//!   `options.seed` (else q4 = 0), θ6 absorbs the rest; one wrist solution per arm branch.
+//! * **shoulder**: the wrist centre on the base axis (d = 0) or on the cylinder of radius |d|
+//!   around it (h = 0), within [`IK_AXIS_DISTANCE`]: the two shoulder roots merge; for d = 0,
+//!   θ1 is undetermined and kept from the seed (else q1 = 0).
+//! * **elbow**: `|cos φ|` within [`BOUNDARY`] of 1 (arm stretched or folded): the elbow
+//!   branches merge. When the wrist centre lies on axis 2 (R = 0, only if a2 = L2), θ2 is
+//!   undetermined and kept from the seed.
+//!
+//! # Failure reasons
+//!
+//! * `wx² + wy² < d²`: `Unreachable { distance: √(wx² + wy²), reach: |d| }` (inside the
+//!   cylinder the offset arm plane cannot enter);
+//! * R outside `[||a2| − L2|, |a2| + L2]` on every shoulder branch:
+//!   `Unreachable { distance: R, reach: the violated bound }`.
+//!
+//! # Position-only targets
+//!
+//! The tool orientation of `options.seed` (else of the home configuration) is kept and that
+//! pose is solved.
+
+use std::f64::consts::{FRAC_PI_2, PI};
+
+use nalgebra::{Isometry3, IsometryMatrix3, Matrix3, Point3, Rotation3, Translation3, Vector3};
+
+use super::{
+    Branch, Candidate, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, chain_target,
+    finish,
+};
+use crate::angle::wrap;
+use crate::kinematics::check_q;
+use crate::model::{Convention, JointKind, Robot};
+use crate::tolerance::{BOUNDARY, IK_AXIS_DISTANCE, IK_PARALLEL_SINE, STRUCTURE_ANGLE, STRUCTURE_LENGTH};
+
+const NAME: &str = "spherical-wrist";
+
+// ---------------------------------------------------------------------------------------------
+// Shared with `two_link_wrist` (seed 001's arm is the special case a3 = d2 = d3 = 0 of this
+// family): DH joint data, structure checks, the seed and the chain-frame target.
+// ---------------------------------------------------------------------------------------------
+
+/// One revolute standard-DH joint as the closed forms use it: `θ = sign·q + offset`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct DhJoint {
+    pub a: f64,
+    pub alpha: f64,
+    pub d: f64,
+    pub offset: f64,
+    /// −1 for a flipped joint.
+    pub sign: f64,
+}
+
+impl DhJoint {
+    /// The DH angle θ of joint value `q`.
+    #[inline]
+    pub fn theta(&self, q: f64) -> f64 {
+        self.sign * q + self.offset
+    }
+
+    /// The joint value `q` of DH angle `theta`.
+    #[inline]
+    pub fn q(&self, theta: f64) -> f64 {
+        self.sign * (theta - self.offset)
+    }
+
+    /// `A = Rz(θ)·Tz(d)·Tx(a)·Rx(α)`.
+    pub fn transform(&self, theta: f64) -> IsometryMatrix3<f64> {
+        let (st, ct) = theta.sin_cos();
+        let (sa, ca) = self.alpha.sin_cos();
+        #[rustfmt::skip]
+        let r = Matrix3::new(
+            ct, -st * ca, st * sa,
+            st, ct * ca, -ct * sa,
+            0.0, sa, ca,
+        );
+        IsometryMatrix3::from_parts(
+            Translation3::new(self.a * ct, self.a * st, self.d),
+            Rotation3::from_matrix_unchecked(r),
+        )
+    }
+}
+
+/// The `Unsupported` error of `solver` for `robot`.
+pub(crate) fn unsupported(solver: &'static str, robot: &Robot, reason: String) -> IkError {
+    IkError::Unsupported { solver, robot: robot.name().to_string(), reason }
+}
+
+/// The six joints of a 6R standard-DH robot, or why the robot is not one.
+pub(crate) fn revolute_dh6(robot: &Robot, solver: &'static str) -> Result<[DhJoint; 6], IkError> {
+    if robot.convention() != Convention::Dh {
+        return Err(unsupported(
+            solver,
+            robot,
+            format!(
+                "the robot is described in `{}`; this solver reads a standard DH table",
+                robot.convention().as_str()
+            ),
+        ));
+    }
+    if robot.dof() != 6 {
+        return Err(unsupported(solver, robot, format!("needs 6 joints, the robot has {}", robot.dof())));
+    }
+    let mut out = [DhJoint { a: 0.0, alpha: 0.0, d: 0.0, offset: 0.0, sign: 1.0 }; 6];
+    for (i, (joint, slot)) in robot.joints().iter().zip(out.iter_mut()).enumerate() {
+        if joint.kind != JointKind::Revolute {
+            return Err(unsupported(solver, robot, format!("joint {} ({}) is not revolute", i + 1, joint.name)));
+        }
+        let Some(p) = joint.dh() else {
+            return Err(unsupported(solver, robot, format!("joint {} ({}) has no DH parameters", i + 1, joint.name)));
+        };
+        *slot = DhJoint {
+            a: p.a,
+            alpha: p.alpha,
+            d: p.d,
+            offset: p.theta_offset,
+            sign: if joint.flip { -1.0 } else { 1.0 },
+        };
+    }
+    Ok(out)
+}
+
+/// `sgn(α)` when α = ±90° (within [`STRUCTURE_ANGLE`]).
+pub(crate) fn quarter_turn(alpha: f64) -> Option<f64> {
+    if wrap(alpha - FRAC_PI_2).abs() <= STRUCTURE_ANGLE {
+        Some(1.0)
+    } else if wrap(alpha + FRAC_PI_2).abs() <= STRUCTURE_ANGLE {
+        Some(-1.0)
+    } else {
+        None
+    }
+}
+
+/// Whether α = 0 (within [`STRUCTURE_ANGLE`]).
+pub(crate) fn is_zero_angle(alpha: f64) -> bool {
+    wrap(alpha).abs() <= STRUCTURE_ANGLE
+}
+
+/// Whether a DH length is zero (within [`STRUCTURE_LENGTH`]).
+pub(crate) fn is_zero_length(value: f64) -> bool {
+    value.abs() <= STRUCTURE_LENGTH
+}
+
+/// The seed of `options` as DH angles, checked (length, finiteness).
+pub(crate) fn seed_thetas(joints: &[DhJoint; 6], options: &IkOptions) -> Result<Option<[f64; 6]>, IkError> {
+    let Some(seed) = options.seed.as_deref() else {
+        return Ok(None);
+    };
+    check_q(6, seed)?;
+    let mut out = [0.0; 6];
+    for ((t, j), &q) in out.iter_mut().zip(joints).zip(seed) {
+        *t = j.theta(q);
+    }
+    Ok(Some(out))
+}
+
+/// The DH angle of joint `i` to use where it is undetermined: the seed's, else that of q = 0.
+pub(crate) fn free_theta(joints: &[DhJoint; 6], seed: Option<&[f64; 6]>, i: usize) -> f64 {
+    seed.map_or(joints[i].offset, |s| s[i])
+}
+
+/// The flange pose to solve, in the chain frame: the pose target with base and tool removed;
+/// for a position target, the tool orientation of the seed (else of the home configuration)
+/// at the target position.
+pub(crate) fn flange_goal(
+    robot: &Robot,
+    target: &IkTarget,
+    options: &IkOptions,
+) -> Result<IsometryMatrix3<f64>, IkError> {
+    let pose = match target {
+        IkTarget::Pose(pose) => *pose,
+        IkTarget::Position(p) => {
+            let q = options.seed.clone().unwrap_or_else(|| robot.home());
+            let current = robot.fk(&q)?;
+            Isometry3::from_parts(Translation3::from(p.coords), current.rotation)
+        }
+    };
+    let t = chain_target(robot, &pose);
+    Ok(IsometryMatrix3::from_parts(t.translation, t.rotation.to_rotation_matrix()))
+}
+
+/// The wrist centre `p − d6·a` of a flange pose (seed 002 eq. 2).
+pub(crate) fn wrist_centre(flange: &IsometryMatrix3<f64>, d6: f64) -> Point3<f64> {
+    let a = flange.rotation.matrix().column(2).into_owned();
+    Point3::from(flange.translation.vector - a * d6)
+}
+
+/// The elbow label of an arm solution (see the module docs).
+///
+/// `(u, v)` is the wrist centre and `e` the elbow (joint-3 axis) in the x1–y1 plane of frame 1,
+/// both relative to the joint-2 axis; y1 = sgn(α1)·z0 is "up" and the reach direction is
+/// `sgn(h)·x1`.
+pub(crate) fn elbow_label(s_alpha1: f64, h: f64, u: f64, v: f64, e: (f64, f64)) -> &'static str {
+    let forward = if h < 0.0 { -1.0 } else { 1.0 };
+    if forward * s_alpha1 * (u * e.1 - v * e.0) > 0.0 { "up" } else { "down" }
+}
+
+/// `noflip` when DH θ5 ∈ [0, π], else `flip`.
+pub(crate) fn wrist_label(theta5: f64) -> &'static str {
+    if theta5.sin() >= 0.0 { "noflip" } else { "flip" }
+}
+
+/// The user's joint values of DH angles.
+pub(crate) fn joint_values(joints: &[DhJoint; 6], theta: &[f64; 6]) -> Vec<f64> {
+    joints.iter().zip(theta).map(|(j, &t)| j.q(t)).collect()
+}
+
+/// The arm angles θ1…θ3 of one shoulder/elbow branch.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Arm {
+    pub theta: [f64; 3],
+    pub shoulder: &'static str,
+    pub elbow: &'static str,
+    pub shoulder_singular: bool,
+    pub elbow_singular: bool,
+}
+
+impl Arm {
+    /// The singularity flags of the arm.
+    pub fn flags(&self) -> Vec<SingularityKind> {
+        let mut out = Vec::with_capacity(3);
+        if self.shoulder_singular {
+            out.push(SingularityKind::Shoulder);
+        }
+        if self.elbow_singular {
+            out.push(SingularityKind::Elbow);
+        }
+        out
+    }
+}
+
+/// The reason reported when every candidate fails the FK check. The closed form is exact, so
+/// this only happens through round-off at a singular configuration the target sits on.
+pub(crate) fn fallback_failure(arms: &[Arm]) -> IkFailure {
+    let kind = if arms.iter().any(|a| a.elbow_singular) {
+        SingularityKind::Elbow
+    } else if arms.iter().any(|a| a.shoulder_singular) {
+        SingularityKind::Shoulder
+    } else {
+        SingularityKind::Wrist
+    };
+    IkFailure::Singular { kind }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+/// Closed-form IK for PUMA-type 6R arms with a spherical wrist (seed 002; see the module docs).
+///
+/// # Example
+/// ```
+/// use reach::ik::{IkOptions, IkSolver, IkTarget, spherical_wrist::SphericalWrist};
+/// let puma = reach::model::presets::get("puma560").unwrap();
+/// let solver = SphericalWrist::from_robot(&puma).unwrap();
+/// let q = [0.3, 0.5, -0.4, 0.7, 0.9, -0.2];
+/// let target = IkTarget::Pose(puma.fk(&q).unwrap());
+/// let all = solver.solve(&puma, &target, &IkOptions::default()).unwrap();
+/// assert_eq!(all.solutions.len(), 8);
+/// assert!(all.solutions.iter().any(|s| s.q.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9)));
+/// ```
+#[derive(Debug, Clone)]
+pub struct SphericalWrist {
+    joints: [DhJoint; 6],
+    /// sgn α1, sgn α3, sgn α4, sgn α5.
+    s1: f64,
+    s3: f64,
+    s4: f64,
+    s5: f64,
+    /// Lateral offset d = d2 + d3 (out-of-plane coordinate of the wrist centre in frame 1).
+    lateral: f64,
+    /// L2 = √(a3² + d4²) (eq. 13).
+    l2: f64,
+    /// α = atan2(d4, a3) (eq. 15, corrected).
+    alpha: f64,
+}
+
+impl SphericalWrist {
+    /// Checks that `robot` belongs to the family of the module docs and extracts its parameters.
+    ///
+    /// # Errors
+    /// [`IkError::Unsupported`] naming the failed condition (convention, joint count or kind,
+    /// non-spherical wrist, a twist that is not 0°/±90°, a2 = 0 or L2 = 0).
+    pub fn from_robot(robot: &Robot) -> Result<Self, IkError> {
+        let joints = revolute_dh6(robot, NAME)?;
+        let fail = |reason: String| Err(unsupported(NAME, robot, reason));
+        for (name, value) in [("a4", joints[3].a), ("d5", joints[4].d), ("a5", joints[4].a), ("a6", joints[5].a)] {
+            if !is_zero_length(value) {
+                return fail(format!(
+                    "{name} = {value} m ≠ 0: axes 4, 5 and 6 do not meet in one point (not a spherical wrist)"
+                ));
+            }
+        }
+        let deg = |i: usize| joints[i].alpha.to_degrees();
+        let pm90 = |i: usize, why: &str| -> Result<f64, IkError> {
+            quarter_turn(joints[i].alpha)
+                .ok_or_else(|| unsupported(NAME, robot, format!("α{} = {:.6}° (needs ±90°: {why})", i + 1, deg(i))))
+        };
+        let s1 = pm90(0, "shoulder axis 2 perpendicular to the base axis 1")?;
+        if !is_zero_angle(joints[1].alpha) {
+            return fail(format!("α2 = {:.6}° (needs 0°: axes 2 and 3 parallel)", deg(1)));
+        }
+        let s3 = pm90(2, "wrist axis 4 perpendicular to the elbow axis 3")?;
+        let s4 = pm90(3, "axis 5 perpendicular to axis 4")?;
+        let s5 = pm90(4, "axis 6 perpendicular to axis 5")?;
+        if !is_zero_angle(joints[5].alpha) {
+            return fail(format!("α6 = {:.6}° (needs 0°: the flange on the approach axis)", deg(5)));
+        }
+        if is_zero_length(joints[1].a) {
+            return fail("a2 = 0: no upper arm (the elbow triangle of eqs. 10–16 degenerates)".into());
+        }
+        let (a3, d4) = (joints[2].a, joints[3].d);
+        let l2 = a3.hypot(d4);
+        if is_zero_length(l2) {
+            return fail("a3 = d4 = 0: no forearm (the wrist centre is on the elbow axis)".into());
+        }
+        Ok(SphericalWrist { joints, s1, s3, s4, s5, lateral: joints[1].d + joints[2].d, l2, alpha: d4.atan2(a3) })
+    }
+
+    /// The lateral (shoulder) offset d = d2 + d3, metres.
+    #[must_use]
+    pub fn lateral_offset(&self) -> f64 {
+        self.lateral
+    }
+
+    /// The forearm length L2 = √(a3² + d4²) (eq. 13), metres.
+    #[must_use]
+    pub fn forearm(&self) -> f64 {
+        self.l2
+    }
+
+    /// The paper's constant α at joint 3 between x3 and the forearm line, radians:
+    /// `acos((a3² + L2² − d4²)/(2·a3·L2)) = atan2(d4, a3)` (eq. 15 with the corrected
+    /// denominator `2·a3·L2`, notes 002 §6 item 1; the printed `2·a2·L2` is wrong).
+    #[must_use]
+    pub fn elbow_alpha(&self) -> f64 {
+        self.alpha
+    }
+
+    /// Every arm solution (θ1, θ2, θ3) for the wrist centre `w`, or why there is none.
+    fn arms(&self, w: &Point3<f64>, seed: Option<&[f64; 6]>) -> Result<Vec<Arm>, IkFailure> {
+        let [j1, j2, ..] = &self.joints;
+        let d = self.lateral;
+        let rho2 = w.x * w.x + w.y * w.y;
+        let mut h2 = rho2 - d * d;
+        if h2 < 0.0 {
+            if h2 < -BOUNDARY * d * d {
+                return Err(IkFailure::Unreachable { distance: rho2.sqrt(), reach: d.abs() });
+            }
+            h2 = 0.0;
+        }
+        let h = h2.sqrt();
+        let shoulder_singular = h < IK_AXIS_DISTANCE;
+        let roots: &[f64] = if shoulder_singular { &[0.0] } else { &[1.0, -1.0] };
+        let (a2, l2) = (j2.a, self.l2);
+        let mut arms = Vec::with_capacity(4);
+        let mut failure = None;
+        for &side in roots {
+            let hs = side * h;
+            // θ1 (eq. 4, generalised to the lateral offset d). With d = 0 on the base axis
+            // the angle is undetermined: keep the seed's.
+            let theta1 = if shoulder_singular && is_zero_length(d) {
+                free_theta(&self.joints, seed, 0)
+            } else {
+                w.y.atan2(w.x) - (-self.s1 * d).atan2(hs)
+            };
+            // P11 = A1⁻¹·P_m (eq. 9): (u, v) in the arm plane, the third component is d.
+            let p11 = j1.transform(theta1).inverse_transform_point(w);
+            let (u, v) = (p11.x, p11.y);
+            let r = u.hypot(v); // |T̄24| (eq. 12)
+            // cos φ (eq. 16): |cos φ| ≤ 1 ⇔ ||a2| − L2| ≤ R ≤ |a2| + L2.
+            let cos_phi = (a2 * a2 + l2 * l2 - r * r) / (2.0 * a2 * l2);
+            if cos_phi.abs() > 1.0 + BOUNDARY {
+                let outer = a2.abs() + l2;
+                let reach = if r > outer { outer } else { (a2.abs() - l2).abs() };
+                failure.get_or_insert(IkFailure::Unreachable { distance: r, reach });
+                continue;
+            }
+            let phi = cos_phi.clamp(-1.0, 1.0).acos();
+            let elbow_singular = 1.0 - cos_phi.abs() <= BOUNDARY;
+            let (beta, gamma) = if r > IK_AXIS_DISTANCE {
+                // β (eq. 7, x first) and γ (eq. 11). γ is taken from the same triangle as φ —
+                // cos γ = (a2 − L2·cos φ)/R = (a2² + R² − L2²)/(2·a2·R), sin γ = L2·sin φ/R —
+                // so that the two angles stay consistent near the stretched or folded elbow,
+                // where two independent `acos` disagree by ~1e-8 rad (√ of the round-off).
+                (u.atan2(v), (l2 * phi.sin()).atan2(a2 - l2 * phi.cos()))
+            } else {
+                // Wrist centre on axis 2 (a2 = L2, folded): θ2 undetermined, keep the seed's.
+                (FRAC_PI_2 - free_theta(&self.joints, seed, 1), 0.0)
+            };
+            for s in [1.0, -1.0] {
+                // eq. 5 and eq. 14 with the corrected branch B `−(π − φ + α)` and the
+                // α3-sign generalisation (notes 002 §4.3, §6 item 2).
+                let theta2 = wrap(FRAC_PI_2 - beta - s * gamma);
+                let theta3 = wrap(s * (PI - phi) + self.s3 * self.alpha);
+                let shoulder = if is_zero_length(d) {
+                    if hs < 0.0 { "back" } else { "front" }
+                } else if self.s1 * d * hs >= 0.0 {
+                    "right"
+                } else {
+                    "left"
+                };
+                let e = (a2 * theta2.cos(), a2 * theta2.sin());
+                arms.push(Arm {
+                    theta: [theta1, theta2, theta3],
+                    shoulder,
+                    elbow: elbow_label(self.s1, hs, u, v, e),
+                    shoulder_singular,
+                    elbow_singular: elbow_singular || r <= IK_AXIS_DISTANCE,
+                });
+            }
+        }
+        if arms.is_empty() {
+            return Err(failure.unwrap_or(IkFailure::Unreachable { distance: 0.0, reach: 0.0 }));
+        }
+        Ok(arms)
+    }
+
+    /// θ6 = atan2(n·y5, n·x5) (eqs. 31–37, corrected: x6 = n, arguments swapped).
+    fn theta6(&self, t03: &IsometryMatrix3<f64>, theta4: f64, theta5: f64, n: &Vector3<f64>) -> f64 {
+        let t05 = t03 * self.joints[3].transform(theta4) * self.joints[4].transform(theta5);
+        let m = t05.rotation.matrix();
+        n.dot(&m.column(1)).atan2(n.dot(&m.column(0)))
+    }
+
+    /// The wrist solutions of one arm branch, appended to `out`.
+    fn wrists(&self, arm: &Arm, flange: &IsometryMatrix3<f64>, seed: Option<&[f64; 6]>, out: &mut Vec<Candidate>) {
+        let [t1, t2, t3] = arm.theta;
+        let t03 = self.joints[0].transform(t1) * self.joints[1].transform(t2) * self.joints[2].transform(t3);
+        let m3 = t03.rotation.matrix();
+        let (x3, y3, z3) = (m3.column(0).into_owned(), m3.column(1).into_owned(), m3.column(2).into_owned());
+        let r = flange.rotation.matrix();
+        let n = r.column(0).into_owned();
+        let a = r.column(2).into_owned();
+        let z4 = z3.cross(&a); // eq. 26: sin θ5 times the joint-5 axis (up to sign)
+        let sin5 = z4.norm();
+        let cos5 = -self.s4 * self.s5 * a.dot(&z3); // eq. 22, generalised sign
+        let shoulder_elbow = [("shoulder", arm.shoulder), ("elbow", arm.elbow)];
+        if sin5 < IK_PARALLEL_SINE {
+            // Wrist singularity: θ4 undetermined; keep the seed's, θ6 takes the rest.
+            let theta5 = if cos5 >= 0.0 { 0.0 } else { PI };
+            let theta4 = free_theta(&self.joints, seed, 3);
+            let theta6 = self.theta6(&t03, theta4, theta5, &n);
+            let mut c = Candidate::new(
+                joint_values(&self.joints, &[t1, t2, t3, theta4, theta5, theta6]),
+                Branch::new(shoulder_elbow.into_iter().chain([("wrist", "noflip")])),
+            );
+            c.singularities = arm.flags();
+            c.singularities.push(SingularityKind::Wrist);
+            out.push(c);
+            return;
+        }
+        let sq_x = z4.dot(&x3); // eq. 25
+        let sq_y = -z4.dot(&y3); // eq. 24
+        for k in [1.0, -1.0] {
+            let theta5 = (k * sin5).atan2(cos5);
+            // eq. 23 with the arguments in the corrected order (notes 002 §6 item 3),
+            // generalised to the α4/α5 signs and to the flipped wrist (sin θ5 < 0).
+            let g = -self.s5 * k;
+            let theta4 = (g * sq_x).atan2(g * sq_y);
+            let theta6 = self.theta6(&t03, theta4, theta5, &n);
+            let mut c = Candidate::new(
+                joint_values(&self.joints, &[t1, t2, t3, theta4, theta5, theta6]),
+                Branch::new(shoulder_elbow.into_iter().chain([("wrist", wrist_label(theta5))])),
+            );
+            c.singularities = arm.flags();
+            out.push(c);
+        }
+    }
+}
+
+impl IkSolver for SphericalWrist {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+
+    fn solve(&self, robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError> {
+        target.validate()?;
+        let seed = seed_thetas(&self.joints, options)?;
+        let flange = flange_goal(robot, target, options)?;
+        let w = wrist_centre(&flange, self.joints[5].d);
+        let arms = match self.arms(&w, seed.as_ref()) {
+            Ok(arms) => arms,
+            Err(failure) => return finish(robot, target, Vec::new(), NAME, failure),
+        };
+        let mut candidates = Vec::with_capacity(2 * arms.len());
+        for arm in &arms {
+            self.wrists(arm, &flange, seed.as_ref(), &mut candidates);
+        }
+        finish(robot, target, candidates, NAME, fallback_failure(&arms))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ik::SolverKind;
+    use crate::model::{Joint, RobotSpec, presets};
+
+    /// Notes 002 §2.3: the paper's structure (no lateral offset) with PUMA lengths.
+    fn reference() -> Robot {
+        let r = |a: f64, alpha_deg: f64, d: f64| Joint::revolute(a, alpha_deg.to_radians(), d, 0.0);
+        Robot::new(RobotSpec::new(
+            "seed002-reference",
+            Convention::Dh,
+            vec![
+                r(0.0, 90.0, 0.3),
+                r(0.4318, 0.0, 0.0),
+                r(0.0203, -90.0, 0.0),
+                r(0.0, 90.0, 0.4318),
+                r(0.0, -90.0, 0.0),
+                r(0.0, 0.0, 0.05625),
+            ],
+        ))
+        .unwrap()
+    }
+
+    #[test]
+    fn corrected_eq15_alpha_is_atan2_d4_a3() {
+        // Notes 002 §5: α = 87.308364° with the corrected denominator 2·a3·L2; the printed
+        // 2·a2·L2 gives 89.873506°.
+        let s = SphericalWrist::from_robot(&reference()).unwrap();
+        assert!((s.elbow_alpha().to_degrees() - 87.308364).abs() < 1e-6);
+        let (a2, a3, d4) = (0.4318_f64, 0.0203_f64, 0.4318_f64);
+        let l2 = a3.hypot(d4);
+        let by_cosines = ((a3 * a3 + l2 * l2 - d4 * d4) / (2.0 * a3 * l2)).acos();
+        assert!((by_cosines - s.elbow_alpha()).abs() < 1e-12);
+        let typo = ((a3 * a3 + l2 * l2 - d4 * d4) / (2.0 * a2 * l2)).acos();
+        assert!((typo.to_degrees() - 89.873506).abs() < 1e-6);
+    }
+
+    #[test]
+    fn reads_the_puma_offsets() {
+        let puma = presets::get("puma560").unwrap();
+        let s = SphericalWrist::from_robot(&puma).unwrap();
+        assert!((s.lateral_offset() - 0.15005).abs() < 1e-12);
+        assert!((s.forearm() - 0.0203f64.hypot(0.4318)).abs() < 1e-12);
+        assert_eq!((s.s1, s.s3, s.s4, s.s5), (1.0, -1.0, 1.0, -1.0));
+    }
+
+    #[test]
+    fn rejects_robots_outside_the_family() {
+        for (name, needle) in [("ur5", "d5"), ("panda", "`mdh`"), ("planar3", "6 joints")] {
+            let robot = presets::get(name).unwrap();
+            let err = SphericalWrist::from_robot(&robot).unwrap_err().to_string();
+            assert!(err.contains(needle), "{name}: {err}");
+        }
+        // A twisted forearm: α3 = 45°.
+        let mut spec = reference().spec().clone();
+        spec.joints[2] = Joint::revolute(0.0203, 45f64.to_radians(), 0.0, 0.0);
+        let err = SphericalWrist::from_robot(&Robot::new(spec).unwrap()).unwrap_err().to_string();
+        assert!(err.contains("α3"), "{err}");
+    }
+
+    #[test]
+    fn name_matches_the_cli_name() {
+        let s = SphericalWrist::from_robot(&reference()).unwrap();
+        assert_eq!(s.name(), SolverKind::SphericalWrist.as_str());
+    }
+
+    #[test]
+    fn dh_transform_matches_forward_kinematics() {
+        let robot = reference();
+        let s = SphericalWrist::from_robot(&robot).unwrap();
+        let q = [0.1, -0.7, 1.3, 0.4, -2.0, 2.9];
+        let mut t = IsometryMatrix3::identity();
+        for (j, &v) in s.joints.iter().zip(&q) {
+            t *= j.transform(j.theta(v));
+        }
+        let fk = robot.fk_matrix(&q).unwrap();
+        assert!((t.to_homogeneous() - fk.to_homogeneous()).abs().max() < 1e-14);
+    }
+}
