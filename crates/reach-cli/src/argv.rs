@@ -100,6 +100,7 @@ mod tests {
             "reach fk ur5 -- -1 2",
             "reach robot show -x",
             "reach robots --json",
+            "reach ik ur5 --xyz -0.3,0.2,0.5 --from -90,-45,0,0,0,0 --json",
             "reach --help",
         ] {
             assert_eq!(rewrite(line), line);

@@ -4,6 +4,7 @@ use clap::{Parser, Subcommand};
 
 use crate::commands::demo::DemoArgs;
 use crate::commands::fk::FkArgs;
+use crate::commands::ik::IkArgs;
 use crate::commands::jacobian::JacobianArgs;
 use crate::commands::robot_show::RobotCommand;
 use crate::commands::robots::RobotsArgs;
@@ -33,10 +34,17 @@ Examples:
   reach fk panda 0 -0.3 0 -2.2 0 2 0.785 --rad
   reach fk arm.urdf --tip tool0 0 30 -60    a URDF chain
   reach jacobian puma560 0 45 -90 0 30 0    6xn Jacobian, manipulability, rank
+  reach ik puma560 --xyz 0.5,-0.2,0.3 --rpy 180,0,0 --all
+                                            every IK solution with its branch label
+  reach ik spbu6 --matrix 1,0,0,0,0,0,1,3,0,-1,0,5,0,0,0,1
+                                            the solution closest to home
+  reach ik planar3 --xyz 2.4,0.2,0 --scan 0.01 --csv
+                                            seed 000's table of configurations
   reach demo                                a tour of every preset
 
 Exit status: 0 success, 1 internal error, 2 bad input (arguments, numbers, robot files),
-3 no solution / infeasible (reserved). Errors are one line on stderr.";
+3 no solution / infeasible (ik: the report is still printed on stdout). Errors are one line
+on stderr.";
 
 /// `reach`: the command line of the reach toolkit.
 #[derive(Debug, Parser)]
@@ -106,7 +114,102 @@ pub enum Command {
     )]
     Jacobian(JacobianArgs),
 
+    /// Inverse kinematics: every solution for a tool pose, or the one closest to --from.
+    #[command(
+        long_about = "Inverse kinematics: the joint values that put the tool at a pose (--xyz with \
+            --rpy, or --matrix) or a position (--xyz alone). The solver is detected from the \
+            robot's structure (a closed form where one fits, else numeric) or named with \
+            --solver. Every solution is verified by forward kinematics and labelled with its \
+            branch; without --all the one within limits closest to --from (default: home; \
+            least Σ wᵢ·|qᵢ − fromᵢ|, weights --weights) is printed.\n\n\
+            Units: metres, degrees (prismatic joints in metres); rpy is R = Rz(yaw)·Ry(pitch)·Rx(roll); \
+            --matrix is 16 numbers row-major, last row 0 0 0 1. Comma lists may start with a minus.\n\n\
+            --json prints {\"robot\", \"solver\", \"status\" (ok, unreachable, singular, \
+            outside_limits, orientation_unreachable, no_convergence), \"reason\", \"solutions\": \
+            [{\"q_deg\", \"branch\", \"position_error_m\", \"orientation_error_rad\", \
+            \"within_limits\", \"violations\", \"singular\"}], \"chosen\"}. A status other than \
+            ok prints the report, one line on stderr, and exits with status 3.\n\n\
+            --scan DEG (planar arm of seed 000, position target): the thesis's table of \
+            configurations, alpha from alpha_min to 180 deg in steps of DEG, and the row with the \
+            least S = |α − α0| + |β − β0| + |γ − γ0| from --from; --csv prints every row \
+            (alpha_deg, beta_deg, gamma_deg, q1_deg, q2_deg, q3_deg, S_deg, within_limits, chosen).",
+        after_help = "Examples:\n  \
+            reach ik puma560 --xyz 0.5,-0.2,0.3 --rpy 180,0,0 --all\n  \
+            reach ik ur5 --matrix -1,0,0,0.4,0,1,0,-0.2,0,0,-1,0.3,0,0,0,1 --json\n  \
+            reach ik spbu6 --matrix 1,0,0,0,0,0,1,3,0,-1,0,5,0,0,0,1\n  \
+            reach ik welder6r --xyz 0.05,0.74,0.07 --rpy 0,-41.8685,-50.1944 --from 105,-33,43,-170,-155,138\n  \
+            reach ik planar3 --xyz 2,1,0 --free-angle -30 --all\n  \
+            reach ik planar3 --xyz 2.4,0.2,0 --scan 0.01 --from 60,-40,-30 --csv"
+    )]
+    Ik(Box<IkArgs>),
+
     /// A short tour: forward kinematics of every preset at its home pose.
     #[command(after_help = "Example:\n  reach demo")]
     Demo(DemoArgs),
+
+    /// Stepper step schedules from a motion file or a point-to-point move: summary, CSV, JSON,
+    /// G-code, coil tables or step/direction events.
+    #[command(
+        long_about = "Stepper step schedules. Every joint needs drive data ([joints.drive] in the \
+            robot file: steps per revolution, microstepping, gear ratio, direction, maximum step \
+            rate and acceleration, wiring). The input is a motion file (JSON {\"samples\": [{\"t_s\", \
+            \"q_deg\"}]}) or a point-to-point move (--from/--to, optional --duration), which is \
+            synchronised so that all joints start and stop together (seed 000). The schedule is \
+            integrated back into joint angles and compared with the plan.\n\n\
+            Exit status 3 when the motion exceeds a motor's rate or acceleration limit (the message \
+            names the joint, the time and a slower duration that works).",
+        after_help = "Examples:\n  \
+            reach drive planar3 --from 0 0 0 --to 3.6 -14.4 -7.2\n  \
+            reach drive planar3 --from 0,0,0 --to 90,-45,-30 --format gcode -o move.gcode\n  \
+            reach drive log-loader --from 0 0 0 --to 90 45 -30 --duration 5 --format csv\n  \
+            reach drive planar3 motion.json --format coils"
+    )]
+    Drive(crate::commands::drive::DriveArgs),
+
+    /// Collisions and clearances of one configuration in a scene.
+    #[command(
+        allow_negative_numbers = true,
+        long_about = "Collisions and clearances of one configuration: every link (segment with the \
+            robot file's capsule radius) against every obstacle of SCENE, every pair of \
+            non-adjacent links, and the tool point against the scene's tool zone. Obstacles are \
+            closed sets unless the scene says touching = \"open\" (tolerance 1 nm).\n\n\
+            --json prints {\"verdict\", \"links\": [{\"link\", \"obstacle\", \"clearance_m\", \
+            \"colliding\"}], \"self_pairs\", \"tool_zone\", \"min_obstacle_clearance_m\", \
+            \"min_self_clearance_m\"}.",
+        after_help = "Examples:\n  \
+            reach check varan4 examples/seed004_ceiling.toml 0 0 90 0\n  \
+            reach check varan4 examples/seed004_two_planes.toml 0 30 -45 10 --json"
+    )]
+    Check(crate::commands::check::CheckArgs),
+
+    /// Seed 000: plan the planar arm's move past point obstacles (detour on the L/7 circle).
+    #[command(
+        long_about = "Seed 000's obstacle test and detour for the planar three-link arm: the \
+            swept areas of the links between the start and target poses are tested for each \
+            point obstacle (robust, orientation-free test; --literal-test for the thesis's \
+            printed one); a blocked move goes through two waypoints on a circle of radius L/7 \
+            around the obstacle (perpendicular construction; --printed-waypoints for Table 6), \
+            each leg with the minimum-change IK and re-checked. Exit status 3 (after the report) \
+            when the target is unreachable or no detour exists.\n\n\
+            --json prints {\"outcome\", \"blocked\", \"start_deg\", \"waypoints_m\", \
+            \"configurations_deg\", \"leg_s_deg\", \"min_clearance_m\"}.",
+        after_help = "Examples:\n  \
+            reach avoid planar3 --start 60,-40,-30 --to 2.4,0.2 --obstacle 2.0,0.7\n  \
+            reach avoid planar3 --from 2.4245,1.0344 --to 2.4,0.2 --obstacle 2.0,0.7 --json"
+    )]
+    Avoid(crate::commands::avoid::AvoidArgs),
+
+    /// Seed 004: classify a joint grid (limits, tool zone, self-collision, obstacles).
+    #[command(
+        long_about = "Enumerates a joint grid (both limits included; --fix qI=VALUE holds a \
+            joint) and classifies every node, in this order: outside the joint limits, tool \
+            outside the scene's tool zone, self-collision, obstacle collision, allowed.\n\n\
+            --json prints {\"nodes\", \"allowed\", \"outside_limits\", \"outside_zone\", \
+            \"self_collision\", \"obstacle_collision\", \"sections\": counts per value of the \
+            first swept joint}.",
+        after_help = "Examples:\n  \
+            reach cspace varan4 examples/seed004_ceiling.toml --fix q1=0\n  \
+            reach cspace varan4 examples/seed004_free.toml --fix q1=0 --step 1 --json"
+    )]
+    Cspace(crate::commands::cspace::CspaceArgs),
 }

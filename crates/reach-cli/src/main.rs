@@ -48,7 +48,12 @@ fn run(command: &Command, out: &mut dyn Write) -> Result<(), CliError> {
         Command::Robot(sub) => commands::robot_show::run(sub, out),
         Command::Fk(args) => commands::fk::run(args, out),
         Command::Jacobian(args) => commands::jacobian::run(args, out),
+        Command::Ik(args) => commands::ik::run(args, out),
         Command::Demo(args) => commands::demo::run(args, out),
+        Command::Drive(args) => commands::drive::run(args, out),
+        Command::Check(args) => commands::check::run(args, out),
+        Command::Avoid(args) => commands::avoid::run(args, out),
+        Command::Cspace(args) => commands::cspace::run(args, out),
     }
 }
 

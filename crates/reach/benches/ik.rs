@@ -1,15 +1,23 @@
-//! Inverse-kinematics benchmarks, one criterion group per solver.
+//! Inverse-kinematics benchmarks, one criterion group per kind of solver.
 //!
 //! Run with `cargo bench -p reach --bench ik` (add `-- numeric` to run one group).
-//! To add a solver: write a `fn <solver>(c: &mut Criterion)` that opens a group named after
-//! the solver's CLI name and add it to `criterion_group!` at the bottom.
+//!
+//! * `closed_form` — every solution of one generic pose (`ik::solve` work without the solver
+//!   detection: the solver is built once) for puma560, ur5, welder6r, spbu6;
+//! * `planar_scan` — seed 000's α scan at 0.01° (`PlanarRedundant::paper_scan`);
+//! * `numeric` — first-found from the home configuration, first-found from a nearby seed
+//!   (tracking) and all distinct solutions (16 starts), for ur5 and panda.
+//!
+//! The success rate and time distribution over 10 000 random poses are measured by the
+//! example `ik_protocol` (`cargo run --release -p reach --example ik_protocol`).
 
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use reach::Robot;
-use reach::ik::numeric::Numeric;
-use reach::ik::{IkOptions, IkSolver, IkTarget};
+use reach::ik::numeric::{Numeric, NumericOptions, SearchMode};
+use reach::ik::planar::PlanarRedundant;
+use reach::ik::{IkOptions, IkSolver, IkTarget, SolverKind};
 use reach::model::presets;
 
 /// A generic (non-singular, within-limits) configuration per benchmarked robot.
@@ -18,6 +26,8 @@ fn generic_q(name: &str) -> Vec<f64> {
         "ur5" => vec![0.4, -1.1, 1.3, -0.6, 1.2, 0.3],
         "panda" => vec![0.3, -0.2, 0.1, -2.0, 0.2, 1.8, 0.5],
         "puma560" => vec![0.2, 0.6, -0.8, 0.4, 0.7, -0.3],
+        "welder6r" => vec![0.3, 0.5, -0.4, 0.3, 0.6, -0.2],
+        "spbu6" => vec![0.5, 0.3, -0.4, 0.2, 0.6, -0.3],
         other => panic!("no benchmark configuration for `{other}`"),
     }
 }
@@ -30,25 +40,65 @@ fn problem(name: &str) -> (Robot, IkTarget, Vec<f64>) {
     (robot, target, q)
 }
 
-/// Numeric solver: one start from a seed 0.1 rad away from the solution in every joint (the
-/// tracking case), and the full default multi-start (16 starts, all branches).
+/// Closed forms: all solutions of one pose (FK check of each, limits, labels included).
+fn closed_form(c: &mut Criterion) {
+    let mut group = c.benchmark_group("closed_form");
+    for (name, kind) in [
+        ("puma560", SolverKind::SphericalWrist),
+        ("ur5", SolverKind::ParallelAxes),
+        ("welder6r", SolverKind::ParallelAxes),
+        ("spbu6", SolverKind::TwoLinkWrist),
+    ] {
+        let (robot, target, _) = problem(name);
+        let solver = kind.build(&robot).expect("closed form fits");
+        let options = IkOptions::default();
+        let n = solver.solve(&robot, &target, &options).expect("solve").solutions.len();
+        group.bench_function(format!("{name}/all_{n}_solutions"), |b| {
+            b.iter(|| solver.solve(black_box(&robot), black_box(&target), black_box(&options)).expect("solve"));
+        });
+    }
+    group.finish();
+}
+
+/// Seed 000's scan of the free angle α at 0.01°: the paper's target (2, 1) (α from 90° to
+/// 180°, 9001 rows) and a target just outside the inner circle (≈ 17 900 rows).
+fn planar_scan(c: &mut Criterion) {
+    let mut group = c.benchmark_group("planar_scan");
+    let arm = PlanarRedundant::from_robot(&presets::get("planar3").expect("preset")).expect("planar");
+    let step = 0.01f64.to_radians();
+    for (label, xy) in [("paper_2_1", [2.0, 1.0]), ("near_inner_1_0.1", [1.0, 0.1])] {
+        let rows = arm.paper_scan(xy, step).expect("scan").rows.len();
+        group.bench_function(format!("{label}/{rows}_rows"), |b| {
+            b.iter(|| arm.paper_scan(black_box(xy), black_box(step)).expect("scan"));
+        });
+    }
+    group.finish();
+}
+
+/// Numeric solver: first found from home (the protocol's fixed seed), first found from a seed
+/// 0.1 rad away in every joint (tracking), and every distinct solution of 16 starts.
 fn numeric(c: &mut Criterion) {
     let mut group = c.benchmark_group("numeric");
     for name in ["ur5", "panda"] {
         let (robot, target, q) = problem(name);
         let solver = Numeric::from_robot(&robot).expect("numeric fits every robot");
+        let first = NumericOptions { mode: SearchMode::FirstFound, ..NumericOptions::default() };
+        let from_home = IkOptions { seed: Some(robot.home()), numeric: first, ..IkOptions::default() };
+        group.bench_function(format!("{name}/first_found_from_home"), |b| {
+            b.iter(|| solver.solve(black_box(&robot), black_box(&target), black_box(&from_home)).expect("solve"));
+        });
         let seed: Vec<f64> = q.iter().map(|v| v + 0.1).collect();
-        let nearby = IkOptions { seed: Some(seed), restarts: 1, ..IkOptions::default() };
-        group.bench_function(format!("{name}/single_start_nearby_seed"), |b| {
+        let nearby = IkOptions { seed: Some(seed), numeric: first, ..IkOptions::default() };
+        group.bench_function(format!("{name}/first_found_nearby_seed"), |b| {
             b.iter(|| solver.solve(black_box(&robot), black_box(&target), black_box(&nearby)).expect("solve"));
         });
         let full = IkOptions::default();
-        group.bench_function(format!("{name}/multi_start_{}", full.restarts), |b| {
+        group.bench_function(format!("{name}/all_distinct_{}_starts", full.restarts), |b| {
             b.iter(|| solver.solve(black_box(&robot), black_box(&target), black_box(&full)).expect("solve"));
         });
     }
     group.finish();
 }
 
-criterion_group!(benches, numeric);
+criterion_group!(benches, closed_form, planar_scan, numeric);
 criterion_main!(benches);

@@ -35,6 +35,10 @@
 //! * [`model`] — `Robot`, joints, limits, TOML and URDF parsing, presets.
 //! * [`kinematics`] — forward kinematics, Jacobian, manipulability.
 //! * [`ik`] — inverse kinematics: closed forms with all branches, numeric solver.
+//! * [`motion`] — time profiles, joint/tool-space motion, path tracking, events.
+//! * [`effort`] — J1/J2/S functionals, dynamics and energy.
+//! * [`world`] — scenes, collision, detours, configuration space.
+//! * [`drive`] — stepper sequences, step schedules, G-code.
 //! * [`angle`] — wrapping and angle differences.
 //! * [`tolerance`] — the numeric tolerances.
 //!
@@ -52,10 +56,14 @@
 #![warn(missing_docs)]
 
 pub mod angle;
+pub mod drive;
+pub mod effort;
 pub mod ik;
 pub mod kinematics;
 pub mod model;
+pub mod motion;
 pub mod tolerance;
+pub mod world;
 
 pub use kinematics::{Jacobian, KinematicsError, Manipulability};
 pub use model::{ModelError, Robot, RobotSpec};

@@ -84,3 +84,54 @@ pub const STRUCTURE_LENGTH: f64 = 1e-9;
 /// the scanned range and still count (seed 000's α scan, `α_min + i·Δα ≤ 180°`): absorbs the
 /// rounding of `i·Δα` so that an exact end value (e.g. 90° + 9000 · 0.01° = 180°) is kept.
 pub const SCAN_GRID: f64 = 1e-9;
+
+/// Contact tolerance of the world module (metres): a link whose clearance to an obstacle is
+/// within this of zero touches it (a collision for closed obstacles, allowed for open ones),
+/// and the tool point must be inside its allowed zone by more than this. 1 nm = 1e-6 mm is
+/// the value seed 004's reference counts use (notes 004 §5.4): grid nodes that lie on a zone
+/// boundary analytically land within ~1e-13 m of it in floating point.
+pub const CONTACT: f64 = 1e-9;
+
+/// Fraction of a step by which a sampling grid's last point may fall short of the end of the
+/// interval and still count as the end (motion sampling, `t0 + k·dt`): absorbs the rounding of
+/// `duration / dt` (e.g. `10 / 0.1`), so an exact multiple gives one sample at the end, not two
+/// a rounding error apart.
+pub const SAMPLE_GRID: f64 = 1e-9;
+
+/// Rotation angle (radians) below which a tool motion counts as a pure translation and its
+/// rotation axis is undefined (seed 001's `e = vee(Rf − Rfᵀ)/(2 sin φ1)` divides by ~0): the
+/// axis is then taken as z. Rotating by less than this about any axis moves orientations by
+/// less than [`IK_ORIENTATION`] / 1000.
+pub const ROTATION_ANGLE_ZERO: f64 = 1e-9;
+
+/// Path tracking: bisection and golden-section searches on the path parameter stop when the
+/// bracket is narrower than this fraction of the path's parameter range (for seed 003's
+/// 0.944 m weld, 1e-9 m). Far below any position tolerance a user can see, and reached in
+/// ~30 halvings.
+pub const TRACKING_PARAMETER: f64 = 1e-9;
+
+/// Path tracking: a refined local minimum of a singularity measure at or below this is a
+/// singular position. The measures vanish linearly at a singularity (`σ_min/σ_max`,
+/// `sin∠(w, e6)`, `√(1 − |cos θ_elbow|)` ≈ |θ_elbow|/√2, `(ρ − |D|)/L`), so after the search
+/// to [`TRACKING_PARAMETER`] an exact crossing or touch leaves ~1e-9, while a path that
+/// misses the singularity by more than ~1e-6 (radians, or the same fraction of the arm's
+/// length) is not split there.
+pub const TRACKING_SINGULAR: f64 = 1e-6;
+
+/// Path tracking: half-width, as a fraction of the path's parameter range, of the central
+/// difference that estimates an instantaneous joint rate when a speed-limit crossing is
+/// refined. Truncation error ~h², round-off ~1e-16/h: 1e-6 balances both near 1e-10 relative.
+pub const TRACKING_RATE_STEP: f64 = 1e-6;
+
+/// Drives: relative slack when a step rate or acceleration is compared with a motor's limit
+/// (and a point-to-point duration with the shortest feasible one). A plan computed to run a
+/// motor exactly at its limit reaches it up to f64 round-off (~1e-15 relative); 1e-9 keeps
+/// such plans feasible while any real excess (a fraction of a hertz at 500 Hz) is caught.
+pub const DRIVE_LIMIT_SLACK: f64 = 1e-9;
+
+/// Drives: fraction by which a point-to-point ramp plans below each motor's acceleration
+/// limit. Steps are discrete, so the acceleration measured from three consecutive step times
+/// (rate change between intervals over their mean length) can exceed the continuous ramp's by
+/// up to ~0.6 % at the second step of a ramp from rest; planning 2 % below the limit keeps
+/// the measured value under it (checked in `tests/drive_schedule.rs`).
+pub const DRIVE_RAMP_MARGIN: f64 = 0.02;

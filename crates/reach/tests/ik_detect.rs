@@ -48,6 +48,7 @@ fn random_urdf_robot(rng: &mut Rng, dof: usize, prismatic: &[usize]) -> Robot {
                 limits,
                 max_velocity: None,
                 home: 0.0,
+                drive: None,
                 flip: false,
             }
         })

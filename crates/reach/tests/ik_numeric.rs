@@ -13,7 +13,7 @@ use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion};
 use proptest::prelude::*;
 use reach::Robot;
 use reach::angle::wrap;
-use reach::ik::numeric::Numeric;
+use reach::ik::numeric::{Numeric, NumericOptions, SearchMode, TaskAxes};
 use reach::ik::{IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind};
 use reach::model::{Convention, Joint, JointKind, RobotSpec, UrdfChain, presets};
 
@@ -466,4 +466,192 @@ proptest! {
         prop_assert!(all.failure.is_none());
         prop_assert!(all.solutions.iter().all(|s| s.within_limits));
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Numeric options: task axes, tolerances, time budget, search mode; the random-pose protocol.
+// ---------------------------------------------------------------------------------------------
+
+/// The protocol of `examples/ik_protocol.rs` on `cases` poses: seed = home (fixed), first-found
+/// mode, full pose (or position only) at 1e-6 m / 1e-6 rad, 32 starts of at most 100 steps.
+/// Success is judged here by FK. Returns the success rate.
+fn protocol_rate(robot: &Robot, cases: usize, position_only: bool, rng_seed: u64) -> f64 {
+    let solver = Numeric::from_robot(robot).unwrap();
+    let options = IkOptions {
+        seed: Some(robot.home()),
+        restarts: 32,
+        max_iterations: 100,
+        numeric: NumericOptions {
+            axes: if position_only { TaskAxes::Position } else { TaskAxes::Pose },
+            mode: SearchMode::FirstFound,
+            ..NumericOptions::default()
+        },
+        ..IkOptions::default()
+    };
+    let mut rng = Rng(rng_seed);
+    let mut ok = 0;
+    for _ in 0..cases {
+        let q = random_q(robot, &mut rng);
+        let pose = robot.fk(&q).unwrap();
+        let target = if position_only {
+            IkTarget::Position(Point3::from(pose.translation.vector))
+        } else {
+            IkTarget::Pose(pose)
+        };
+        let all = solver.solve(robot, &target, &options).unwrap();
+        check_solutions(robot, &target, &all);
+        assert!(all.solutions.len() <= 1, "first-found mode returned {} solutions", all.solutions.len());
+        if all.failure.is_none() && all.feasible().next().is_some() {
+            ok += 1;
+        }
+    }
+    let rate = ok as f64 / cases as f64;
+    eprintln!("{}: protocol success {ok}/{cases} ({:.1} %)", robot.name(), 100.0 * rate);
+    rate
+}
+
+#[test]
+fn protocol_ur5_from_home() {
+    assert!(protocol_rate(&presets::get("ur5").unwrap(), 500, false, 21) >= 0.99);
+}
+
+#[test]
+fn protocol_panda_from_home() {
+    assert!(protocol_rate(&presets::get("panda").unwrap(), 500, false, 22) >= 0.99);
+}
+
+#[test]
+fn protocol_puma560_from_home() {
+    assert!(protocol_rate(&presets::get("puma560").unwrap(), 500, false, 23) >= 0.99);
+}
+
+#[test]
+fn protocol_varan4_position_only_from_home() {
+    assert!(protocol_rate(&presets::get("varan4").unwrap(), 500, true, 24) >= 0.99);
+}
+
+#[test]
+fn first_found_returns_the_first_of_all_distinct() {
+    let ur5 = presets::get("ur5").unwrap();
+    let q = [0.4, -1.1, 1.3, -0.6, 1.2, 0.3];
+    let target = IkTarget::Pose(ur5.fk(&q).unwrap());
+    let solver = Numeric::from_robot(&ur5).unwrap();
+    let all = solver.solve(&ur5, &target, &IkOptions { restarts: 64, ..IkOptions::default() }).unwrap();
+    let first_only = IkOptions {
+        restarts: 64,
+        numeric: NumericOptions { mode: SearchMode::FirstFound, ..NumericOptions::default() },
+        ..IkOptions::default()
+    };
+    let first = solver.solve(&ur5, &target, &first_only).unwrap();
+    check_solutions(&ur5, &target, &first);
+    assert!(all.solutions.len() >= 4);
+    assert_eq!(first.solutions.len(), 1);
+    assert_eq!(first.solutions[0], all.solutions[0]);
+}
+
+#[test]
+fn approach_axis_mode_leaves_the_roll_free() {
+    // A UR5 pose rolled by 1 rad about its own z axis: position and tool z axis unchanged.
+    // Matching position + approach axis, the solver may end at any roll; every solution must
+    // put the tool point on the target and the tool z axis along the target's z axis.
+    let ur5 = presets::get("ur5").unwrap();
+    let solver = Numeric::from_robot(&ur5).unwrap();
+    let mut rng = Rng(31);
+    for _ in 0..40 {
+        let q = random_q(&ur5, &mut rng);
+        let pose = ur5.fk(&q).unwrap();
+        let rolled =
+            Isometry3::from_parts(pose.translation, pose.rotation * UnitQuaternion::from_euler_angles(0.0, 0.0, 1.0));
+        let options = IkOptions {
+            seed: Some(ur5.home()),
+            numeric: NumericOptions { axes: TaskAxes::PositionApproach, ..NumericOptions::default() },
+            ..IkOptions::default()
+        };
+        let all = solver.solve(&ur5, &IkTarget::Pose(rolled), &options).unwrap();
+        assert!(all.failure.is_none(), "{:?}", all.failure);
+        let z_target = rolled.rotation * nalgebra::Vector3::z();
+        for s in &all.solutions {
+            let p = ur5.fk(&s.q).unwrap();
+            let dp = (p.translation.vector - rolled.translation.vector).norm();
+            // atan2(|a × b|, a · b): accurate near 0, unlike acos.
+            let z = p.rotation * nalgebra::Vector3::z();
+            let tilt = z.cross(&z_target).norm().atan2(z.dot(&z_target));
+            assert!(dp < 1e-6 && tilt < 1e-6, "{dp:e} m, {tilt:e} rad");
+            assert!((s.orientation_error - tilt).abs() < 1e-8, "reported {} vs {tilt}", s.orientation_error);
+        }
+    }
+    // varan4 (4 joints) cannot roll its tool about the tool x axis, and with only 4 joints it
+    // cannot meet 5 equations in general: the rolled pose below is reachable in position only.
+    let varan = presets::get("varan4").unwrap();
+    let pose = varan.fk(&[0.3, 0.7, -0.4, 0.2]).unwrap();
+    let rolled =
+        Isometry3::from_parts(pose.translation, pose.rotation * UnitQuaternion::from_euler_angles(FRAC_PI_2, 0.0, 0.0));
+    let solver = Numeric::from_robot(&varan).unwrap();
+    let position_only = IkOptions {
+        numeric: NumericOptions { axes: TaskAxes::Position, ..NumericOptions::default() },
+        ..IkOptions::default()
+    };
+    let all = solver.solve(&varan, &IkTarget::Pose(rolled), &position_only).unwrap();
+    assert!(all.failure.is_none(), "{:?}", all.failure);
+    for s in &all.solutions {
+        let p = varan.fk(&s.q).unwrap();
+        assert!((p.translation.vector - rolled.translation.vector).norm() < 1e-6);
+        assert_eq!(s.orientation_error, 0.0);
+    }
+}
+
+#[test]
+fn tolerances_are_the_acceptance_thresholds() {
+    // Two-link arm 1 + 0.5 m (reach 1.5 m): a point at 1.5005 m is 0.5 mm out of reach. With
+    // the default 1e-6 m it is unreachable; with a 1 mm tolerance the stretched arm, 0.5 mm
+    // short, is accepted and its reported error is exactly that distance.
+    let arm = two_link(1.0, 0.5, [(-PI, PI), (-PI, PI)]);
+    let solver = Numeric::from_robot(&arm).unwrap();
+    let target = IkTarget::Position(Point3::new(0.0, 1.5005, 0.0));
+    let strict = solver.solve(&arm, &target, &IkOptions::default()).unwrap();
+    assert!(matches!(strict.failure, Some(IkFailure::Unreachable { .. })), "{:?}", strict.failure);
+    let loose = IkOptions {
+        numeric: NumericOptions { position_tolerance: 1e-3, ..NumericOptions::default() },
+        ..IkOptions::default()
+    };
+    let all = solver.solve(&arm, &target, &loose).unwrap();
+    assert!(all.failure.is_none(), "{:?}", all.failure);
+    for s in &all.solutions {
+        assert!((s.position_error - 5e-4).abs() < 1e-7, "{}", s.position_error);
+        assert!(wrap(s.q[1]).abs() < 1e-3, "stretched elbow: {:?}", s.q);
+    }
+    // Bad tolerances are input errors.
+    for bad in [0.0, -1e-6, f64::NAN, f64::INFINITY] {
+        for options in [
+            NumericOptions { position_tolerance: bad, ..NumericOptions::default() },
+            NumericOptions { orientation_tolerance: bad, ..NumericOptions::default() },
+        ] {
+            let o = IkOptions { numeric: options, ..IkOptions::default() };
+            assert!(matches!(solver.solve(&arm, &target, &o), Err(IkError::InvalidInput(_))), "{bad}");
+        }
+    }
+}
+
+#[test]
+fn time_budget_stops_the_search() {
+    let panda = presets::get("panda").unwrap();
+    let solver = Numeric::from_robot(&panda).unwrap();
+    let target = IkTarget::Pose(panda.fk(&[0.3, -0.2, 0.1, -2.0, 0.2, 1.8, 0.5]).unwrap());
+    // No time at all: not one step is taken (home is not a solution).
+    let none = IkOptions {
+        numeric: NumericOptions { time_budget: Some(std::time::Duration::ZERO), ..NumericOptions::default() },
+        ..IkOptions::default()
+    };
+    let all = solver.solve(&panda, &target, &none).unwrap();
+    assert!(all.solutions.is_empty());
+    assert!(matches!(all.failure, Some(IkFailure::NoConvergence { iterations: 0, .. })), "{:?}", all.failure);
+    // A generous budget changes nothing.
+    let generous = IkOptions {
+        numeric: NumericOptions { time_budget: Some(std::time::Duration::from_secs(60)), ..NumericOptions::default() },
+        ..IkOptions::default()
+    };
+    assert_eq!(
+        solver.solve(&panda, &target, &generous).unwrap(),
+        solver.solve(&panda, &target, &IkOptions::default()).unwrap()
+    );
 }

@@ -272,3 +272,15 @@ fn walk_into_a_cycle_terminates() {
     let message = urdf_message(Robot::from_urdf_str(text, &down));
     assert!(message.contains("cycle"), "{message}");
 }
+
+/// URDF 1.0 requires `<limit>` on revolute joints; a missing one is named as such rather than
+/// reported as the `[0, 0]` ordering error urdf-rs's default would give.
+#[test]
+fn revolute_joint_without_limit_is_named() {
+    let text = r#"<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="j" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/></joint>
+</robot>"#;
+    let message = urdf_message(import(text));
+    assert!(message.contains("joint `j`") && message.contains("<limit"), "{message}");
+}

@@ -25,8 +25,10 @@ pub struct Section {
 }
 
 /// The demo's sections, in order.
-pub const SECTIONS: &[Section] =
-    &[Section { title: "Forward kinematics of every preset at its home pose", run: fk_at_home }];
+pub const SECTIONS: &[Section] = &[
+    Section { title: "Forward kinematics of every preset at its home pose", run: fk_at_home },
+    Section { title: "Inverse kinematics: every solution, with branch labels", run: crate::commands::ik::demo },
+];
 
 /// Runs every section.
 ///

@@ -2,8 +2,13 @@
 //! checks and computes everything first and writes to `out` last, so that an error leaves
 //! stdout empty.
 
+pub mod avoid;
+pub mod check;
+pub mod cspace;
 pub mod demo;
+pub mod drive;
 pub mod fk;
+pub mod ik;
 pub mod jacobian;
 pub mod robot_show;
 pub mod robots;

@@ -92,6 +92,10 @@ pub struct IkOptions {
     pub max_iterations: usize,
     /// Numeric solver: number of starts (the seed, then deterministic pseudo-random ones). Default 16.
     pub restarts: usize,
+    /// Numeric solver: which task axes count, acceptance tolerances, wall-time budget and
+    /// search mode ([`numeric::NumericOptions`]). Default: full pose (position only for a
+    /// position target), 1e-6 m / 1e-6 rad, no time limit, every distinct solution found.
+    pub numeric: numeric::NumericOptions,
 }
 
 impl Default for IkOptions {
@@ -102,6 +106,7 @@ impl Default for IkOptions {
             redundancy_step: 1f64.to_radians(),
             max_iterations: 200,
             restarts: 16,
+            numeric: numeric::NumericOptions::default(),
         }
     }
 }

@@ -43,14 +43,21 @@
 //! typically yields several of its (up to eight) branches and a redundant arm several points of
 //! its self-motion.
 //!
-//! **Stopping:** a start converges when the position error is below
-//! [`IK_NUMERIC_POSITION`] and the orientation error below [`IK_NUMERIC_ORIENTATION`] (1000×
-//! tighter than the acceptance tolerances, a step or two more than needed). It is abandoned
-//! after `options.max_iterations` tried steps (a rejected step counts), when the damping
-//! multiplier exceeds 1e8 (no descent direction), or after 8 consecutive steps that each
-//! reduce `E` by less than 1e-4 of its value (a local minimum; for an under-actuated arm, the
-//! least-squares optimum). An abandoned start whose errors are below half the acceptance
-//! tolerances still counts as converged.
+//! **Options** ([`NumericOptions`], the field `numeric` of [`IkOptions`]): which pose
+//! components count ([`TaskAxes`]: full pose, position + approach axis (tool z, the roll about
+//! it free), position only), the acceptance tolerances in metres and radians, a wall-time
+//! budget, and the search mode ([`SearchMode`]): every distinct solution from all starts, or
+//! the first converged one starting from the seed (the fast mode for tracking). The iteration
+//! budget is `max_iterations` tried steps per start times `restarts` starts.
+//!
+//! **Stopping:** a start converges when the position error is below the position tolerance and
+//! the orientation error below the orientation tolerance, both times 1e-3 (a step or two more
+//! than needed; with the defaults 1e-9 m and 1e-9 rad, [`IK_NUMERIC_POSITION`]). It is
+//! abandoned after `options.max_iterations` tried steps (a rejected step counts), when the
+//! damping multiplier exceeds 1e8 (no descent direction), when the time budget is spent, or
+//! after 8 consecutive steps that each reduce `E` by less than 1e-4 of its value (a local
+//! minimum; for an under-actuated arm, the least-squares optimum). An abandoned start whose
+//! errors are within the tolerances still counts as converged.
 //!
 //! **Failure reasons:** `Unreachable` when the target is farther from the first joint axis
 //! than the sum of the link lengths (a cheap upper bound on the reach); for a pose target of
@@ -67,17 +74,17 @@
 //! **Cost:** no allocation inside the iteration (buffers are allocated once per solve); one
 //! forward kinematics per tried step and one Jacobian per accepted step.
 
-use nalgebra::{IsometryMatrix3, Matrix3, Matrix6, Vector3, Vector6};
+use std::time::{Duration, Instant};
 
-use super::{
-    Branch, Candidate, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, finish,
-};
+use nalgebra::{DMatrix, IsometryMatrix3, Matrix3, Matrix6, Vector3, Vector6};
+
+use super::solution::finish_within;
+use super::{Branch, Candidate, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind};
 use crate::angle::{fit_into_limits, wrap};
-use crate::kinematics::{Jacobian, JacobianAxes, Manipulability, check_q};
+use crate::kinematics::{Jacobian, check_q};
 use crate::model::{JointKind, Robot};
 use crate::tolerance::{
-    BOUNDARY, IK_NUMERIC_DISTINCT, IK_NUMERIC_ORIENTATION, IK_NUMERIC_POSITION, IK_NUMERIC_SINGULAR, IK_ORIENTATION,
-    IK_POSITION, LIMIT_SLACK,
+    BOUNDARY, IK_NUMERIC_DISTINCT, IK_NUMERIC_POSITION, IK_NUMERIC_SINGULAR, IK_ORIENTATION, IK_POSITION, LIMIT_SLACK,
 };
 
 /// Damping floor `w̄` of Sugihara's `λ = E + w̄` (dimensionless rows). Sugihara recommends
@@ -96,13 +103,93 @@ const STALL_STEPS: usize = 8;
 const STALL_RELATIVE: f64 = 1e-4;
 /// Fixed seed of the start generator: the same problem always gets the same starts.
 const START_SEED: u64 = 0x5EED_1C0D_2024_0001;
+/// The iteration stops at this fraction of the acceptance tolerances (1e-3: the ratio of
+/// [`IK_NUMERIC_POSITION`] to [`IK_POSITION`]); near a regular solution the convergence is
+/// about quadratic, so the extra digits cost about one iteration and no accepted solution sits
+/// on the edge of the tolerance.
+const STOP_FRACTION: f64 = IK_NUMERIC_POSITION / IK_POSITION;
+
+/// Which components of the tool pose the numeric solver matches.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum TaskAxes {
+    /// Position and full orientation (6 equations). A position target
+    /// ([`IkTarget::Position`]) always uses [`TaskAxes::Position`].
+    #[default]
+    Pose,
+    /// Position and the direction of the tool z axis (the approach axis, 5 equations); the
+    /// roll about that axis is free (e.g. a drill or a welding torch). The reported
+    /// `orientation_error` is then the angle between the tool's and the target's z axes.
+    PositionApproach,
+    /// Position only (3 equations); `orientation_error` is reported as 0.
+    Position,
+}
+
+/// How many solutions the numeric solver looks for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum SearchMode {
+    /// Run every start and return every distinct converged configuration (several branches
+    /// of a 6R arm, several points of a redundant arm's self-motion).
+    #[default]
+    AllDistinct,
+    /// Start from the seed (or home) and stop at the first start that converges: from a seed
+    /// near a solution this is the solution closest to the seed. The fast mode for tracking.
+    FirstFound,
+}
+
+/// Options of the numeric solver only (the field [`IkOptions::numeric`]); the iteration budget
+/// per start and the number of starts are [`IkOptions::max_iterations`] and
+/// [`IkOptions::restarts`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NumericOptions {
+    /// Which pose components to match. Default [`TaskAxes::Pose`].
+    pub axes: TaskAxes,
+    /// Largest accepted position error, metres (> 0). Default [`IK_POSITION`] (1e-6 m).
+    pub position_tolerance: f64,
+    /// Largest accepted orientation error, radians (> 0). Default [`IK_ORIENTATION`] (1e-6 rad).
+    pub orientation_tolerance: f64,
+    /// Wall-time budget of one solve, checked before every step (the solve may overrun it by
+    /// one step). `None`: no limit. Default `None`.
+    pub time_budget: Option<Duration>,
+    /// All distinct solutions or the first found. Default [`SearchMode::AllDistinct`].
+    pub mode: SearchMode,
+}
+
+impl Default for NumericOptions {
+    fn default() -> Self {
+        NumericOptions {
+            axes: TaskAxes::Pose,
+            position_tolerance: IK_POSITION,
+            orientation_tolerance: IK_ORIENTATION,
+            time_budget: None,
+            mode: SearchMode::AllDistinct,
+        }
+    }
+}
+
+impl NumericOptions {
+    /// Rejects tolerances that are not finite and positive.
+    ///
+    /// # Errors
+    /// [`IkError::InvalidInput`] naming the field.
+    pub fn validate(&self) -> Result<(), IkError> {
+        for (name, v) in [
+            ("numeric.position_tolerance", self.position_tolerance),
+            ("numeric.orientation_tolerance", self.orientation_tolerance),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(IkError::InvalidInput(format!("options.{name} must be a finite number > 0, got {v}")));
+            }
+        }
+        Ok(())
+    }
+}
 
 /// General numeric IK solver (damped least squares with adaptive damping and multiple starts)
 /// for any serial chain: any number of joints, revolute or prismatic, DH, MDH or URDF.
 ///
-/// Handles full-pose and position-only targets, redundant arms (n > 6, e.g. `panda`) and
-/// under-actuated arms (n < 6: the pose error is minimised in least squares; a target whose
-/// position is reachable but whose orientation is not is reported as
+/// Handles full-pose, position + approach-axis and position-only targets, redundant arms
+/// (n > 6, e.g. `panda`) and under-actuated arms (n < 6: the pose error is minimised in least
+/// squares; a target whose position is reachable but whose orientation is not is reported as
 /// [`IkFailure::OrientationUnreachable`]). See the [module documentation](self) for the method.
 ///
 /// # Example
@@ -170,12 +257,14 @@ impl IkSolver for Numeric {
         "numeric"
     }
 
-    /// Every distinct solution found from the seed (or home) and the pseudo-random starts.
+    /// The distinct solutions found from the seed (or home) and the pseudo-random starts, or
+    /// the first one ([`SearchMode::FirstFound`]).
     ///
     /// # Errors
     /// [`IkError::InvalidInput`] for a non-finite target, a robot with another number of joints
-    /// than the one the solver was built for, or `max_iterations` / `restarts` equal to 0;
-    /// [`IkError::Kinematics`] for a seed of the wrong length or with non-finite values.
+    /// than the one the solver was built for, `max_iterations` / `restarts` equal to 0 or a
+    /// tolerance that is not finite and positive; [`IkError::Kinematics`] for a seed of the
+    /// wrong length or with non-finite values.
     fn solve(&self, robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError> {
         target.validate()?;
         if robot.dof() != self.dof {
@@ -192,40 +281,56 @@ impl IkSolver for Numeric {
         if options.restarts == 0 {
             return Err(IkError::InvalidInput("options.restarts must be at least 1, got 0".into()));
         }
+        let opts = &options.numeric;
+        opts.validate()?;
         if let Some(seed) = &options.seed {
             check_q(robot.dof(), seed)?;
         }
+        let started = Instant::now();
+        let criteria = Criteria {
+            stop_position: opts.position_tolerance * STOP_FRACTION,
+            stop_orientation: opts.orientation_tolerance * STOP_FRACTION,
+            accept_position: opts.position_tolerance,
+            accept_orientation: opts.orientation_tolerance,
+            deadline: opts.time_budget.and_then(|b| started.checked_add(b)),
+        };
+        let axes = match target {
+            IkTarget::Position(_) => TaskAxes::Position,
+            IkTarget::Pose(_) => opts.axes,
+        };
 
         let distance = (target.position().coords - self.anchor).norm();
-        if distance > self.reach * (1.0 + BOUNDARY) + IK_POSITION {
+        if distance > self.reach * (1.0 + BOUNDARY) + opts.position_tolerance {
             let failure = IkFailure::Unreachable { distance, reach: self.reach };
-            return finish(robot, target, Vec::new(), self.name(), failure);
+            return finish_within(robot, target, Vec::new(), self.name(), failure, criteria.acceptance());
         }
 
-        let goal = Goal::new(target, self.length_scale);
+        let goal = Goal::new(target, axes, self.length_scale);
         let mut work = Work::new(robot);
         let mut starts = Starts::new(robot, options.seed.as_deref(), self.length_scale);
         let mut found: Vec<(Vec<f64>, Start)> = Vec::new();
         let mut iterations = 0;
         let mut best_residual = f64::INFINITY;
+        let mut timed_out = false;
         for k in 0..options.restarts {
             let start = starts.next_into(k, &mut work.q);
-            let run = work.descend(robot, &goal, options.max_iterations)?;
+            let run = work.descend(robot, &goal, options.max_iterations, &criteria)?;
             iterations += run.iterations;
             best_residual = best_residual.min(run.position_error + run.orientation_error);
             if run.converged && !found.iter().any(|(q, _)| same_configuration(robot, q, &work.q)) {
                 found.push((work.q.clone(), start));
             }
+            timed_out = run.timed_out;
+            if timed_out || (opts.mode == SearchMode::FirstFound && !found.is_empty()) {
+                break;
+            }
         }
 
-        let axes = if goal.rotation.is_some() { JacobianAxes::All } else { JacobianAxes::Translation };
         let mut candidates = Vec::with_capacity(found.len());
         for (q, start) in found {
-            robot.jacobian_into(&q, &mut work.jac)?;
-            let m = Manipulability::of(&work.jac, axes);
             let branch = label(robot, &q, start);
             let mut c = Candidate::new(q, branch);
-            if m.sigma_min <= IK_NUMERIC_SINGULAR * m.sigma_max {
+            if is_singular(robot, &c.q, axes, &mut work)? {
                 c.singularities.push(SingularityKind::Jacobian);
             }
             candidates.push(c);
@@ -234,15 +339,46 @@ impl IkSolver for Numeric {
         // Only an under-actuated arm has orientations it cannot reach at a reachable position
         // in general; for n ≥ 6 a failed pose solve is reported as what it is, no convergence.
         let failure = if candidates.is_empty()
-            && goal.rotation.is_some()
+            && !timed_out
+            && axes != TaskAxes::Position
             && self.dof < 6
-            && self.position_reachable(robot, target, options, &mut work)?
+            && self.position_reachable(robot, target, options, &criteria, &mut work)?
         {
             IkFailure::OrientationUnreachable
         } else {
             IkFailure::NoConvergence { iterations, residual: best_residual }
         };
-        finish(robot, target, candidates, self.name(), failure)
+        match axes {
+            TaskAxes::Pose => finish_within(robot, target, candidates, self.name(), failure, criteria.acceptance()),
+            TaskAxes::Position => {
+                let target = IkTarget::Position(target.position());
+                finish_within(robot, &target, candidates, self.name(), failure, criteria.acceptance())
+            }
+            TaskAxes::PositionApproach => {
+                // `finish` checks the position; the approach axis is checked here.
+                let mut approach_errors = Vec::with_capacity(candidates.len());
+                for c in &candidates {
+                    let (_, _, angle) = goal.error(&robot.fk_matrix(&c.q)?);
+                    approach_errors.push((c.q.clone(), angle));
+                }
+                let kept: Vec<Candidate> = candidates
+                    .into_iter()
+                    .zip(&approach_errors)
+                    .filter(|(_, (_, angle))| *angle <= criteria.accept_orientation)
+                    .map(|(c, _)| c)
+                    .collect();
+                let position = IkTarget::Position(target.position());
+                let mut out = finish_within(robot, &position, kept, self.name(), failure, criteria.acceptance())?;
+                for s in &mut out.solutions {
+                    // `finish` may have moved revolute angles by whole turns: same pose.
+                    s.orientation_error = approach_errors
+                        .iter()
+                        .find(|(q, _)| same_configuration(robot, q, &s.q))
+                        .map_or(goal.error(&robot.fk_matrix(&s.q)?).2, |(_, a)| *a);
+                }
+                Ok(out)
+            }
+        }
     }
 }
 
@@ -254,55 +390,163 @@ impl Numeric {
         robot: &Robot,
         target: &IkTarget,
         options: &IkOptions,
+        criteria: &Criteria,
         work: &mut Work,
     ) -> Result<bool, IkError> {
-        let goal = Goal::new(&IkTarget::Position(target.position()), self.length_scale);
+        let goal = Goal::new(target, TaskAxes::Position, self.length_scale);
         let mut starts = Starts::new(robot, options.seed.as_deref(), self.length_scale);
         for k in 0..options.restarts {
             starts.next_into(k, &mut work.q);
-            if work.descend(robot, &goal, options.max_iterations)?.converged {
+            let run = work.descend(robot, &goal, options.max_iterations, criteria)?;
+            if run.converged {
                 return Ok(true);
+            }
+            if run.timed_out {
+                break;
             }
         }
         Ok(false)
     }
 }
 
+/// Whether the rows of the Jacobian that `axes` uses have `σ_min ≤ IK_NUMERIC_SINGULAR·σ_max`
+/// at `q` (position rows; plus the two rotation rows across the approach axis, or all three).
+fn is_singular(robot: &Robot, q: &[f64], axes: TaskAxes, work: &mut Work) -> Result<bool, IkError> {
+    robot.jacobian_into(q, &mut work.jac)?;
+    let jac = &work.jac;
+    let n = jac.ncols();
+    let rows = match axes {
+        TaskAxes::Pose => DMatrix::from_fn(6, n, |r, c| jac[(r, c)]),
+        TaskAxes::Position => DMatrix::from_fn(3, n, |r, c| jac[(r, c)]),
+        TaskAxes::PositionApproach => {
+            let t = robot.fk_matrix(q)?;
+            let m = t.rotation.matrix();
+            let (u, v) = (m.column(0).into_owned(), m.column(1).into_owned());
+            DMatrix::from_fn(5, n, |r, c| {
+                let w = Vector3::new(jac[(3, c)], jac[(4, c)], jac[(5, c)]);
+                match r {
+                    0..=2 => jac[(r, c)],
+                    3 => u.dot(&w),
+                    _ => v.dot(&w),
+                }
+            })
+        }
+    };
+    let sv = rows.singular_values();
+    let k = rows.nrows().min(n);
+    let mut sorted: Vec<f64> = sv.iter().copied().collect();
+    sorted.sort_by(|a, b| b.total_cmp(a));
+    let sigma_max = sorted.first().copied().unwrap_or(0.0);
+    let sigma_min = sorted.get(k.saturating_sub(1)).copied().unwrap_or(0.0);
+    Ok(sigma_min <= IK_NUMERIC_SINGULAR * sigma_max)
+}
+
+/// When a descent stops and what it accepts.
+struct Criteria {
+    stop_position: f64,
+    stop_orientation: f64,
+    accept_position: f64,
+    accept_orientation: f64,
+    deadline: Option<Instant>,
+}
+
+impl Criteria {
+    fn acceptance(&self) -> (f64, f64) {
+        (self.accept_position, self.accept_orientation)
+    }
+}
+
+/// The orientation part of a goal.
+enum Orientation {
+    /// Position only.
+    None,
+    /// The full target rotation matrix.
+    Full(Matrix3<f64>),
+    /// The target's z axis (approach direction).
+    Approach(Vector3<f64>),
+}
+
 /// The target in the form the iteration uses.
 struct Goal {
     position: Vector3<f64>,
-    /// `None` for a position-only target.
-    rotation: Option<Matrix3<f64>>,
-    /// Row weights: `1/L` on the position rows, 1 (pose) or 0 (position only) on the rotation rows.
-    weights: Vector6<f64>,
+    orientation: Orientation,
+    /// `1/L`: weight of the position rows.
+    scale: f64,
 }
 
 impl Goal {
-    fn new(target: &IkTarget, length_scale: f64) -> Goal {
-        let s = 1.0 / length_scale;
-        match target {
-            IkTarget::Pose(pose) => Goal {
-                position: pose.translation.vector,
-                rotation: Some(*pose.rotation.to_rotation_matrix().matrix()),
-                weights: Vector6::new(s, s, s, 1.0, 1.0, 1.0),
-            },
-            IkTarget::Position(p) => {
-                Goal { position: p.coords, rotation: None, weights: Vector6::new(s, s, s, 0.0, 0.0, 0.0) }
+    fn new(target: &IkTarget, axes: TaskAxes, length_scale: f64) -> Goal {
+        let scale = 1.0 / length_scale;
+        let position = target.position().coords;
+        let orientation = match (target, axes) {
+            (IkTarget::Position(_), _) | (_, TaskAxes::Position) => Orientation::None,
+            (IkTarget::Pose(pose), TaskAxes::Pose) => Orientation::Full(*pose.rotation.to_rotation_matrix().matrix()),
+            (IkTarget::Pose(pose), TaskAxes::PositionApproach) => {
+                Orientation::Approach(pose.rotation.to_rotation_matrix().matrix().column(2).into_owned())
             }
-        }
+        };
+        Goal { position, orientation, scale }
     }
 
     /// Weighted error vector, position error (m) and orientation error (rad) of the pose `t`.
     #[inline]
     fn error(&self, t: &IsometryMatrix3<f64>) -> (Vector6<f64>, f64, f64) {
         let dp = self.position - t.translation.vector;
-        let (w, angle) = match &self.rotation {
-            Some(r) => rotation_log(&(r * t.rotation.matrix().transpose())),
-            None => (Vector3::zeros(), 0.0),
+        let (w, angle) = match &self.orientation {
+            Orientation::Full(r) => rotation_log(&(r * t.rotation.matrix().transpose())),
+            Orientation::Approach(z) => tilt(t.rotation.matrix(), z),
+            Orientation::None => (Vector3::zeros(), 0.0),
         };
-        let e = Vector6::new(dp.x, dp.y, dp.z, w.x, w.y, w.z).component_mul(&self.weights);
-        (e, dp.norm(), angle)
+        let s = self.scale;
+        (Vector6::new(dp.x * s, dp.y * s, dp.z * s, w.x, w.y, w.z), dp.norm(), angle)
     }
+
+    /// Turns the geometric Jacobian at the pose `t` into the Jacobian of [`Goal::error`]
+    /// (up to sign): position rows scaled by `1/L`; rotation rows kept (full pose), projected
+    /// across the current approach axis (approach), or zeroed (position only).
+    #[inline]
+    fn weigh(&self, jac: &mut Jacobian, t: &IsometryMatrix3<f64>) {
+        for r in 0..3 {
+            jac.row_mut(r).scale_mut(self.scale);
+        }
+        match &self.orientation {
+            Orientation::Full(_) => {}
+            Orientation::None => {
+                for r in 3..6 {
+                    jac.row_mut(r).fill(0.0);
+                }
+            }
+            Orientation::Approach(_) => {
+                // Only rotations across the current z axis tilt it: ω ↦ (I − z zᵀ) ω.
+                let z: Vector3<f64> = t.rotation.matrix().column(2).into_owned();
+                for c in 0..jac.ncols() {
+                    let w = Vector3::new(jac[(3, c)], jac[(4, c)], jac[(5, c)]);
+                    let p = w - z * z.dot(&w);
+                    jac[(3, c)] = p.x;
+                    jac[(4, c)] = p.y;
+                    jac[(5, c)] = p.z;
+                }
+            }
+        }
+    }
+}
+
+/// Rotation vector (across the current z axis) that turns the z axis of `r` onto `target_z`,
+/// and its angle.
+fn tilt(r: &Matrix3<f64>, target_z: &Vector3<f64>) -> (Vector3<f64>, f64) {
+    let z = r.column(2).into_owned();
+    let cross = z.cross(target_z);
+    let sin = cross.norm();
+    let angle = sin.atan2(z.dot(target_z));
+    if angle < 1e-6 {
+        // θ / sin θ = 1 + θ²/6 + …
+        return (cross * (1.0 + angle * angle / 6.0), angle);
+    }
+    if sin > 1e-12 {
+        return (cross * (angle / sin), angle);
+    }
+    // Opposite axes: any axis across z will do; take the current x axis.
+    (r.column(0).into_owned() * angle, angle)
 }
 
 /// Rotation vector (axis · angle, angle in [0, π]) of a rotation matrix, and the angle;
@@ -337,6 +581,7 @@ fn rotation_log(r: &Matrix3<f64>) -> (Vector3<f64>, f64) {
 /// The outcome of one descent.
 struct Run {
     converged: bool,
+    timed_out: bool,
     iterations: usize,
     position_error: f64,
     orientation_error: f64,
@@ -376,24 +621,33 @@ impl Work {
     }
 
     /// Levenberg–Marquardt descent from `self.q` (left at the last accepted configuration).
-    fn descend(&mut self, robot: &Robot, goal: &Goal, max_iterations: usize) -> Result<Run, IkError> {
-        let t = robot.fk_matrix(&self.q)?;
+    fn descend(
+        &mut self,
+        robot: &Robot,
+        goal: &Goal,
+        max_iterations: usize,
+        criteria: &Criteria,
+    ) -> Result<Run, IkError> {
+        let mut t = robot.fk_matrix(&self.q)?;
         let (mut e, mut pe, mut oe) = goal.error(&t);
         let mut energy = 0.5 * e.norm_squared();
         let mut mu = 1.0;
         let mut stall = 0;
         let mut iterations = 0;
+        let mut timed_out = false;
         loop {
-            if pe <= IK_NUMERIC_POSITION && oe <= IK_NUMERIC_ORIENTATION {
-                return Ok(Run { converged: true, iterations, position_error: pe, orientation_error: oe });
+            if pe <= criteria.stop_position && oe <= criteria.stop_orientation {
+                return Ok(Run { converged: true, timed_out, iterations, position_error: pe, orientation_error: oe });
             }
             if iterations >= max_iterations || stall >= STALL_STEPS {
                 break;
             }
-            robot.jacobian_into(&self.q, &mut self.jac)?;
-            for (r, w) in goal.weights.iter().enumerate() {
-                self.jac.row_mut(r).scale_mut(*w);
+            if criteria.deadline.is_some_and(|d| Instant::now() >= d) {
+                timed_out = true;
+                break;
             }
+            robot.jacobian_into(&self.q, &mut self.jac)?;
+            goal.weigh(&mut self.jac, &t);
             let mut accepted = false;
             while iterations < max_iterations && mu <= MU_MAX {
                 iterations += 1;
@@ -402,13 +656,13 @@ impl Work {
                     mu *= MU_GROW;
                     continue;
                 }
-                let t = robot.fk_matrix(&self.trial)?;
-                let (e2, pe2, oe2) = goal.error(&t);
+                let t2 = robot.fk_matrix(&self.trial)?;
+                let (e2, pe2, oe2) = goal.error(&t2);
                 let energy2 = 0.5 * e2.norm_squared();
                 if energy2 < energy {
                     stall = if energy - energy2 < STALL_RELATIVE * energy { stall + 1 } else { 0 };
                     std::mem::swap(&mut self.q, &mut self.trial);
-                    (e, pe, oe, energy) = (e2, pe2, oe2, energy2);
+                    (t, e, pe, oe, energy) = (t2, e2, pe2, oe2, energy2);
                     mu = (mu * MU_SHRINK).max(MU_MIN);
                     accepted = true;
                     break;
@@ -419,10 +673,10 @@ impl Work {
                 break;
             }
         }
-        // Stopped short of the internal threshold (iteration budget, stall or no further
-        // decrease): still a solution if within half the acceptance tolerances.
-        let converged = pe <= 0.5 * IK_POSITION && oe <= 0.5 * IK_ORIENTATION;
-        Ok(Run { converged, iterations, position_error: pe, orientation_error: oe })
+        // Stopped short of the internal threshold (iteration budget, stall, time or no further
+        // decrease): still a solution if within the acceptance tolerances.
+        let converged = pe <= criteria.accept_position && oe <= criteria.accept_orientation;
+        Ok(Run { converged, timed_out, iterations, position_error: pe, orientation_error: oe })
     }
 
     /// One damped least-squares step with the limits enforced: writes `self.trial`.

@@ -246,6 +246,19 @@ pub(crate) fn finish(
     solver: &'static str,
     if_empty: IkFailure,
 ) -> Result<IkSolutions, IkError> {
+    finish_within(robot, target, candidates, solver, if_empty, (IK_POSITION, IK_ORIENTATION))
+}
+
+/// [`finish`] with the acceptance tolerances `(metres, radians)` given instead of
+/// `IK_POSITION` / `IK_ORIENTATION` (the numeric solver's user-set tolerances).
+pub(crate) fn finish_within(
+    robot: &Robot,
+    target: &IkTarget,
+    candidates: Vec<Candidate>,
+    solver: &'static str,
+    if_empty: IkFailure,
+    (position_tolerance, orientation_tolerance): (f64, f64),
+) -> Result<IkSolutions, IkError> {
     let mut solutions: Vec<IkSolution> = Vec::with_capacity(candidates.len());
     for mut c in candidates {
         if c.q.iter().any(|v| !v.is_finite()) {
@@ -257,7 +270,7 @@ pub(crate) fn finish(
             }
         }
         let (position_error, orientation_error) = pose_error(robot, &c.q, target)?;
-        if position_error > IK_POSITION || orientation_error > IK_ORIENTATION {
+        if position_error > position_tolerance || orientation_error > orientation_tolerance {
             continue;
         }
         if let Some(existing) = solutions

@@ -154,6 +154,8 @@ pub struct Joint {
     pub max_velocity: Option<f64>,
     /// Home (rest) position, radians or metres; inside the limits.
     pub home: f64,
+    /// Stepper drive (motor, gear, step limits), when the description gives one.
+    pub drive: Option<JointDrive>,
     /// Reverse the joint direction: the model uses `−q` where the user gives `q`
     /// (like the `flip` attribute of the Robotics Toolbox). Limits apply to the user's `q`.
     pub flip: bool,
@@ -170,6 +172,7 @@ impl Joint {
             limits: Limits::UNLIMITED,
             max_velocity: None,
             home: 0.0,
+            drive: None,
             flip: false,
         }
     }
@@ -212,4 +215,83 @@ impl Joint {
 pub struct LinkGeometry {
     /// Capsule radius, metres (0 = bare segment).
     pub radius: f64,
+}
+
+/// How a stepper motor's windings are wired to its driver (seed 000, thesis §II.3.2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Wiring {
+    /// Centre-tapped windings, four switched half-windings (seed 000, Table 1).
+    Unipolar,
+    /// Two windings whose polarity the driver reverses (seed 000, Table 2).
+    Bipolar,
+}
+
+/// The coil sequence a controller uses when it switches the windings itself.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StepMode {
+    /// One phase on at a time, four states per electrical cycle ("wave drive"; seed 000's
+    /// unipolar Table 1).
+    Wave,
+    /// Two phases on at a time, four states per cycle (seed 000's bipolar Table 2).
+    Full,
+    /// Alternately one and two phases on, eight states per cycle; one step is half a full step.
+    Half,
+}
+
+/// How one joint is driven by a stepper motor (all counts in the driver's pulse unit).
+///
+/// The motor step counter is `home_steps + direction · steps_per_unit · (q − home)`, where
+/// `steps_per_unit` is [`JointDrive::steps_per_unit`] (pulses per radian or per metre).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct JointDrive {
+    /// Motor full steps per motor revolution (200 for a 1.8° hybrid stepper).
+    pub steps_per_rev: u32,
+    /// Pulses per full step: 1 = full step, 2 = half step, up to 256 (microstepping drivers).
+    pub microstepping: u32,
+    /// Motor revolutions per revolution of the joint (revolute) or of the lead screw (prismatic).
+    pub gear_ratio: f64,
+    /// Prismatic joints only: travel per lead-screw revolution, metres.
+    pub lead: Option<f64>,
+    /// +1 when a positive motor step moves the joint in its positive direction, −1 otherwise.
+    pub direction: i32,
+    /// Maximum pulse rate, steps per second (Hz).
+    pub max_step_rate: f64,
+    /// Maximum rate of change of the pulse rate, steps/s²; `None` = the motor may start and
+    /// stop at any rate up to `max_step_rate` (seed 000's constant-rate pulse trains).
+    pub max_acceleration: Option<f64>,
+    /// Winding wiring.
+    pub wiring: Wiring,
+    /// Coil sequence when the controller switches the coils itself; `None` for a step/direction
+    /// driver with `microstepping > 2`. See [`JointDrive::coil_mode`].
+    pub mode: Option<StepMode>,
+    /// Step counter value at the joint's home position.
+    pub home_steps: i64,
+}
+
+impl JointDrive {
+    /// Pulses per radian (revolute) or per metre (prismatic); `None` for a prismatic joint
+    /// without a `lead`.
+    #[must_use]
+    pub fn steps_per_unit(&self, kind: JointKind) -> Option<f64> {
+        let per_motor_rev = f64::from(self.steps_per_rev) * f64::from(self.microstepping) * self.gear_ratio;
+        match kind {
+            JointKind::Revolute => Some(per_motor_rev / std::f64::consts::TAU),
+            JointKind::Prismatic => self.lead.map(|lead| per_motor_rev / lead),
+        }
+    }
+
+    /// The coil sequence in use: the explicit `mode`, else the seed's pairing for one pulse per
+    /// full step (unipolar → wave drive, Table 1; bipolar → two phases on, Table 2), half step
+    /// for two pulses per full step, and `None` (step/direction driver only) above that.
+    #[must_use]
+    pub fn coil_mode(&self) -> Option<StepMode> {
+        self.mode.or(match (self.microstepping, self.wiring) {
+            (1, Wiring::Unipolar) => Some(StepMode::Wave),
+            (1, Wiring::Bipolar) => Some(StepMode::Full),
+            (2, _) => Some(StepMode::Half),
+            _ => None,
+        })
+    }
 }

@@ -17,7 +17,9 @@ pub mod presets;
 pub mod seed000;
 
 pub use error::ModelError;
-pub use joint::{Convention, DhParams, Joint, JointGeometry, JointKind, Limits, LinkGeometry};
+pub use joint::{
+    Convention, DhParams, Joint, JointDrive, JointGeometry, JointKind, Limits, LinkGeometry, StepMode, Wiring,
+};
 pub use robot::{Robot, RobotSpec};
 pub use toml_format::{AngleUnit, FileUnits, LengthUnit};
 pub use urdf::UrdfChain;

@@ -1,6 +1,6 @@
 use nalgebra::Isometry3;
 
-use super::{Convention, Joint, JointGeometry, LinkGeometry, ModelError};
+use super::{Convention, Joint, JointDrive, JointGeometry, JointKind, LinkGeometry, ModelError, StepMode};
 use crate::kinematics::chain::Chain;
 
 /// Plain-data description of a robot, SI units and radians, before validation.
@@ -174,6 +174,36 @@ impl Robot {
         Robot::new(RobotSpec { base, ..self.spec.clone() })
     }
 
+    /// The stepper drive of each joint (`None` where the description gives none); one entry
+    /// per joint.
+    #[must_use]
+    pub fn drives(&self) -> Vec<Option<&JointDrive>> {
+        self.spec.joints.iter().map(|j| j.drive.as_ref()).collect()
+    }
+
+    /// A copy of this robot with stepper drive data, one entry per joint (`None` = no drive).
+    ///
+    /// # Errors
+    /// [`ModelError::Joint`] naming the joint and the `drive.…` field when a count is zero, the
+    /// gear ratio, lead, rate or acceleration is not a positive finite number, the direction is
+    /// not ±1, a prismatic joint has no `lead` (or a revolute joint has one), or the coil
+    /// sequence does not match the microstepping; [`ModelError::Joint`] on joint 0 when the
+    /// number of entries differs from the number of joints.
+    pub fn with_drives(&self, drives: Vec<Option<JointDrive>>) -> Result<Robot, ModelError> {
+        if drives.len() != self.dof() {
+            return Err(ModelError::Joint {
+                joint: 0,
+                name: String::new(),
+                message: format!("{} drive entries for {} joints (give one per joint)", drives.len(), self.dof()),
+            });
+        }
+        let mut spec = self.spec.clone();
+        for (joint, drive) in spec.joints.iter_mut().zip(drives) {
+            joint.drive = drive;
+        }
+        Robot::new(spec)
+    }
+
     /// The home (rest) configuration: each joint's `home` value.
     #[must_use]
     pub fn home(&self) -> Vec<f64> {
@@ -243,6 +273,59 @@ fn validate_joint(number: usize, joint: &Joint, convention: Convention) -> Resul
         && !(v.is_finite() && v > 0.0)
     {
         return Err(ModelError::VelocityLimit { joint: number, name: joint.name.clone(), value: v });
+    }
+    if let Some(drive) = &joint.drive {
+        validate_drive(number, joint, drive)?;
+    }
+    Ok(())
+}
+
+fn validate_drive(number: usize, joint: &Joint, drive: &JointDrive) -> Result<(), ModelError> {
+    let fail = |message: String| ModelError::Joint { joint: number, name: joint.name.clone(), message };
+    let positive = |field: &str, value: f64| {
+        if value.is_finite() && value > 0.0 {
+            Ok(())
+        } else {
+            Err(fail(format!("`drive.{field}` must be a positive finite number, got {value}")))
+        }
+    };
+    if drive.steps_per_rev == 0 {
+        return Err(fail("`drive.steps_per_rev` must be at least 1, got 0".into()));
+    }
+    if !(1..=256).contains(&drive.microstepping) {
+        return Err(fail(format!("`drive.microstepping` must be 1 to 256, got {}", drive.microstepping)));
+    }
+    positive("gear_ratio", drive.gear_ratio)?;
+    positive("max_step_rate", drive.max_step_rate)?;
+    if let Some(a) = drive.max_acceleration {
+        positive("max_acceleration", a)?;
+    }
+    if drive.direction != 1 && drive.direction != -1 {
+        return Err(fail(format!("`drive.direction` must be 1 or -1, got {}", drive.direction)));
+    }
+    match (joint.kind, drive.lead) {
+        (JointKind::Prismatic, None) => {
+            return Err(fail("`drive.lead` (travel per screw revolution) is required for a prismatic joint".into()));
+        }
+        (JointKind::Revolute, Some(_)) => {
+            return Err(fail("`drive.lead` applies to prismatic joints only".into()));
+        }
+        (JointKind::Prismatic, Some(lead)) => positive("lead", lead)?,
+        (JointKind::Revolute, None) => {}
+    }
+    if let Some(mode) = drive.mode {
+        let needed = if mode == StepMode::Half { 2 } else { 1 };
+        if drive.microstepping != needed {
+            return Err(fail(format!(
+                "`drive.mode = \"{}\"` needs `drive.microstepping = {needed}`, got {}",
+                match mode {
+                    StepMode::Wave => "wave",
+                    StepMode::Full => "full",
+                    StepMode::Half => "half",
+                },
+                drive.microstepping
+            )));
+        }
     }
     Ok(())
 }

@@ -4,7 +4,8 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 use serde::Deserialize;
 
 use super::{
-    Convention, DhParams, Joint, JointGeometry, JointKind, Limits, LinkGeometry, ModelError, Robot, RobotSpec,
+    Convention, DhParams, Joint, JointDrive, JointGeometry, JointKind, Limits, LinkGeometry, ModelError, Robot,
+    RobotSpec, StepMode, Wiring,
 };
 
 /// Length unit of a description file.
@@ -141,6 +142,39 @@ struct JointField {
     home: Option<f64>,
     #[serde(default)]
     flip: bool,
+    drive: Option<DriveField>,
+}
+
+/// `[joints.drive]`: the stepper drive of one joint (see `docs/robot-format.md`).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct DriveField {
+    steps_per_rev: u32,
+    #[serde(default = "default_microstepping")]
+    microstepping: u32,
+    #[serde(default = "default_gear_ratio")]
+    gear_ratio: f64,
+    lead: Option<f64>,
+    #[serde(default = "default_direction")]
+    direction: i32,
+    max_step_rate: f64,
+    max_acceleration: Option<f64>,
+    wiring: Wiring,
+    mode: Option<StepMode>,
+    #[serde(default)]
+    home_steps: i64,
+}
+
+fn default_microstepping() -> u32 {
+    1
+}
+
+fn default_gear_ratio() -> f64 {
+    1.0
+}
+
+fn default_direction() -> i32 {
+    1
 }
 
 fn default_kind() -> JointKind {
@@ -197,6 +231,18 @@ impl Robot {
         };
         let mut joints = Vec::with_capacity(file.joints.len());
         for (i, j) in file.joints.into_iter().enumerate() {
+            let drive = j.drive.map(|d| JointDrive {
+                steps_per_rev: d.steps_per_rev,
+                microstepping: d.microstepping,
+                gear_ratio: d.gear_ratio,
+                lead: d.lead.map(|l| l * ls),
+                direction: d.direction,
+                max_step_rate: d.max_step_rate,
+                max_acceleration: d.max_acceleration,
+                wiring: d.wiring,
+                mode: d.mode,
+                home_steps: d.home_steps,
+            });
             let name = j.name.unwrap_or_else(|| format!("joint{}", i + 1));
             let var_scale = match j.kind {
                 JointKind::Revolute => an,
@@ -229,6 +275,7 @@ impl Robot {
                 }),
                 limits,
                 max_velocity,
+                drive,
                 flip: j.flip,
             });
         }

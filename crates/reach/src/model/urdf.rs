@@ -147,6 +147,13 @@ impl Robot {
             }
             let limits = if j.joint_type == urdf_rs::JointType::Continuous {
                 Limits::UNLIMITED
+            } else if j.limit.lower == 0.0 && j.limit.upper == 0.0 {
+                // URDF 1.0 requires <limit> on revolute and prismatic joints; urdf-rs reads a
+                // missing one as [0, 0], which would otherwise surface as an ordering error.
+                return Err(ModelError::Urdf(format!(
+                    "joint `{}`: a {:?} joint needs <limit lower=.. upper=..> (or type=\"continuous\")",
+                    j.name, j.joint_type
+                )));
             } else {
                 Limits::new(j.limit.lower, j.limit.upper)
             };
@@ -157,6 +164,7 @@ impl Robot {
                 geometry: JointGeometry::Axis { origin, axis: Unit::new_normalize(axis) },
                 limits,
                 max_velocity,
+                drive: None,
                 home: limits.default_home(),
                 flip: false,
             });

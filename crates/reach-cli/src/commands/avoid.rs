@@ -1,0 +1,182 @@
+//! `reach avoid` — seed 000's planar detour around point obstacles.
+
+use std::io::Write;
+
+use clap::Args;
+use reach::ik::planar::PlanarRedundant;
+use reach::world::detour::{DetourOptions, DetourOutcome, SweepTest, WaypointRule, plan_detour};
+use serde::Serialize;
+
+use crate::error::CliError;
+use crate::numbers::parse_finite;
+use crate::output::{Table, fixed, write_json};
+use crate::robot_arg::RobotArgs;
+
+/// Arguments of `reach avoid`.
+#[derive(Debug, Clone, Args)]
+pub struct AvoidArgs {
+    /// The robot: a planar three-link arm (`planar3`).
+    #[command(flatten)]
+    pub robot: RobotArgs,
+
+    /// Current gripper position x,y [m]; the start configuration is the thesis's
+    /// minimum-change choice from the home pose (or give --start).
+    #[arg(long, value_name = "X,Y", allow_hyphen_values = true)]
+    pub from: Option<String>,
+
+    /// Start joint values q1,q2,q3 [deg] instead of --from.
+    #[arg(long, value_name = "Q1,Q2,Q3", allow_hyphen_values = true)]
+    pub start: Option<String>,
+
+    /// Target gripper position x,y [m].
+    #[arg(long, value_name = "X,Y", allow_hyphen_values = true)]
+    pub to: String,
+
+    /// A point obstacle x,y [m] (repeatable).
+    #[arg(long, value_name = "X,Y", allow_hyphen_values = true)]
+    pub obstacle: Vec<String>,
+
+    /// IK scan step, degrees (thesis: 0.01).
+    #[arg(long, default_value = "0.01", value_name = "DEG")]
+    pub step: String,
+
+    /// Use the thesis's literal obstacle test (k < 1, fixed order) instead of the robust one.
+    #[arg(long)]
+    pub literal_test: bool,
+
+    /// Use the printed waypoint formulas (Table 6) instead of the perpendicular construction.
+    #[arg(long)]
+    pub printed_waypoints: bool,
+
+    /// Print JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Debug, Serialize)]
+struct AvoidJson {
+    robot: String,
+    outcome: DetourOutcome,
+    blocked: bool,
+    start_deg: [f64; 3],
+    waypoints_m: Vec<[f64; 2]>,
+    configurations_deg: Vec<[f64; 3]>,
+    leg_s_deg: Vec<f64>,
+    min_clearance_m: Option<f64>,
+}
+
+fn pair(label: &str, text: &str) -> Result<[f64; 2], CliError> {
+    let parts: Vec<&str> = text.split(',').collect();
+    if parts.len() != 2 {
+        return Err(CliError::bad_input(format!("{label}: expected x,y, got `{text}`")));
+    }
+    Ok([parse_finite(label, parts[0].trim())?, parse_finite(label, parts[1].trim())?])
+}
+
+fn outcome_text(o: &DetourOutcome) -> String {
+    match o {
+        DetourOutcome::Direct => "direct: no obstacle in the way".into(),
+        DetourOutcome::Detour { obstacle } => format!("detour around obstacle {}", obstacle + 1),
+        DetourOutcome::TargetUnreachable => "target outside the workspace (L < r < 3L)".into(),
+        DetourOutcome::ObstacleTooClose { obstacle } => {
+            format!("blocked: obstacle {} is within the detour radius of the start or target", obstacle + 1)
+        }
+        DetourOutcome::WaypointUnreachable { waypoint, obstacle } => {
+            format!("no detour: waypoint K{waypoint} around obstacle {} is out of reach", obstacle + 1)
+        }
+        DetourOutcome::LegBlocked { leg, obstacle } => {
+            format!("no detour: leg {leg} is blocked by obstacle {}", obstacle + 1)
+        }
+    }
+}
+
+/// Plans the move and prints it; exit status 3 (after the report) when the target is
+/// unreachable or no detour exists.
+///
+/// # Errors
+/// [`CliError::BadInput`] for bad arguments or a robot that is not a planar 3-link arm;
+/// [`CliError::NoSolution`] when no motion was found.
+pub fn run(args: &AvoidArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let loaded = args.robot.load()?;
+    let robot = &loaded.robot;
+    let arm = PlanarRedundant::from_robot(robot).map_err(|e| CliError::bad_input(e.to_string()))?;
+    let step = parse_finite("--step", &args.step)?;
+    if step <= 0.0 {
+        return Err(CliError::bad_input(format!("--step must be positive, got {step}")));
+    }
+    let target = pair("--to", &args.to)?;
+    let obstacles = args.obstacle.iter().map(|o| pair("--obstacle", o)).collect::<Result<Vec<_>, _>>()?;
+    let start: [f64; 3] = match (&args.start, &args.from) {
+        (Some(s), None) => {
+            let v: Vec<&str> = s.split(',').collect();
+            if v.len() != 3 {
+                return Err(CliError::bad_input(format!("--start: expected q1,q2,q3, got `{s}`")));
+            }
+            let mut q = [0.0; 3];
+            for (i, t) in v.iter().enumerate() {
+                q[i] = parse_finite("--start", t.trim())?.to_radians();
+            }
+            q
+        }
+        (None, Some(f)) => {
+            let k = pair("--from", f)?;
+            let home = robot.home();
+            let plan = plan_detour(
+                &arm,
+                &[home[0], home[1], home[2]],
+                k,
+                &[],
+                &DetourOptions { step: step.to_radians(), ..DetourOptions::default() },
+            )
+            .map_err(|e| CliError::bad_input(e.to_string()))?;
+            *plan
+                .configurations
+                .first()
+                .ok_or_else(|| CliError::bad_input(format!("--from {f}: outside the workspace")))?
+        }
+        _ => return Err(CliError::bad_input("give exactly one of --from and --start")),
+    };
+    let options = DetourOptions {
+        step: step.to_radians(),
+        sweep_test: if args.literal_test { SweepTest::PaperLiteral } else { SweepTest::Robust },
+        waypoints: if args.printed_waypoints { WaypointRule::PaperPrinted } else { WaypointRule::Perpendicular },
+        ..DetourOptions::default()
+    };
+    let plan =
+        plan_detour(&arm, &start, target, &obstacles, &options).map_err(|e| CliError::bad_input(e.to_string()))?;
+    let deg3 = |q: &[f64; 3]| q.map(f64::to_degrees);
+    let failed = !matches!(plan.outcome, DetourOutcome::Direct | DetourOutcome::Detour { .. });
+    if args.json {
+        write_json(
+            out,
+            &AvoidJson {
+                robot: robot.name().to_string(),
+                outcome: plan.outcome,
+                blocked: plan.blocked,
+                start_deg: deg3(&start),
+                waypoints_m: plan.waypoints.clone(),
+                configurations_deg: plan.configurations.iter().map(deg3).collect(),
+                leg_s_deg: plan.leg_s.iter().map(|s| s.to_degrees()).collect(),
+                min_clearance_m: plan.min_clearance,
+            },
+        )?;
+    } else {
+        let mut head = Table::key_value();
+        head.pair("robot", robot.name().to_string());
+        head.pair("outcome", outcome_text(&plan.outcome));
+        head.pair("direct move blocked", plan.blocked.to_string());
+        head.pair("start q [deg]", deg3(&start).map(|v| fixed(v, 6)).join(", "));
+        head.pair("min clearance", plan.min_clearance.map_or("-".into(), |c| format!("{} m", fixed(c, 6))));
+        head.write(out, "")?;
+        for (i, w) in plan.waypoints.iter().enumerate() {
+            let q = plan.configurations.get(i).map_or("-".into(), |q| deg3(q).map(|v| fixed(v, 6)).join(", "));
+            let s = plan.leg_s.get(i).map_or("-".into(), |s| fixed(s.to_degrees(), 6));
+            writeln!(out, "  -> ({}, {}) m   q = [{q}] deg   S = {s} deg", fixed(w[0], 6), fixed(w[1], 6))?;
+        }
+    }
+    if failed {
+        out.flush()?;
+        return Err(CliError::NoSolution(outcome_text(&plan.outcome)));
+    }
+    Ok(())
+}

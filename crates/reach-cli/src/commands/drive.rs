@@ -1,0 +1,354 @@
+//! `reach drive` — stepper step schedules from a sampled motion or a point-to-point move:
+//! a summary for people, CSV/JSON step lists, coil tables, step/direction events or G-code.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+use reach::Robot;
+use reach::drive::output::{GcodeDialect, coil_table_csv, gcode, step_dir_text, step_rows, to_csv};
+use reach::drive::{
+    DriveError, GridError, JointSample, StepSchedule, Verification, axes, grid_error, point_to_point,
+    schedule_trajectory, verify,
+};
+use reach::model::JointKind;
+use serde::{Deserialize, Serialize};
+
+use crate::error::{CliError, one_line};
+use crate::numbers::{AngleInput, display_unit, parse_finite, to_si};
+use crate::output::{Align, Table, fixed, write_json};
+use crate::robot_arg::RobotArgs;
+
+/// Output formats of `reach drive`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum DriveFormat {
+    /// Per-joint steps, rates and the check against the plan, for people.
+    Summary,
+    /// One line per step: t_s,joint,name,dir,index,position,coils.
+    Csv,
+    /// {"robot", "duration_s", "joints", "check", "steps": [...]}.
+    Json,
+    /// G-code for GRBL/Marlin (axes X Y Z A B C in joint degrees).
+    Gcode,
+    /// Coil line states a1 b1 a2 b2 after every step.
+    Coils,
+    /// Step/direction event stream (microseconds).
+    Events,
+}
+
+/// G-code flavour.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Dialect {
+    /// GRBL / grblHAL (dwell in seconds, `$100…` settings).
+    Grbl,
+    /// Marlin (dwell in milliseconds, `M92` settings).
+    Marlin,
+}
+
+/// Arguments of `reach drive`.
+#[derive(Debug, Clone, Args)]
+pub struct DriveArgs {
+    /// The robot (every joint needs `[joints.drive]` data).
+    #[command(flatten)]
+    pub robot: RobotArgs,
+
+    /// Motion file (JSON): {"samples": [{"t_s": 0.0, "q_deg": [...]}, ...]} with revolute
+    /// joints in degrees and prismatic joints in metres (what `reach motion` prints).
+    #[arg(value_name = "MOTION", conflicts_with_all = ["from", "to"])]
+    pub motion: Option<PathBuf>,
+
+    /// Point-to-point move: start joint values (degrees, or radians with --rad; metres for
+    /// prismatic joints), space- or comma-separated.
+    #[arg(long, num_args = 1.., value_delimiter = ',', allow_negative_numbers = true, requires = "to")]
+    pub from: Vec<String>,
+
+    /// Point-to-point move: target joint values.
+    #[arg(long, num_args = 1.., value_delimiter = ',', allow_negative_numbers = true, requires = "from")]
+    pub to: Vec<String>,
+
+    /// Point-to-point duration in seconds (default: the shortest the motors allow).
+    #[arg(long, value_name = "S", requires = "to")]
+    pub duration: Option<String>,
+
+    /// --from/--to revolute values are in radians.
+    #[arg(long)]
+    pub rad: bool,
+
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = DriveFormat::Summary)]
+    pub format: DriveFormat,
+
+    /// G-code flavour.
+    #[arg(long, value_enum, default_value_t = Dialect::Grbl)]
+    pub dialect: Dialect,
+
+    /// Write the output to FILE instead of stdout (a one-line note goes to stdout).
+    #[arg(short = 'o', long = "output", value_name = "FILE")]
+    pub output: Option<PathBuf>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MotionFile {
+    samples: Vec<MotionSample>,
+}
+
+#[derive(Deserialize)]
+struct MotionSample {
+    t_s: f64,
+    q_deg: Vec<f64>,
+}
+
+/// Per-joint summary in the JSON output.
+#[derive(Debug, Serialize)]
+struct JointJson {
+    joint: usize,
+    name: String,
+    steps_per_unit: f64,
+    start_position: i64,
+    end_position: i64,
+    steps: usize,
+    max_rate_hz: f64,
+    max_step_rate_hz: f64,
+    max_deviation_steps: f64,
+    max_deviation_si: f64,
+}
+
+#[derive(Debug, Serialize)]
+struct DriveJson {
+    robot: String,
+    kind: &'static str,
+    start_s: f64,
+    duration_s: f64,
+    joints: Vec<JointJson>,
+    check: Verification,
+    /// Point-to-point only: the target's rounding to the step grid.
+    target_grid_error: Option<GridError>,
+    steps: Vec<reach::drive::output::StepRow>,
+}
+
+fn drive_error(e: DriveError) -> CliError {
+    let message = one_line(&e.to_string());
+    match e {
+        DriveError::RateLimit { .. } | DriveError::AccelerationLimit { .. } | DriveError::DurationTooShort { .. } => {
+            CliError::NoSolution(message)
+        }
+        DriveError::Kinematics(_) => CliError::internal(message),
+        _ => CliError::BadInput(message),
+    }
+}
+
+fn parse_q(robot: &Robot, label: &str, texts: &[String], unit: AngleInput) -> Result<Vec<f64>, CliError> {
+    if texts.len() != robot.dof() {
+        return Err(CliError::bad_input(format!(
+            "{label}: robot `{}` has {} joints, got {} values",
+            robot.name(),
+            robot.dof(),
+            texts.len()
+        )));
+    }
+    robot
+        .joints()
+        .iter()
+        .zip(texts)
+        .enumerate()
+        .map(|(i, (j, t))| Ok(to_si(j.kind, parse_finite(&format!("{label} joint {}", i + 1), t)?, unit)))
+        .collect()
+}
+
+fn read_motion(robot: &Robot, path: &PathBuf) -> Result<Vec<JointSample>, CliError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| CliError::bad_input(format!("cannot read motion file `{}`: {e}", path.display())))?;
+    let file: MotionFile = serde_json::from_str(&text)
+        .map_err(|e| CliError::bad_input(format!("motion file `{}`: {}", path.display(), one_line(&e.to_string()))))?;
+    let samples = file
+        .samples
+        .into_iter()
+        .map(|s| {
+            let q = robot
+                .joints()
+                .iter()
+                .zip(&s.q_deg)
+                .map(|(j, &v)| to_si(j.kind, v, AngleInput::Degrees))
+                .chain(s.q_deg.iter().skip(robot.dof()).copied())
+                .collect();
+            JointSample::new(s.t_s, q)
+        })
+        .collect();
+    Ok(samples)
+}
+
+/// Builds the schedule and writes the chosen output.
+///
+/// # Errors
+/// [`CliError::BadInput`] for a bad robot, missing drive data, unreadable motion or bad
+/// numbers; [`CliError::NoSolution`] when the motion exceeds a motor's limits.
+pub fn run(args: &DriveArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let loaded = args.robot.load()?;
+    let robot = &loaded.robot;
+    let axes = axes(robot).map_err(drive_error)?;
+    let unit = if args.rad { AngleInput::Radians } else { AngleInput::Degrees };
+    let mut target_error = None;
+    let (kind, schedule, plan, waypoints): (&str, StepSchedule, Vec<JointSample>, Vec<f64>) =
+        match (&args.motion, args.from.is_empty()) {
+            (Some(path), true) => {
+                let samples = read_motion(robot, path)?;
+                let schedule = schedule_trajectory(&axes, &samples).map_err(drive_error)?;
+                let times = samples.iter().map(|s| s.t).collect();
+                ("trajectory", schedule, samples, times)
+            }
+            (None, false) => {
+                let from = parse_q(robot, "--from", &args.from, unit)?;
+                let to = parse_q(robot, "--to", &args.to, unit)?;
+                let duration = args.duration.as_deref().map(|d| parse_finite("--duration", d)).transpose()?;
+                let p2p = point_to_point(&axes, &from, &to, duration, 0.0).map_err(drive_error)?;
+                target_error = Some(grid_error(robot, &axes, &to).map_err(drive_error)?);
+                let segments = ((p2p.duration / 0.02).ceil() as usize).clamp(10, 2000);
+                let samples = p2p.samples(segments);
+                let times = samples.iter().map(|s| s.t).collect();
+                ("point_to_point", p2p.schedule, samples, times)
+            }
+            _ => {
+                return Err(CliError::bad_input(
+                    "give a motion file, or a point-to-point move with --from Q… --to Q… (not both)",
+                ));
+            }
+        };
+    let check = verify(robot, &schedule, &plan).map_err(drive_error)?;
+    let text = match args.format {
+        DriveFormat::Csv => to_csv(&schedule),
+        DriveFormat::Coils => coil_table_csv(&schedule).map_err(drive_error)?,
+        DriveFormat::Events => step_dir_text(&schedule),
+        DriveFormat::Gcode => {
+            let dialect = match args.dialect {
+                Dialect::Grbl => GcodeDialect::Grbl,
+                Dialect::Marlin => GcodeDialect::Marlin,
+            };
+            if waypoints.len() < 2 {
+                return Err(CliError::bad_input("G-code needs a move that takes time"));
+            }
+            gcode(&schedule, &waypoints, dialect, robot.name()).map_err(drive_error)?
+        }
+        DriveFormat::Json => {
+            let mut buffer = Vec::new();
+            write_json(&mut buffer, &json(robot, kind, &schedule, &check, target_error))?;
+            String::from_utf8(buffer).map_err(|e| CliError::internal(e.to_string()))?
+        }
+        DriveFormat::Summary => summary(robot, kind, &schedule, &check, target_error.as_ref())?,
+    };
+    match &args.output {
+        Some(path) => {
+            std::fs::write(path, &text)
+                .map_err(|e| CliError::bad_input(format!("cannot write `{}`: {e}", path.display())))?;
+            writeln!(out, "wrote {} lines to {}", text.lines().count(), path.display())?;
+        }
+        None => out.write_all(text.as_bytes())?,
+    }
+    Ok(())
+}
+
+fn max_rate(steps: &[reach::drive::Step]) -> f64 {
+    steps.windows(2).map(|w| 1.0 / (w[1].t - w[0].t)).fold(0.0, f64::max)
+}
+
+fn json(
+    robot: &Robot,
+    kind: &'static str,
+    schedule: &StepSchedule,
+    check: &Verification,
+    target_grid_error: Option<GridError>,
+) -> DriveJson {
+    DriveJson {
+        robot: robot.name().to_string(),
+        kind,
+        start_s: schedule.start_time,
+        duration_s: schedule.end_time - schedule.start_time,
+        joints: schedule
+            .joints
+            .iter()
+            .enumerate()
+            .map(|(i, j)| JointJson {
+                joint: j.axis.joint,
+                name: j.axis.name.clone(),
+                steps_per_unit: j.axis.steps_per_unit,
+                start_position: j.start_position,
+                end_position: j.end_position,
+                steps: j.steps.len(),
+                max_rate_hz: max_rate(&j.steps),
+                max_step_rate_hz: j.axis.max_step_rate,
+                max_deviation_steps: check.max_deviation_steps[i],
+                max_deviation_si: check.max_deviation[i],
+            })
+            .collect(),
+        check: check.clone(),
+        target_grid_error,
+        steps: step_rows(schedule),
+    }
+}
+
+fn summary(
+    robot: &Robot,
+    kind: &str,
+    schedule: &StepSchedule,
+    check: &Verification,
+    target: Option<&GridError>,
+) -> Result<String, CliError> {
+    let mut buffer: Vec<u8> = Vec::new();
+    let out: &mut dyn Write = &mut buffer;
+    let mut head = Table::key_value();
+    head.pair("robot", format!("{} ({} joints)", robot.name(), robot.dof()));
+    head.pair("motion", kind.replace('_', "-"));
+    head.pair("time", format!("{} .. {} s", fixed(schedule.start_time, 4), fixed(schedule.end_time, 4)));
+    head.pair("steps", schedule.step_count().to_string());
+    head.pair(
+        "tool error",
+        format!(
+            "{} mm, {} deg (simulated vs planned, worst sample)",
+            fixed(check.tool_position_error * 1e3, 4),
+            fixed(check.tool_orientation_error.to_degrees(), 5)
+        ),
+    );
+    if let Some(g) = target {
+        head.pair(
+            "target on step grid",
+            format!(
+                "tool moved {} mm, {} deg by rounding the target to whole steps",
+                fixed(g.tool_position_error * 1e3, 4),
+                fixed(g.tool_orientation_error.to_degrees(), 5)
+            ),
+        );
+    }
+    head.write(out, "")?;
+    let mut table = Table::new(&[
+        ("joint", Align::Right),
+        ("name", Align::Left),
+        ("steps/unit", Align::Right),
+        ("start", Align::Right),
+        ("end", Align::Right),
+        ("steps", Align::Right),
+        ("max Hz", Align::Right),
+        ("limit Hz", Align::Right),
+        ("max dev [steps]", Align::Right),
+        ("max dev", Align::Right),
+    ]);
+    for (i, j) in schedule.joints.iter().enumerate() {
+        let (unit, scale) = match j.axis.kind {
+            JointKind::Revolute => (display_unit(JointKind::Revolute), 180.0 / std::f64::consts::PI),
+            JointKind::Prismatic => ("mm", 1000.0),
+        };
+        table.row(vec![
+            j.axis.joint.to_string(),
+            j.axis.name.clone(),
+            format!("{} /{unit}", fixed(j.axis.steps_per_unit / scale, 4)),
+            j.start_position.to_string(),
+            j.end_position.to_string(),
+            j.steps.len().to_string(),
+            fixed(max_rate(&j.steps), 1),
+            fixed(j.axis.max_step_rate, 1),
+            fixed(check.max_deviation_steps[i], 3),
+            format!("{} {unit}", fixed(check.max_deviation[i] * scale, 5)),
+        ]);
+    }
+    table.write(out, "  ")?;
+    String::from_utf8(buffer).map_err(|e| CliError::internal(e.to_string()))
+}

@@ -1,0 +1,161 @@
+//! End-to-end tests of `reach drive`: outputs checked against values derived from the drive
+//! data (planar3: 27.78 steps/deg, 500 Hz; seed 000 D8 move φ = (100, 400, 200) in 0.8 s),
+//! and the error paths (exit 2 for bad input, 3 for motor limits).
+
+use std::path::PathBuf;
+use std::process::{Command, Stdio};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+struct Run {
+    code: i32,
+    stdout: String,
+    stderr: String,
+}
+
+fn reach(args: &[&str]) -> Run {
+    let out = Command::new(env!("CARGO_BIN_EXE_reach")).args(args).stdin(Stdio::null()).output().expect("run reach");
+    Run {
+        code: out.status.code().expect("killed"),
+        stdout: String::from_utf8(out.stdout).unwrap(),
+        stderr: String::from_utf8(out.stderr).unwrap(),
+    }
+}
+
+fn ok(args: &[&str]) -> String {
+    let run = reach(args);
+    assert_eq!(run.code, 0, "reach {args:?}: {}", run.stderr);
+    assert!(run.stderr.is_empty());
+    run.stdout
+}
+
+fn fails(args: &[&str], code: i32, needles: &[&str]) -> String {
+    let run = reach(args);
+    assert_eq!(run.code, code, "reach {args:?}: stderr {}", run.stderr);
+    assert!(run.stdout.is_empty(), "{}", run.stdout);
+    assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
+    for n in needles {
+        assert!(run.stderr.contains(n), "missing {n:?} in {}", run.stderr);
+    }
+    run.stderr
+}
+
+fn temp(name: &str, text: &str) -> PathBuf {
+    static N: AtomicUsize = AtomicUsize::new(0);
+    let dir = std::env::temp_dir().join(format!(
+        "reach-cli-drive-{}-{}",
+        std::process::id(),
+        N.fetch_add(1, Ordering::SeqCst)
+    ));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+const D8: [&str; 9] = ["drive", "planar3", "--from", "0", "0", "0", "--to", "3.6", "-14.4"];
+
+fn d8(extra: &[&str]) -> Vec<String> {
+    let mut v: Vec<String> = D8.iter().map(|s| s.to_string()).collect();
+    v.push("-7.2".into());
+    v.extend(extra.iter().map(|s| s.to_string()));
+    v
+}
+
+fn run_vec(args: &[String]) -> String {
+    let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+    ok(&refs)
+}
+
+#[test]
+fn summary_of_the_seed_000_synchronised_move() {
+    let text = run_vec(&d8(&[]));
+    assert!(text.contains("0.0000 .. 0.8000 s"), "{text}");
+    assert!(text.contains("steps       700") || text.contains("700"), "{text}");
+    // Rates ω = (125, 500, 250) Hz.
+    for rate in ["125.0", "500.0", "250.0"] {
+        assert!(text.contains(rate), "{rate} in {text}");
+    }
+}
+
+#[test]
+fn json_csv_events_and_coils() {
+    let v: serde_json::Value = serde_json::from_str(&run_vec(&d8(&["--format", "json"]))).unwrap();
+    assert_eq!(v["duration_s"], 0.8);
+    let ends: Vec<i64> = v["joints"].as_array().unwrap().iter().map(|j| j["end_position"].as_i64().unwrap()).collect();
+    assert_eq!(ends, [100, -400, -200]);
+    assert_eq!(v["steps"].as_array().unwrap().len(), 700);
+    assert_eq!(v["check"]["within_one_step"], true);
+    // 3.6°, −14.4°, −7.2° are whole steps (100, −400, −200): no rounding of the target.
+    assert!(v["target_grid_error"]["tool_position_error"].as_f64().unwrap() < 1e-12);
+    let csv = run_vec(&d8(&["--format", "csv"]));
+    assert_eq!(csv.lines().count(), 701);
+    assert!(csv.starts_with("t_s,joint,name,dir,index,position,coils\n0.002000000,2,B,-1,1,-1,0001\n"), "{csv}");
+    let events = run_vec(&d8(&["--format", "events"]));
+    assert_eq!(events.lines().filter(|l| l.ends_with("STEP")).count(), 700);
+    assert_eq!(events.lines().filter(|l| l.contains("DIR")).count(), 3);
+    let coils = run_vec(&d8(&["--format", "coils"]));
+    assert_eq!(coils.lines().count(), 1 + 3 + 700);
+}
+
+#[test]
+fn gcode_to_a_file_and_comma_lists() {
+    let path = temp("move.gcode", "");
+    let args = [
+        "drive",
+        "planar3",
+        "--from",
+        "0,0,0",
+        "--to",
+        "90,-45,-30",
+        "--format",
+        "gcode",
+        "-o",
+        path.to_str().unwrap(),
+    ];
+    let note = ok(&args);
+    assert!(note.starts_with("wrote ") && note.contains("move.gcode"), "{note}");
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.contains("G21\nG90\n"));
+    let last = text.lines().rev().find(|l| l.starts_with("G1")).unwrap();
+    // 90° = 2500 steps exactly; −45° = −1250; −30° = −833.33 → −833 steps = −29.988°.
+    assert!(last.contains("X90") && last.contains("Y-45") && last.contains("Z-29.988"), "{last}");
+    for line in text.lines().filter(|l| l.starts_with("G1")) {
+        let feed: f64 = line.split_whitespace().find_map(|w| w.strip_prefix('F')).unwrap().parse().unwrap();
+        assert!(feed > 0.0);
+    }
+}
+
+#[test]
+fn motion_files() {
+    // 2 s linear move of joint 1 by 18° = 500 steps: 250 Hz.
+    let good = temp("m.json", r#"{"samples": [{"t_s": 0, "q_deg": [0, 0, 0]}, {"t_s": 2, "q_deg": [18, 0, 0]}]}"#);
+    let v: serde_json::Value =
+        serde_json::from_str(&ok(&["drive", "planar3", good.to_str().unwrap(), "--format", "json"])).unwrap();
+    assert_eq!(v["joints"][0]["end_position"], 500);
+    assert!((v["joints"][0]["max_rate_hz"].as_f64().unwrap() - 250.0).abs() < 1e-6);
+    // Too fast: 18° in 0.5 s = 1000 Hz → exit 3 naming joint 1 and a 1 s duration.
+    let fast = temp("f.json", r#"{"samples": [{"t_s": 0, "q_deg": [0, 0, 0]}, {"t_s": 0.5, "q_deg": [18, 0, 0]}]}"#);
+    fails(&["drive", "planar3", fast.to_str().unwrap()], 3, &["joint 1 (O)", "1.0000 s"]);
+    let broken = temp("b.json", r#"{"samples": [{"t_s": 0}]}"#);
+    fails(&["drive", "planar3", broken.to_str().unwrap()], 2, &["motion file"]);
+}
+
+#[test]
+fn bad_input() {
+    fails(&["drive", "puma560", "--from", "0,0,0,0,0,0", "--to", "1,0,0,0,0,0"], 2, &["joint 1", "no drive data"]);
+    fails(&["drive", "planar3", "--from", "0,0", "--to", "1,0,0"], 2, &["--from", "3 joints"]);
+    fails(&["drive", "planar3", "--from", "0,0,0", "--to", "1,x,0"], 2, &["--to joint 2"]);
+    fails(&["drive", "planar3", "--from", "0,0,0", "--to", "90,0,0", "--duration", "1"], 3, &["too short", "joint 1"]);
+    fails(&["drive", "planar3"], 2, &["--from"]);
+    // A microstepping drive has no coil table.
+    let robot = temp(
+        "m.toml",
+        "name = \"m\"\nlength_unit = \"m\"\nangle_unit = \"deg\"\n[[joints]]\nname = \"j\"\na = 1\n\
+         drive = { steps_per_rev = 200, microstepping = 16, max_step_rate = 20000, wiring = \"bipolar\" }\n",
+    );
+    fails(
+        &["drive", robot.to_str().unwrap(), "--from", "0", "--to", "10", "--format", "coils"],
+        2,
+        &["microstepping 16"],
+    );
+}

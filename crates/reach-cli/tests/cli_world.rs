@@ -1,0 +1,100 @@
+//! End-to-end tests of `reach check`, `reach avoid` and `reach cspace` (seeds 000 and 004).
+
+use std::process::{Command, Stdio};
+
+use serde_json::Value;
+
+struct Run {
+    code: i32,
+    stdout: String,
+    stderr: String,
+}
+
+fn reach(args: &[&str]) -> Run {
+    let out = Command::new(env!("CARGO_BIN_EXE_reach"))
+        .args(args)
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+        .stdin(Stdio::null())
+        .output()
+        .expect("run reach");
+    Run {
+        code: out.status.code().expect("reach was killed by a signal"),
+        stdout: String::from_utf8(out.stdout).expect("stdout is UTF-8"),
+        stderr: String::from_utf8(out.stderr).expect("stderr is UTF-8"),
+    }
+}
+
+fn json(args: &[&str]) -> Value {
+    let run = reach(args);
+    assert_eq!(run.code, 0, "reach {args:?}: {}", run.stderr);
+    serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("reach {args:?}: bad JSON ({e}):\n{}", run.stdout))
+}
+
+#[test]
+fn cspace_reference_counts() {
+    // Notes 004 §5.4: 1041 (free), 635 (ceiling z = 1200, closed), 769 (quadrant z ≥ 1200, x ≥ 800).
+    for (scene, allowed) in [
+        ("examples/seed004_free.toml", 1041),
+        ("examples/seed004_ceiling.toml", 635),
+        ("examples/seed004_two_planes.toml", 769),
+    ] {
+        let v = json(&["cspace", "varan4", scene, "--fix", "q1=0", "--json"]);
+        assert_eq!(v["nodes"], 2601, "{scene}");
+        assert_eq!(v["allowed"], allowed, "{scene}");
+        let sum: u64 = ["allowed", "outside_limits", "outside_zone", "self_collision", "obstacle_collision"]
+            .iter()
+            .map(|k| v[k].as_u64().unwrap())
+            .sum();
+        assert_eq!(sum, 2601);
+        assert_eq!(v["sections"].as_array().unwrap().len(), 9);
+    }
+    let v = json(&["cspace", "varan4", "examples/seed004_ceiling.toml", "--fix", "q1=0", "--json"]);
+    assert_eq!(v["sections"][0]["allowed"], 120);
+}
+
+#[test]
+fn check_touching_node() {
+    // (q1, q2, q3, q4) = (0, 0, 90, 0): O4 = (900, 1200) mm touches the ceiling (closed set).
+    let v = json(&["check", "varan4", "examples/seed004_ceiling.toml", "0", "0", "90", "0", "--json"]);
+    assert_eq!(v["verdict"]["verdict"], "obstacle");
+    assert!(v["min_obstacle_clearance_m"].as_f64().unwrap().abs() < 1e-9);
+    // (0, 30, 0, 0): O4 = (1818.653, 1050) mm, 150 mm below the ceiling.
+    let v = json(&["check", "varan4", "examples/seed004_ceiling.toml", "0", "30", "0", "-0", "--json"]);
+    assert_eq!(v["verdict"]["verdict"], "free");
+    assert!((v["min_obstacle_clearance_m"].as_f64().unwrap() - 0.15).abs() < 1e-9);
+}
+
+#[test]
+fn avoid_seed000_scenario() {
+    // Notes 000 §6.3: start (α, β, γ) = (150, 140, 60) → q = (60, −40, −30) deg.
+    let v = json(&["avoid", "planar3", "--start", "60,-40,-30", "--to", "2.4,0.2", "--obstacle", "2.0,0.7", "--json"]);
+    assert_eq!(v["blocked"], true);
+    let w = v["waypoints_m"].as_array().unwrap();
+    assert_eq!(w.len(), 3);
+    assert!((w[0][0].as_f64().unwrap() - 1.911599).abs() < 1e-6);
+    assert!((w[1][1].as_f64().unwrap() - 0.610758).abs() < 1e-6);
+    assert_eq!(v["configurations_deg"].as_array().unwrap().len(), 3);
+    let c = v["min_clearance_m"].as_f64().unwrap();
+    assert!((0.075..1.0 / 7.0).contains(&c), "{c}");
+    // No obstacle: direct.
+    let v = json(&["avoid", "planar3", "--start", "60,-40,-30", "--to", "2.4,0.2", "--json"]);
+    assert_eq!(v["blocked"], false);
+    assert_eq!(v["outcome"]["outcome"], "direct");
+}
+
+#[test]
+fn avoid_failures_and_bad_input() {
+    let run = reach(&["avoid", "planar3", "--start", "60,-40,-30", "--to", "3.2,0", "--json"]);
+    assert_eq!(run.code, 3, "{}", run.stderr);
+    assert!(run.stdout.contains("target_unreachable"));
+    assert!(run.stderr.starts_with("error: target outside the workspace"));
+    let run = reach(&["avoid", "planar3", "--start", "60,-40,-30", "--to", "2.4,0.2", "--obstacle", "2.35,0.3"]);
+    assert_eq!(run.code, 3);
+    assert!(run.stderr.contains("within the detour radius"), "{}", run.stderr);
+    let run = reach(&["avoid", "planar3", "--start", "60,-40,-30", "--to", "nan,0.2"]);
+    assert_eq!(run.code, 2);
+    assert!(run.stdout.is_empty());
+    let run = reach(&["check", "varan4", "examples/no_such_scene.toml", "0", "0", "0", "0"]);
+    assert_eq!(run.code, 2);
+    assert!(run.stderr.contains("no_such_scene"));
+}

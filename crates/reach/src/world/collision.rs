@@ -1,0 +1,303 @@
+//! Collision and clearance of a robot's links against a scene, and self-collision.
+
+use nalgebra::{IsometryMatrix3, Vector3};
+use serde::Serialize;
+
+use super::{Scene, Touching, WorldError};
+use crate::model::Robot;
+use crate::tolerance::CONTACT;
+
+/// Below this length (metres) a segment between consecutive frame origins is skipped: it is
+/// a joint with coincident frames (e.g. a wrist centre), not a link.
+const MIN_SEGMENT: f64 = 1e-9;
+
+/// The outcome of one collision check, in the order the checks run.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(tag = "verdict", rename_all = "snake_case")]
+pub enum Verdict {
+    /// No collision, tool inside its zone.
+    Free,
+    /// The tool point is not strictly inside tool-zone entry `zone` (0-based).
+    OutsideZone {
+        /// Index into [`Scene::tool_zone`].
+        zone: usize,
+    },
+    /// Two non-adjacent links collide.
+    SelfCollision {
+        /// 1-based link number (`dof + 1` is the tool segment).
+        link_a: usize,
+        /// 1-based link number of the other link.
+        link_b: usize,
+    },
+    /// A link collides with an obstacle.
+    Obstacle {
+        /// 1-based link number (`dof + 1` is the tool segment).
+        link: usize,
+        /// Index into [`Scene::obstacles`].
+        obstacle: usize,
+    },
+}
+
+impl Verdict {
+    /// Whether the configuration is allowed.
+    #[must_use]
+    pub fn is_free(&self) -> bool {
+        matches!(self, Verdict::Free)
+    }
+}
+
+/// Clearance between one link and one obstacle.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LinkClearance {
+    /// 1-based link number (`dof + 1` is the segment from the last frame to the tool point).
+    pub link: usize,
+    /// Obstacle name.
+    pub obstacle: String,
+    /// Signed clearance, metres: distance between the link's capsule and the obstacle, or
+    /// minus the penetration depth of the link axis less the link radius.
+    pub clearance_m: f64,
+    /// Whether this pair collides under the scene's touching policy.
+    pub colliding: bool,
+}
+
+/// Clearance between two non-adjacent links.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SelfClearance {
+    /// 1-based link number.
+    pub link_a: usize,
+    /// 1-based link number.
+    pub link_b: usize,
+    /// Distance between the two capsules, metres (negative: overlap).
+    pub clearance_m: f64,
+    /// Whether they collide under the touching policy.
+    pub colliding: bool,
+}
+
+/// Where the tool point is relative to one tool-zone entry.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Contact {
+    /// Zone name.
+    pub zone: String,
+    /// Signed distance of the tool point to the zone's boundary (negative: inside), metres.
+    pub signed_distance_m: f64,
+    /// Whether the tool point is strictly inside (by more than the contact tolerance).
+    pub inside: bool,
+}
+
+/// Full clearance report of one configuration.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Report {
+    /// The first failed check (or free).
+    pub verdict: Verdict,
+    /// Every (link, obstacle) pair.
+    pub links: Vec<LinkClearance>,
+    /// Every pair of non-adjacent links.
+    pub self_pairs: Vec<SelfClearance>,
+    /// The tool point against every zone entry.
+    pub tool_zone: Vec<Contact>,
+    /// Smallest link–obstacle clearance (`None` without obstacles), metres.
+    pub min_obstacle_clearance_m: Option<f64>,
+    /// Smallest link–link clearance (`None` without non-adjacent pairs), metres.
+    pub min_self_clearance_m: Option<f64>,
+}
+
+/// Checks configurations of one robot against one scene.
+///
+/// Links are the segments between consecutive points of
+/// [`Robot::joint_positions`] (base origin, every frame origin, tool point): segment `k`
+/// (0-based) is link `k + 1`, the last one (last frame → tool point) is link `dof + 1` and
+/// takes the last link's radius. Segments shorter than 1 nm (coincident frames) are skipped;
+/// two remaining segments are adjacent when they are consecutive in that list (they share a
+/// joint), and only non-adjacent pairs are tested for self-collision.
+///
+/// # Performance
+/// [`CollisionChecker::check`] allocates nothing: forward kinematics into preallocated frames,
+/// then one exact distance (with early outs for boxes) per pair, stopping at the first hit.
+#[derive(Debug, Clone)]
+pub struct CollisionChecker<'a> {
+    robot: &'a Robot,
+    scene: &'a Scene,
+    frames: Vec<IsometryMatrix3<f64>>,
+    points: Vec<Vector3<f64>>,
+    radii: Vec<f64>,
+    active: Vec<usize>,
+    margin: f64,
+    /// Bounding sphere of each obstacle (broad phase; `None`: always tested).
+    bounds: Vec<Option<(Vector3<f64>, f64)>>,
+    max_radius: f64,
+}
+
+impl<'a> CollisionChecker<'a> {
+    /// Prepares buffers for `robot` in `scene`.
+    #[must_use]
+    pub fn new(robot: &'a Robot, scene: &'a Scene) -> Self {
+        let n = robot.dof();
+        let links = robot.links();
+        let radii: Vec<f64> = (0..=n).map(|k| links.get(k.min(n - 1)).map_or(0.0, |l| l.radius)).collect();
+        let margin = match scene.touching {
+            Touching::Closed => CONTACT,
+            Touching::Open => -CONTACT,
+        };
+        CollisionChecker {
+            robot,
+            scene,
+            frames: vec![IsometryMatrix3::identity(); n],
+            points: vec![Vector3::zeros(); n + 2],
+            radii,
+            active: Vec::with_capacity(n + 1),
+            margin,
+            bounds: scene.obstacles.iter().map(|o| o.shape.bounding_sphere()).collect(),
+            max_radius: links.iter().map(|l| l.radius).fold(0.0, f64::max),
+        }
+    }
+
+    /// The robot.
+    #[must_use]
+    pub fn robot(&self) -> &Robot {
+        self.robot
+    }
+
+    /// The scene.
+    #[must_use]
+    pub fn scene(&self) -> &Scene {
+        self.scene
+    }
+
+    /// Computes the link points of `q` into the buffers.
+    fn update(&mut self, q: &[f64]) -> Result<(), WorldError> {
+        let tool = self.robot.frames_into(q, &mut self.frames)?;
+        self.points[0] = self.robot.base().translation.vector;
+        for (p, f) in self.points[1..].iter_mut().zip(&self.frames) {
+            *p = f.translation.vector;
+        }
+        let last = self.points.len() - 1;
+        self.points[last] = tool.translation.vector;
+        self.active.clear();
+        for k in 0..last {
+            if (self.points[k + 1] - self.points[k]).norm_squared() > MIN_SEGMENT * MIN_SEGMENT {
+                self.active.push(k);
+            }
+        }
+        Ok(())
+    }
+
+    /// World positions of the link points of the last checked configuration (base origin,
+    /// frame origins, tool point).
+    #[must_use]
+    pub fn points(&self) -> &[Vector3<f64>] {
+        &self.points
+    }
+
+    /// Checks `q`: tool zone, then self-collision, then obstacles; the first failure wins.
+    ///
+    /// # Errors
+    /// [`WorldError::Kinematics`] when `q` has the wrong length or a non-finite value.
+    pub fn check(&mut self, q: &[f64]) -> Result<Verdict, WorldError> {
+        self.update(q)?;
+        Ok(self.classify())
+    }
+
+    /// Classifies the configuration in the buffers.
+    #[inline]
+    fn classify(&self) -> Verdict {
+        let tool = self.points[self.points.len() - 1];
+        for (i, z) in self.scene.tool_zone.iter().enumerate() {
+            if z.shape.point_sdf(&tool) >= -CONTACT {
+                return Verdict::OutsideZone { zone: i };
+            }
+        }
+        let act = &self.active;
+        for (x, &i) in act.iter().enumerate() {
+            for &j in act.iter().skip(x + 2) {
+                let d = super::distance::segment_segment_sq(
+                    &self.points[i],
+                    &self.points[i + 1],
+                    &self.points[j],
+                    &self.points[j + 1],
+                )
+                .sqrt();
+                if d - self.radii[i] - self.radii[j] <= self.margin {
+                    return Verdict::SelfCollision { link_a: i + 1, link_b: j + 1 };
+                }
+            }
+        }
+        // Broad phase: a sphere around every link point (centre of their bounding box).
+        let (mut lo, mut hi) = (self.points[0], self.points[0]);
+        for p in &self.points[1..] {
+            lo = lo.inf(p);
+            hi = hi.sup(p);
+        }
+        let centre = (lo + hi) * 0.5;
+        let reach = self.points.iter().map(|p| (p - centre).norm_squared()).fold(0.0, f64::max).sqrt()
+            + self.max_radius
+            + self.margin.max(0.0);
+        for (o, obstacle) in self.scene.obstacles.iter().enumerate() {
+            if let Some((c, r)) = self.bounds[o] {
+                let gap = r + reach;
+                if (c - centre).norm_squared() > gap * gap {
+                    continue;
+                }
+            }
+            for &k in act {
+                if obstacle.shape.segment_within(&self.points[k], &self.points[k + 1], self.radii[k], self.margin) {
+                    return Verdict::Obstacle { link: k + 1, obstacle: o };
+                }
+            }
+        }
+        Verdict::Free
+    }
+
+    /// Every clearance of `q` (allocates the report).
+    ///
+    /// # Errors
+    /// [`WorldError::Kinematics`] when `q` has the wrong length or a non-finite value.
+    pub fn report(&mut self, q: &[f64]) -> Result<Report, WorldError> {
+        self.update(q)?;
+        let verdict = self.classify();
+        let tool = self.points[self.points.len() - 1];
+        let tool_zone = self
+            .scene
+            .tool_zone
+            .iter()
+            .map(|z| {
+                let sd = z.shape.point_sdf(&tool);
+                Contact { zone: z.name.clone(), signed_distance_m: sd, inside: sd < -CONTACT }
+            })
+            .collect();
+        let mut links = Vec::new();
+        for &k in &self.active {
+            for o in &self.scene.obstacles {
+                let c = o.shape.segment_sdf(&self.points[k], &self.points[k + 1]) - self.radii[k];
+                links.push(LinkClearance {
+                    link: k + 1,
+                    obstacle: o.name.clone(),
+                    clearance_m: c,
+                    colliding: c <= self.margin,
+                });
+            }
+        }
+        let mut self_pairs = Vec::new();
+        for (x, &i) in self.active.iter().enumerate() {
+            for &j in self.active.iter().skip(x + 2) {
+                let d = super::distance::segment_segment_sq(
+                    &self.points[i],
+                    &self.points[i + 1],
+                    &self.points[j],
+                    &self.points[j + 1],
+                )
+                .sqrt()
+                    - self.radii[i]
+                    - self.radii[j];
+                self_pairs.push(SelfClearance {
+                    link_a: i + 1,
+                    link_b: j + 1,
+                    clearance_m: d,
+                    colliding: d <= self.margin,
+                });
+            }
+        }
+        let min_obstacle_clearance_m = links.iter().map(|l| l.clearance_m).reduce(f64::min);
+        let min_self_clearance_m = self_pairs.iter().map(|l| l.clearance_m).reduce(f64::min);
+        Ok(Report { verdict, links, self_pairs, tool_zone, min_obstacle_clearance_m, min_self_clearance_m })
+    }
+}

@@ -1,0 +1,250 @@
+//! Seed 004: configuration-space grids — enumerate joint values on a grid and classify
+//! every node (notes 004 §4 A).
+
+use serde::Serialize;
+
+use super::{CollisionChecker, Scene, Verdict, WorldError};
+use crate::model::Robot;
+use crate::tolerance::{LIMIT_SLACK, SCAN_GRID};
+
+/// Largest number of grid nodes accepted (≈ 1.1e9 would not fit in memory as classes).
+pub const MAX_NODES: usize = 200_000_000;
+
+/// What a grid node is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+#[repr(u8)]
+pub enum NodeClass {
+    /// Within limits, tool in its zone, no collision.
+    Allowed = 0,
+    /// A joint value outside the robot's limits.
+    OutsideLimits = 1,
+    /// The tool point not strictly inside the scene's tool zone.
+    OutsideZone = 2,
+    /// Two non-adjacent links collide.
+    SelfCollision = 3,
+    /// A link collides with an obstacle.
+    ObstacleCollision = 4,
+}
+
+/// Which joint values the grid visits.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GridSpec {
+    /// Grid step, radians (metres for prismatic joints), > 0.
+    pub step: f64,
+    /// Per joint: `Some(value)` fixes it, `None` sweeps it.
+    pub fixed: Vec<Option<f64>>,
+    /// Per joint: the swept range `[lo, hi]`; `None` takes the joint's limits (which must
+    /// then be finite). Both ends are nodes; when `step` does not divide the range, `hi` is
+    /// added as a last, shorter step.
+    pub ranges: Vec<Option<(f64, f64)>>,
+}
+
+impl GridSpec {
+    /// Sweep every joint over its limits at `step`, except the listed fixed joints.
+    #[must_use]
+    pub fn new(dof: usize, step: f64) -> Self {
+        GridSpec { step, fixed: vec![None; dof], ranges: vec![None; dof] }
+    }
+
+    /// Fixes joint `index` (0-based) at `value` (builder style).
+    #[must_use]
+    pub fn fix(mut self, index: usize, value: f64) -> Self {
+        if let Some(f) = self.fixed.get_mut(index) {
+            *f = Some(value);
+        }
+        self
+    }
+}
+
+/// Counts per class.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct GridCounts {
+    /// Number of nodes.
+    pub nodes: usize,
+    /// Allowed nodes (N in the paper).
+    pub allowed: usize,
+    /// Nodes outside the joint limits.
+    pub outside_limits: usize,
+    /// Nodes whose tool point is outside the zone.
+    pub outside_zone: usize,
+    /// Self-colliding nodes.
+    pub self_collision: usize,
+    /// Nodes colliding with an obstacle.
+    pub obstacle_collision: usize,
+}
+
+impl GridCounts {
+    fn add(&mut self, c: NodeClass) {
+        self.nodes += 1;
+        match c {
+            NodeClass::Allowed => self.allowed += 1,
+            NodeClass::OutsideLimits => self.outside_limits += 1,
+            NodeClass::OutsideZone => self.outside_zone += 1,
+            NodeClass::SelfCollision => self.self_collision += 1,
+            NodeClass::ObstacleCollision => self.obstacle_collision += 1,
+        }
+    }
+}
+
+/// A classified grid.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CspaceGrid {
+    /// Per joint, its values on the grid (one value for a fixed joint).
+    pub axes: Vec<Vec<f64>>,
+    /// Class of every node, row-major (the first joint varies slowest).
+    pub classes: Vec<NodeClass>,
+    /// Totals.
+    pub counts: GridCounts,
+}
+
+impl CspaceGrid {
+    /// Counts per value of joint `joint` (0-based): one [`GridCounts`] per value on that axis
+    /// (seed 004's sections `q2 = const`).
+    #[must_use]
+    pub fn counts_by(&self, joint: usize) -> Vec<GridCounts> {
+        let Some(axis) = self.axes.get(joint) else { return Vec::new() };
+        let inner: usize = self.axes[joint + 1..].iter().map(Vec::len).product();
+        let mut out = vec![GridCounts::default(); axis.len()];
+        for (i, c) in self.classes.iter().enumerate() {
+            out[(i / inner) % axis.len()].add(*c);
+        }
+        out
+    }
+
+    /// Joint values of node `index`.
+    #[must_use]
+    pub fn node(&self, index: usize) -> Vec<f64> {
+        let mut q = vec![0.0; self.axes.len()];
+        let mut rest = index;
+        for (j, axis) in self.axes.iter().enumerate().rev() {
+            q[j] = axis[rest % axis.len()];
+            rest /= axis.len();
+        }
+        q
+    }
+}
+
+fn axis_values(lo: f64, hi: f64, step: f64) -> Vec<f64> {
+    let n = ((hi - lo) / step + SCAN_GRID).floor() as usize + 1;
+    let mut v: Vec<f64> = (0..n).map(|i| lo + i as f64 * step).collect();
+    if let Some(&last) = v.last()
+        && hi - last > SCAN_GRID * step
+    {
+        v.push(hi);
+    }
+    v
+}
+
+/// The grid axes of `spec` for `robot`.
+///
+/// # Errors
+/// [`WorldError::Input`] for a step that is not positive and finite, a spec of the wrong
+/// length, a NaN value, a swept joint without finite limits or range, or too many nodes.
+pub fn grid_axes(robot: &Robot, spec: &GridSpec) -> Result<Vec<Vec<f64>>, WorldError> {
+    let n = robot.dof();
+    if !(spec.step.is_finite() && spec.step > 0.0) {
+        return Err(WorldError::Input(format!("grid step must be positive and finite, got {}", spec.step)));
+    }
+    if spec.fixed.len() != n || spec.ranges.len() != n {
+        return Err(WorldError::Input(format!("grid spec needs one entry per joint ({n})")));
+    }
+    let mut axes = Vec::with_capacity(n);
+    let mut total: usize = 1;
+    for (j, joint) in robot.joints().iter().enumerate() {
+        let values = if let Some(v) = spec.fixed[j] {
+            if !v.is_finite() {
+                return Err(WorldError::Input(format!("joint {} ({}): fixed value must be finite", j + 1, joint.name)));
+            }
+            vec![v]
+        } else {
+            let (lo, hi) = spec.ranges[j].unwrap_or((joint.limits.lower, joint.limits.upper));
+            if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
+                return Err(WorldError::Input(format!(
+                    "joint {} ({}): swept range must be finite with lower ≤ upper, got [{lo}, {hi}] (fix the joint or give a range)",
+                    j + 1,
+                    joint.name
+                )));
+            }
+            axis_values(lo, hi, spec.step)
+        };
+        total = total.saturating_mul(values.len());
+        axes.push(values);
+    }
+    if total > MAX_NODES {
+        return Err(WorldError::Input(format!("the grid has {total} nodes, more than {MAX_NODES}")));
+    }
+    Ok(axes)
+}
+
+/// Classifies one configuration (the classification order of notes 004 §4 A: limits, tool
+/// zone, self-collision, obstacles).
+fn classify_node(checker: &mut CollisionChecker<'_>, q: &[f64]) -> Result<NodeClass, WorldError> {
+    if checker.robot().first_joint_outside_limits(q, LIMIT_SLACK).is_some() {
+        return Ok(NodeClass::OutsideLimits);
+    }
+    Ok(match checker.check(q)? {
+        Verdict::Free => NodeClass::Allowed,
+        Verdict::OutsideZone { .. } => NodeClass::OutsideZone,
+        Verdict::SelfCollision { .. } => NodeClass::SelfCollision,
+        Verdict::Obstacle { .. } => NodeClass::ObstacleCollision,
+    })
+}
+
+fn classify_range(
+    robot: &Robot,
+    scene: &Scene,
+    axes: &[Vec<f64>],
+    start: usize,
+    out: &mut [NodeClass],
+) -> Result<(), WorldError> {
+    let mut checker = CollisionChecker::new(robot, scene);
+    let mut q = vec![0.0; axes.len()];
+    for (offset, slot) in out.iter_mut().enumerate() {
+        let mut rest = start + offset;
+        for (j, axis) in axes.iter().enumerate().rev() {
+            q[j] = axis[rest % axis.len()];
+            rest /= axis.len();
+        }
+        *slot = classify_node(&mut checker, &q)?;
+    }
+    Ok(())
+}
+
+/// Enumerates the grid of `spec` and classifies every node.
+///
+/// With the default cargo feature `parallel` the nodes are split over the threads of the
+/// rayon pool; without it the sweep runs on the calling thread. The result is the same.
+///
+/// # Errors
+/// See [`grid_axes`].
+///
+/// # Example
+/// ```
+/// use reach::world::{Scene, cspace::{GridSpec, classify_grid}};
+/// let varan = reach::model::presets::get("varan4").unwrap();
+/// let spec = GridSpec::new(4, 15f64.to_radians()).fix(0, 0.0);
+/// let grid = classify_grid(&varan, &Scene::new(), &spec).unwrap();
+/// assert_eq!(grid.counts.nodes, 9 * 17 * 17);
+/// ```
+pub fn classify_grid(robot: &Robot, scene: &Scene, spec: &GridSpec) -> Result<CspaceGrid, WorldError> {
+    let axes = grid_axes(robot, spec)?;
+    let total: usize = axes.iter().map(Vec::len).product();
+    let mut classes = vec![NodeClass::Allowed; total];
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        const CHUNK: usize = 4096;
+        classes
+            .par_chunks_mut(CHUNK)
+            .enumerate()
+            .try_for_each(|(c, chunk)| classify_range(robot, scene, &axes, c * CHUNK, chunk))?;
+    }
+    #[cfg(not(feature = "parallel"))]
+    classify_range(robot, scene, &axes, 0, &mut classes)?;
+    let mut counts = GridCounts::default();
+    for c in &classes {
+        counts.add(*c);
+    }
+    Ok(CspaceGrid { axes, classes, counts })
+}

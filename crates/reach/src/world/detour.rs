@@ -1,0 +1,406 @@
+//! Seed 000: the planar obstacle test and detour (notes 000 §3.3–3.4, §4.3–4.4).
+//!
+//! A point obstacle `H` (from sensors) is tested against the area swept by the last link
+//! `AK` between the current pose and the target pose — the quadrilateral `A K K1 A1` with the
+//! arcs replaced by chords — and, here, also against the middle link's `B A A1 B1` and the
+//! first link's `O B B1`. When it is inside, the gripper goes around it through two
+//! waypoints `K2`, `K3` on a circle of radius `L/7` about `H`: `K → K2 → K3 → K1`, each leg
+//! with the thesis's minimum-change IK, each leg re-checked.
+//!
+//! Corrections (notes 000 §6.1):
+//! * D6/D7 — the printed test (eqs. 24–36) uses `k < 1` instead of `|k| < 1`, a fixed vertex
+//!   order and slopes that divide by zero on vertical/horizontal lines. The default test is
+//!   an orientation-free point-in-polygon (even–odd crossings with cross products; no slope,
+//!   no division by a possibly-zero difference). The literal test is kept as
+//!   [`SweepTest::PaperLiteral`] for comparison only.
+//! * D5 — the printed `K2`/`K3` formulas (Table 6) are not perpendicular to `KH`; the default
+//!   [`WaypointRule::Perpendicular`] puts `K2 = H ± (L/7)·R(90°)(K − H)/|K − H|` on the
+//!   perpendicular at `H`, on the base side (the candidate nearer `O`).
+
+use serde::Serialize;
+
+use super::WorldError;
+use super::distance::point_segment_sq;
+use crate::ik::planar::PlanarRedundant;
+use crate::model::seed000::PlanarPaperAngles;
+use crate::tolerance::CONTACT;
+
+/// A point of the arm's plane, metres (plane coordinates of [`PlanarRedundant`]).
+pub type P2 = [f64; 2];
+
+/// Which swept-area test decides whether an obstacle blocks a move.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub enum SweepTest {
+    /// Orientation-free point-in-polygon on the swept quadrilaterals of all links (closed:
+    /// an obstacle on an edge counts as inside).
+    #[default]
+    Robust,
+    /// The thesis's eqs. (24)–(36) for the last link only, as printed (`k < 1`, fixed
+    /// order, strict inequalities; NaN from a zero division makes a test false).
+    PaperLiteral,
+}
+
+/// How the two waypoints are placed on the `L/7` circle.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub enum WaypointRule {
+    /// On the perpendicular to `KH` (`K1H`) at `H`, base side (notes 000 D5).
+    #[default]
+    Perpendicular,
+    /// The printed Table 6 formulas: `H + (L/7)·(−dx, dy)/|d|`.
+    PaperPrinted,
+}
+
+/// Options of [`plan_detour`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct DetourOptions {
+    /// IK scan step `Δα`, radians (thesis: 0.01°).
+    pub step: f64,
+    /// Swept-area test.
+    pub sweep_test: SweepTest,
+    /// Waypoint construction.
+    pub waypoints: WaypointRule,
+    /// Radius of the waypoint circle, metres (thesis: `L/7`; `None` = mean link length / 7).
+    pub radius: Option<f64>,
+    /// Samples per leg for the clearance of the joint-interpolated motion (≥ 2). A leg whose
+    /// sampled clearance is within [`CONTACT`] of an obstacle also counts as blocked.
+    pub samples_per_leg: usize,
+}
+
+impl Default for DetourOptions {
+    fn default() -> Self {
+        DetourOptions {
+            step: 0.01f64.to_radians(),
+            sweep_test: SweepTest::Robust,
+            waypoints: WaypointRule::Perpendicular,
+            radius: None,
+            samples_per_leg: 200,
+        }
+    }
+}
+
+/// What the planner decided.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(tag = "outcome", rename_all = "snake_case")]
+pub enum DetourOutcome {
+    /// No obstacle in the way: move directly.
+    Direct,
+    /// Detour through `K2`, `K3` around obstacle `obstacle` (0-based).
+    Detour {
+        /// The obstacle that blocked the direct move.
+        obstacle: usize,
+    },
+    /// The target fails the workspace test (thesis: `L < r < 3L`, strict).
+    TargetUnreachable,
+    /// The direct move is blocked and the obstacle lies within the circle radius of the
+    /// target (or of the start): there is no room for a detour.
+    ObstacleTooClose {
+        /// The obstacle.
+        obstacle: usize,
+    },
+    /// A waypoint (2 for `K2`, 3 for `K3`) fails the workspace test.
+    WaypointUnreachable {
+        /// 2 or 3.
+        waypoint: usize,
+        /// The obstacle detoured around.
+        obstacle: usize,
+    },
+    /// A leg of the detour is itself blocked (several obstacles, or the arm's own sweep).
+    LegBlocked {
+        /// 1 = K→K2, 2 = K2→K3, 3 = K3→K1.
+        leg: usize,
+        /// The blocking obstacle.
+        obstacle: usize,
+    },
+}
+
+/// The result of [`plan_detour`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DetourPlan {
+    /// Decision.
+    pub outcome: DetourOutcome,
+    /// Whether the direct move was blocked.
+    pub blocked: bool,
+    /// Gripper waypoints after the start: `[K1]` (direct) or `[K2, K3, K1]` (detour); the
+    /// computed waypoints also when a later step failed; empty when the target is unreachable.
+    pub waypoints: Vec<P2>,
+    /// Joint values at each reached waypoint (radians), in order.
+    pub configurations: Vec<[f64; 3]>,
+    /// The thesis's angles `(α, β, γ)` at each reached waypoint.
+    #[serde(skip)]
+    pub paper_angles: Vec<PlanarPaperAngles>,
+    /// `S = Σ|Δangle|` of each leg, radians.
+    pub leg_s: Vec<f64>,
+    /// Smallest distance between any link and any obstacle along the planned legs (joint
+    /// values interpolated linearly), metres; `None` without obstacles or legs.
+    pub min_clearance: Option<f64>,
+}
+
+/// Cross product of `b − a` and `c − a`.
+#[inline]
+fn cross(a: P2, b: P2, c: P2) -> f64 {
+    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+}
+
+fn seg_dist(h: P2, a: P2, b: P2) -> f64 {
+    let v = |p: P2| nalgebra::Vector3::new(p[0], p[1], 0.0);
+    point_segment_sq(&v(h), &v(a), &v(b)).sqrt()
+}
+
+/// Whether `h` lies in the polygon `poly` (any vertex order, convex or not; a
+/// self-intersecting quadrilateral counts by the even–odd rule), boundary included (within
+/// [`CONTACT`]).
+///
+/// # Example
+/// ```
+/// use reach::world::detour::in_polygon;
+/// let square = [[0.0, 0.0], [0.0, 1.0], [1.0, 1.0], [1.0, 0.0]]; // clockwise
+/// assert!(in_polygon([0.5, 0.5], &square));
+/// assert!(!in_polygon([1.5, 0.5], &square));
+/// ```
+#[must_use]
+pub fn in_polygon(h: P2, poly: &[P2]) -> bool {
+    let n = poly.len();
+    let mut inside = false;
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[(i + 1) % n]);
+        if seg_dist(h, a, b) <= CONTACT {
+            return true;
+        }
+        if (a[1] > h[1]) != (b[1] > h[1]) {
+            // The edge straddles the horizontal through h, so b[1] ≠ a[1]; h is left of the
+            // crossing when the cross product has the edge's upward/downward sign.
+            let c = cross(a, b, h);
+            if (c > 0.0) == (b[1] > a[1]) {
+                inside = !inside;
+            }
+        }
+    }
+    inside
+}
+
+/// The thesis's obstacle test as printed (eqs. 24–36 and the `k ≥ 1` branch of §4.3), with
+/// `A = (x3, y3)`, `K = (x1, y1)`, `A1 = (x4, y4)`, `K1 = (x2, y2)`: literal `k < 1`, the
+/// figure's vertex order, strict inequalities. Kept for comparison (notes 000 D6, D7); it
+/// misses obstacles that are inside for other layouts (vector OB-G3).
+#[must_use]
+pub fn paper_literal_in_sweep(a: P2, k: P2, a1: P2, k1: P2, h: P2) -> bool {
+    let ([x1, y1], [x2, y2], [x3, y3], [x4, y4], [xh, yh]) = (k, k1, a, a1, h);
+    let slope = (y1 - y3) / (x1 - x3);
+    if slope < 1.0 {
+        let f1 = y3 + (y1 - y3) / (x1 - x3) * (xh - x3);
+        let f2 = y4 + (y2 - y4) / (x2 - x4) * (xh - x4);
+        if !(f2 < yh && yh < f1) {
+            return false;
+        }
+        let xh3 = (yh - y3) * (x3 - x4) / (y3 - y4) + x3;
+        let xh4 = (yh - y1) * (x1 - x2) / (y1 - y2) + x1;
+        xh3 < xh && xh < xh4
+    } else {
+        let xh1 = (yh - y3) * (x1 - x3) / (y1 - y3) + x3;
+        let xh2 = (yh - y4) * (x2 - x4) / (y2 - y4) + x4;
+        if !(xh1 < xh && xh < xh2) {
+            return false;
+        }
+        let f3 = y3 + (y3 - y4) / (x3 - x4) * (xh - x3);
+        let f4 = y1 + (y1 - y2) / (x1 - x2) * (xh - x1);
+        f3 < yh && yh < f4
+    }
+}
+
+/// The waypoint for the source point `s` (`K` or `K1`) around `h` on a circle of `radius`;
+/// `None` when `s` coincides with `h`.
+#[must_use]
+pub fn waypoint(h: P2, s: P2, radius: f64, rule: WaypointRule) -> Option<P2> {
+    let d = [s[0] - h[0], s[1] - h[1]];
+    let len = d[0].hypot(d[1]);
+    if len <= CONTACT {
+        return None;
+    }
+    let u = [d[0] / len, d[1] / len];
+    Some(match rule {
+        // Table 6 as printed (D5): (−dx, +dy).
+        WaypointRule::PaperPrinted => [h[0] - radius * u[0], h[1] + radius * u[1]],
+        WaypointRule::Perpendicular => {
+            let c1 = [h[0] - radius * u[1], h[1] + radius * u[0]];
+            let c2 = [h[0] + radius * u[1], h[1] - radius * u[0]];
+            // Base side: the candidate nearer the base O (the thesis's "side of the
+            // mounting axis"); a tie keeps the counter-clockwise one.
+            if c2[0].hypot(c2[1]) < c1[0].hypot(c1[1]) { c2 } else { c1 }
+        }
+    })
+}
+
+/// The arm's points `[O, B, A, K]` in plane coordinates for joint values `q`.
+#[must_use]
+pub fn arm_points(arm: &PlanarRedundant, q: &[f64; 3]) -> [P2; 4] {
+    let phi = arm.link_angles(q);
+    let l = arm.lengths();
+    let mut pts = [[0.0; 2]; 4];
+    for i in 0..3 {
+        pts[i + 1] = [pts[i][0] + l[i] * phi[i].cos(), pts[i][1] + l[i] * phi[i].sin()];
+    }
+    pts
+}
+
+fn paper_angles(arm: &PlanarRedundant, q: &[f64; 3]) -> PlanarPaperAngles {
+    let phi = arm.link_angles(q);
+    PlanarPaperAngles {
+        gamma: phi[0],
+        beta: phi[1] - phi[0] + std::f64::consts::PI,
+        alpha: phi[2] - phi[1] + std::f64::consts::PI,
+    }
+}
+
+/// Smallest distance between the three links and the obstacles while the joints move
+/// linearly from `from` to `to` (`samples ≥ 2` evenly spaced poses, ends included).
+#[must_use]
+pub fn leg_clearance(arm: &PlanarRedundant, from: &[f64; 3], to: &[f64; 3], obstacles: &[P2], samples: usize) -> f64 {
+    let n = samples.max(2);
+    let mut best = f64::INFINITY;
+    for s in 0..n {
+        let t = s as f64 / (n - 1) as f64;
+        let q = [0, 1, 2].map(|i| from[i] + t * (to[i] - from[i]));
+        let p = arm_points(arm, &q);
+        for h in obstacles {
+            for i in 0..3 {
+                best = best.min(seg_dist(*h, p[i], p[i + 1]));
+            }
+        }
+    }
+    best
+}
+
+/// Whether the move `from → to` is blocked by obstacle `h` under `test`.
+#[must_use]
+pub fn move_blocked(arm: &PlanarRedundant, from: &[f64; 3], to: &[f64; 3], h: P2, test: SweepTest) -> bool {
+    let [o, b, a, k] = arm_points(arm, from);
+    let [_, b1, a1, k1] = arm_points(arm, to);
+    match test {
+        SweepTest::PaperLiteral => paper_literal_in_sweep(a, k, a1, k1, h),
+        SweepTest::Robust => {
+            in_polygon(h, &[a, k, k1, a1]) || in_polygon(h, &[b, a, a1, b1]) || in_polygon(h, &[o, b, b1])
+        }
+    }
+}
+
+/// The minimum-change configuration for `target` from `current` (thesis §4.1), or `None`
+/// when the target fails the workspace test.
+fn select(
+    arm: &PlanarRedundant,
+    current: &[f64; 3],
+    target: P2,
+    step: f64,
+) -> Result<Option<([f64; 3], PlanarPaperAngles, f64)>, WorldError> {
+    let scan = arm.paper_scan(target, step)?;
+    let now = paper_angles(arm, current);
+    Ok(scan.select_min_s(&now).map(|(i, s)| (scan.rows[i].q, scan.rows[i].paper, s)))
+}
+
+/// Plans the move of the gripper from the pose `start` to `target` past point obstacles
+/// (thesis §4.5; notes 000 §9 item 10 for the cases the thesis leaves open).
+///
+/// # Behavior
+/// 1. Target: minimum-change IK row ([`PlanarRedundant::paper_scan`] +
+///    [`select_min_s`](crate::ik::planar::PaperScan::select_min_s)); outside `L < r < 3L`:
+///    [`DetourOutcome::TargetUnreachable`].
+/// 2. The direct move is blocked by the first obstacle inside a swept area (per
+///    [`SweepTest`]) or, with the robust test, within [`CONTACT`] of the joint-interpolated
+///    motion. Not blocked: [`DetourOutcome::Direct`].
+/// 3. Blocked by `H`: if `H` is within the circle radius of `K1` or `K`, no detour fits
+///    ([`DetourOutcome::ObstacleTooClose`]). Otherwise `K2`, `K3` by the waypoint rule; a
+///    waypoint outside the workspace gives [`DetourOutcome::WaypointUnreachable`].
+/// 4. Each leg `K → K2 → K3 → K1` takes the minimum-change row from the previous leg's
+///    configuration and is re-checked against **every** obstacle;
+///    a blocked leg gives [`DetourOutcome::LegBlocked`] (no detour exists by this method).
+///
+/// # Errors
+/// [`WorldError::Input`] for NaN coordinates, a bad step or sample count;
+/// [`WorldError::Ik`] from the scan.
+pub fn plan_detour(
+    arm: &PlanarRedundant,
+    start: &[f64; 3],
+    target: P2,
+    obstacles: &[P2],
+    options: &DetourOptions,
+) -> Result<DetourPlan, WorldError> {
+    let finite = |p: &P2| p.iter().all(|v| v.is_finite());
+    if !start.iter().all(|v| v.is_finite()) || !finite(&target) || !obstacles.iter().all(finite) {
+        return Err(WorldError::Input("detour: start, target and obstacles must be finite numbers".into()));
+    }
+    let l = arm.lengths();
+    let radius = options.radius.unwrap_or((l[0] + l[1] + l[2]) / 21.0);
+    if !(radius.is_finite() && radius > 0.0) {
+        return Err(WorldError::Input(format!("detour: circle radius must be positive, got {radius} m")));
+    }
+    let mut plan = DetourPlan {
+        outcome: DetourOutcome::TargetUnreachable,
+        blocked: false,
+        waypoints: Vec::new(),
+        configurations: Vec::new(),
+        paper_angles: Vec::new(),
+        leg_s: Vec::new(),
+        min_clearance: None,
+    };
+    let Some((q1, p1, s1)) = select(arm, start, target, options.step)? else { return Ok(plan) };
+    let blocker = |from: &[f64; 3], to: &[f64; 3]| -> Option<usize> {
+        obstacles.iter().position(|h| {
+            move_blocked(arm, from, to, *h, options.sweep_test)
+                || (options.sweep_test == SweepTest::Robust
+                    && leg_clearance(arm, from, to, std::slice::from_ref(h), options.samples_per_leg) <= CONTACT)
+        })
+    };
+    let clearance = |legs: &[[f64; 3]]| -> Option<f64> {
+        if obstacles.is_empty() {
+            return None;
+        }
+        let mut from = *start;
+        let mut best = f64::INFINITY;
+        for to in legs {
+            best = best.min(leg_clearance(arm, &from, to, obstacles, options.samples_per_leg));
+            from = *to;
+        }
+        Some(best)
+    };
+    let Some(hit) = blocker(start, &q1) else {
+        plan.outcome = DetourOutcome::Direct;
+        plan.waypoints = vec![target];
+        plan.configurations = vec![q1];
+        plan.paper_angles = vec![p1];
+        plan.leg_s = vec![s1];
+        plan.min_clearance = clearance(&[q1]);
+        return Ok(plan);
+    };
+    plan.blocked = true;
+    let h = obstacles[hit];
+    let k = arm_points(arm, start)[3];
+    let near = |p: P2| (p[0] - h[0]).hypot(p[1] - h[1]) <= radius;
+    let (Some(k2), Some(k3)) =
+        (waypoint(h, k, radius, options.waypoints), waypoint(h, target, radius, options.waypoints))
+    else {
+        plan.outcome = DetourOutcome::ObstacleTooClose { obstacle: hit };
+        return Ok(plan);
+    };
+    if near(target) || near(k) {
+        plan.outcome = DetourOutcome::ObstacleTooClose { obstacle: hit };
+        return Ok(plan);
+    }
+    plan.waypoints = vec![k2, k3, target];
+    let mut current = *start;
+    for (leg, point) in [k2, k3, target].into_iter().enumerate() {
+        let Some((q, p, s)) = select(arm, &current, point, options.step)? else {
+            plan.outcome = DetourOutcome::WaypointUnreachable { waypoint: leg + 2, obstacle: hit };
+            return Ok(plan);
+        };
+        if let Some(o) = blocker(&current, &q) {
+            plan.outcome = DetourOutcome::LegBlocked { leg: leg + 1, obstacle: o };
+            return Ok(plan);
+        }
+        plan.configurations.push(q);
+        plan.paper_angles.push(p);
+        plan.leg_s.push(s);
+        current = q;
+    }
+    plan.outcome = DetourOutcome::Detour { obstacle: hit };
+    plan.min_clearance = clearance(&plan.configurations);
+    Ok(plan)
+}

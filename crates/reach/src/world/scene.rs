@@ -1,0 +1,361 @@
+//! Scene description: obstacles and the tool's allowed zone, parsed from TOML.
+
+use nalgebra::{Matrix3, Vector3};
+use serde::{Deserialize, Serialize};
+
+use super::{Shape, WorldError};
+use crate::model::{AngleUnit, LengthUnit};
+
+/// Whether an obstacle touched by a link (clearance within [`crate::tolerance::CONTACT`] of
+/// zero) counts as a collision.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Touching {
+    /// Obstacles are closed sets: touching is a collision (the default; the safe reading).
+    #[default]
+    Closed,
+    /// Obstacles are open sets: touching is allowed, only penetration collides.
+    Open,
+}
+
+/// A named obstacle (forbidden zone).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Obstacle {
+    /// Name from the file (or `obstacle{i}`).
+    pub name: String,
+    /// The solid, SI units.
+    pub shape: Shape,
+}
+
+/// Obstacles, the tool's allowed zone and the touching policy.
+///
+/// # File format (TOML)
+/// ```toml
+/// length_unit = "mm"          # "m" or "mm"
+/// angle_unit = "deg"          # "deg" or "rad" (for `rpy`)
+/// touching = "closed"         # or "open" (optional, default closed)
+///
+/// [[obstacles]]
+/// name = "ceiling"
+/// shape = "halfspace"         # the solid {p : n·(p − point) ≤ 0}
+/// point = [0, 0, 1200]
+/// outward_normal = [0, 0, -1] # points to the free side
+///
+/// [[tool_zone]]               # the tool point must be strictly inside every entry
+/// name = "x > 500"
+/// shape = "halfspace"
+/// point = [500, 0, 0]
+/// outward_normal = [-1, 0, 0]
+/// ```
+/// Shapes and their fields: `point` (`at`), `sphere` (`center`, `radius`), `aabb` (`min`,
+/// `max`), `box` (`center`, `half_extents`, optional `rpy`), `capsule` (`a`, `b`, `radius`),
+/// `halfspace` (`point`, `outward_normal`), `rectangle` (`center`, `half_extents = [hx, hy]`,
+/// optional `rpy`; the rectangle lies in its local x–y plane).
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct Scene {
+    /// Forbidden zones.
+    pub obstacles: Vec<Obstacle>,
+    /// The tool point must lie strictly inside each of these (their intersection); empty
+    /// means anywhere.
+    pub tool_zone: Vec<Obstacle>,
+    /// Touching policy for obstacles.
+    pub touching: Touching,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneFile {
+    length_unit: LengthUnit,
+    #[serde(default = "default_angle")]
+    angle_unit: AngleUnit,
+    #[serde(default)]
+    touching: Touching,
+    #[serde(default)]
+    obstacles: Vec<ShapeField>,
+    #[serde(default)]
+    tool_zone: Vec<ShapeField>,
+}
+
+fn default_angle() -> AngleUnit {
+    AngleUnit::Degree
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct ShapeField {
+    name: Option<String>,
+    shape: String,
+    at: Option<[f64; 3]>,
+    center: Option<[f64; 3]>,
+    radius: Option<f64>,
+    min: Option<[f64; 3]>,
+    max: Option<[f64; 3]>,
+    half_extents: Option<Vec<f64>>,
+    rpy: Option<[f64; 3]>,
+    a: Option<[f64; 3]>,
+    b: Option<[f64; 3]>,
+    point: Option<[f64; 3]>,
+    outward_normal: Option<[f64; 3]>,
+}
+
+impl ShapeField {
+    fn present(&self) -> Vec<&'static str> {
+        let mut v = Vec::new();
+        let fields: [(&'static str, bool); 11] = [
+            ("at", self.at.is_some()),
+            ("center", self.center.is_some()),
+            ("radius", self.radius.is_some()),
+            ("min", self.min.is_some()),
+            ("max", self.max.is_some()),
+            ("half_extents", self.half_extents.is_some()),
+            ("rpy", self.rpy.is_some()),
+            ("a", self.a.is_some()),
+            ("b", self.b.is_some()),
+            ("point", self.point.is_some()),
+            ("outward_normal", self.outward_normal.is_some()),
+        ];
+        for (name, p) in fields {
+            if p {
+                v.push(name);
+            }
+        }
+        v
+    }
+}
+
+fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let column = before.rfind('\n').map_or(before.chars().count(), |nl| before[nl + 1..].chars().count()) + 1;
+    (line, column)
+}
+
+impl Scene {
+    /// An empty scene (no obstacle, tool anywhere, closed obstacles).
+    #[must_use]
+    pub fn new() -> Self {
+        Scene::default()
+    }
+
+    /// Parses a TOML scene (format in the type's documentation).
+    ///
+    /// # Errors
+    /// [`WorldError::Parse`] with line and column for syntax errors, unknown fields and wrong
+    /// types; [`WorldError::Shape`] naming the shape for an unknown kind, a missing or foreign
+    /// field, NaN/infinity, a radius ≤ 0, an inverted or flat box, a zero normal, or a
+    /// rotation that is not finite.
+    pub fn from_toml_str(text: &str) -> Result<Scene, WorldError> {
+        let file: SceneFile = toml::from_str(text).map_err(|e| {
+            let (line, column) = e.span().map_or((1, 1), |s| line_column(text, s.start));
+            WorldError::Parse { line, column, message: e.message().trim().to_string() }
+        })?;
+        let (ls, an) = (file.length_unit.to_si(), file.angle_unit.to_si());
+        let mut scene = Scene { touching: file.touching, ..Scene::default() };
+        for (i, f) in file.obstacles.into_iter().enumerate() {
+            let name = f.name.clone().unwrap_or_else(|| format!("obstacle{}", i + 1));
+            let shape = build_shape("obstacle", &name, &f, ls, an)?;
+            scene.obstacles.push(Obstacle { name, shape });
+        }
+        for (i, f) in file.tool_zone.into_iter().enumerate() {
+            let name = f.name.clone().unwrap_or_else(|| format!("zone{}", i + 1));
+            let shape = build_shape("tool zone", &name, &f, ls, an)?;
+            if matches!(shape, Shape::Point { .. }) {
+                return Err(WorldError::Shape {
+                    what: "tool zone",
+                    name,
+                    shape: "point".into(),
+                    message: "a point has no inside; use a solid shape".into(),
+                });
+            }
+            scene.tool_zone.push(Obstacle { name, shape });
+        }
+        Ok(scene)
+    }
+
+    /// Adds an obstacle after checking its numbers (builder style).
+    ///
+    /// # Errors
+    /// [`WorldError::Shape`] for NaN/infinity or a degenerate shape.
+    pub fn with_obstacle(mut self, name: impl Into<String>, shape: Shape) -> Result<Self, WorldError> {
+        let name = name.into();
+        validate("obstacle", &name, &shape)?;
+        self.obstacles.push(Obstacle { name, shape });
+        Ok(self)
+    }
+
+    /// Adds a tool-zone shape after checking its numbers (builder style).
+    ///
+    /// # Errors
+    /// [`WorldError::Shape`] for NaN/infinity or a degenerate shape.
+    pub fn with_tool_zone(mut self, name: impl Into<String>, shape: Shape) -> Result<Self, WorldError> {
+        let name = name.into();
+        validate("tool zone", &name, &shape)?;
+        self.tool_zone.push(Obstacle { name, shape });
+        Ok(self)
+    }
+}
+
+fn shape_error(what: &'static str, name: &str, shape: &str, message: impl Into<String>) -> WorldError {
+    WorldError::Shape { what, name: name.to_string(), shape: shape.to_string(), message: message.into() }
+}
+
+fn build_shape(what: &'static str, name: &str, f: &ShapeField, ls: f64, an: f64) -> Result<Shape, WorldError> {
+    let kind = f.shape.as_str();
+    let (required, optional): (&[&str], &[&str]) = match kind {
+        "point" => (&["at"], &[]),
+        "sphere" => (&["center", "radius"], &[]),
+        "aabb" => (&["min", "max"], &[]),
+        "box" => (&["center", "half_extents"], &["rpy"]),
+        "capsule" => (&["a", "b", "radius"], &[]),
+        "halfspace" => (&["point", "outward_normal"], &[]),
+        "rectangle" => (&["center", "half_extents"], &["rpy"]),
+        other => {
+            return Err(shape_error(
+                what,
+                name,
+                other,
+                "unknown shape (expected point, sphere, aabb, box, capsule, halfspace or rectangle)",
+            ));
+        }
+    };
+    let present = f.present();
+    for r in required {
+        if !present.contains(r) {
+            return Err(shape_error(what, name, kind, format!("missing field `{r}`")));
+        }
+    }
+    for p in &present {
+        if !required.contains(p) && !optional.contains(p) {
+            return Err(shape_error(what, name, kind, format!("field `{p}` does not apply to this shape")));
+        }
+    }
+    let v = |x: Option<[f64; 3]>| {
+        let x = x.unwrap_or_default();
+        Vector3::new(x[0] * ls, x[1] * ls, x[2] * ls)
+    };
+    let rotation = |rpy: Option<[f64; 3]>| {
+        let r = rpy.unwrap_or_default();
+        nalgebra::Rotation3::from_euler_angles(r[0] * an, r[1] * an, r[2] * an).into_inner()
+    };
+    let half = |n: usize| -> Result<Vector3<f64>, WorldError> {
+        let h = f.half_extents.as_deref().unwrap_or_default();
+        if h.len() != n {
+            return Err(shape_error(what, name, kind, format!("`half_extents` needs {n} values, got {}", h.len())));
+        }
+        Ok(Vector3::new(h[0] * ls, h[1] * ls, if n == 3 { h[2] * ls } else { 0.0 }))
+    };
+    // Check raw numbers for NaN first so that the message names the field.
+    for (field, vals) in [
+        ("at", f.at),
+        ("center", f.center),
+        ("min", f.min),
+        ("max", f.max),
+        ("rpy", f.rpy),
+        ("a", f.a),
+        ("b", f.b),
+        ("point", f.point),
+        ("outward_normal", f.outward_normal),
+    ] {
+        if let Some(vals) = vals
+            && vals.iter().any(|x| !x.is_finite())
+        {
+            return Err(shape_error(what, name, kind, format!("`{field}` must be finite numbers, got {vals:?}")));
+        }
+    }
+    if let Some(h) = &f.half_extents
+        && h.iter().any(|x| !x.is_finite())
+    {
+        return Err(shape_error(what, name, kind, format!("`half_extents` must be finite numbers, got {h:?}")));
+    }
+    if let Some(r) = f.radius
+        && !r.is_finite()
+    {
+        return Err(shape_error(what, name, kind, format!("`radius` must be a finite number, got {r}")));
+    }
+    let shape = match kind {
+        "point" => Shape::Point { at: v(f.at) },
+        "sphere" => Shape::Sphere { center: v(f.center), radius: f.radius.unwrap_or_default() * ls },
+        "aabb" => {
+            let (lo, hi) = (v(f.min), v(f.max));
+            for i in 0..3 {
+                if lo[i] >= hi[i] {
+                    return Err(shape_error(
+                        what,
+                        name,
+                        kind,
+                        format!(
+                            "`min` must be below `max` on every axis; axis {} has {} ≥ {}",
+                            ["x", "y", "z"][i],
+                            f.min.unwrap_or_default()[i],
+                            f.max.unwrap_or_default()[i]
+                        ),
+                    ));
+                }
+            }
+            Shape::Box { center: (lo + hi) * 0.5, half_extents: (hi - lo) * 0.5, rotation: Matrix3::identity() }
+        }
+        "box" => Shape::Box { center: v(f.center), half_extents: half(3)?, rotation: rotation(f.rpy) },
+        "rectangle" => Shape::Box { center: v(f.center), half_extents: half(2)?, rotation: rotation(f.rpy) },
+        "capsule" => Shape::Capsule { a: v(f.a), b: v(f.b), radius: f.radius.unwrap_or_default() * ls },
+        _ => {
+            let n = Vector3::from(f.outward_normal.unwrap_or_default());
+            let norm = n.norm();
+            if norm < crate::tolerance::AXIS_MIN_NORM {
+                return Err(shape_error(what, name, kind, "`outward_normal` must not be zero"));
+            }
+            let n = n / norm;
+            Shape::HalfSpace { normal: n, offset: n.dot(&v(f.point)) }
+        }
+    };
+    validate(what, name, &shape)?;
+    Ok(shape)
+}
+
+/// Checks a shape's numbers (also for shapes built in code).
+fn validate(what: &'static str, name: &str, shape: &Shape) -> Result<(), WorldError> {
+    let kind = shape.kind();
+    let finite3 = |v: &Vector3<f64>| v.iter().all(|x| x.is_finite());
+    let err = |m: String| Err(shape_error(what, name, kind, m));
+    match shape {
+        Shape::Point { at } if !finite3(at) => err(format!("`at` must be finite, got {at:?}")),
+        Shape::Sphere { center, radius } | Shape::Capsule { a: center, radius, .. } => {
+            if !finite3(center) {
+                err("coordinates must be finite".into())
+            } else if !(radius.is_finite() && *radius > 0.0) {
+                err(format!("`radius` must be a positive number, got {radius} m"))
+            } else if let Shape::Capsule { b, .. } = shape
+                && !finite3(b)
+            {
+                err("`b` must be finite".into())
+            } else {
+                Ok(())
+            }
+        }
+        Shape::Box { center, half_extents, rotation } => {
+            if !finite3(center) || !rotation.iter().all(|x| x.is_finite()) {
+                return err("centre and rotation must be finite".into());
+            }
+            let flat_ok = half_extents.z == 0.0 && half_extents.x > 0.0 && half_extents.y > 0.0;
+            if !(half_extents.iter().all(|h| h.is_finite() && *h > 0.0) || flat_ok) {
+                return err(format!(
+                    "`half_extents` must be positive (a flat shape is a `rectangle` with two values), got {:?} m",
+                    half_extents.as_slice()
+                ));
+            }
+            if (rotation.transpose() * rotation - Matrix3::identity()).amax()
+                > crate::tolerance::ROTATION_ORTHONORMALITY
+            {
+                return err("`rotation` is not orthonormal".into());
+            }
+            Ok(())
+        }
+        Shape::HalfSpace { normal, offset } => {
+            if !finite3(normal) || !offset.is_finite() || (normal.norm() - 1.0).abs() > 1e-9 {
+                err("the normal must be a finite unit vector and the offset finite".into())
+            } else {
+                Ok(())
+            }
+        }
+        _ => Ok(()),
+    }
+}

@@ -1,0 +1,128 @@
+//! Seed 004 (Pritykin & Nefedov 2016): the configuration-space grid of the Varan arm with
+//! q1 = 0 (notes 004 §4 A) and the reference counts of notes 004 §5.4.
+//!
+//! Conventions (notes 004 §5.4): 15° grid over the limit box, both limits included
+//! (9 × 17 × 17 = 2601 nodes); the task zone θ (x_o4 > 500 mm, z_o4 > 0) is strict with a
+//! 1e-6 mm tolerance (`tolerance::CONTACT`); links are bare segments; obstacles are closed
+//! sets (touching collides) unless the scene says `touching = "open"`.
+//! The paper prints no N values (they are only in its figures), so these are the notes'
+//! derived regression counts under the reconstructed kinematics of notes 004 §2.2.
+
+use reach::model::presets;
+use reach::world::cspace::{GridSpec, NodeClass, classify_grid};
+use reach::world::{Scene, Touching};
+
+fn grid(scene: &Scene) -> reach::world::cspace::CspaceGrid {
+    let varan = presets::get("varan4").unwrap();
+    classify_grid(&varan, scene, &GridSpec::new(4, 15f64.to_radians()).fix(0, 0.0)).unwrap()
+}
+
+fn layers(g: &reach::world::cspace::CspaceGrid) -> Vec<usize> {
+    g.counts_by(1).iter().map(|c| c.allowed).collect()
+}
+
+fn scene(text: &str) -> Scene {
+    Scene::from_toml_str(text).unwrap()
+}
+
+#[test]
+fn no_obstacle_1041() {
+    let g = grid(&scene(include_str!("../../../examples/seed004_free.toml")));
+    assert_eq!(g.counts.nodes, 2601);
+    assert_eq!(g.counts.allowed, 1041);
+    assert_eq!(layers(&g), [121, 142, 154, 160, 152, 132, 98, 58, 24]);
+    // The grid lies inside the limit box; notes 004 §2.2: no self-intersection inside θ.
+    assert_eq!(g.counts.outside_limits, 0);
+    assert_eq!(g.counts.self_collision, 0);
+    assert_eq!(g.counts.obstacle_collision, 0);
+    assert_eq!(g.counts.outside_zone, 2601 - 1041);
+}
+
+#[test]
+fn theta_boundary_nodes_are_excluded() {
+    // Notes 004 §4 A step 4: (0, 0, 0) has z_o4 = 0 exactly, (30, −120, 120) has z_o4 = 0
+    // analytically (−1.4e−13 mm in floating point): both are outside the strict zone θ.
+    let g = grid(&scene(include_str!("../../../examples/seed004_free.toml")));
+    let index = |q2: f64, q3: f64, q4: f64| {
+        let i = |v: f64, lo: f64| ((v - lo) / 15.0).round() as usize;
+        (i(q2, 0.0) * 17 + i(q3, -120.0)) * 17 + i(q4, -120.0)
+    };
+    assert_eq!(g.classes[index(0.0, 0.0, 0.0)], NodeClass::OutsideZone);
+    assert_eq!(g.classes[index(30.0, -120.0, 120.0)], NodeClass::OutsideZone);
+    // (30, 0, 0): O4 = (1818.653, 1050) mm, well inside.
+    assert_eq!(g.classes[index(30.0, 0.0, 0.0)], NodeClass::Allowed);
+    let q = g.node(index(30.0, -120.0, 120.0));
+    assert!((q[1].to_degrees() - 30.0).abs() < 1e-12 && (q[3].to_degrees() - 120.0).abs() < 1e-12);
+}
+
+#[test]
+fn ceiling_1200_gives_635_closed_and_636_open() {
+    let mut s = scene(include_str!("../../../examples/seed004_ceiling.toml"));
+    let g = grid(&s);
+    assert_eq!(g.counts.allowed, 635);
+    assert_eq!(layers(&g), [120, 111, 103, 83, 72, 61, 43, 26, 16]);
+    // (q2, q3, q4) = (0, 90, 0): O4 = (900, 1200) touches the ceiling (notes 004 §8).
+    s.touching = Touching::Open;
+    let g = grid(&s);
+    assert_eq!(g.counts.allowed, 636);
+    assert_eq!(layers(&g)[0], 121);
+}
+
+#[test]
+fn ceiling_800_touching_layer() {
+    // Notes 004 §5.4: z ≥ 800 gives 257 (closed) / 264 (open); the q2 = 30 layer is 44 / 51.
+    let text = include_str!("../../../examples/seed004_ceiling.toml").replace("[0, 0, 1200]", "[0, 0, 800]");
+    let mut s = scene(&text);
+    let g = grid(&s);
+    assert_eq!(g.counts.allowed, 257);
+    assert_eq!(layers(&g), [70, 50, 44, 45, 44, 0, 0, 0, 4]);
+    s.touching = Touching::Open;
+    let g = grid(&s);
+    assert_eq!(g.counts.allowed, 264);
+    assert_eq!(layers(&g)[2], 51);
+}
+
+#[test]
+fn two_planes_769_and_the_other_reading_782() {
+    let s = scene(include_str!("../../../examples/seed004_two_planes.toml"));
+    let g = grid(&s);
+    assert_eq!(g.counts.allowed, 769);
+    assert_eq!(layers(&g), [120, 121, 113, 95, 86, 82, 75, 53, 24]);
+    let mut open = s.clone();
+    open.touching = Touching::Open;
+    assert_eq!(grid(&open).counts.allowed, 773);
+    // The other side of Δ: the quadrant {z ≥ 1200, x ≤ 800} → 782 (notes 004 §5.4).
+    let text = include_str!("../../../examples/seed004_two_planes.toml")
+        .replace("min = [800, -10000, 1200]", "min = [-10000, -10000, 1200]")
+        .replace("max = [10000, 10000, 10000]", "max = [800, 10000, 10000]");
+    let g = grid(&scene(&text));
+    assert_eq!(g.counts.allowed, 782);
+    assert_eq!(layers(&g), [121, 131, 134, 117, 105, 84, 48, 26, 16]);
+}
+
+#[test]
+fn rectangle_fig_2c_reading() {
+    // Notes 004 §5.4: the rectangle [500, 900] × [800, 850] mm gives 790 (closed) / 791 (open)
+    // with 102 nodes in the q2 = 60 layer. Written as a planar shape would have no
+    // thickness; the zone is a solid 2-D rectangle, so it is an (x, z) box thick in y.
+    let text = include_str!("../../../examples/seed004_two_planes.toml")
+        .replace("min = [800, -10000, 1200]", "min = [500, -1000, 800]")
+        .replace("max = [10000, 10000, 10000]", "max = [900, 1000, 850]");
+    let mut s = scene(&text);
+    let g = grid(&s);
+    assert_eq!(g.counts.allowed, 790);
+    assert_eq!(layers(&g)[4], 102);
+    s.touching = Touching::Open;
+    assert_eq!(grid(&s).counts.allowed, 791);
+}
+
+#[test]
+fn union_reading_of_theta_is_not_what_the_counts_use() {
+    // Notes 004 D3: as a union, {x > 500} ∪ {z > 0} would admit 2523 nodes. With one zone
+    // entry only (z > 0) the count must be at least the intersection's 1041 and at most 2523.
+    let text = include_str!("../../../examples/seed004_free.toml");
+    let only_z = &text[..text.find("[[tool_zone]]\nname = \"x > 500\"").unwrap()].to_string();
+    let z_part = &text[text.find("[[tool_zone]]\nname = \"z > 0\"").unwrap()..];
+    let g = grid(&scene(&format!("{only_z}{z_part}")));
+    assert!(g.counts.allowed > 1041 && g.counts.allowed <= 2523, "{}", g.counts.allowed);
+}
