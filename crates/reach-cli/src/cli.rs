@@ -9,10 +9,10 @@ use crate::commands::jacobian::JacobianArgs;
 use crate::commands::robot_show::RobotCommand;
 use crate::commands::robots::RobotsArgs;
 
-const ABOUT: &str = "Robot manipulator kinematics: robots, forward kinematics, Jacobians.";
+const ABOUT: &str = "Plan and check robot-manipulator motions: models, forward and inverse kinematics, obstacles, configuration space, stepper drives.";
 
 const LONG_ABOUT: &str = "\
-Robot manipulator kinematics: robots, forward kinematics, Jacobians.
+Plan and check robot-manipulator motions: models, forward and inverse kinematics, obstacles, configuration space, stepper drives.
 
 A ROBOT is a preset name (see `reach robots`) or a path to a robot file: reach's TOML \
 format (.toml) or URDF (.urdf; choose the chain with --base LINK and --tip LINK).
@@ -212,4 +212,29 @@ pub enum Command {
             reach cspace varan4 examples/seed004_free.toml --fix q1=0 --step 1 --json"
     )]
     Cspace(crate::commands::cspace::CspaceArgs),
+
+    /// One motion between two joint vectors or two tool poses, in joint or tool space:
+    /// samples (t, q, q̇, tool pose), intervals, events (K1–K14), J1, J2, feasibility.
+    #[command(
+        long_about = "One motion between two joint vectors (--from/--to, degrees) or two tool \
+            poses (--from-pose/--to-pose x,y,z,roll,pitch,yaw in metres and degrees; IK at both \
+            ends, the solution with the least weighted joint change). --space joint interpolates \
+            q(t) = q0 + λ(τ)(q1 − q0); --space tool moves the tool point on a straight line and \
+            turns it about one fixed axis, tracked through IK with branch continuity (intervals \
+            between singular positions, events K1–K14). J1 = Σ wᵢ|Δqᵢ|, J2 = Σ wᵢ·(total \
+            variation of qᵢ). energy_j is null: dynamics (link masses) are not built yet.\n\n\
+            Exit status 3 when the motion breaks a joint range or speed limit (the report is \
+            printed, the reason goes to stderr); 2 for bad input.",
+        after_help = "Examples:\n  \
+            reach move spbu6 --from 0,0,0,0,0,0 --to 90,0,0,90,0,0 --duration 10 --dt 0.1\n  \
+            reach move spbu6 --from 0,0,0,0,0,0 --to 90,0,0,90,0,0 --space tool --duration 10 --json\n  \
+            reach move ur5 --from 0,-90,90,0,90,0 --to 45,-60,60,0,90,0 --profile quintic --duration 2 --csv m.csv"
+    )]
+    Move(Box<crate::commands::move_cmd::MoveArgs>),
+
+    /// Run the motions of a task file (docs/task-format.md) and compare them.
+    #[command(after_help = "Examples:\n  \
+            reach plan examples/seed001_tool_vs_joint.toml\n  \
+            reach plan examples/seed003_welding.toml --json")]
+    Plan(crate::commands::move_cmd::PlanArgs),
 }

@@ -54,6 +54,8 @@ fn run(command: &Command, out: &mut dyn Write) -> Result<(), CliError> {
         Command::Check(args) => commands::check::run(args, out),
         Command::Avoid(args) => commands::avoid::run(args, out),
         Command::Cspace(args) => commands::cspace::run(args, out),
+        Command::Move(args) => commands::move_cmd::run(args, out),
+        Command::Plan(args) => commands::move_cmd::run_plan(args, out),
     }
 }
 

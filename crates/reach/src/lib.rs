@@ -35,6 +35,7 @@
 //! * [`model`] — `Robot`, joints, limits, TOML and URDF parsing, presets.
 //! * [`kinematics`] — forward kinematics, Jacobian, manipulability.
 //! * [`ik`] — inverse kinematics: closed forms with all branches, numeric solver.
+//! * [`decide`] — criteria, multi-criteria choice, task sequencing.
 //! * [`motion`] — time profiles, joint/tool-space motion, path tracking, events.
 //! * [`effort`] — J1/J2/S functionals, dynamics and energy.
 //! * [`world`] — scenes, collision, detours, configuration space.
@@ -56,6 +57,7 @@
 #![warn(missing_docs)]
 
 pub mod angle;
+pub mod decide;
 pub mod drive;
 pub mod effort;
 pub mod ik;

@@ -53,7 +53,7 @@ pub struct DriveArgs {
     pub robot: RobotArgs,
 
     /// Motion file (JSON): {"samples": [{"t_s": 0.0, "q_deg": [...]}, ...]} with revolute
-    /// joints in degrees and prismatic joints in metres (what `reach motion` prints).
+    /// joints in degrees and prismatic joints in metres (what `reach move --json` prints).
     #[arg(value_name = "MOTION", conflicts_with_all = ["from", "to"])]
     pub motion: Option<PathBuf>,
 
@@ -87,8 +87,9 @@ pub struct DriveArgs {
     pub output: Option<PathBuf>,
 }
 
+/// The part of a motion file `reach drive` reads; other fields (as in the full
+/// `reach move --json` report) are ignored.
 #[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
 struct MotionFile {
     samples: Vec<MotionSample>,
 }

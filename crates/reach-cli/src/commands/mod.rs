@@ -10,5 +10,6 @@ pub mod drive;
 pub mod fk;
 pub mod ik;
 pub mod jacobian;
+pub mod move_cmd;
 pub mod robot_show;
 pub mod robots;

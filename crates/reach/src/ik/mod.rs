@@ -29,7 +29,7 @@ pub mod two_link_wrist;
 pub mod yaw_planar3;
 pub mod yaw_two_link;
 
-pub use solution::{Branch, IkFailure, IkSolution, IkSolutions, LimitViolation, SingularityKind};
+pub use solution::{Branch, IkFailure, IkSolution, IkSolutions, Label, LimitViolation, SingularityKind};
 pub(crate) use solution::{Candidate, chain_target, finish};
 
 use nalgebra::{Isometry3, Point3};

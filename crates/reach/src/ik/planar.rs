@@ -35,10 +35,10 @@ use std::f64::consts::{PI, TAU};
 
 use nalgebra::{IsometryMatrix3, Point3, Rotation3, Vector3};
 
+use super::solution::fit_revolute;
 use super::{
     Branch, Candidate, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, finish,
 };
-use crate::angle::fit_into_limits;
 use crate::kinematics::KinematicsError;
 use crate::kinematics::chain::ChainLink;
 use crate::model::seed000::PlanarPaperAngles;
@@ -188,7 +188,11 @@ pub(crate) enum TwoLink {
 /// cosines), `None` when the sides violate the triangle inequality by more than [`BOUNDARY`]
 /// (relative). Evaluated as `atan2(4·area, a² + b² − c²)` with Kahan's stable Heron formula,
 /// so that angles near 0 and π keep full precision (`acos` loses half the digits there).
-pub(crate) fn triangle_angle(a: f64, b: f64, c: f64) -> Option<f64> {
+///
+/// The plain single-angle form, kept as the reference that [`triangle_angle_pair`] (used by
+/// the scan) must reproduce bit for bit.
+#[cfg(test)]
+fn triangle_angle(a: f64, b: f64, c: f64) -> Option<f64> {
     let slack = BOUNDARY * (a + b + c);
     if c > a + b + slack || c < (a - b).abs() - slack {
         return None;
@@ -199,6 +203,33 @@ pub(crate) fn triangle_angle(a: f64, b: f64, c: f64) -> Option<f64> {
     // Kahan: 16·area² = (x+(y+z))(z−(x−y))(z+(x−y))(x+(y−z)), x ≥ y ≥ z.
     let f = (x + (y + z)) * (z - (x - y)).max(0.0) * (z + (x - y)) * (x + (y - z));
     Some(f.max(0.0).sqrt().atan2(a * a + b * b - c * c))
+}
+
+/// `4·area` of the triangle with sides `a, b, c` (Kahan's stable Heron formula; 0 for a
+/// degenerate one). Symmetric in its arguments, bit for bit (the sides are sorted first).
+fn four_area(a: f64, b: f64, c: f64) -> f64 {
+    // The three sides in decreasing order (a sorting network: no slice sort per call).
+    let (hi, lo) = if a >= b { (a, b) } else { (b, a) };
+    let (x, rest) = if hi >= c { (hi, c) } else { (c, hi) };
+    let (y, z) = if lo >= rest { (lo, rest) } else { (rest, lo) };
+    // Kahan: 16·area² = (x+(y+z))(z−(x−y))(z+(x−y))(x+(y−z)), x ≥ y ≥ z.
+    let f = (x + (y + z)) * (z - (x - y)).max(0.0) * (z + (x - y)) * (x + (y - z));
+    f.max(0.0).sqrt()
+}
+
+/// `(triangle_angle(c, b, a), triangle_angle(a, b, c))`: the angles at the two ends of side `b`
+/// (opposite `a` and `c`), both or neither, sharing one area evaluation.
+fn triangle_angle_pair(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
+    let slack_cba = BOUNDARY * (c + b + a);
+    if a > c + b + slack_cba || a < (c - b).abs() - slack_cba {
+        return None;
+    }
+    let slack_abc = BOUNDARY * (a + b + c);
+    if c > a + b + slack_abc || c < (a - b).abs() - slack_abc {
+        return None;
+    }
+    let area = four_area(a, b, c);
+    Some((area.atan2(c * c + b * b - a * a), area.atan2(a * a + b * b - c * c)))
 }
 
 /// Planar two-link IK: links `l1, l2` from the origin to the point `w`. `seed_phi1` is the
@@ -506,15 +537,22 @@ impl PlanarRedundant {
     /// wrapped (or moved by whole turns) into the joint ranges when possible.
     #[must_use]
     pub fn paper_row(&self, target_xy: [f64; 2], alpha: f64) -> Option<ScanRow> {
-        let [l1, l2, l3] = self.lengths();
         let [x, y] = target_xy;
-        let r2 = x * x + y * y;
-        let r = r2.sqrt();
+        let r = (x * x + y * y).sqrt();
+        // Eqs. (7)–(8), corrected (notes 000 §6.1 D1): γ2 = atan2(y, x), not atan(x/y).
+        self.paper_row_at(r, y.atan2(x), alpha)
+    }
+
+    /// [`Self::paper_row`] with the target's per-scan quantities precomputed: its distance `r`
+    /// from the base and its direction `γ2 = atan2(y, x)`.
+    fn paper_row_at(&self, r: f64, gamma2: f64, alpha: f64) -> Option<ScanRow> {
+        let [l1, l2, l3] = self.lengths();
         if !(alpha.is_finite() && r > IK_AXIS_DISTANCE) || l3 <= STRUCTURE_LENGTH {
             return None;
         }
+        let (sin_alpha, cos_alpha) = alpha.sin_cos();
         // Eq. (4): KB² in triangle ABK (AB = l2, AK = l3, angle α at A).
-        let kb2 = l2 * l2 + l3 * l3 - 2.0 * l2 * l3 * alpha.cos();
+        let kb2 = l2 * l2 + l3 * l3 - 2.0 * l2 * l3 * cos_alpha;
         let kb = kb2.sqrt();
         if kb <= IK_AXIS_DISTANCE {
             return None;
@@ -522,15 +560,14 @@ impl PlanarRedundant {
         // The law-of-cosines angles are evaluated in a stable form (`triangle_angle`): the
         // same values as the printed acos expressions, without their loss of precision near
         // 0° and 180° (β1 → 180° at α_min, β2 → 0° at α = 180°).
-        // Eqs. (5)–(6): γ1 = angle KOB in triangle OBK (sides OK = r, OB = l1, KB).
-        let gamma1 = triangle_angle(r, l1, kb)?;
-        // Eqs. (7)–(8), corrected (notes 000 §6.1 D1): γ2 = atan2(y, x), not atan(x/y).
-        let gamma = gamma1 + y.atan2(x);
-        // Eqs. (11)–(12): β1 = angle OBK (sides BK, BO = l1, opposite OK = r).
-        let beta1 = triangle_angle(kb, l1, r)?;
+        // Eqs. (5)–(6): γ1 = angle KOB in triangle OBK (sides OK = r, OB = l1, KB), i.e.
+        // triangle_angle(r, l1, kb); eqs. (11)–(12): β1 = angle OBK (sides BK, BO = l1,
+        // opposite OK = r), i.e. triangle_angle(kb, l1, r). One call gives both.
+        let (gamma1, beta1) = triangle_angle_pair(kb, l1, r)?;
+        let gamma = gamma1 + gamma2;
         // Eq. (13): β2 = angle ABK; (180° − α)/2 for l2 = l3, in general
         // atan2(l3·sin α, l2 − l3·cos α).
-        let beta2 = (l3 * alpha.sin()).atan2(l2 - l3 * alpha.cos());
+        let beta2 = (l3 * sin_alpha).atan2(l2 - l3 * cos_alpha);
         let mut beta = beta1 + beta2;
         if beta > PI * (1.0 + BOUNDARY) {
             return None;
@@ -544,7 +581,7 @@ impl PlanarRedundant {
         let mut q = [0.0; 3];
         let mut within_limits = true;
         for i in 0..3 {
-            q[i] = fit_into_limits(raw[i], &self.limits[i], LIMIT_SLACK);
+            q[i] = fit_revolute(raw[i], &self.limits[i]);
             within_limits &= self.limits[i].contains(q[i], LIMIT_SLACK);
         }
         Some(ScanRow { paper, q, within_limits })
@@ -616,9 +653,12 @@ impl PlanarRedundant {
         }
         let count = count as usize;
         let mut rows = Vec::with_capacity(count);
+        let [x, y] = target_xy;
+        // The same r and γ2 as `paper_row` computes for each row (r there is not `hypot`).
+        let (r_row, gamma2) = ((x * x + y * y).sqrt(), y.atan2(x));
         for i in 0..count {
             // α_i = α_min + i·Δα (no accumulated sum; notes 000 §6).
-            if let Some(row) = self.paper_row(target_xy, alpha_min + (i as f64) * step) {
+            if let Some(row) = self.paper_row_at(r_row, gamma2, alpha_min + (i as f64) * step) {
                 rows.push(row);
             }
         }
@@ -709,6 +749,34 @@ impl IkSolver for PlanarRedundant {
 mod tests {
     use super::*;
     use crate::model::presets;
+
+    #[test]
+    fn triangle_angle_pair_is_two_triangle_angles_bit_for_bit() {
+        // A deterministic spread of side triples: generic, isoceles, degenerate, invalid.
+        let mut sides = vec![[1.0, 1.0, 1.0], [1.0, 1.0, 2.0], [1.0, 2.0, 3.5], [0.5, 1.0, 1.5], [2.0, 1.0, 1.0]];
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        for _ in 0..2000 {
+            let mut side = || {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                0.01 + 3.0 * (state >> 11) as f64 / (1u64 << 53) as f64
+            };
+            sides.push([side(), side(), side()]);
+        }
+        let mut valid = 0;
+        for [a, b, c] in sides {
+            let expected = triangle_angle(c, b, a).zip(triangle_angle(a, b, c));
+            let got = triangle_angle_pair(a, b, c);
+            assert_eq!(
+                got.map(|(x, y)| (x.to_bits(), y.to_bits())),
+                expected.map(|(x, y)| (x.to_bits(), y.to_bits())),
+                "sides {a} {b} {c}"
+            );
+            valid += usize::from(got.is_some());
+        }
+        assert!(valid > 500 && valid < 2000, "{valid} valid triangles: the sample misses a case");
+    }
 
     fn arm() -> (Robot, PlanarRedundant) {
         let robot = presets::get("planar3").unwrap();

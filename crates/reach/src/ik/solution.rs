@@ -1,8 +1,9 @@
 //! The one solution type shared by every IK solver.
 
+use std::borrow::Cow;
 use std::fmt;
 
-use nalgebra::{Isometry3, Point3};
+use nalgebra::{Isometry3, Point3, Rotation3, Vector3};
 use serde::Serialize;
 
 use crate::angle::fit_into_limits;
@@ -39,22 +40,67 @@ impl SingularityKind {
     }
 }
 
+/// One key or value of a [`Branch`] label: a static string (no allocation — the closed-form
+/// solvers' fixed names) or an owned one (labels built at run time).
+#[derive(Clone, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[serde(transparent)]
+pub struct Label(Cow<'static, str>);
+
+impl Label {
+    /// The text.
+    #[must_use]
+    pub fn as_str(&self) -> &str {
+        &self.0
+    }
+}
+
+impl std::ops::Deref for Label {
+    type Target = str;
+    fn deref(&self) -> &str {
+        &self.0
+    }
+}
+
+impl From<&'static str> for Label {
+    fn from(s: &'static str) -> Self {
+        Label(Cow::Borrowed(s))
+    }
+}
+
+impl From<String> for Label {
+    fn from(s: String) -> Self {
+        Label(Cow::Owned(s))
+    }
+}
+
+impl fmt::Debug for Label {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Debug::fmt(self.as_str(), f)
+    }
+}
+
+impl fmt::Display for Label {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
 /// A readable branch label: ordered `key=value` pairs, e.g. `shoulder=left elbow=up wrist=flip`
 /// or the paper's own names such as `config=+β`.
 #[derive(Debug, Clone, PartialEq, Eq, Hash, Default, Serialize)]
-pub struct Branch(pub Vec<(String, String)>);
+pub struct Branch(pub Vec<(Label, Label)>);
 
 impl Branch {
-    /// A label from pairs.
+    /// A label from pairs (static strings are kept without copying).
     #[must_use]
-    pub fn new<K: Into<String>, V: Into<String>>(pairs: impl IntoIterator<Item = (K, V)>) -> Self {
+    pub fn new<K: Into<Label>, V: Into<Label>>(pairs: impl IntoIterator<Item = (K, V)>) -> Self {
         Branch(pairs.into_iter().map(|(k, v)| (k.into(), v.into())).collect())
     }
 
     /// The value of `key`, if present.
     #[must_use]
     pub fn get(&self, key: &str) -> Option<&str> {
-        self.0.iter().find(|(k, _)| k == key).map(|(_, v)| v.as_str())
+        self.0.iter().find(|(k, _)| k.as_str() == key).map(|(_, v)| v.as_str())
     }
 }
 
@@ -213,22 +259,62 @@ impl Candidate {
     }
 }
 
-/// Pose error of `q` against `target`: (position metres, orientation radians).
-pub(crate) fn pose_error(robot: &Robot, q: &[f64], target: &IkTarget) -> Result<(f64, f64), IkError> {
-    let t = robot.fk_matrix(q)?;
-    Ok(match target {
-        IkTarget::Pose(pose) => {
-            let dp = (t.translation.vector - pose.translation.vector).norm();
-            let r = pose.rotation.to_rotation_matrix().inverse() * t.rotation;
-            // Not `r.angle()`: its `acos((tr − 1)/2)` is NaN when rounding puts the trace above 3
-            // (an exact solution), and imprecise near 0. atan2(½‖vee(R − Rᵀ)‖, (tr − 1)/2) is neither.
-            let m = r.matrix();
-            let vee = nalgebra::Vector3::new(m[(2, 1)] - m[(1, 2)], m[(0, 2)] - m[(2, 0)], m[(1, 0)] - m[(0, 1)]);
-            let sin = 0.5 * vee.norm();
-            (dp, sin.atan2(0.5 * (m.trace() - 1.0)))
+/// [`fit_into_limits`] with a fast path: an angle already in (−π, π] is its own wrap (the
+/// `fmod` in `wrap` returns it unchanged), so when it is also within the limits it is returned
+/// without the `fmod`. Same result as `fit_into_limits(angle, limits, LIMIT_SLACK)`, bit for bit.
+#[inline]
+pub(crate) fn fit_revolute(angle: f64, limits: &crate::model::Limits) -> f64 {
+    if angle > -std::f64::consts::PI && angle <= std::f64::consts::PI && limits.contains(angle, LIMIT_SLACK) {
+        angle
+    } else {
+        fit_into_limits(angle, limits, LIMIT_SLACK)
+    }
+}
+
+/// Whether two joint values are equal within `IK_DUPLICATE` modulo whole turns
+/// (`wrap(a − b).abs() < IK_DUPLICATE`), skipping the `fmod` when the plain difference decides.
+#[inline]
+fn same_angle(a: f64, b: f64) -> bool {
+    let d = (a - b).abs();
+    // |d| < IK_DUPLICATE (< π) wraps to itself; |d| in [IK_DUPLICATE, π] also wraps to itself
+    // and fails the test; only larger differences can wrap back near 0.
+    d < IK_DUPLICATE || (d > std::f64::consts::PI && crate::angle::wrap(a - b).abs() < IK_DUPLICATE)
+}
+
+/// The target of the FK check, prepared once per solve (the target rotation as a transposed
+/// matrix instead of a quaternion converted for each candidate).
+enum Check {
+    /// Flange position and `R_targetᵀ`.
+    Pose(Vector3<f64>, Rotation3<f64>),
+    /// Tool point only.
+    Position(Point3<f64>),
+}
+
+impl Check {
+    fn new(target: &IkTarget) -> Self {
+        match target {
+            IkTarget::Pose(pose) => Check::Pose(pose.translation.vector, pose.rotation.to_rotation_matrix().inverse()),
+            IkTarget::Position(p) => Check::Position(*p),
         }
-        IkTarget::Position(p) => ((Point3::from(t.translation.vector) - p).norm(), 0.0),
-    })
+    }
+
+    /// Pose error of `q`: (position metres, orientation radians).
+    fn error(&self, robot: &Robot, q: &[f64]) -> Result<(f64, f64), IkError> {
+        let t = robot.fk_matrix(q)?;
+        Ok(match self {
+            Check::Pose(p, r_inv) => {
+                let dp = (t.translation.vector - p).norm();
+                let r = r_inv * t.rotation;
+                // Not `r.angle()`: its `acos((tr − 1)/2)` is NaN when rounding puts the trace above 3
+                // (an exact solution), and imprecise near 0. atan2(½‖vee(R − Rᵀ)‖, (tr − 1)/2) is neither.
+                let m = r.matrix();
+                let vee = Vector3::new(m[(2, 1)] - m[(1, 2)], m[(0, 2)] - m[(2, 0)], m[(1, 0)] - m[(0, 1)]);
+                let sin = 0.5 * vee.norm();
+                (dp, sin.atan2(0.5 * (m.trace() - 1.0)))
+            }
+            Check::Position(p) => ((Point3::from(t.translation.vector) - p).norm(), 0.0),
+        })
+    }
 }
 
 /// Verifies, normalises and de-duplicates candidates, and states the failure reason.
@@ -259,6 +345,7 @@ pub(crate) fn finish_within(
     if_empty: IkFailure,
     (position_tolerance, orientation_tolerance): (f64, f64),
 ) -> Result<IkSolutions, IkError> {
+    let check = Check::new(target);
     let mut solutions: Vec<IkSolution> = Vec::with_capacity(candidates.len());
     for mut c in candidates {
         if c.q.iter().any(|v| !v.is_finite()) {
@@ -266,17 +353,14 @@ pub(crate) fn finish_within(
         }
         for (v, joint) in c.q.iter_mut().zip(robot.joints()) {
             if joint.kind == JointKind::Revolute {
-                *v = fit_into_limits(*v, &joint.limits, LIMIT_SLACK);
+                *v = fit_revolute(*v, &joint.limits);
             }
         }
-        let (position_error, orientation_error) = pose_error(robot, &c.q, target)?;
+        let (position_error, orientation_error) = check.error(robot, &c.q)?;
         if position_error > position_tolerance || orientation_error > orientation_tolerance {
             continue;
         }
-        if let Some(existing) = solutions
-            .iter_mut()
-            .find(|s| s.q.iter().zip(&c.q).all(|(a, b)| crate::angle::wrap(a - b).abs() < IK_DUPLICATE))
-        {
+        if let Some(existing) = solutions.iter_mut().find(|s| s.q.iter().zip(&c.q).all(|(a, b)| same_angle(*a, *b))) {
             for k in c.singularities {
                 if !existing.singularities.contains(&k) {
                     existing.singularities.push(k);

@@ -1,0 +1,206 @@
+//! End-to-end tests of `reach move` and `reach plan`: seed 001's J values (notes 001 §5–6, the
+//! values crates/reach/tests/seed_001_motion.rs pins), seed 003's weld (notes 003 §5.5), the
+//! JSON feeding `reach drive`, and the error paths (exit 2 bad input, 3 infeasible).
+
+use std::f64::consts::PI;
+use std::path::PathBuf;
+use std::process::{Command, Stdio};
+
+use serde_json::Value;
+
+struct Run {
+    code: i32,
+    stdout: String,
+    stderr: String,
+}
+
+fn reach(args: &[&str]) -> Run {
+    let out = Command::new(env!("CARGO_BIN_EXE_reach"))
+        .args(args)
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+        .stdin(Stdio::null())
+        .output()
+        .expect("run reach");
+    Run {
+        code: out.status.code().expect("killed"),
+        stdout: String::from_utf8(out.stdout).unwrap(),
+        stderr: String::from_utf8(out.stderr).unwrap(),
+    }
+}
+
+fn json(run: &Run) -> Value {
+    serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("{e}: {}", run.stdout))
+}
+
+fn fails(args: &[&str], code: i32, needle: &str) {
+    let run = reach(args);
+    assert_eq!(run.code, code, "reach {args:?}: {}", run.stderr);
+    assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
+    assert!(run.stderr.contains(needle), "missing {needle:?} in {}", run.stderr);
+}
+
+fn f(v: &Value) -> f64 {
+    v.as_f64().unwrap()
+}
+
+fn q(sample: &Value) -> Vec<f64> {
+    sample["q_deg"].as_array().unwrap().iter().map(f).collect()
+}
+
+const SPBU6_MOVE: [&str; 10] =
+    ["move", "spbu6", "--from", "0,0,0,0,0,0", "--to", "90,0,0,90,0,0", "--duration", "10", "--dt", "0.1"];
+
+/// Seed 001's joint motion: q(t) = λ(t/10)·(90, 0, 0, 90, 0, 0)°, λ = τ − sin(2πτ)/(2π).
+#[test]
+fn joint_move_endpoints_profile_and_j_values() {
+    let mut args = SPBU6_MOVE.to_vec();
+    args.push("--json");
+    let run = reach(&args);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let v = json(&run);
+    assert_eq!(v["robot"], "spbu6");
+    assert_eq!(v["space"], "joint");
+    let samples = v["samples"].as_array().unwrap();
+    assert_eq!(samples.len(), 101);
+    assert_eq!(q(&samples[0]), vec![0.0; 6]);
+    let last = q(&samples[100]);
+    for (got, want) in last.iter().zip([90.0, 0.0, 0.0, 90.0, 0.0, 0.0]) {
+        assert!((got - want).abs() < 1e-9, "{last:?}");
+    }
+    for k in [10, 37, 50, 81] {
+        let t = f(&samples[k]["t_s"]);
+        let tau = t / 10.0;
+        let lambda = tau - (2.0 * PI * tau).sin() / (2.0 * PI);
+        assert!((q(&samples[k])[0] - 90.0 * lambda).abs() < 1e-9, "t = {t}");
+        // λ' = 2 sin²(πτ)/T: 18 deg/s at mid-move.
+        let qd = f(&samples[k]["qd_deg_s"][3]);
+        assert!((qd - 90.0 * 2.0 * (PI * tau).sin().powi(2) / 10.0).abs() < 1e-9, "t = {t}");
+    }
+    // Tool point: the pole (3 cos q1, 3 sin q1, 5) (notes 001 §5.2).
+    let x = &samples[50]["xyz_m"];
+    assert!((f(&x[0]) - 3.0 * (PI / 4.0).cos()).abs() < 1e-9 && (f(&x[2]) - 5.0).abs() < 1e-9);
+    // J1 = (1/3)·π/2 + (1/18)·π/2 = 7π/36; monotone, so J2 = J1; energy not built.
+    assert!((f(&v["effort"]["j1"]) - 7.0 * PI / 36.0).abs() < 1e-12);
+    assert!((f(&v["effort"]["j2"]) - 7.0 * PI / 36.0).abs() < 1e-12);
+    assert!(v["effort"]["energy_j"].is_null());
+    assert_eq!(v["intervals"][0]["feasible"], true);
+}
+
+/// The task file: both motion types; the tool motion's J2 = 0.876425 (the per-sample IK nearest
+/// to the previous sample, the library's pinned value) and it is infeasible (exit 3), its
+/// samples on the straight line (3,0,5) → (0,3,5).
+#[test]
+fn seed001_plan_compares_joint_and_tool_space() {
+    let run = reach(&["plan", "examples/seed001_tool_vs_joint.toml", "--json"]);
+    assert_eq!(run.code, 3, "{}", run.stderr);
+    assert_eq!(run.stderr.lines().count(), 1);
+    assert!(run.stderr.contains("tool space"), "{}", run.stderr);
+    let v = json(&run);
+    let motions = v["motions"].as_array().unwrap();
+    assert_eq!(motions.len(), 2);
+    let (joint, tool) = (&motions[0], &motions[1]);
+    assert!((f(&joint["effort"]["j1"]) - 7.0 * PI / 36.0).abs() < 1e-9);
+    assert!((f(&joint["effort"]["j2"]) - 7.0 * PI / 36.0).abs() < 1e-9);
+    assert_eq!(joint["feasible"], true);
+    assert!((f(&tool["effort"]["j2"]) - 0.876425).abs() < 1e-6);
+    assert!(f(&tool["effort"]["j2"]) > f(&joint["effort"]["j2"]));
+    assert_eq!(tool["feasible"], false);
+    let samples = tool["samples"].as_array().unwrap();
+    assert_eq!(samples.len(), 101);
+    for s in samples {
+        let x = &s["xyz_m"];
+        assert!((f(&x[0]) + f(&x[1]) - 3.0).abs() < 1e-6 && (f(&x[2]) - 5.0).abs() < 1e-6, "{s}");
+    }
+    // The end poses are T0 and T1 (tool z axis (1,0,0) → (0,1,0)... checked via position).
+    assert!((f(&samples[100]["xyz_m"][1]) - 3.0).abs() < 1e-6);
+    // The human-readable form prints the comparison too.
+    let text = reach(&["plan", "examples/seed001_tool_vs_joint.toml"]);
+    assert_eq!(text.code, 3);
+    assert!(text.stdout.contains("J2 = 0.876425"), "{}", text.stdout);
+}
+
+/// Seed 003's weld: +β realised over the whole path; −β breaks θ4's range on
+/// s ∈ (618.1, 882.2) mm (notes 003 §5.5); no singular position, so one interval; the θ4 wrap
+/// of −β and the sampled rates give no spike (|q̇| ≪ 360°/10 s).
+#[test]
+fn seed003_plan_tracks_both_configurations() {
+    let run = reach(&["plan", "examples/seed003_welding.toml", "--json"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let m = &json(&run)["motions"][0];
+    assert!((f(&m["duration_s"]) - 943.927963).abs() < 1e-5);
+    let intervals = m["intervals"].as_array().unwrap();
+    assert_eq!(intervals.len(), 1);
+    assert!(intervals[0]["configuration"].as_str().unwrap().contains("config=+β"));
+    let reason = intervals[0]["reasons"][0].as_str().unwrap();
+    assert!(reason.contains("config=−β") && reason.contains("joint 4"), "{reason}");
+    assert!(reason.contains("t = 618.10") && reason.contains("t = 882.21"), "{reason}");
+    let codes: Vec<&str> = m["events"].as_array().unwrap().iter().map(|e| e["code"].as_str().unwrap()).collect();
+    for c in ["K3", "K6", "K7", "K9", "K11"] {
+        assert!(codes.contains(&c), "{codes:?}");
+    }
+    assert!(!codes.contains(&"K2"), "no singular position: {codes:?}");
+    let samples = m["samples"].as_array().unwrap();
+    let first = q(&samples[0]);
+    for (got, want) in first.iter().zip([105.2482, -32.9417, 43.3392, -169.6025, -155.4427, 138.1315]) {
+        assert!((got - want).abs() < 1e-3, "{first:?}"); // notes 003 §5.2, +β at P
+    }
+    for s in samples {
+        for r in s["qd_deg_s"].as_array().unwrap() {
+            assert!(f(r).abs() < 1.0, "{s}");
+        }
+    }
+}
+
+/// The samples of `reach move --json` are a motion file for `reach drive`.
+#[test]
+fn move_json_feeds_drive() {
+    let run = reach(&["move", "planar3", "--from", "10,-20,-30", "--to", "28,-20,-30", "--duration", "4", "--json"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_move_planar3.json");
+    // `reach drive` rejects unknown top-level fields (drive.rs: deny_unknown_fields on the
+    // file), so the samples array is passed on as it is, under "samples".
+    let samples = serde_json::json!({ "samples": json(&run)["samples"] });
+    std::fs::write(&path, samples.to_string()).unwrap();
+    let drive = reach(&["drive", "planar3", path.to_str().unwrap(), "--format", "json"]);
+    assert_eq!(drive.code, 0, "{}", drive.stderr);
+    let d: Value = serde_json::from_str(&drive.stdout).unwrap();
+    assert!(d.to_string().contains("trajectory"), "{d}");
+}
+
+/// CSV output: a header and one row per sample; the last row is the target.
+#[test]
+fn csv_file() {
+    let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_move.csv");
+    let mut args = SPBU6_MOVE.to_vec();
+    args.extend(["--csv", path.to_str().unwrap()]);
+    assert_eq!(reach(&args).code, 0);
+    let text = std::fs::read_to_string(&path).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 102);
+    assert!(lines[0].starts_with("t_s,q1,q2,q3,q4,q5,q6,qd1"));
+    let last: Vec<f64> = lines[101].split(',').map(|c| c.parse().unwrap()).collect();
+    assert!((last[0] - 10.0).abs() < 1e-12 && (last[1] - 90.0).abs() < 1e-9 && (last[4] - 90.0).abs() < 1e-9);
+}
+
+#[test]
+fn bad_input_and_infeasible() {
+    let base = ["move", "spbu6", "--from", "0,0,0,0,0,0", "--to", "90,0,0,90,0,0"];
+    let with =
+        |extra: &[&'static str]| -> Vec<&'static str> { base.iter().copied().chain(extra.iter().copied()).collect() };
+    fails(&with(&["--duration", "0"]), 2, "duration");
+    fails(&with(&["--duration", "-1"]), 2, "duration");
+    fails(&with(&["--duration", "NaN"]), 2, "--duration");
+    fails(&with(&["--duration", "10", "--dt", "0"]), 2, "dt");
+    fails(&["move", "spbu6", "--from", "0,0,0", "--to", "90,0,0,90,0,0", "--duration", "1"], 2, "expected 6");
+    fails(
+        &["move", "spbu6", "--from-pose", "30,0,0,0,0,0", "--to-pose", "0,3,5,-90,0,0", "--duration", "1"],
+        2,
+        "start pose",
+    );
+    fails(&with(&["--speed", "1"]), 2, "--speed");
+    // A target outside the limits: the report is printed, exit 3, the joint named.
+    let run = reach(&["move", "spbu6", "--from", "0,0,0,0,0,0", "--to", "0,0,0,120,0,0", "--duration", "2"]);
+    assert_eq!(run.code, 3);
+    assert!(run.stdout.contains("NOT feasible"), "{}", run.stdout);
+    assert!(run.stderr.contains("joint 4 (q4) position outside -90.000 .. 90.000 deg"), "{}", run.stderr);
+}

@@ -1,0 +1,203 @@
+//! Task sequencing (seed 001 §8 "visiting"/"collection"): exact vs brute force, heuristic gap,
+//! large instances, unreachable targets.
+
+use proptest::prelude::*;
+use reach::decide::sequence::{
+    collection, collection_within_budget, joint_change_costs, visiting, visiting_heuristic, visiting_within_budget,
+};
+use reach::ik::{IkOptions, IkTarget, solve};
+use reach::model::presets;
+
+fn path(c: &[Vec<f64>], order: &[usize]) -> f64 {
+    let mut prev = 0;
+    let mut s = 0.0;
+    for &j in order {
+        s += c[prev][j];
+        prev = j;
+    }
+    s
+}
+
+fn permutations(items: &[usize]) -> Vec<Vec<usize>> {
+    if items.is_empty() {
+        return vec![vec![]];
+    }
+    let mut out = Vec::new();
+    for k in 0..items.len() {
+        let mut rest = items.to_vec();
+        let x = rest.remove(k);
+        for mut p in permutations(&rest) {
+            p.insert(0, x);
+            out.push(p);
+        }
+    }
+    out
+}
+
+fn square(n: usize) -> impl Strategy<Value = Vec<Vec<f64>>> {
+    prop::collection::vec(prop::collection::vec(0.0f64..10.0, n..=n), n..=n)
+}
+
+fn instance() -> impl Strategy<Value = Vec<Vec<f64>>> {
+    (1usize..=8).prop_flat_map(square) // 0..=7 targets
+}
+
+/// Deterministic pseudo-random points in a 6-D joint space, J1-like weighted L1 costs.
+fn joint_space_instance(n: usize, seed: u64) -> Vec<Vec<f64>> {
+    let mut s = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+    let mut rnd = || {
+        s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        ((s >> 11) as f64) / ((1u64 << 53) as f64)
+    };
+    let w = [1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0, 1.0 / 18.0, 1.0 / 18.0, 1.0 / 18.0]; // seed 001 §3.8
+    let pts: Vec<Vec<f64>> = (0..=n).map(|_| (0..6).map(|_| 4.0 * rnd() - 2.0).collect()).collect();
+    pts.iter().map(|a| pts.iter().map(|b| (0..6).map(|i| w[i] * (a[i] - b[i]).abs()).sum()).collect()).collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(96))]
+
+    #[test]
+    fn visiting_exact_matches_brute_force(c in instance()) {
+        let n = c.len() - 1;
+        let s = visiting(&c).unwrap();
+        prop_assert!(s.exact);
+        let mut sorted = s.order.clone();
+        sorted.sort();
+        prop_assert_eq!(sorted, (1..=n).collect::<Vec<_>>());
+        let brute = permutations(&(1..=n).collect::<Vec<_>>()).iter().map(|p| path(&c, p)).fold(f64::INFINITY, f64::min);
+        let brute = if n == 0 { 0.0 } else { brute };
+        prop_assert!((s.cost - brute).abs() < 1e-9, "dp {} brute {}", s.cost, brute);
+        prop_assert!((s.cost - path(&c, &s.order)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn visiting_budget_matches_brute_force(c in (1usize..=7).prop_flat_map(square), d in square(7), budget in 0.0f64..25.0) {
+        let k = c.len();
+        let d: Vec<Vec<f64>> = d[..k].iter().map(|r| r[..k].to_vec()).collect();
+        let n = k - 1;
+        let s = visiting_within_budget(&c, &d, budget).unwrap();
+        // Brute force: every subset, every order.
+        let mut best = (0usize, 0.0f64);
+        for mask in 1u32..(1 << n) {
+            let items: Vec<usize> = (1..=n).filter(|j| mask & (1 << (j - 1)) != 0).collect();
+            for p in permutations(&items) {
+                let t = path(&d, &p);
+                if t <= budget && (p.len() > best.0 || (p.len() == best.0 && t < best.1)) {
+                    best = (p.len(), t);
+                }
+            }
+        }
+        prop_assert_eq!(s.order.len(), best.0);
+        prop_assert!((s.duration.unwrap() - best.1).abs() < 1e-9);
+        prop_assert!(s.duration.unwrap() <= budget);
+    }
+
+    #[test]
+    fn collection_energy_is_order_free_and_budget_optimal(c in (1usize..=7).prop_flat_map(square), d in square(7), budget in 0.0f64..40.0) {
+        let k = c.len();
+        let d: Vec<Vec<f64>> = d[..k].iter().map(|r| r[..k].to_vec()).collect();
+        let n = k - 1;
+        let s = collection(&c).unwrap();
+        let total: f64 = (1..=n).map(|j| c[0][j] + c[j][0]).sum();
+        prop_assert!((s.cost - total).abs() < 1e-9);
+        prop_assert!(s.legs.windows(2).all(|w| w[0] <= w[1]));
+        let b = collection_within_budget(&c, &d, budget).unwrap();
+        let most = (0u32..(1 << n))
+            .filter(|mask| (1..=n).filter(|j| mask & (1 << (j - 1)) != 0).map(|j| d[0][j] + d[j][0]).sum::<f64>() <= budget)
+            .map(|m| m.count_ones() as usize)
+            .max()
+            .unwrap_or(0);
+        prop_assert_eq!(b.order.len(), most);
+        prop_assert!(b.duration.unwrap() <= budget);
+    }
+}
+
+#[test]
+fn heuristic_gap_on_ten_targets() {
+    let mut worst: f64 = 0.0;
+    let mut sum = 0.0;
+    let runs = 100;
+    for seed in 0..runs {
+        let c = joint_space_instance(10, seed);
+        let exact = visiting(&c).unwrap();
+        assert!(exact.exact);
+        let h = visiting_heuristic(&c).unwrap();
+        assert!(h.cost >= exact.cost - 1e-12);
+        let gap = h.cost / exact.cost - 1.0;
+        worst = worst.max(gap);
+        sum += gap;
+    }
+    eprintln!(
+        "NN+2-opt gap over {runs} ten-target instances: mean {:.4}%, max {:.4}%",
+        100.0 * sum / runs as f64,
+        100.0 * worst
+    );
+    assert!(sum / (runs as f64) < 0.03, "mean gap {}", sum / runs as f64);
+    assert!(worst < 0.15, "max gap {worst}");
+}
+
+#[test]
+fn two_hundred_targets_finish() {
+    let c = joint_space_instance(200, 7);
+    let t = std::time::Instant::now();
+    let s = visiting(&c).unwrap();
+    let dt = t.elapsed().as_secs_f64();
+    assert!(!s.exact);
+    assert_eq!(s.order.len(), 200);
+    // 2-opt cannot be worse than its nearest-neighbour start.
+    let mut nn = vec![];
+    let mut left: Vec<usize> = (1..=200).collect();
+    let mut cur = 0;
+    while !left.is_empty() {
+        let k = (0..left.len()).fold(0, |b, k| if c[cur][left[k]] < c[cur][left[b]] { k } else { b });
+        cur = left.remove(k);
+        nn.push(cur);
+    }
+    assert!(s.cost <= path(&c, &nn) + 1e-9);
+    eprintln!("200 targets: {dt:.3} s, cost {:.3} (NN {:.3})", s.cost, path(&c, &nn));
+    assert!(dt < 5.0, "took {dt} s (target 1 s; generous bound for a loaded machine)");
+}
+
+#[test]
+fn unreachable_targets_are_skipped() {
+    let puma = presets::get("puma560").unwrap();
+    let start = [0.0, 0.5, -0.5, 0.0, 0.3, 0.0];
+    let q_a = [0.3, 0.6, -0.9, 0.4, 0.7, -0.2];
+    let q_b = [-0.4, 0.4, -0.6, 0.1, 0.5, 0.3];
+    let far = IkTarget::Position(nalgebra::Point3::new(5.0, 0.0, 0.0));
+    let opts = IkOptions::default();
+    let targets = vec![
+        solve(&puma, &IkTarget::Pose(puma.fk(&q_a).unwrap()), &opts).unwrap(),
+        solve(&puma, &far, &opts).unwrap(),
+        solve(&puma, &IkTarget::Pose(puma.fk(&q_b).unwrap()), &opts).unwrap(),
+    ];
+    let w = [1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0, 1.0 / 18.0, 1.0 / 18.0, 1.0 / 18.0];
+    let cc = joint_change_costs(&puma, &start, &targets, &w).unwrap();
+    assert!(cc.configs[2].is_none());
+    assert!(cc.costs[0][2].is_infinite());
+    let s = visiting(&cc.costs).unwrap();
+    assert_eq!(s.skipped, vec![2]);
+    assert_eq!(s.order.len(), 2);
+    let c = collection(&cc.costs).unwrap();
+    assert_eq!(c.skipped, vec![2]);
+    // J1 by hand for start → the configuration chosen for target 1.
+    let q1 = cc.configs[1].as_ref().unwrap();
+    let j1: f64 = (0..6).map(|i| w[i] * reach::angle::wrap(q1[i] - start[i]).abs()).sum();
+    assert!((cc.costs[0][1] - j1).abs() < 1e-12);
+}
+
+#[test]
+fn bad_matrices_rejected() {
+    use reach::decide::DecideError;
+    assert!(matches!(visiting(&[]), Err(DecideError::CostShape { .. })));
+    assert!(matches!(visiting(&[vec![0.0, 1.0], vec![1.0]]), Err(DecideError::CostShape { .. })));
+    assert!(matches!(
+        visiting(&[vec![0.0, -1.0], vec![1.0, 0.0]]),
+        Err(DecideError::InvalidCost { from: 0, to: 1, .. })
+    ));
+    assert!(matches!(collection(&[vec![0.0, f64::NAN], vec![1.0, 0.0]]), Err(DecideError::InvalidCost { .. })));
+    let c = vec![vec![0.0, 1.0], vec![1.0, 0.0]];
+    assert!(matches!(visiting_within_budget(&c, &c, f64::NAN), Err(DecideError::InvalidBudget(_))));
+    assert!(matches!(collection_within_budget(&c, &[vec![0.0]], 1.0), Err(DecideError::CostShape { .. })));
+}
