@@ -64,6 +64,7 @@ pub mod ik;
 pub mod kinematics;
 pub mod model;
 pub mod motion;
+mod rng;
 pub mod tolerance;
 pub mod world;
 

@@ -83,6 +83,7 @@ use super::{Branch, Candidate, IkError, IkFailure, IkOptions, IkSolutions, IkSol
 use crate::angle::{fit_into_limits, wrap};
 use crate::kinematics::{Jacobian, check_q};
 use crate::model::{JointKind, Robot};
+use crate::rng::SplitMix64;
 use crate::tolerance::{
     BOUNDARY, IK_NUMERIC_DISTINCT, IK_NUMERIC_POSITION, IK_NUMERIC_SINGULAR, IK_ORIENTATION, IK_POSITION, LIMIT_SLACK,
 };
@@ -793,26 +794,6 @@ impl Starts {
             *v = lo + (hi - lo) * self.rng.next_f64();
         }
         Start::Random(k)
-    }
-}
-
-/// SplitMix64 (Steele, Lea & Flood 2014): a tiny, fast, well-mixed deterministic generator.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, 1).
-    fn next_f64(&mut self) -> f64 {
-        // 53 random bits; both conversions are exact.
-        let x = (self.next_u64() >> 11) as f64;
-        x * (1.0 / (1u64 << 53) as f64)
     }
 }
 

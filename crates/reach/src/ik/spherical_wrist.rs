@@ -188,6 +188,23 @@ pub(crate) fn revolute_dh6(robot: &Robot, solver: &'static str) -> Result<[DhJoi
     }
     Ok(out)
 }
+/// Checks that axes 4, 5 and 6 meet in one point: a4 = d5 = a5 = a6 = 0.
+pub(crate) fn require_spherical_wrist(
+    robot: &Robot,
+    solver: &'static str,
+    joints: &[DhJoint; 6],
+) -> Result<(), IkError> {
+    for (name, value) in [("a4", joints[3].a), ("d5", joints[4].d), ("a5", joints[4].a), ("a6", joints[5].a)] {
+        if !is_zero_length(value) {
+            return Err(unsupported(
+                solver,
+                robot,
+                format!("{name} = {value} m ≠ 0: axes 4, 5 and 6 do not meet in one point (not a spherical wrist)"),
+            ));
+        }
+    }
+    Ok(())
+}
 
 /// `sgn(α)` when α = ±90° (within [`STRUCTURE_ANGLE`]).
 pub(crate) fn quarter_turn(alpha: f64) -> Option<f64> {
@@ -351,13 +368,7 @@ impl SphericalWrist {
     pub fn from_robot(robot: &Robot) -> Result<Self, IkError> {
         let joints = revolute_dh6(robot, NAME)?;
         let fail = |reason: String| Err(unsupported(NAME, robot, reason));
-        for (name, value) in [("a4", joints[3].a), ("d5", joints[4].d), ("a5", joints[4].a), ("a6", joints[5].a)] {
-            if !is_zero_length(value) {
-                return fail(format!(
-                    "{name} = {value} m ≠ 0: axes 4, 5 and 6 do not meet in one point (not a spherical wrist)"
-                ));
-            }
-        }
+        require_spherical_wrist(robot, NAME, &joints)?;
         let deg = |i: usize| joints[i].alpha.to_degrees();
         let pm90 = |i: usize, why: &str| -> Result<f64, IkError> {
             quarter_turn(joints[i].alpha)

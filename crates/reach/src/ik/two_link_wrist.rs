@@ -88,7 +88,7 @@ use nalgebra::{IsometryMatrix3, Point3};
 
 use super::spherical_wrist::{
     Arm, DhJoint, elbow_label, fallback_failure, flange_goal, free_theta, is_zero_angle, is_zero_length, joint_values,
-    quarter_turn, revolute_dh6, seed_thetas, unsupported, wrist_centre, wrist_label,
+    quarter_turn, require_spherical_wrist, revolute_dh6, seed_thetas, unsupported, wrist_centre, wrist_label,
 };
 use super::{
     Branch, Candidate, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, finish,
@@ -135,13 +135,7 @@ impl TwoLinkWrist {
     pub fn from_robot(robot: &Robot) -> Result<Self, IkError> {
         let joints = revolute_dh6(robot, NAME)?;
         let fail = |reason: String| Err(unsupported(NAME, robot, reason));
-        for (name, value) in [("a4", joints[3].a), ("d5", joints[4].d), ("a5", joints[4].a), ("a6", joints[5].a)] {
-            if !is_zero_length(value) {
-                return fail(format!(
-                    "{name} = {value} m ≠ 0: axes 4, 5 and 6 do not meet in one point (not a spherical wrist)"
-                ));
-            }
-        }
+        require_spherical_wrist(robot, NAME, &joints)?;
         let deg = |i: usize| joints[i].alpha.to_degrees();
         let pm90 = |i: usize, why: &str| -> Result<f64, IkError> {
             quarter_turn(joints[i].alpha)

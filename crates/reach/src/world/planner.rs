@@ -24,6 +24,7 @@ use thiserror::Error;
 use super::{CollisionChecker, Scene, Verdict, WorldError};
 use crate::ik::{self, IkError, IkOptions, IkTarget};
 use crate::model::{JointKind, Robot};
+use crate::rng::SplitMix64;
 
 /// What the motion should reach.
 #[derive(Debug, Clone, PartialEq)]
@@ -178,29 +179,6 @@ pub enum PlanError {
     /// An IK error.
     #[error(transparent)]
     Ik(#[from] IkError),
-}
-
-/// SplitMix64 (Steele, Lea & Flood 2014): small, fast, deterministic.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in `[0, 1)`.
-    fn next_f64(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    }
-
-    /// Uniform in `0..n` (`n > 0`).
-    fn below(&mut self, n: usize) -> usize {
-        ((self.next_f64() * n as f64) as usize).min(n - 1)
-    }
 }
 
 /// Straight-line edge checker with the arm-size bound of the module docs.
