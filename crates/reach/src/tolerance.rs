@@ -39,12 +39,10 @@ pub const BOUNDARY: f64 = 1e-9;
 
 /// Internal stopping threshold of the numeric IK solver, metres: 1000× below [`IK_POSITION`]
 /// so that the forward-kinematics check of every solution never rejects a converged one.
+/// The solver stops at the same fraction of every tolerance (position and orientation).
 /// Levenberg–Marquardt converges about quadratically near a regular solution, so the extra
 /// digits cost about one iteration.
 pub const IK_NUMERIC_POSITION: f64 = 1e-9;
-
-/// Internal stopping threshold of the numeric IK solver, radians (see [`IK_NUMERIC_POSITION`]).
-pub const IK_NUMERIC_ORIENTATION: f64 = 1e-9;
 
 /// Two numeric IK solutions closer than this in every joint (radians / metres) are the same:
 /// starts that converge to one branch agree to ~1e-8 (the stopping threshold divided by the

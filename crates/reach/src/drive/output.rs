@@ -178,7 +178,7 @@ pub const AXIS_LETTERS: [char; 6] = ['X', 'Y', 'Z', 'A', 'B', 'C'];
 /// `times`.
 ///
 /// # Behavior
-/// Joint *i* is axis `X Y Z A B C`[i]; one axis unit is one joint **degree** (revolute) or one
+/// Joint *i* is axis number *i* of `X Y Z A B C`; one axis unit is one joint **degree** (revolute) or one
 /// **millimetre** (prismatic), so the firmware is set up with steps per degree (the header
 /// lists the values: GRBL `$100…`, Marlin `M92`). Each waypoint is the position the motors hold
 /// at that time (the schedule's step counters, printed with 6 decimals so that the firmware

@@ -21,7 +21,7 @@
 //! where a non-singular solution of the filter exists): at every sample the solver is called
 //! with the previous joint vector as seed, and the solution **with the same full branch
 //! label** nearest to the previous joint vector is taken, its revolute angles unwrapped
-//! ([`angle::nearest_equivalent`]) so that the joint trajectory is continuous. Only at a
+//! ([`crate::angle::nearest_equivalent`]) so that the joint trajectory is continuous. Only at a
 //! sample where the label is missing and a solution flagged singular exists (branches merge
 //! there) is the nearest singular solution taken. A label that disappears otherwise is
 //! reported ([`ViolationKind::BranchLost`]), never replaced silently. The numeric solver's
@@ -33,7 +33,7 @@
 //!
 //! The paper differentiates numerically: the rate of a step is the angle increment divided by
 //! the step time (notes 003 §3.5). The increment of a revolute joint is taken on the unwrapped
-//! trajectory, i.e. the shortest rotation ([`angle::shortest_difference`]), so a ±180°
+//! trajectory, i.e. the shortest rotation ([`crate::angle::shortest_difference`]), so a ±180°
 //! crossing creates no spike ([`step_rates`]; the naive difference of wrapped angles gives
 //! the notes' spurious −6.34 rev/min on the weld, §5.4).
 //!
