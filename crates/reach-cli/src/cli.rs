@@ -162,7 +162,8 @@ pub enum Command {
             reach drive planar3 --from 0 0 0 --to 3.6 -14.4 -7.2\n  \
             reach drive planar3 --from 0,0,0 --to 90,-45,-30 --format gcode -o move.gcode\n  \
             reach drive log-loader --from 0 0 0 --to 90 45 -30 --duration 5 --format csv\n  \
-            reach drive planar3 motion.json --format coils"
+            reach drive planar3 motion.json --format coils\n  \
+            reach drive planar3 examples/drive_planar3.toml --format gcode -o cycle.gcode"
     )]
     Drive(crate::commands::drive::DriveArgs),
 

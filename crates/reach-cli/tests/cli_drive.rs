@@ -141,6 +141,40 @@ fn motion_files() {
 }
 
 #[test]
+fn task_files() {
+    // Two joint-space moves of 2 s each, the second starting where the first ends: one
+    // trajectory of 4 s; joint 1 goes 0 → 18° → 0 (500 steps out, 500 back: zero net steps).
+    let task = temp(
+        "task.toml",
+        "robot = \"planar3\"\n[defaults]\nduration = 2.0\ndt = 0.05\n\
+         [[motion]]\nfrom = [0, 0, 0]\nto = [18, -9, 0]\n\
+         [[motion]]\nfrom = [18, -9, 0]\nto = [0, 0, 0]\n",
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(&ok(&["drive", "planar3", task.to_str().unwrap(), "--format", "json"])).unwrap();
+    assert!((v["duration_s"].as_f64().unwrap() - 4.0).abs() < 1e-9, "{}", v["duration_s"]);
+    assert_eq!(v["joints"][0]["end_position"], 0);
+    assert_eq!(v["joints"][0]["steps"], 1000);
+    assert_eq!(v["joints"][1]["steps"], 500);
+    assert!(v["joints"][0]["max_deviation_steps"].as_f64().unwrap() <= 1.0);
+    // A motion that does not start where the previous one ended cannot be driven.
+    let gap = temp(
+        "gap.toml",
+        "robot = \"planar3\"\n[defaults]\nduration = 2.0\n\
+         [[motion]]\nfrom = [0, 0, 0]\nto = [18, 0, 0]\n\
+         [[motion]]\nfrom = [0, 0, 0]\nto = [9, 0, 0]\n",
+    );
+    fails(&["drive", "planar3", gap.to_str().unwrap()], 2, &["motion 2", "joint 1", "cannot jump"]);
+    // The task names another robot.
+    let other = temp("other.toml", "robot = \"log-loader\"\n[[motion]]\nfrom = [0, 0, 0]\nto = [9, 0, 0]\n");
+    fails(&["drive", "planar3", other.to_str().unwrap()], 2, &["log-loader", "planar3"]);
+    // Too fast for the motors: exit 3 from the schedule check.
+    let fast =
+        temp("fast.toml", "robot = \"planar3\"\n[[motion]]\nfrom = [0, 0, 0]\nto = [90, 0, 0]\nduration = 0.5\n");
+    fails(&["drive", "planar3", fast.to_str().unwrap()], 3, &["joint 1"]);
+}
+
+#[test]
 fn bad_input() {
     fails(&["drive", "puma560", "--from", "0,0,0,0,0,0", "--to", "1,0,0,0,0,0"], 2, &["joint 1", "no drive data"]);
     fails(&["drive", "planar3", "--from", "0,0", "--to", "1,0,0"], 2, &["--from", "3 joints"]);

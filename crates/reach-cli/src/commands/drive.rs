@@ -1,11 +1,12 @@
-//! `reach drive` — stepper step schedules from a sampled motion or a point-to-point move:
+//! `reach drive` — stepper step schedules from a sampled motion, a task file or a point-to-point move:
 //! a summary for people, CSV/JSON step lists, coil tables, step/direction events or G-code.
 
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
 use reach::Robot;
+use reach::angle::shortest_difference;
 use reach::drive::output::{GcodeDialect, coil_table_csv, gcode, step_dir_text, step_rows, to_csv};
 use reach::drive::{
     DriveError, GridError, JointSample, StepSchedule, Verification, axes, grid_error, point_to_point,
@@ -14,6 +15,7 @@ use reach::drive::{
 use reach::model::JointKind;
 use serde::{Deserialize, Serialize};
 
+use crate::commands::move_cmd::{load_task, plan};
 use crate::error::{CliError, one_line};
 use crate::numbers::{AngleInput, display_unit, parse_finite, to_si};
 use crate::output::{Align, Table, fixed, write_json};
@@ -52,9 +54,11 @@ pub struct DriveArgs {
     #[command(flatten)]
     pub robot: RobotArgs,
 
-    /// Motion file (JSON): {"samples": [{"t_s": 0.0, "q_deg": [...]}, ...]} with revolute
-    /// joints in degrees and prismatic joints in metres (what `reach move --json` prints).
-    #[arg(value_name = "MOTION", conflicts_with_all = ["from", "to"])]
+    /// Motion to drive: a JSON motion file {"samples": [{"t_s": 0.0, "q_deg": [...]}, ...]}
+    /// with revolute joints in degrees and prismatic joints in metres (what `reach move --json`
+    /// prints), or a task file (`.toml`, the `reach plan` format) whose motions are planned and
+    /// driven one after the other.
+    #[arg(value_name = "MOTION|TASK", conflicts_with_all = ["from", "to"])]
     pub motion: Option<PathBuf>,
 
     /// Point-to-point move: start joint values (degrees, or radians with --rad; metres for
@@ -157,25 +161,86 @@ fn parse_q(robot: &Robot, label: &str, texts: &[String], unit: AngleInput) -> Re
         .collect()
 }
 
-fn read_motion(robot: &Robot, path: &PathBuf) -> Result<Vec<JointSample>, CliError> {
+/// One sample in the file units (`q_deg`: degrees, prismatic metres) to SI; extra values are
+/// kept so the schedule reports the length mismatch.
+fn sample_si(robot: &Robot, t_s: f64, q_deg: &[f64]) -> JointSample {
+    let q = robot
+        .joints()
+        .iter()
+        .zip(q_deg)
+        .map(|(j, &v)| to_si(j.kind, v, AngleInput::Degrees))
+        .chain(q_deg.iter().skip(robot.dof()).copied())
+        .collect();
+    JointSample::new(t_s, q)
+}
+
+/// Reads the motion to drive: a task file (`.toml`) is planned motion by motion, anything else
+/// is read as a JSON motion file.
+fn read_motion(robot: &Robot, path: &Path) -> Result<Vec<JointSample>, CliError> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| CliError::bad_input(format!("cannot read motion file `{}`: {e}", path.display())))?;
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml")) {
+        return task_samples(robot, &text, path);
+    }
     let file: MotionFile = serde_json::from_str(&text)
         .map_err(|e| CliError::bad_input(format!("motion file `{}`: {}", path.display(), one_line(&e.to_string()))))?;
-    let samples = file
-        .samples
-        .into_iter()
-        .map(|s| {
-            let q = robot
-                .joints()
-                .iter()
-                .zip(&s.q_deg)
-                .map(|(j, &v)| to_si(j.kind, v, AngleInput::Degrees))
-                .chain(s.q_deg.iter().skip(robot.dof()).copied())
-                .collect();
-            JointSample::new(s.t_s, q)
-        })
-        .collect();
+    Ok(file.samples.iter().map(|s| sample_si(robot, s.t_s, &s.q_deg)).collect())
+}
+
+/// How far (rad or m) a task's motion may start from where the previous one ended.
+const JOIN_TOLERANCE: f64 = 1e-6;
+
+/// Plans every motion of a task file (as `reach plan` does) and joins them into one
+/// trajectory: each motion starts where the previous one ended, in time and in joint space.
+///
+/// # Errors
+/// [`CliError::BadInput`] when the task names another robot or a motion does not start where
+/// the previous one ended; [`CliError::NoSolution`] for an infeasible motion.
+fn task_samples(robot: &Robot, text: &str, path: &Path) -> Result<Vec<JointSample>, CliError> {
+    let (task_robot, _, specs) = load_task(text, &path.display().to_string())?;
+    if task_robot.name() != robot.name() || task_robot.dof() != robot.dof() {
+        return Err(CliError::bad_input(format!(
+            "task file `{}` is for robot `{}`, not `{}`",
+            path.display(),
+            task_robot.name(),
+            robot.name()
+        )));
+    }
+    let motions = plan(robot, &specs)?;
+    let mut samples: Vec<JointSample> = Vec::new();
+    for m in &motions {
+        if !m.feasible {
+            return Err(CliError::NoSolution(format!(
+                "motion `{}` is infeasible: {}",
+                m.name,
+                m.reasons.first().map_or("see `reach plan`", String::as_str)
+            )));
+        }
+        let offset = samples.last().map_or(0.0, |s| s.t);
+        let mut rows = m.samples.iter();
+        if let (Some(last), Some(first)) = (samples.last(), m.samples.first()) {
+            let start = sample_si(robot, offset, &first.q_deg);
+            let jump = robot.joints().iter().zip(&last.q).zip(&start.q).position(|((j, &a), &b)| {
+                let gap = match j.kind {
+                    JointKind::Revolute => shortest_difference(a, b),
+                    JointKind::Prismatic => b - a,
+                };
+                gap.abs() > JOIN_TOLERANCE
+            });
+            if let Some(i) = jump {
+                return Err(CliError::bad_input(format!(
+                    "task file `{}`: motion `{}` starts away from where the previous motion ended \
+                     (joint {} `{}`); a drive cannot jump",
+                    path.display(),
+                    m.name,
+                    i + 1,
+                    robot.joints()[i].name
+                )));
+            }
+            rows.next();
+        }
+        samples.extend(rows.map(|s| sample_si(robot, offset + s.t_s - m.samples[0].t_s, &s.q_deg)));
+    }
     Ok(samples)
 }
 
