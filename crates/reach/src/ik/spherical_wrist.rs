@@ -328,6 +328,46 @@ pub(crate) fn fallback_failure(arms: &[Arm]) -> IkFailure {
     IkFailure::Singular { kind }
 }
 
+/// The one branch `branch` of an arm-then-wrist closed form ([`IkSolver::solve_branch`]):
+/// the wrist solutions of the only arm labelled with the branch's shoulder and elbow,
+/// restricted to its wrist label and verified by [`finish`].
+///
+/// This equals `solve(…).restricted_to(branch)` because [`finish`] can merge two candidates
+/// only when all their joint values agree within `IK_DUPLICATE`: the two wrist solutions of
+/// one arm differ by π in θ4, so a merge needs another arm with the same θ1…θ3. `None` (the
+/// caller falls back to the full solve) when such an arm exists within twice that tolerance,
+/// when no or several arms carry the labels, or when the branch has no verified solution.
+pub(crate) fn arm_branch(
+    robot: &Robot,
+    target: &IkTarget,
+    branch: &Branch,
+    solver: &'static str,
+    arms: &[Arm],
+    wrists: impl FnOnce(&Arm, &mut Vec<Candidate>),
+) -> Result<Option<IkSolutions>, IkError> {
+    let (Some(shoulder), Some(elbow)) = (branch.get("shoulder"), branch.get("elbow")) else {
+        return Ok(None);
+    };
+    let mut labelled = arms.iter().filter(|a| a.shoulder == shoulder && a.elbow == elbow);
+    let (Some(arm), None) = (labelled.next(), labelled.next()) else {
+        return Ok(None);
+    };
+    let close = |other: &Arm| {
+        other.theta.iter().zip(&arm.theta).all(|(a, b)| wrap(a - b).abs() <= 2.0 * crate::tolerance::IK_DUPLICATE)
+    };
+    if arms.iter().any(|other| !std::ptr::eq(other, arm) && close(other)) {
+        return Ok(None);
+    }
+    let mut candidates = Vec::with_capacity(2);
+    wrists(arm, &mut candidates);
+    candidates.retain(|c| c.branch == *branch);
+    if candidates.is_empty() {
+        return Ok(None);
+    }
+    let sols = finish(robot, target, candidates, solver, fallback_failure(arms))?;
+    Ok((!sols.solutions.is_empty()).then_some(sols))
+}
+
 // ---------------------------------------------------------------------------------------------
 
 /// Closed-form IK for PUMA-type 6R arms with a spherical wrist (seed 002; see the module docs).
@@ -566,6 +606,29 @@ impl IkSolver for SphericalWrist {
             self.wrists(arm, &flange, seed.as_ref(), &mut candidates);
         }
         finish(robot, target, candidates, NAME, fallback_failure(&arms))
+    }
+
+    /// Only the requested branch's arm and wrist are computed and verified (see
+    /// [`IkSolver::solve_branch`]); the full solve where branches may merge.
+    fn solve_branch(
+        &self,
+        robot: &Robot,
+        target: &IkTarget,
+        branch: &Branch,
+        options: &IkOptions,
+    ) -> Result<IkSolutions, IkError> {
+        target.validate()?;
+        let seed = seed_thetas(&self.joints, options)?;
+        let flange = flange_goal(robot, target, options)?;
+        let w = wrist_centre(&flange, self.joints[5].d);
+        if let Ok(arms) = self.arms(&w, seed.as_ref())
+            && let Some(sols) = arm_branch(robot, target, branch, NAME, &arms, |arm, out| {
+                self.wrists(arm, &flange, seed.as_ref(), out);
+            })?
+        {
+            return Ok(sols);
+        }
+        Ok(self.solve(robot, target, options)?.restricted_to(branch))
     }
 }
 

@@ -327,12 +327,22 @@ impl Solving<'_> {
         }
     }
 
-    fn solve(&self, pose: &Isometry3<f64>, seed: Option<&[f64]>) -> Result<IkSolutions, TrackingError> {
+    fn options(&self, seed: Option<&[f64]>) -> IkOptions {
         let mut options = IkOptions { seed: seed.map(<[f64]>::to_vec), ..IkOptions::default() };
         if self.numeric && seed.is_some() {
             options.restarts = 1;
         }
-        Ok(self.solver.solve(self.robot, &self.target(pose), &options)?)
+        options
+    }
+
+    fn solve(&self, pose: &Isometry3<f64>, seed: Option<&[f64]>) -> Result<IkSolutions, TrackingError> {
+        Ok(self.solver.solve(self.robot, &self.target(pose), &self.options(seed))?)
+    }
+
+    /// The locked branch at `pose`, seeded with and next to `reference` ([`follow`]).
+    fn follow(&self, pose: &Isometry3<f64>, lock: &Lock, reference: &[f64]) -> Result<Option<Vec<f64>>, TrackingError> {
+        let options = self.options(Some(reference));
+        Ok(follow(self.robot, self.solver.as_ref(), &self.target(pose), lock, reference, &options)?)
     }
 }
 
@@ -365,6 +375,27 @@ fn pick(robot: &Robot, sols: &IkSolutions, lock: &Lock, reference: &[f64]) -> Op
     Some(unwrap_to(robot, &found.q, reference))
 }
 
+/// [`pick`] on the solutions at `target`: for a label lock (closed forms) only the locked
+/// branch is solved ([`IkSolver::solve_branch`]), and every branch only when it has no solution
+/// there — the singular fallback of [`pick`] needs them. The result is that of `pick` on the
+/// full solve: `solve_branch` returns exactly the solutions the label filter of `pick` keeps.
+fn follow(
+    robot: &Robot,
+    solver: &dyn IkSolver,
+    target: &IkTarget,
+    lock: &Lock,
+    reference: &[f64],
+    options: &IkOptions,
+) -> Result<Option<Vec<f64>>, IkError> {
+    if let Lock::Label(label) = lock {
+        let own = solver.solve_branch(robot, target, label, options)?;
+        if !own.solutions.is_empty() {
+            return Ok(pick(robot, &own, lock, reference));
+        }
+    }
+    Ok(pick(robot, &solver.solve(robot, target, options)?, lock, reference))
+}
+
 /// One configuration followed along a list of samples ([`track_configuration`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct BranchTrack {
@@ -385,7 +416,9 @@ pub struct BranchTrack {
 /// * `position_only` — solve for the tool position only.
 ///
 /// # Performance
-/// One IK solve per sample plus a nearest search over its solutions; no other work.
+/// Until the branch is locked, one IK solve per sample; then one single-branch solve per
+/// sample ([`IkSolver::solve_branch`], the full solve only where the branch has no
+/// solution) and a nearest search over its solutions; no other work.
 ///
 /// # Errors
 /// [`TrackingError`] for a bad path or when the solver rejects a target.
@@ -428,10 +461,9 @@ pub fn track_configuration(
         if numeric && previous.is_some() {
             options.restarts = 1;
         }
-        let sols = solver.solve(robot, &target(&p.pose), &options)?;
         let q = match (&lock, &previous) {
-            (Some(l), Some(prev)) => pick(robot, &sols, l, prev),
-            _ => anchor(&sols, filter, numeric).map(|(q, l)| {
+            (Some(l), Some(prev)) => follow(robot, solver, &target(&p.pose), l, prev, &options)?,
+            _ => anchor(&solver.solve(robot, &target(&p.pose), &options)?, filter, numeric).map(|(q, l)| {
                 if let Lock::Label(b) = &l {
                     out.branch = Some(b.clone());
                 } else {
@@ -1190,8 +1222,7 @@ impl<'a> Tracker<'a> {
 
     /// The joint vector of the locked branch at `s`, next to `reference`.
     fn q_at(&self, s: f64, lock: &Lock, reference: &[f64]) -> Result<Option<Vec<f64>>, TrackingError> {
-        let sols = self.solving.solve(&self.path.pose_at(s)?, Some(reference))?;
-        Ok(pick(self.solving.robot, &sols, lock, reference))
+        self.solving.follow(&self.path.pose_at(s)?, lock, reference)
     }
 
     /// Tracks configuration `c` over `points` (s values of one interval).
@@ -1237,8 +1268,9 @@ impl<'a> Tracker<'a> {
         let mut lost: Option<(f64, f64)> = None;
         let follow = |k: usize, from: usize, q: &mut Vec<Option<Vec<f64>>>| -> Result<bool, TrackingError> {
             let reference = q[from].clone().expect("followed from a tracked sample");
-            let seeded = self.solving.solve(&self.path.pose_at(points[k])?, Some(&reference))?;
-            let found = pick(self.solving.robot, &seeded, &lock, &reference)
+            let found = self
+                .solving
+                .follow(&self.path.pose_at(points[k])?, &lock, &reference)?
                 .or_else(|| pick(self.solving.robot, &sols[k], &lock, &reference));
             let ok = found.is_some();
             q[k] = found;
