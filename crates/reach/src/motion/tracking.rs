@@ -66,6 +66,7 @@
 //! The decisions are logged as [`TrackingEvent`]s equivalent to the paper's operator
 //! messages K1–K14 ([`EventCode`]).
 
+use std::borrow::Cow;
 use std::f64::consts::{PI, TAU};
 use std::fmt;
 
@@ -902,6 +903,16 @@ impl Measure {
     }
 }
 
+/// The scan of the samples ([`Tracker::split_points`]).
+struct Scan {
+    /// Singular positions and reachability changes, by `s`.
+    points: Vec<SplitPoint>,
+    /// Whether any configuration has a solution, per sample.
+    reach: Vec<bool>,
+    /// The unseeded solutions of every sample.
+    solutions: Vec<IkSolutions>,
+}
+
 struct Tracker<'a> {
     solving: Solving<'a>,
     path: &'a TrackedPath<'a>,
@@ -1147,15 +1158,18 @@ impl<'a> Tracker<'a> {
         Ok(if fc <= fd { (c, fc) } else { (d, fd) })
     }
 
-    /// Step 2–3 of the algorithm: singular positions and reachability changes.
-    fn split_points(&self) -> Result<(Vec<SplitPoint>, Vec<bool>), TrackingError> {
+    /// Step 2–3 of the algorithm: singular positions and reachability changes. Also returns
+    /// the unseeded solutions of every sample (reused by [`Tracker::track_interval`]).
+    fn split_points(&self) -> Result<Scan, TrackingError> {
         let samples = self.path.samples();
         let mut reach = Vec::with_capacity(samples.len());
         let mut values: Vec<Vec<Option<f64>>> = Vec::with_capacity(samples.len());
+        let mut all = Vec::with_capacity(samples.len());
         for p in samples {
             let sols = self.solving.solve(&p.pose, None)?;
             reach.push(self.reachable(&sols));
             values.push(self.measures_at(&p.pose, Some(&sols))?);
+            all.push(sols);
         }
         let mut points = Vec::new();
         for k in 1..samples.len() {
@@ -1202,7 +1216,7 @@ impl<'a> Tracker<'a> {
                 _ => merged.push(p),
             }
         }
-        Ok((merged, reach))
+        Ok(Scan { points: merged, reach, solutions: all })
     }
 
     /// A singular position at `s`, its kind read from the solver's flags when it sets one.
@@ -1225,19 +1239,17 @@ impl<'a> Tracker<'a> {
         self.solving.follow(&self.path.pose_at(s)?, lock, reference)
     }
 
-    /// Tracks configuration `c` over `points` (s values of one interval).
+    /// Tracks configuration `c` over `points` (s values of one interval), given the unseeded
+    /// solutions `sols` at those points (shared by the configurations).
     fn track_interval(
         &self,
         c: usize,
         points: &[f64],
+        sols: &[Cow<'_, IkSolutions>],
         ends_at_boundary: (bool, bool),
     ) -> Result<ConfigurationTrack, TrackingError> {
         let robot = self.robot();
         let filter = &self.configurations[c];
-        let mut sols = Vec::with_capacity(points.len());
-        for &s in points {
-            sols.push(self.solving.solve(&self.path.pose_at(s)?, None)?);
-        }
         let anchor = (0..points.len())
             .filter_map(|k| anchor(&sols[k], filter, self.solving.numeric).map(|a| (k, a)))
             .min_by_key(|(k, (q, _))| {
@@ -1521,7 +1533,7 @@ fn track_with(
 ) -> Result<TrackingReport, TrackingError> {
     let path = tracker.path;
     let robot = tracker.robot();
-    let (split_points, reach) = tracker.split_points()?;
+    let Scan { points: split_points, reach, solutions: sample_solutions } = tracker.split_points()?;
     let samples = path.samples();
     let mut bounds = vec![(path.start(), None::<SplitKind>)];
     for p in &split_points {
@@ -1615,8 +1627,19 @@ fn track_with(
             let order: Vec<usize> =
                 std::iter::once(default).chain((0..tracker.configurations.len()).filter(|&c| c != default)).collect();
             let mut tracks: Vec<Option<ConfigurationTrack>> = vec![None; tracker.configurations.len()];
+            // The unseeded solutions at the interval's points, once for every configuration:
+            // a sample's from the scan when the path gives the sample's own pose there.
+            let mut sols: Vec<Cow<'_, IkSolutions>> = Vec::with_capacity(points.len());
+            for (j, &s) in points.iter().enumerate() {
+                let pose = path.pose_at(s)?;
+                let k = j.checked_sub(1).and_then(|j| interior.get(j)).copied();
+                sols.push(match k {
+                    Some(k) if samples[k].pose == pose => Cow::Borrowed(&sample_solutions[k]),
+                    _ => Cow::Owned(tracker.solving.solve(&pose, None)?),
+                });
+            }
             for (rank, &c) in order.iter().enumerate() {
-                let t = tracker.track_interval(c, &points, (boundary(ka), boundary(kb)))?;
+                let t = tracker.track_interval(c, &points, &sols, (boundary(ka), boundary(kb)))?;
                 let is_default = rank == 0;
                 let next = order.get(1).map(|&n| name(n));
                 for v in &t.violations {
