@@ -118,6 +118,8 @@ pub(crate) struct DhJoint {
     pub offset: f64,
     /// −1 for a flipped joint.
     pub sign: f64,
+    /// sin α and cos α, computed once.
+    pub sin_cos_alpha: (f64, f64),
 }
 
 impl DhJoint {
@@ -136,7 +138,7 @@ impl DhJoint {
     /// `A = Rz(θ)·Tz(d)·Tx(a)·Rx(α)`.
     pub fn transform(&self, theta: f64) -> IsometryMatrix3<f64> {
         let (st, ct) = theta.sin_cos();
-        let (sa, ca) = self.alpha.sin_cos();
+        let (sa, ca) = self.sin_cos_alpha;
         #[rustfmt::skip]
         let r = Matrix3::new(
             ct, -st * ca, st * sa,
@@ -170,7 +172,7 @@ pub(crate) fn revolute_dh6(robot: &Robot, solver: &'static str) -> Result<[DhJoi
     if robot.dof() != 6 {
         return Err(unsupported(solver, robot, format!("needs 6 joints, the robot has {}", robot.dof())));
     }
-    let mut out = [DhJoint { a: 0.0, alpha: 0.0, d: 0.0, offset: 0.0, sign: 1.0 }; 6];
+    let mut out = [DhJoint { a: 0.0, alpha: 0.0, d: 0.0, offset: 0.0, sign: 1.0, sin_cos_alpha: (0.0, 1.0) }; 6];
     for (i, (joint, slot)) in robot.joints().iter().zip(out.iter_mut()).enumerate() {
         if joint.kind != JointKind::Revolute {
             return Err(unsupported(solver, robot, format!("joint {} ({}) is not revolute", i + 1, joint.name)));
@@ -181,6 +183,7 @@ pub(crate) fn revolute_dh6(robot: &Robot, solver: &'static str) -> Result<[DhJoi
         *slot = DhJoint {
             a: p.a,
             alpha: p.alpha,
+            sin_cos_alpha: p.alpha.sin_cos(),
             d: p.d,
             offset: p.theta_offset,
             sign: if joint.flip { -1.0 } else { 1.0 },
@@ -304,7 +307,7 @@ pub(crate) struct Arm {
 impl Arm {
     /// The singularity flags of the arm.
     pub fn flags(&self) -> Vec<SingularityKind> {
-        let mut out = Vec::with_capacity(3);
+        let mut out = Vec::new();
         if self.shoulder_singular {
             out.push(SingularityKind::Shoulder);
         }
@@ -541,8 +544,17 @@ impl SphericalWrist {
         n.dot(&m.column(1)).atan2(n.dot(&m.column(0)))
     }
 
-    /// The wrist solutions of one arm branch, appended to `out`.
-    fn wrists(&self, arm: &Arm, flange: &IsometryMatrix3<f64>, seed: Option<&[f64; 6]>, out: &mut Vec<Candidate>) {
+    /// The wrist solutions of one arm branch (only the one labelled `wrist` when given),
+    /// appended to `out`.
+    fn wrists(
+        &self,
+        arm: &Arm,
+        flange: &IsometryMatrix3<f64>,
+        seed: Option<&[f64; 6]>,
+        wrist: Option<&str>,
+        out: &mut Vec<Candidate>,
+    ) {
+        let wanted = |label: &str| wrist.is_none_or(|w| w == label);
         let [t1, t2, t3] = arm.theta;
         let t03 = self.joints[0].transform(t1) * self.joints[1].transform(t2) * self.joints[2].transform(t3);
         let m3 = t03.rotation.matrix();
@@ -556,6 +568,9 @@ impl SphericalWrist {
         let shoulder_elbow = [("shoulder", arm.shoulder), ("elbow", arm.elbow)];
         if sin5 < IK_PARALLEL_SINE {
             // Wrist singularity: θ4 undetermined; keep the seed's, θ6 takes the rest.
+            if !wanted("noflip") {
+                return;
+            }
             let theta5 = if cos5 >= 0.0 { 0.0 } else { PI };
             let theta4 = free_theta(&self.joints, seed, 3);
             let theta6 = self.theta6(&t03, theta4, theta5, &n);
@@ -572,6 +587,10 @@ impl SphericalWrist {
         let sq_y = -z4.dot(&y3); // eq. 24
         for k in [1.0, -1.0] {
             let theta5 = (k * sin5).atan2(cos5);
+            let label = wrist_label(theta5);
+            if !wanted(label) {
+                continue;
+            }
             // eq. 23 with the arguments in the corrected order (notes 002 §6 item 3),
             // generalised to the α4/α5 signs and to the flipped wrist (sin θ5 < 0).
             let g = -self.s5 * k;
@@ -579,7 +598,7 @@ impl SphericalWrist {
             let theta6 = self.theta6(&t03, theta4, theta5, &n);
             let mut c = Candidate::new(
                 joint_values(&self.joints, &[t1, t2, t3, theta4, theta5, theta6]),
-                Branch::new(shoulder_elbow.into_iter().chain([("wrist", wrist_label(theta5))])),
+                Branch::new(shoulder_elbow.into_iter().chain([("wrist", label)])),
             );
             c.singularities = arm.flags();
             out.push(c);
@@ -603,7 +622,7 @@ impl IkSolver for SphericalWrist {
         };
         let mut candidates = Vec::with_capacity(2 * arms.len());
         for arm in &arms {
-            self.wrists(arm, &flange, seed.as_ref(), &mut candidates);
+            self.wrists(arm, &flange, seed.as_ref(), None, &mut candidates);
         }
         finish(robot, target, candidates, NAME, fallback_failure(&arms))
     }
@@ -623,7 +642,7 @@ impl IkSolver for SphericalWrist {
         let w = wrist_centre(&flange, self.joints[5].d);
         if let Ok(arms) = self.arms(&w, seed.as_ref())
             && let Some(sols) = arm_branch(robot, target, branch, NAME, &arms, |arm, out| {
-                self.wrists(arm, &flange, seed.as_ref(), out);
+                self.wrists(arm, &flange, seed.as_ref(), branch.get("wrist"), out);
             })?
         {
             return Ok(sols);
