@@ -26,7 +26,8 @@ use reach::angle::{nearest_equivalent, wrap};
 use reach::ik::spherical_wrist::SphericalWrist;
 use reach::ik::{Branch, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, SolverKind};
 use reach::model::{Convention, Joint, RobotSpec, presets};
-use reach::motion::tracking::{PathPoint, track_configuration};
+use reach::motion::PathSample;
+use reach::motion::tracking::track_configuration;
 
 const CASES: usize = 2000;
 
@@ -319,7 +320,7 @@ fn absent_branches_and_failures_are_restated_for_the_branch() {
 fn reference_track(
     robot: &Robot,
     solver: &dyn IkSolver,
-    samples: &[PathPoint],
+    samples: &[PathSample],
     filter: &Branch,
 ) -> Vec<Option<Vec<f64>>> {
     let dist = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| wrap(x - y).abs()).sum::<f64>();
@@ -362,8 +363,13 @@ fn tracking_through_an_elbow_singularity_matches_the_all_branch_rule() {
             q[2] = q_of(&robot, 2, t3 + 0.002 * u);
             q
         };
-        let samples: Vec<PathPoint> =
-            (0..=100).map(|k| PathPoint { s: k as f64, t: k as f64, pose: robot.fk(&q(k)).unwrap() }).collect();
+        let start = robot.fk(&q(0)).unwrap();
+        let samples: Vec<PathSample> = (0..=100)
+            .map(|k| {
+                let pose = robot.fk(&q(k)).unwrap();
+                PathSample { t: k as f64, s: k as f64, angle: start.rotation.angle_to(&pose.rotation), pose }
+            })
+            .collect();
         let first = solver.solve(&robot, &IkTarget::Pose(samples[0].pose), &IkOptions::default()).unwrap();
         let mut fallbacks = 0;
         for start in &first.solutions {

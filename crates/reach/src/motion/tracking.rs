@@ -5,9 +5,9 @@
 //!
 //! # The input
 //!
-//! A path is a list of [`PathPoint`]s — path parameter `s` (arc length of the tool point in
+//! A path is a list of [`PathSample`]s — path parameter `s` (arc length of the tool point in
 //! the paper; any strictly increasing parameter here), time `t` (strictly increasing) and
-//! tool pose — wrapped in a [`TrackedPath`]. Singular positions and limit crossings are refined
+//! tool pose, e.g. the samples of a [`ToolPath`](super::ToolPath) — wrapped in a [`TrackedPath`]. Singular positions and limit crossings are refined
 //! between samples by bisection, so the path must be evaluable between samples: either give
 //! a closure `Fn(f64) -> Isometry3<f64>` over `s` ([`TrackedPath::with_evaluator`]) or let the
 //! path interpolate its samples (straight-line position, slerped orientation;
@@ -74,31 +74,13 @@ use nalgebra::{Isometry3, Point3, Translation3};
 use serde::Serialize;
 use thiserror::Error;
 
+use super::sample::PathSample;
 use crate::angle::{nearest_equivalent, shortest_difference, wrap};
 use crate::ik::parallel_axes::{ParallelAxes, Shoulder, Wrist};
 use crate::ik::{Branch, IkError, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, SolverKind};
 use crate::kinematics::{JacobianAxes, Manipulability};
 use crate::model::{Joint, JointKind, Robot};
 use crate::tolerance::{LIMIT_SLACK, TRACKING_PARAMETER, TRACKING_RATE_STEP, TRACKING_SINGULAR};
-
-/// One sample of a tool path.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct PathPoint {
-    /// Path parameter (arc length of the tool point, metres, in the paper), strictly increasing.
-    pub s: f64,
-    /// Time, seconds, strictly increasing.
-    pub t: f64,
-    /// Tool pose in the world frame.
-    pub pose: Isometry3<f64>,
-}
-
-impl From<&super::sample::PathSample> for PathPoint {
-    /// A sample of a sampled tool motion ([`super::sample::ToolPath`]) as a tracking point,
-    /// parameterised by its arc length.
-    fn from(p: &super::sample::PathSample) -> Self {
-        PathPoint { s: p.s, t: p.t, pose: p.pose }
-    }
-}
 
 /// Why a tracking problem was rejected.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -157,7 +139,7 @@ pub enum TrackingError {
 
 /// A path: its samples and a way to evaluate it between them.
 pub struct TrackedPath<'a> {
-    samples: &'a [PathPoint],
+    samples: &'a [PathSample],
     evaluator: Option<&'a dyn Fn(f64) -> Isometry3<f64>>,
 }
 
@@ -177,7 +159,7 @@ impl<'a> TrackedPath<'a> {
     /// # Errors
     /// [`TrackingError`] for fewer than 2 samples, non-finite values, or `s`/`t` not
     /// strictly increasing.
-    pub fn sampled(samples: &'a [PathPoint]) -> Result<Self, TrackingError> {
+    pub fn sampled(samples: &'a [PathSample]) -> Result<Self, TrackingError> {
         validate_samples(samples)?;
         Ok(TrackedPath { samples, evaluator: None })
     }
@@ -187,7 +169,7 @@ impl<'a> TrackedPath<'a> {
     /// # Errors
     /// As [`TrackedPath::sampled`].
     pub fn with_evaluator(
-        samples: &'a [PathPoint],
+        samples: &'a [PathSample],
         evaluator: &'a dyn Fn(f64) -> Isometry3<f64>,
     ) -> Result<Self, TrackingError> {
         validate_samples(samples)?;
@@ -196,7 +178,7 @@ impl<'a> TrackedPath<'a> {
 
     /// The samples.
     #[must_use]
-    pub fn samples(&self) -> &[PathPoint] {
+    pub fn samples(&self) -> &[PathSample] {
         self.samples
     }
 
@@ -246,7 +228,7 @@ impl<'a> TrackedPath<'a> {
     }
 }
 
-fn validate_samples(samples: &[PathPoint]) -> Result<(), TrackingError> {
+fn validate_samples(samples: &[PathSample]) -> Result<(), TrackingError> {
     if samples.len() < 2 {
         return Err(TrackingError::TooFewSamples { found: samples.len() });
     }
@@ -427,13 +409,16 @@ pub struct BranchTrack {
 /// # Example
 /// ```
 /// use reach::ik::{Branch, SolverKind};
-/// use reach::motion::tracking::{PathPoint, track_configuration};
+/// use reach::motion::PathSample;
+/// use reach::motion::tracking::track_configuration;
 /// let puma = reach::model::presets::get("puma560").unwrap();
 /// let solver = SolverKind::detect(&puma).build(&puma).unwrap();
-/// let samples: Vec<PathPoint> = (0..=10)
+/// let start = puma.fk(&[0.0, 0.5, -0.4, 0.3, 0.6, 3.1]).unwrap();
+/// let samples: Vec<PathSample> = (0..=10)
 ///     .map(|k| {
 ///         let q = [0.1 * k as f64, 0.5, -0.4, 0.3, 0.6, 3.1 + 0.01 * k as f64];
-///         PathPoint { s: k as f64, t: k as f64, pose: puma.fk(&q).unwrap() }
+///         let pose = puma.fk(&q).unwrap();
+///         PathSample { t: k as f64, s: k as f64, angle: start.rotation.angle_to(&pose.rotation), pose }
 ///     })
 ///     .collect();
 /// let track = track_configuration(&puma, solver.as_ref(), &samples, &Branch::default(), false).unwrap();
@@ -444,7 +429,7 @@ pub struct BranchTrack {
 pub fn track_configuration(
     robot: &Robot,
     solver: &dyn IkSolver,
-    samples: &[PathPoint],
+    samples: &[PathSample],
     filter: &Branch,
     position_only: bool,
 ) -> Result<BranchTrack, TrackingError> {
