@@ -769,12 +769,13 @@ impl IkSolver for ParallelAxes {
     }
 
     /// Only the requested branch is computed and verified (see [`IkSolver::solve_branch`]).
-    /// Two branches can merge in [`finish`] only at a flagged singularity: the wrist twins
-    /// differ in the sign of e5 = z4, the two shoulder roots in θ1 by π − 2·asin(sin α1·D/ρ)
-    /// (or by π on the column axis), which is below `IK_DUPLICATE` only far inside the
-    /// `BOUNDARY` band of the shoulder singularity ρ = |D|, and the configurations ±β in θ2, θ3
-    /// by about 2β, likewise only inside the band of the elbow singularity. A singular candidate, or a branch without
-    /// a verified solution, falls back to the full solve.
+    /// Two branches can merge (the FK check de-duplicates equal joint vectors) only at a
+    /// flagged singularity: the wrist twins differ in the sign of e5 = z4; the two shoulder
+    /// roots differ in θ1 by π − 2·asin(sin α1·D/ρ) (or by π on the column axis), below
+    /// `IK_DUPLICATE` only far inside the `BOUNDARY` band of the shoulder singularity ρ = |D|;
+    /// the configurations ±β differ in θ2, θ3 by about 2β, likewise only inside the band of
+    /// the elbow singularity. A singular candidate, or a branch without a verified solution,
+    /// falls back to the full solve.
     fn solve_branch(
         &self,
         robot: &Robot,
