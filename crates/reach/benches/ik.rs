@@ -3,7 +3,8 @@
 //! Run with `cargo bench -p reach --bench ik` (add `-- numeric` to run one group).
 //!
 //! * `closed_form` — every solution of one generic pose (`ik::solve` work without the solver
-//!   detection: the solver is built once) for puma560, ur5, welder6r, spbu6;
+//!   detection: the solver is built once) for puma560, ur5, welder6r, spbu6, and the one
+//!   branch of the generic configuration (`IkSolver::solve_branch`);
 //! * `planar_scan` — seed 000's α scan at 0.01° (`PlanarRedundant::paper_scan`);
 //! * `numeric` — first-found from the home configuration, first-found from a nearby seed
 //!   (tracking) and all distinct solutions (16 starts), for ur5 and panda.
@@ -55,6 +56,22 @@ fn closed_form(c: &mut Criterion) {
         let n = solver.solve(&robot, &target, &options).expect("solve").solutions.len();
         group.bench_function(format!("{name}/all_{n}_solutions"), |b| {
             b.iter(|| solver.solve(black_box(&robot), black_box(&target), black_box(&options)).expect("solve"));
+        });
+        // One branch (`IkSolver::solve_branch`, as path tracking calls it): that of generic_q.
+        let all = solver.solve(&robot, &target, &options).expect("solve");
+        let q = generic_q(name);
+        let own = all
+            .solutions
+            .iter()
+            .find(|s| s.q.iter().zip(&q).all(|(a, b)| reach::angle::wrap(a - b).abs() < 1e-9))
+            .expect("generic_q is a solution");
+        let branch = own.branch.clone();
+        group.bench_function(format!("{name}/one_branch"), |b| {
+            b.iter(|| {
+                solver
+                    .solve_branch(black_box(&robot), black_box(&target), black_box(&branch), black_box(&options))
+                    .expect("solve")
+            });
         });
     }
     group.finish();

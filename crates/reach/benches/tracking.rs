@@ -16,18 +16,19 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::{Isometry3, Matrix3, Translation3, UnitQuaternion, Vector3};
 use reach::ik::{Branch, SolverKind};
 use reach::model::presets;
-use reach::motion::tracking::{PathPoint, TrackedPath, TrackingOptions, track, track_configuration};
+use reach::motion::PathSample;
+use reach::motion::tracking::{TrackedPath, TrackingOptions, track, track_configuration};
 
 /// A straight line of `n` samples between the tool poses of two configurations' positions,
 /// keeping the first pose's orientation.
-fn line(robot: &reach::Robot, qa: &[f64], qb: &[f64], n: u32) -> Vec<PathPoint> {
+fn line(robot: &reach::Robot, qa: &[f64], qb: &[f64], n: u32) -> Vec<PathSample> {
     let a = robot.fk(qa).expect("fk");
     let b = robot.fk(qb).expect("fk");
     (0..n)
         .map(|k| {
             let u = f64::from(k) / f64::from(n - 1);
             let p = a.translation.vector.lerp(&b.translation.vector, u);
-            PathPoint { s: u, t: u, pose: Isometry3::from_parts(Translation3::from(p), a.rotation) }
+            PathSample { t: u, s: u, angle: 0.0, pose: Isometry3::from_parts(Translation3::from(p), a.rotation) }
         })
         .collect()
 }
@@ -75,10 +76,10 @@ fn weld(c: &mut Criterion) {
     let rot = UnitQuaternion::from_matrix(&Matrix3::from_columns(&[n, e6, n.cross(&e6)]));
     let pose = move |s: f64| Isometry3::from_parts(Translation3::from(p + n * s), rot);
     let length = (m - p).norm();
-    let samples: Vec<PathPoint> = (0..=943)
+    let samples: Vec<PathSample> = (0..=943)
         .map(|k| f64::from(k) / 1000.0)
         .chain([length])
-        .map(|s| PathPoint { s, t: s * 1000.0, pose: pose(s) })
+        .map(|s| PathSample { t: s * 1000.0, s, angle: 0.0, pose: pose(s) })
         .collect();
     let path = TrackedPath::with_evaluator(&samples, &pose).expect("path");
     let options = TrackingOptions::default();

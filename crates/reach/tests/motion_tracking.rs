@@ -14,8 +14,9 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use reach::Robot;
 use reach::ik::{Branch, SingularityKind};
 use reach::model::presets;
+use reach::motion::PathSample;
 use reach::motion::tracking::{
-    ConfigurationTrack, Decision, EventCode, PathPoint, SingularityDetection, SplitKind, TrackedPath, TrackingError,
+    ConfigurationTrack, Decision, EventCode, SingularityDetection, SplitKind, TrackedPath, TrackingError,
     TrackingOptions, TrackingReport, ViolationKind, track,
 };
 
@@ -46,11 +47,11 @@ fn touch_pose(s: f64) -> Isometry3<f64> {
     point(touch_r(s), touch_e(s))
 }
 
-fn grid(f: impl Fn(f64) -> Isometry3<f64>, end: f64, steps: u32) -> Vec<PathPoint> {
+fn grid(f: impl Fn(f64) -> Isometry3<f64>, end: f64, steps: u32) -> Vec<PathSample> {
     (0..=steps)
         .map(|k| {
             let s = end * f64::from(k) / f64::from(steps);
-            PathPoint { s, t: 2.0 * s, pose: f(s) }
+            PathSample { t: 2.0 * s, s, angle: 0.0, pose: f(s) }
         })
         .collect()
 }

@@ -20,9 +20,10 @@ use reach::Robot;
 use reach::ik::parallel_axes::ParallelAxes;
 use reach::ik::{Branch, SolverKind};
 use reach::model::presets;
+use reach::motion::PathSample;
 use reach::motion::tracking::{
-    ConfigurationTrack, Decision, EventCode, PathPoint, TrackedPath, TrackingOptions, TrackingReport, ViolationKind,
-    step_rates, track, track_configuration,
+    ConfigurationTrack, Decision, EventCode, TrackedPath, TrackingOptions, TrackingReport, ViolationKind, step_rates,
+    track, track_configuration,
 };
 
 const P_MM: [f64; 3] = [50.0, 740.0, 70.0];
@@ -54,17 +55,17 @@ fn weld_pose(s: f64) -> Isometry3<f64> {
 }
 
 /// Samples at the given arc lengths (mm) at 1 mm/s: t [s] = s [mm].
-fn samples(s_mm: impl IntoIterator<Item = f64>) -> Vec<PathPoint> {
-    s_mm.into_iter().map(|s| PathPoint { s: s / 1000.0, t: s, pose: weld_pose(s / 1000.0) }).collect()
+fn samples(s_mm: impl IntoIterator<Item = f64>) -> Vec<PathSample> {
+    s_mm.into_iter().map(|s| PathSample { t: s, s: s / 1000.0, angle: 0.0, pose: weld_pose(s / 1000.0) }).collect()
 }
 
 /// Every millimetre from P, and M.
-fn mm_grid() -> Vec<PathPoint> {
+fn mm_grid() -> Vec<PathSample> {
     samples((0..=943).map(f64::from).chain([LENGTH_MM]))
 }
 
 /// The paper's n = 100 steps (notes 003 §5.4, forward differences).
-fn hundred_steps() -> Vec<PathPoint> {
+fn hundred_steps() -> Vec<PathSample> {
     samples((0..=100).map(|k| LENGTH_MM * f64::from(k) / 100.0))
 }
 

@@ -23,7 +23,7 @@ use reach::Robot;
 use reach::effort::{Differences, SEED001_WEIGHTS, j1, j2};
 use reach::motion::joint_space::EndChoice;
 use reach::motion::sample::PerSampleIk;
-use reach::motion::tracking::{PathPoint, TrackedPath, TrackingOptions, track};
+use reach::motion::tracking::{TrackedPath, TrackingOptions, track};
 use reach::motion::{JointMotion, JointRates, Profile, ToolMotion};
 use serde::{Deserialize, Serialize};
 
@@ -489,8 +489,7 @@ fn tool_space(robot: &Robot, spec: &MoveSpec) -> Result<Computed, CliError> {
     };
     let dt = spec.dt.unwrap_or(motion.duration() / 100.0);
     let path = motion.sample_time(dt).map_err(motion_error)?;
-    let points: Vec<PathPoint> = path.samples.iter().map(PathPoint::from).collect();
-    let tracked = TrackedPath::sampled(&points).map_err(motion_error)?;
+    let tracked = TrackedPath::sampled(&path.samples).map_err(motion_error)?;
     let report = track(robot, &tracked, &TrackingOptions::default(), None).map_err(motion_error)?;
     // Samples: the realised trajectory when every interval is realised; otherwise the per-sample
     // IK nearest to the previous sample with the limits ignored (so that J1/J2 and the curves

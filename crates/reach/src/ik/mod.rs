@@ -142,6 +142,39 @@ pub trait IkSolver {
     /// # Errors
     /// [`IkError`] for invalid input.
     fn solve(&self, robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError>;
+
+    /// The solutions of one branch: `solve(robot, target, options)?.restricted_to(branch)`
+    /// ([`IkSolutions::restricted_to`]) — the solutions labelled exactly `branch`, verified,
+    /// wrapped into limits and flagged as by [`IkSolver::solve`], and the failure restated for
+    /// them ([`IkFailure::BranchAbsent`] when other branches solve the target but this one does
+    /// not). The default implementation is exactly that; the closed forms of 6R arms
+    /// ([`spherical_wrist`], [`two_link_wrist`], [`parallel_axes`]) override it to compute and
+    /// FK-verify only the requested branch (path tracking follows one branch per sample),
+    /// falling back to the full solve where branches may merge (singular configurations).
+    ///
+    /// # Errors
+    /// [`IkError`] for invalid input, as [`IkSolver::solve`].
+    ///
+    /// # Example
+    /// ```
+    /// use reach::ik::{IkOptions, IkSolver, IkTarget, SolverKind};
+    /// let puma = reach::model::presets::get("puma560").unwrap();
+    /// let solver = SolverKind::detect(&puma).build(&puma).unwrap();
+    /// let target = IkTarget::Pose(puma.fk(&[0.3, 0.5, -0.4, 0.7, 0.9, -0.2]).unwrap());
+    /// let all = solver.solve(&puma, &target, &IkOptions::default()).unwrap();
+    /// let branch = &all.solutions[5].branch;
+    /// let one = solver.solve_branch(&puma, &target, branch, &IkOptions::default()).unwrap();
+    /// assert_eq!(one.solutions, vec![all.solutions[5].clone()]);
+    /// ```
+    fn solve_branch(
+        &self,
+        robot: &Robot,
+        target: &IkTarget,
+        branch: &Branch,
+        options: &IkOptions,
+    ) -> Result<IkSolutions, IkError> {
+        Ok(self.solve(robot, target, options)?.restricted_to(branch))
+    }
 }
 
 /// The solvers, by name.

@@ -663,25 +663,7 @@ impl ParallelAxes {
                 for config in [Config::PlusBeta, Config::MinusBeta] {
                     match self.angles(frame, &z5, &arm, config, seed[1]) {
                         Ok((theta, elbow_singular)) => {
-                            let q: Vec<f64> = (0..6).map(|i| self.sign[i] * (theta[i] - self.offset[i])).collect();
-                            let mut cand = Candidate::new(
-                                q,
-                                Branch::new([
-                                    ("shoulder", root.label.label()),
-                                    ("config", config.label()),
-                                    ("wrist", wrist.label()),
-                                ]),
-                            );
-                            if root.singular {
-                                cand.singularities.push(SingularityKind::Shoulder);
-                            }
-                            if elbow_singular {
-                                cand.singularities.push(SingularityKind::Elbow);
-                            }
-                            if arm.wrist_singular {
-                                cand.singularities.push(SingularityKind::Wrist);
-                            }
-                            out.push(cand);
+                            out.push(self.candidate(&theta, root, config, wrist, &arm, elbow_singular));
                         }
                         Err(f) => {
                             let excess = match &f {
@@ -697,6 +679,63 @@ impl ParallelAxes {
             }
         }
         (out, failure.map(|(_, f)| f))
+    }
+
+    /// The candidate of one branch, `None` when the branch has no root here.
+    fn branch_candidate(
+        &self,
+        frame: &Frame,
+        seed: &[f64; 6],
+        shoulder: Shoulder,
+        config: Config,
+        wrist: Wrist,
+    ) -> Option<Candidate> {
+        let (z5, c) = self.wrist_point(frame);
+        let roots = self.shoulder_roots(&c, seed[0]).ok()?;
+        let root = roots.iter().find(|r| r.label == shoulder)?;
+        let arm = self.arm(frame, &z5, &c, root, wrist, seed[5]);
+        let (theta, elbow_singular) = self.angles(frame, &z5, &arm, config, seed[1]).ok()?;
+        Some(self.candidate(&theta, root, config, wrist, &arm, elbow_singular))
+    }
+
+    /// The labelled, flagged candidate of DH angles `theta`.
+    fn candidate(
+        &self,
+        theta: &[f64; 6],
+        root: &ShoulderRoot,
+        config: Config,
+        wrist: Wrist,
+        arm: &Arm,
+        elbow_singular: bool,
+    ) -> Candidate {
+        let q: Vec<f64> = (0..6).map(|i| self.sign[i] * (theta[i] - self.offset[i])).collect();
+        let mut cand = Candidate::new(
+            q,
+            Branch::new([("shoulder", root.label.label()), ("config", config.label()), ("wrist", wrist.label())]),
+        );
+        if root.singular {
+            cand.singularities.push(SingularityKind::Shoulder);
+        }
+        if elbow_singular {
+            cand.singularities.push(SingularityKind::Elbow);
+        }
+        if arm.wrist_singular {
+            cand.singularities.push(SingularityKind::Wrist);
+        }
+        cand
+    }
+
+    /// The flange pose to solve: the pose target, or the target position with the tool
+    /// orientation of the seed (else of the home configuration).
+    fn pose_of(robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<Isometry3<f64>, IkError> {
+        Ok(match target {
+            IkTarget::Pose(p) => *p,
+            IkTarget::Position(p) => {
+                let q = options.seed.clone().unwrap_or_else(|| robot.home());
+                let current = robot.fk(&q)?;
+                Isometry3::from_parts(nalgebra::Translation3::from(p.coords), current.rotation)
+            }
+        })
     }
 }
 
@@ -719,15 +758,7 @@ impl IkSolver for ParallelAxes {
     fn solve(&self, robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError> {
         target.validate()?;
         let seed = self.seed_theta(robot, options)?;
-        let pose = match target {
-            IkTarget::Pose(p) => *p,
-            IkTarget::Position(p) => {
-                let q = options.seed.clone().unwrap_or_else(|| robot.home());
-                let current = robot.fk(&q)?;
-                Isometry3::from_parts(nalgebra::Translation3::from(p.coords), current.rotation)
-            }
-        };
-        let frame = frame_of(&chain_target(robot, &pose));
+        let frame = frame_of(&chain_target(robot, &Self::pose_of(robot, target, options)?));
         let (candidates, failure) = self.candidates(&frame, &seed);
         let if_empty = failure.unwrap_or_else(|| {
             let kind =
@@ -735,6 +766,48 @@ impl IkSolver for ParallelAxes {
             IkFailure::Singular { kind }
         });
         finish(robot, target, candidates, NAME, if_empty)
+    }
+
+    /// Only the requested branch is computed and verified (see [`IkSolver::solve_branch`]).
+    /// Two branches can merge (the FK check de-duplicates equal joint vectors) only at a
+    /// flagged singularity: the wrist twins differ in the sign of e5 = z4; the two shoulder
+    /// roots differ in θ1 by π − 2·asin(sin α1·D/ρ) (or by π on the column axis), below
+    /// `IK_DUPLICATE` only far inside the `BOUNDARY` band of the shoulder singularity ρ = |D|;
+    /// the configurations ±β differ in θ2, θ3 by about 2β, likewise only inside the band of
+    /// the elbow singularity. A singular candidate, or a branch without a verified solution,
+    /// falls back to the full solve.
+    fn solve_branch(
+        &self,
+        robot: &Robot,
+        target: &IkTarget,
+        branch: &Branch,
+        options: &IkOptions,
+    ) -> Result<IkSolutions, IkError> {
+        target.validate()?;
+        let seed = self.seed_theta(robot, options)?;
+        let labels = (branch.get("shoulder"), branch.get("config"), branch.get("wrist"), branch.0.len());
+        let parsed = match labels {
+            (Some(s), Some(c), Some(w), 3) => {
+                let shoulder = [Shoulder::W, Shoulder::MinusW].into_iter().find(|x| x.label() == s);
+                let config = [Config::PlusBeta, Config::MinusBeta].into_iter().find(|x| x.label() == c);
+                let wrist = [Wrist::E5, Wrist::MinusE5].into_iter().find(|x| x.label() == w);
+                shoulder.zip(config).zip(wrist)
+            }
+            _ => None,
+        };
+        if let Some(((shoulder, config), wrist)) = parsed {
+            let frame = frame_of(&chain_target(robot, &Self::pose_of(robot, target, options)?));
+            if let Some(cand) = self.branch_candidate(&frame, &seed, shoulder, config, wrist)
+                && cand.singularities.is_empty()
+            {
+                let if_empty = IkFailure::Singular { kind: SingularityKind::Jacobian };
+                let sols = finish(robot, target, vec![cand], NAME, if_empty)?;
+                if !sols.solutions.is_empty() {
+                    return Ok(sols);
+                }
+            }
+        }
+        Ok(self.solve(robot, target, options)?.restricted_to(branch))
     }
 }
 

@@ -179,6 +179,13 @@ pub enum IkFailure {
         /// Joint name.
         name: String,
     },
+    /// Other branches solve the target but the requested one does not
+    /// ([`IkSolver::solve_branch`](super::IkSolver::solve_branch)): it merged with another
+    /// branch at a singular configuration, or its formula has no root or fails the FK check here.
+    BranchAbsent {
+        /// The requested branch label (`shoulder=left elbow=up wrist=flip`).
+        branch: String,
+    },
     /// The numeric solver did not converge.
     NoConvergence {
         /// Iterations spent (over all restarts).
@@ -199,6 +206,7 @@ impl fmt::Display for IkFailure {
             IkFailure::OutsideLimits { joint, name } => {
                 write!(f, "every solution violates a joint limit (first: joint {joint} ({name}))")
             }
+            IkFailure::BranchAbsent { branch } => write!(f, "no solution on branch `{branch}` (other branches exist)"),
             IkFailure::NoConvergence { iterations, residual } => {
                 write!(f, "numeric IK did not converge ({iterations} iterations, residual {residual:.3e})")
             }
@@ -242,6 +250,36 @@ impl IkSolutions {
                 .sum()
         };
         self.feasible().min_by(|a, b| cost(a).total_cmp(&cost(b)))
+    }
+
+    /// The solutions labelled exactly `branch`, in the same order, with the failure restated
+    /// for them: none when one is within limits, [`IkFailure::OutsideLimits`] (the first
+    /// violated joint of the first) when all violate limits. When none is labelled `branch`,
+    /// the failure of the whole problem if it has no solution at all, else
+    /// [`IkFailure::BranchAbsent`]. This defines [`IkSolver::solve_branch`](super::IkSolver::solve_branch).
+    #[must_use]
+    pub fn restricted_to(self, branch: &Branch) -> IkSolutions {
+        let IkSolutions { solver, solutions, failure } = self;
+        let any = !solutions.is_empty();
+        let solutions: Vec<IkSolution> = solutions.into_iter().filter(|s| s.branch == *branch).collect();
+        let failure = match limits_failure(&solutions) {
+            Some(f) => Some(f),
+            None if solutions.is_empty() && any => Some(IkFailure::BranchAbsent { branch: branch.to_string() }),
+            None if solutions.is_empty() => failure,
+            None => None,
+        };
+        IkSolutions { solver, solutions, failure }
+    }
+}
+
+/// [`IkFailure::OutsideLimits`] when `solutions` is not empty and every one violates a limit
+/// (the first violated joint of the first solution is named); `None` otherwise.
+fn limits_failure(solutions: &[IkSolution]) -> Option<IkFailure> {
+    if !solutions.is_empty() && solutions.iter().all(|s| !s.within_limits) {
+        let v = &solutions[0].violations[0];
+        Some(IkFailure::OutsideLimits { joint: v.joint, name: v.name.clone() })
+    } else {
+        None
     }
 }
 
@@ -392,14 +430,7 @@ pub(crate) fn finish_within(
             singularities: c.singularities,
         });
     }
-    let failure = if solutions.is_empty() {
-        Some(if_empty)
-    } else if solutions.iter().all(|s| !s.within_limits) {
-        let v = &solutions[0].violations[0];
-        Some(IkFailure::OutsideLimits { joint: v.joint, name: v.name.clone() })
-    } else {
-        None
-    };
+    let failure = if solutions.is_empty() { Some(if_empty) } else { limits_failure(&solutions) };
     Ok(IkSolutions { solver, solutions, failure })
 }
 

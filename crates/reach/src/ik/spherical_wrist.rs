@@ -118,6 +118,8 @@ pub(crate) struct DhJoint {
     pub offset: f64,
     /// −1 for a flipped joint.
     pub sign: f64,
+    /// sin α and cos α, computed once.
+    pub sin_cos_alpha: (f64, f64),
 }
 
 impl DhJoint {
@@ -136,7 +138,7 @@ impl DhJoint {
     /// `A = Rz(θ)·Tz(d)·Tx(a)·Rx(α)`.
     pub fn transform(&self, theta: f64) -> IsometryMatrix3<f64> {
         let (st, ct) = theta.sin_cos();
-        let (sa, ca) = self.alpha.sin_cos();
+        let (sa, ca) = self.sin_cos_alpha;
         #[rustfmt::skip]
         let r = Matrix3::new(
             ct, -st * ca, st * sa,
@@ -170,7 +172,7 @@ pub(crate) fn revolute_dh6(robot: &Robot, solver: &'static str) -> Result<[DhJoi
     if robot.dof() != 6 {
         return Err(unsupported(solver, robot, format!("needs 6 joints, the robot has {}", robot.dof())));
     }
-    let mut out = [DhJoint { a: 0.0, alpha: 0.0, d: 0.0, offset: 0.0, sign: 1.0 }; 6];
+    let mut out = [DhJoint { a: 0.0, alpha: 0.0, d: 0.0, offset: 0.0, sign: 1.0, sin_cos_alpha: (0.0, 1.0) }; 6];
     for (i, (joint, slot)) in robot.joints().iter().zip(out.iter_mut()).enumerate() {
         if joint.kind != JointKind::Revolute {
             return Err(unsupported(solver, robot, format!("joint {} ({}) is not revolute", i + 1, joint.name)));
@@ -181,6 +183,7 @@ pub(crate) fn revolute_dh6(robot: &Robot, solver: &'static str) -> Result<[DhJoi
         *slot = DhJoint {
             a: p.a,
             alpha: p.alpha,
+            sin_cos_alpha: p.alpha.sin_cos(),
             d: p.d,
             offset: p.theta_offset,
             sign: if joint.flip { -1.0 } else { 1.0 },
@@ -304,7 +307,7 @@ pub(crate) struct Arm {
 impl Arm {
     /// The singularity flags of the arm.
     pub fn flags(&self) -> Vec<SingularityKind> {
-        let mut out = Vec::with_capacity(3);
+        let mut out = Vec::new();
         if self.shoulder_singular {
             out.push(SingularityKind::Shoulder);
         }
@@ -326,6 +329,46 @@ pub(crate) fn fallback_failure(arms: &[Arm]) -> IkFailure {
         SingularityKind::Wrist
     };
     IkFailure::Singular { kind }
+}
+
+/// The one branch `branch` of an arm-then-wrist closed form ([`IkSolver::solve_branch`]):
+/// the wrist solutions of the only arm labelled with the branch's shoulder and elbow,
+/// restricted to its wrist label and verified by [`finish`].
+///
+/// This equals `solve(…).restricted_to(branch)` because [`finish`] can merge two candidates
+/// only when all their joint values agree within `IK_DUPLICATE`: the two wrist solutions of
+/// one arm differ by π in θ4, so a merge needs another arm with the same θ1…θ3. `None` (the
+/// caller falls back to the full solve) when such an arm exists within twice that tolerance,
+/// when no or several arms carry the labels, or when the branch has no verified solution.
+pub(crate) fn arm_branch(
+    robot: &Robot,
+    target: &IkTarget,
+    branch: &Branch,
+    solver: &'static str,
+    arms: &[Arm],
+    wrists: impl FnOnce(&Arm, &mut Vec<Candidate>),
+) -> Result<Option<IkSolutions>, IkError> {
+    let (Some(shoulder), Some(elbow)) = (branch.get("shoulder"), branch.get("elbow")) else {
+        return Ok(None);
+    };
+    let mut labelled = arms.iter().filter(|a| a.shoulder == shoulder && a.elbow == elbow);
+    let (Some(arm), None) = (labelled.next(), labelled.next()) else {
+        return Ok(None);
+    };
+    let close = |other: &Arm| {
+        other.theta.iter().zip(&arm.theta).all(|(a, b)| wrap(a - b).abs() <= 2.0 * crate::tolerance::IK_DUPLICATE)
+    };
+    if arms.iter().any(|other| !std::ptr::eq(other, arm) && close(other)) {
+        return Ok(None);
+    }
+    let mut candidates = Vec::with_capacity(2);
+    wrists(arm, &mut candidates);
+    candidates.retain(|c| c.branch == *branch);
+    if candidates.is_empty() {
+        return Ok(None);
+    }
+    let sols = finish(robot, target, candidates, solver, fallback_failure(arms))?;
+    Ok((!sols.solutions.is_empty()).then_some(sols))
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -501,8 +544,17 @@ impl SphericalWrist {
         n.dot(&m.column(1)).atan2(n.dot(&m.column(0)))
     }
 
-    /// The wrist solutions of one arm branch, appended to `out`.
-    fn wrists(&self, arm: &Arm, flange: &IsometryMatrix3<f64>, seed: Option<&[f64; 6]>, out: &mut Vec<Candidate>) {
+    /// The wrist solutions of one arm branch (only the one labelled `wrist` when given),
+    /// appended to `out`.
+    fn wrists(
+        &self,
+        arm: &Arm,
+        flange: &IsometryMatrix3<f64>,
+        seed: Option<&[f64; 6]>,
+        wrist: Option<&str>,
+        out: &mut Vec<Candidate>,
+    ) {
+        let wanted = |label: &str| wrist.is_none_or(|w| w == label);
         let [t1, t2, t3] = arm.theta;
         let t03 = self.joints[0].transform(t1) * self.joints[1].transform(t2) * self.joints[2].transform(t3);
         let m3 = t03.rotation.matrix();
@@ -516,6 +568,9 @@ impl SphericalWrist {
         let shoulder_elbow = [("shoulder", arm.shoulder), ("elbow", arm.elbow)];
         if sin5 < IK_PARALLEL_SINE {
             // Wrist singularity: θ4 undetermined; keep the seed's, θ6 takes the rest.
+            if !wanted("noflip") {
+                return;
+            }
             let theta5 = if cos5 >= 0.0 { 0.0 } else { PI };
             let theta4 = free_theta(&self.joints, seed, 3);
             let theta6 = self.theta6(&t03, theta4, theta5, &n);
@@ -532,6 +587,10 @@ impl SphericalWrist {
         let sq_y = -z4.dot(&y3); // eq. 24
         for k in [1.0, -1.0] {
             let theta5 = (k * sin5).atan2(cos5);
+            let label = wrist_label(theta5);
+            if !wanted(label) {
+                continue;
+            }
             // eq. 23 with the arguments in the corrected order (notes 002 §6 item 3),
             // generalised to the α4/α5 signs and to the flipped wrist (sin θ5 < 0).
             let g = -self.s5 * k;
@@ -539,7 +598,7 @@ impl SphericalWrist {
             let theta6 = self.theta6(&t03, theta4, theta5, &n);
             let mut c = Candidate::new(
                 joint_values(&self.joints, &[t1, t2, t3, theta4, theta5, theta6]),
-                Branch::new(shoulder_elbow.into_iter().chain([("wrist", wrist_label(theta5))])),
+                Branch::new(shoulder_elbow.into_iter().chain([("wrist", label)])),
             );
             c.singularities = arm.flags();
             out.push(c);
@@ -563,9 +622,32 @@ impl IkSolver for SphericalWrist {
         };
         let mut candidates = Vec::with_capacity(2 * arms.len());
         for arm in &arms {
-            self.wrists(arm, &flange, seed.as_ref(), &mut candidates);
+            self.wrists(arm, &flange, seed.as_ref(), None, &mut candidates);
         }
         finish(robot, target, candidates, NAME, fallback_failure(&arms))
+    }
+
+    /// Only the requested branch's arm and wrist are computed and verified (see
+    /// [`IkSolver::solve_branch`]); the full solve where branches may merge.
+    fn solve_branch(
+        &self,
+        robot: &Robot,
+        target: &IkTarget,
+        branch: &Branch,
+        options: &IkOptions,
+    ) -> Result<IkSolutions, IkError> {
+        target.validate()?;
+        let seed = seed_thetas(&self.joints, options)?;
+        let flange = flange_goal(robot, target, options)?;
+        let w = wrist_centre(&flange, self.joints[5].d);
+        if let Ok(arms) = self.arms(&w, seed.as_ref())
+            && let Some(sols) = arm_branch(robot, target, branch, NAME, &arms, |arm, out| {
+                self.wrists(arm, &flange, seed.as_ref(), branch.get("wrist"), out);
+            })?
+        {
+            return Ok(sols);
+        }
+        Ok(self.solve(robot, target, options)?.restricted_to(branch))
     }
 }
 

@@ -87,8 +87,9 @@ use std::f64::consts::PI;
 use nalgebra::{IsometryMatrix3, Point3};
 
 use super::spherical_wrist::{
-    Arm, DhJoint, elbow_label, fallback_failure, flange_goal, free_theta, is_zero_angle, is_zero_length, joint_values,
-    quarter_turn, require_spherical_wrist, revolute_dh6, seed_thetas, unsupported, wrist_centre, wrist_label,
+    Arm, DhJoint, arm_branch, elbow_label, fallback_failure, flange_goal, free_theta, is_zero_angle, is_zero_length,
+    joint_values, quarter_turn, require_spherical_wrist, revolute_dh6, seed_thetas, unsupported, wrist_centre,
+    wrist_label,
 };
 use super::{
     Branch, Candidate, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, finish,
@@ -316,6 +317,29 @@ impl IkSolver for TwoLinkWrist {
             self.wrists(arm, &flange, seed.as_ref(), &mut candidates);
         }
         finish(robot, target, candidates, NAME, fallback_failure(&arms))
+    }
+
+    /// Only the requested branch's arm and wrist are verified (see
+    /// [`IkSolver::solve_branch`]); the full solve where branches may merge.
+    fn solve_branch(
+        &self,
+        robot: &Robot,
+        target: &IkTarget,
+        branch: &Branch,
+        options: &IkOptions,
+    ) -> Result<IkSolutions, IkError> {
+        target.validate()?;
+        let seed = seed_thetas(&self.joints, options)?;
+        let flange = flange_goal(robot, target, options)?;
+        let w = wrist_centre(&flange, self.joints[5].d);
+        if let Ok(arms) = self.arms(&w, seed.as_ref())
+            && let Some(sols) = arm_branch(robot, target, branch, NAME, &arms, |arm, out| {
+                self.wrists(arm, &flange, seed.as_ref(), out);
+            })?
+        {
+            return Ok(sols);
+        }
+        Ok(self.solve(robot, target, options)?.restricted_to(branch))
     }
 }
 

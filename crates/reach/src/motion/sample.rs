@@ -28,14 +28,17 @@ use crate::ik::{self, IkFailure, IkOptions, IkSolution, IkTarget};
 use crate::model::Robot;
 use crate::tolerance::SAMPLE_GRID;
 
-/// One sample of a tool path.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// One sample of a tool path: the samples of a [`ToolPath`] and the input of path tracking
+/// ([`TrackedPath`](super::tracking::TrackedPath)).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct PathSample {
     /// Time, seconds.
     pub t: f64,
-    /// Arc length of the tool point from the start of the path, metres.
+    /// Path parameter: the arc length of the tool point from the start of the path, metres.
+    /// Path tracking accepts any strictly increasing parameter here.
     pub s: f64,
     /// Rotation angle of the tool from its start orientation, radians (about the path's axis).
+    /// Path tracking does not read it.
     pub angle: f64,
     /// Tool pose in the world frame.
     pub pose: Isometry3<f64>,

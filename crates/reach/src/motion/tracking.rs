@@ -5,9 +5,9 @@
 //!
 //! # The input
 //!
-//! A path is a list of [`PathPoint`]s — path parameter `s` (arc length of the tool point in
+//! A path is a list of [`PathSample`]s — path parameter `s` (arc length of the tool point in
 //! the paper; any strictly increasing parameter here), time `t` (strictly increasing) and
-//! tool pose — wrapped in a [`TrackedPath`]. Singular positions and limit crossings are refined
+//! tool pose, e.g. the samples of a [`ToolPath`](super::ToolPath) — wrapped in a [`TrackedPath`]. Singular positions and limit crossings are refined
 //! between samples by bisection, so the path must be evaluable between samples: either give
 //! a closure `Fn(f64) -> Isometry3<f64>` over `s` ([`TrackedPath::with_evaluator`]) or let the
 //! path interpolate its samples (straight-line position, slerped orientation;
@@ -66,6 +66,7 @@
 //! The decisions are logged as [`TrackingEvent`]s equivalent to the paper's operator
 //! messages K1–K14 ([`EventCode`]).
 
+use std::borrow::Cow;
 use std::f64::consts::{PI, TAU};
 use std::fmt;
 
@@ -73,31 +74,13 @@ use nalgebra::{Isometry3, Point3, Translation3};
 use serde::Serialize;
 use thiserror::Error;
 
+use super::sample::PathSample;
 use crate::angle::{nearest_equivalent, shortest_difference, wrap};
 use crate::ik::parallel_axes::{ParallelAxes, Shoulder, Wrist};
 use crate::ik::{Branch, IkError, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, SolverKind};
 use crate::kinematics::{JacobianAxes, Manipulability};
 use crate::model::{Joint, JointKind, Robot};
 use crate::tolerance::{LIMIT_SLACK, TRACKING_PARAMETER, TRACKING_RATE_STEP, TRACKING_SINGULAR};
-
-/// One sample of a tool path.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct PathPoint {
-    /// Path parameter (arc length of the tool point, metres, in the paper), strictly increasing.
-    pub s: f64,
-    /// Time, seconds, strictly increasing.
-    pub t: f64,
-    /// Tool pose in the world frame.
-    pub pose: Isometry3<f64>,
-}
-
-impl From<&super::sample::PathSample> for PathPoint {
-    /// A sample of a sampled tool motion ([`super::sample::ToolPath`]) as a tracking point,
-    /// parameterised by its arc length.
-    fn from(p: &super::sample::PathSample) -> Self {
-        PathPoint { s: p.s, t: p.t, pose: p.pose }
-    }
-}
 
 /// Why a tracking problem was rejected.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -156,7 +139,7 @@ pub enum TrackingError {
 
 /// A path: its samples and a way to evaluate it between them.
 pub struct TrackedPath<'a> {
-    samples: &'a [PathPoint],
+    samples: &'a [PathSample],
     evaluator: Option<&'a dyn Fn(f64) -> Isometry3<f64>>,
 }
 
@@ -176,7 +159,7 @@ impl<'a> TrackedPath<'a> {
     /// # Errors
     /// [`TrackingError`] for fewer than 2 samples, non-finite values, or `s`/`t` not
     /// strictly increasing.
-    pub fn sampled(samples: &'a [PathPoint]) -> Result<Self, TrackingError> {
+    pub fn sampled(samples: &'a [PathSample]) -> Result<Self, TrackingError> {
         validate_samples(samples)?;
         Ok(TrackedPath { samples, evaluator: None })
     }
@@ -186,7 +169,7 @@ impl<'a> TrackedPath<'a> {
     /// # Errors
     /// As [`TrackedPath::sampled`].
     pub fn with_evaluator(
-        samples: &'a [PathPoint],
+        samples: &'a [PathSample],
         evaluator: &'a dyn Fn(f64) -> Isometry3<f64>,
     ) -> Result<Self, TrackingError> {
         validate_samples(samples)?;
@@ -195,7 +178,7 @@ impl<'a> TrackedPath<'a> {
 
     /// The samples.
     #[must_use]
-    pub fn samples(&self) -> &[PathPoint] {
+    pub fn samples(&self) -> &[PathSample] {
         self.samples
     }
 
@@ -245,7 +228,7 @@ impl<'a> TrackedPath<'a> {
     }
 }
 
-fn validate_samples(samples: &[PathPoint]) -> Result<(), TrackingError> {
+fn validate_samples(samples: &[PathSample]) -> Result<(), TrackingError> {
     if samples.len() < 2 {
         return Err(TrackingError::TooFewSamples { found: samples.len() });
     }
@@ -327,12 +310,22 @@ impl Solving<'_> {
         }
     }
 
-    fn solve(&self, pose: &Isometry3<f64>, seed: Option<&[f64]>) -> Result<IkSolutions, TrackingError> {
+    fn options(&self, seed: Option<&[f64]>) -> IkOptions {
         let mut options = IkOptions { seed: seed.map(<[f64]>::to_vec), ..IkOptions::default() };
         if self.numeric && seed.is_some() {
             options.restarts = 1;
         }
-        Ok(self.solver.solve(self.robot, &self.target(pose), &options)?)
+        options
+    }
+
+    fn solve(&self, pose: &Isometry3<f64>, seed: Option<&[f64]>) -> Result<IkSolutions, TrackingError> {
+        Ok(self.solver.solve(self.robot, &self.target(pose), &self.options(seed))?)
+    }
+
+    /// The locked branch at `pose`, seeded with and next to `reference` ([`follow`]).
+    fn follow(&self, pose: &Isometry3<f64>, lock: &Lock, reference: &[f64]) -> Result<Option<Vec<f64>>, TrackingError> {
+        let options = self.options(Some(reference));
+        Ok(follow(self.robot, self.solver.as_ref(), &self.target(pose), lock, reference, &options)?)
     }
 }
 
@@ -365,6 +358,27 @@ fn pick(robot: &Robot, sols: &IkSolutions, lock: &Lock, reference: &[f64]) -> Op
     Some(unwrap_to(robot, &found.q, reference))
 }
 
+/// [`pick`] on the solutions at `target`: for a label lock (closed forms) only the locked
+/// branch is solved ([`IkSolver::solve_branch`]), and every branch only when it has no solution
+/// there — the singular fallback of [`pick`] needs them. The result is that of `pick` on the
+/// full solve: `solve_branch` returns exactly the solutions the label filter of `pick` keeps.
+fn follow(
+    robot: &Robot,
+    solver: &dyn IkSolver,
+    target: &IkTarget,
+    lock: &Lock,
+    reference: &[f64],
+    options: &IkOptions,
+) -> Result<Option<Vec<f64>>, IkError> {
+    if let Lock::Label(label) = lock {
+        let own = solver.solve_branch(robot, target, label, options)?;
+        if !own.solutions.is_empty() {
+            return Ok(pick(robot, &own, lock, reference));
+        }
+    }
+    Ok(pick(robot, &solver.solve(robot, target, options)?, lock, reference))
+}
+
 /// One configuration followed along a list of samples ([`track_configuration`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct BranchTrack {
@@ -385,7 +399,9 @@ pub struct BranchTrack {
 /// * `position_only` — solve for the tool position only.
 ///
 /// # Performance
-/// One IK solve per sample plus a nearest search over its solutions; no other work.
+/// Until the branch is locked, one IK solve per sample; then one single-branch solve per
+/// sample ([`IkSolver::solve_branch`], the full solve only where the branch has no
+/// solution) and a nearest search over its solutions; no other work.
 ///
 /// # Errors
 /// [`TrackingError`] for a bad path or when the solver rejects a target.
@@ -393,13 +409,16 @@ pub struct BranchTrack {
 /// # Example
 /// ```
 /// use reach::ik::{Branch, SolverKind};
-/// use reach::motion::tracking::{PathPoint, track_configuration};
+/// use reach::motion::PathSample;
+/// use reach::motion::tracking::track_configuration;
 /// let puma = reach::model::presets::get("puma560").unwrap();
 /// let solver = SolverKind::detect(&puma).build(&puma).unwrap();
-/// let samples: Vec<PathPoint> = (0..=10)
+/// let start = puma.fk(&[0.0, 0.5, -0.4, 0.3, 0.6, 3.1]).unwrap();
+/// let samples: Vec<PathSample> = (0..=10)
 ///     .map(|k| {
 ///         let q = [0.1 * k as f64, 0.5, -0.4, 0.3, 0.6, 3.1 + 0.01 * k as f64];
-///         PathPoint { s: k as f64, t: k as f64, pose: puma.fk(&q).unwrap() }
+///         let pose = puma.fk(&q).unwrap();
+///         PathSample { t: k as f64, s: k as f64, angle: start.rotation.angle_to(&pose.rotation), pose }
 ///     })
 ///     .collect();
 /// let track = track_configuration(&puma, solver.as_ref(), &samples, &Branch::default(), false).unwrap();
@@ -410,7 +429,7 @@ pub struct BranchTrack {
 pub fn track_configuration(
     robot: &Robot,
     solver: &dyn IkSolver,
-    samples: &[PathPoint],
+    samples: &[PathSample],
     filter: &Branch,
     position_only: bool,
 ) -> Result<BranchTrack, TrackingError> {
@@ -428,10 +447,9 @@ pub fn track_configuration(
         if numeric && previous.is_some() {
             options.restarts = 1;
         }
-        let sols = solver.solve(robot, &target(&p.pose), &options)?;
         let q = match (&lock, &previous) {
-            (Some(l), Some(prev)) => pick(robot, &sols, l, prev),
-            _ => anchor(&sols, filter, numeric).map(|(q, l)| {
+            (Some(l), Some(prev)) => follow(robot, solver, &target(&p.pose), l, prev, &options)?,
+            _ => anchor(&solver.solve(robot, &target(&p.pose), &options)?, filter, numeric).map(|(q, l)| {
                 if let Lock::Label(b) = &l {
                     out.branch = Some(b.clone());
                 } else {
@@ -870,6 +888,16 @@ impl Measure {
     }
 }
 
+/// The scan of the samples ([`Tracker::split_points`]).
+struct Scan {
+    /// Singular positions and reachability changes, by `s`.
+    points: Vec<SplitPoint>,
+    /// Whether any configuration has a solution, per sample.
+    reach: Vec<bool>,
+    /// The unseeded solutions of every sample.
+    solutions: Vec<IkSolutions>,
+}
+
 struct Tracker<'a> {
     solving: Solving<'a>,
     path: &'a TrackedPath<'a>,
@@ -1115,15 +1143,18 @@ impl<'a> Tracker<'a> {
         Ok(if fc <= fd { (c, fc) } else { (d, fd) })
     }
 
-    /// Step 2–3 of the algorithm: singular positions and reachability changes.
-    fn split_points(&self) -> Result<(Vec<SplitPoint>, Vec<bool>), TrackingError> {
+    /// Step 2–3 of the algorithm: singular positions and reachability changes. Also returns
+    /// the unseeded solutions of every sample (reused by [`Tracker::track_interval`]).
+    fn split_points(&self) -> Result<Scan, TrackingError> {
         let samples = self.path.samples();
         let mut reach = Vec::with_capacity(samples.len());
         let mut values: Vec<Vec<Option<f64>>> = Vec::with_capacity(samples.len());
+        let mut all = Vec::with_capacity(samples.len());
         for p in samples {
             let sols = self.solving.solve(&p.pose, None)?;
             reach.push(self.reachable(&sols));
             values.push(self.measures_at(&p.pose, Some(&sols))?);
+            all.push(sols);
         }
         let mut points = Vec::new();
         for k in 1..samples.len() {
@@ -1170,7 +1201,7 @@ impl<'a> Tracker<'a> {
                 _ => merged.push(p),
             }
         }
-        Ok((merged, reach))
+        Ok(Scan { points: merged, reach, solutions: all })
     }
 
     /// A singular position at `s`, its kind read from the solver's flags when it sets one.
@@ -1190,23 +1221,20 @@ impl<'a> Tracker<'a> {
 
     /// The joint vector of the locked branch at `s`, next to `reference`.
     fn q_at(&self, s: f64, lock: &Lock, reference: &[f64]) -> Result<Option<Vec<f64>>, TrackingError> {
-        let sols = self.solving.solve(&self.path.pose_at(s)?, Some(reference))?;
-        Ok(pick(self.solving.robot, &sols, lock, reference))
+        self.solving.follow(&self.path.pose_at(s)?, lock, reference)
     }
 
-    /// Tracks configuration `c` over `points` (s values of one interval).
+    /// Tracks configuration `c` over `points` (s values of one interval), given the unseeded
+    /// solutions `sols` at those points (shared by the configurations).
     fn track_interval(
         &self,
         c: usize,
         points: &[f64],
+        sols: &[Cow<'_, IkSolutions>],
         ends_at_boundary: (bool, bool),
     ) -> Result<ConfigurationTrack, TrackingError> {
         let robot = self.robot();
         let filter = &self.configurations[c];
-        let mut sols = Vec::with_capacity(points.len());
-        for &s in points {
-            sols.push(self.solving.solve(&self.path.pose_at(s)?, None)?);
-        }
         let anchor = (0..points.len())
             .filter_map(|k| anchor(&sols[k], filter, self.solving.numeric).map(|a| (k, a)))
             .min_by_key(|(k, (q, _))| {
@@ -1237,8 +1265,9 @@ impl<'a> Tracker<'a> {
         let mut lost: Option<(f64, f64)> = None;
         let follow = |k: usize, from: usize, q: &mut Vec<Option<Vec<f64>>>| -> Result<bool, TrackingError> {
             let reference = q[from].clone().expect("followed from a tracked sample");
-            let seeded = self.solving.solve(&self.path.pose_at(points[k])?, Some(&reference))?;
-            let found = pick(self.solving.robot, &seeded, &lock, &reference)
+            let found = self
+                .solving
+                .follow(&self.path.pose_at(points[k])?, &lock, &reference)?
                 .or_else(|| pick(self.solving.robot, &sols[k], &lock, &reference));
             let ok = found.is_some();
             q[k] = found;
@@ -1489,7 +1518,7 @@ fn track_with(
 ) -> Result<TrackingReport, TrackingError> {
     let path = tracker.path;
     let robot = tracker.robot();
-    let (split_points, reach) = tracker.split_points()?;
+    let Scan { points: split_points, reach, solutions: sample_solutions } = tracker.split_points()?;
     let samples = path.samples();
     let mut bounds = vec![(path.start(), None::<SplitKind>)];
     for p in &split_points {
@@ -1583,8 +1612,19 @@ fn track_with(
             let order: Vec<usize> =
                 std::iter::once(default).chain((0..tracker.configurations.len()).filter(|&c| c != default)).collect();
             let mut tracks: Vec<Option<ConfigurationTrack>> = vec![None; tracker.configurations.len()];
+            // The unseeded solutions at the interval's points, once for every configuration:
+            // a sample's from the scan when the path gives the sample's own pose there.
+            let mut sols: Vec<Cow<'_, IkSolutions>> = Vec::with_capacity(points.len());
+            for (j, &s) in points.iter().enumerate() {
+                let pose = path.pose_at(s)?;
+                let k = j.checked_sub(1).and_then(|j| interior.get(j)).copied();
+                sols.push(match k {
+                    Some(k) if samples[k].pose == pose => Cow::Borrowed(&sample_solutions[k]),
+                    _ => Cow::Owned(tracker.solving.solve(&pose, None)?),
+                });
+            }
             for (rank, &c) in order.iter().enumerate() {
-                let t = tracker.track_interval(c, &points, (boundary(ka), boundary(kb)))?;
+                let t = tracker.track_interval(c, &points, &sols, (boundary(ka), boundary(kb)))?;
                 let is_default = rank == 0;
                 let next = order.get(1).map(|&n| name(n));
                 for v in &t.violations {
