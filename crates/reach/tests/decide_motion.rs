@@ -96,7 +96,7 @@ fn bad_motions_and_names_are_rejected() {
     let ok = vec![vec![0.0; 6], vec![0.1; 6]];
     assert!(j2.evaluate(&robot, &SampledMotion::new(&backwards, &ok)).is_err());
     assert!(matches!(
-        choose_motion(&robot, &[], &[j2.clone()], &[1.0], Method::Topsis),
+        choose_motion(&robot, &[], std::slice::from_ref(&j2), &[1.0], Method::Topsis),
         Err(DecideError::NoCandidates)
     ));
     let m = SampledMotion::new(&t, &ok);

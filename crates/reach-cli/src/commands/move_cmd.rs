@@ -308,7 +308,7 @@ fn motion_error(e: impl std::fmt::Display) -> CliError {
     CliError::bad_input(one_line(&e.to_string()))
 }
 
-fn profile_of(name: Option<ProfileName>, default: ProfileName) -> Result<Profile, CliError> {
+pub(crate) fn profile_of(name: Option<ProfileName>, default: ProfileName) -> Result<Profile, CliError> {
     Ok(match name.unwrap_or(default) {
         ProfileName::Cycloidal => Profile::Cycloidal,
         ProfileName::Quintic => Profile::Quintic,

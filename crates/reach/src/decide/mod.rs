@@ -101,6 +101,12 @@ pub enum DecideError {
         /// The value.
         value: f64,
     },
+    /// A criterion is zero for every candidate, so it cannot discriminate.
+    #[error("criterion '{criterion}' is 0 for every candidate (all-zero column); it cannot discriminate, drop it")]
+    ZeroColumn {
+        /// Criterion name.
+        criterion: String,
+    },
     /// A criterion name is not known.
     #[error("unknown criterion '{name}' (known: {known})")]
     UnknownCriterion {
