@@ -349,3 +349,48 @@ fn tasks_bad_input_and_infeasible() {
     fails(&["tasks", "puma560", "visiting", ok_file.0.to_str().unwrap(), "--budget", "5"], 2, &["max_velocity"]);
     fails(&["tasks", "ur5", "visiting", "/nonexistent/task.toml"], 2, &["/nonexistent/task.toml"]);
 }
+
+// ---------------------------------------------------------------------------------------
+// reach plan: [choose] per path interval
+
+fn interval_choices(r: &Value) -> Vec<(String, String)> {
+    r["motions"][0]["intervals"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|i| (i["configuration"].as_str().unwrap_or("").to_string(), i["decision"].as_str().unwrap().to_string()))
+        .collect()
+}
+
+#[test]
+fn plan_choose_ranks_the_configurations_of_each_interval() {
+    let example = std::fs::read_to_string("../../examples/choose_tracking.toml").unwrap();
+    let chosen = json(&["plan", "../../examples/choose_tracking.toml", "--json"]);
+    assert_eq!(interval_choices(&chosen), vec![("shoulder=w config=−β wrist=e5".into(), "criterion".into())]);
+    // Without [choose] the default configuration is realised.
+    let start = example.find("\n[choose]").unwrap();
+    let end = example.find("[[motion]]").unwrap();
+    let plain = temp_file("plain.toml", &format!("{}{}", &example[..start], &example[end..]));
+    let r = json(&["plan", plain.0.to_str().unwrap(), "--json"]);
+    assert_eq!(interval_choices(&r), vec![("shoulder=w config=+β wrist=e5".into(), "default".into())]);
+    // Another criterion (J2, less joint motion) chooses the other configuration.
+    let j2 = temp_file(
+        "j2.toml",
+        &example
+            .replace("criteria = [\"limits\", \"manipulability\"]", "criteria = [\"j2\"]")
+            .replace("weights = [0.5, 0.5]", ""),
+    );
+    let r = json(&["plan", j2.0.to_str().unwrap(), "--json"]);
+    assert_eq!(interval_choices(&r), vec![("shoulder=w config=+β wrist=e5".into(), "criterion".into())]);
+    // Bad [choose]: unknown criterion, weight count, clearance without a scene.
+    for (from, to, needle) in [
+        ("[\"limits\", \"manipulability\"]", "[\"limits\", \"luck\"]", "unknown criterion 'luck'"),
+        ("weights = [0.5, 0.5]", "weights = [0.5]", "expected 2 weights"),
+        ("weights = [0.5, 0.5]", "weights = [0.5, -0.5]", "must be finite and >= 0"),
+        ("[\"limits\", \"manipulability\"]", "[\"limits\", \"clearance\"]", "needs a scene"),
+        ("method = \"topsis\"", "method = \"electre\"", "unknown `electre`"),
+    ] {
+        let file = temp_file("bad-choose.toml", &example.replace(from, to));
+        fails(&["plan", file.0.to_str().unwrap()], 2, &["[choose]", needle]);
+    }
+}
