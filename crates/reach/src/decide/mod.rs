@@ -7,9 +7,12 @@
 //! - [`motion_criteria`]: criteria of whole motions (J1, J2, duration, peak rates, limits,
 //!   manipulability, clearance, tool path length), [`choose_motion`], and [`TrackChooser`]
 //!   for path tracking's per-interval choice of configuration.
+//! - [`detour_choice`]: seed 000's detour around a point obstacle, both sides planned and
+//!   ranked ([`detour_choice::choose_detour`]).
 //! - [`sequence`]: ordering of targets ("visiting") and pick-and-place trips ("collection")
 //!   on a cost matrix, exact (Held–Karp) for small sets and heuristic beyond (seed 001 §8–9).
 
+pub mod detour_choice;
 pub mod ik_criteria;
 pub mod mcdm;
 pub mod motion_criteria;
