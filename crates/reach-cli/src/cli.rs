@@ -151,7 +151,7 @@ pub enum Command {
             reach ik puma560 --xyz 0.5,-0.2,0.3 --rpy 180,0,0 --all\n  \
             reach ik ur5 --matrix -1,0,0,0.4,0,1,0,-0.2,0,0,-1,0.3,0,0,0,1 --json\n  \
             reach ik spbu6 --matrix 1,0,0,0,0,0,1,3,0,-1,0,5,0,0,0,1\n  \
-            reach ik ur5 --matrix -1,0,0,0.4,0,1,0,-0.2,0,0,-1,0.3,0,0,0,1 --from 0,-90,90,-90,-90,0 --choose topsis --criteria change,limits,manipulability,sigma_min --weights 0.4,0.2,0.2,0.2\n  \
+            reach ik ur5 --matrix -1,0,0,0.4,0,1,0,-0.2,0,0,-1,0.3,0,0,0,1 --from 0,-90,90,-90,-90,0 --choose topsis --criteria change,limits,manipulability,sigma_min --weights 0.25,0.25,0.25,0.25\n  \
             reach ik puma560 --xyz 0.5,-0.2,0.3 --rpy 180,0,0 --choose vikor --joint-weights 1,1,1,0.2,0.2,0.2\n  \
             reach ik welder6r --xyz 0.05,0.74,0.07 --rpy 0,-41.8685,-50.1944 --from 105,-33,43,-170,-155,138\n  \
             reach ik planar3 --xyz 2,1,0 --free-angle -30 --all\n  \

@@ -72,7 +72,7 @@ fn choose_ranks_the_solutions_within_limits_and_explains_the_ranking() {
                 .map(String::from)
                 .to_vec();
         if method != "pareto" {
-            a.extend(["--weights".into(), "0.4,0.2,0.2,0.2".into()]);
+            a.extend(["--weights".into(), "0.25,0.25,0.25,0.25".into()]);
         }
         a.push("--json".into());
         a
@@ -91,7 +91,7 @@ fn choose_ranks_the_solutions_within_limits_and_explains_the_ranking() {
     assert_eq!(ranked[0]["solution"], topsis["chosen"]);
     let weights: Vec<f64> =
         ranking["criteria"].as_array().unwrap().iter().map(|c| c["weight"].as_f64().unwrap()).collect();
-    assert!((weights.iter().sum::<f64>() - 1.0).abs() < 1e-12 && (weights[0] - 0.4).abs() < 1e-12);
+    assert!((weights.iter().sum::<f64>() - 1.0).abs() < 1e-12 && (weights[0] - 0.25).abs() < 1e-12);
     let from: Vec<f64> = UR5_FROM.split(',').map(|v| v.parse().unwrap()).collect();
     let mut previous = f64::INFINITY;
     for (k, e) in ranked.iter().enumerate() {
@@ -128,7 +128,7 @@ fn choose_ranks_the_solutions_within_limits_and_explains_the_ranking() {
         "--criteria",
         criteria,
         "--weights",
-        "0.4,0.2,0.2,0.2",
+        "0.25,0.25,0.25,0.25",
     ]);
     for needle in ["ranking (--choose topsis", "change↓ [rad]", "change norm", "manipulability↑", "closeness", "pareto"]
     {

@@ -466,3 +466,19 @@ fn help_and_demo_show_ik() {
     let puma = demo.lines().skip_while(|l| !l.starts_with("puma560 — fk(")).nth(4).unwrap();
     assert!(puma.contains("20.0000  -40.0000   30.0000   10.0000   40.0000  -30.0000"), "{puma}");
 }
+
+#[test]
+fn a_half_turn_matrix_is_read_exactly() {
+    // R = diag(−1, 1, −1) (a half turn about y): nalgebra's iterative `from_matrix` stalls on
+    // half turns; the pose reached must be the one given.
+    let m = "-1,0,0,0.4,0,1,0,-0.2,0,0,-1,0.3,0,0,0,1";
+    let report = json(&["ik", "ur5", "--matrix", m, "--json"]);
+    let q: Vec<String> = chosen_q(&report).iter().map(|v| v.to_string()).collect();
+    let mut args = vec!["fk", "ur5"];
+    args.extend(q.iter().map(String::as_str));
+    args.push("--json");
+    let fk = json(&args);
+    let rows: Vec<f64> = fk["pose"]["matrix"].as_array().unwrap().iter().flat_map(|r| nums(r)).collect();
+    let want: Vec<f64> = m.split(',').map(|v| v.parse().unwrap()).collect();
+    assert!(rows.iter().zip(&want).all(|(a, b)| (a - b).abs() < 1e-9), "{rows:?}");
+}

@@ -14,7 +14,7 @@
 use std::io::Write;
 
 use clap::{ArgGroup, Args};
-use nalgebra::{Isometry3, Matrix3, Matrix4, Point3, Translation3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Matrix3, Matrix4, Point3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use reach::Robot;
 use reach::decide::{Criterion, DecideError, IkCriterion, Method, ik_matrix, rank};
 use reach::ik::planar::{PaperScan, PlanarRedundant, ScanRow};
@@ -376,7 +376,10 @@ fn pose_from_matrix(v: &[f64]) -> Result<Isometry3<f64>, CliError> {
         ));
     }
     let translation = Translation3::new(m[(0, 3)], m[(1, 3)], m[(2, 3)]);
-    Ok(Isometry3::from_parts(translation, UnitQuaternion::from_matrix(&r)))
+    // Closed form (Shepperd): `UnitQuaternion::from_matrix`'s iteration starts at the identity
+    // and stalls on half-turns (diag(−1, 1, −1) came back as a 0.0155° roll).
+    let rotation = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(r));
+    Ok(Isometry3::from_parts(translation, rotation))
 }
 
 /// `--joint-weights`: one finite, non-negative weight per joint.

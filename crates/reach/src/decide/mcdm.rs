@@ -347,7 +347,8 @@ pub fn rank(matrix: &DecisionMatrix, weights: &[f64], method: Method) -> Result<
                 let (best, worst) = matrix.best_worst(j);
                 let span = best - worst;
                 for (i, e) in entries.iter_mut().enumerate() {
-                    e.normalised[j] = if span == 0.0 { 0.0 } else { (best - matrix.rows[i][j]) / span };
+                    // `+ 0.0` turns the −0 of a best value on a less-is-better column into 0.
+                    e.normalised[j] = if span == 0.0 { 0.0 } else { (best - matrix.rows[i][j]) / span + 0.0 };
                 }
             }
             for e in &mut entries {
