@@ -478,7 +478,7 @@ fn a_half_turn_matrix_is_read_exactly() {
     args.extend(q.iter().map(String::as_str));
     args.push("--json");
     let fk = json(&args);
-    let rows: Vec<f64> = fk["pose"]["matrix"].as_array().unwrap().iter().flat_map(|r| nums(r)).collect();
+    let rows: Vec<f64> = fk["pose"]["matrix"].as_array().unwrap().iter().flat_map(nums).collect();
     let want: Vec<f64> = m.split(',').map(|v| v.parse().unwrap()).collect();
     assert!(rows.iter().zip(&want).all(|(a, b)| (a - b).abs() < 1e-9), "{rows:?}");
 }
