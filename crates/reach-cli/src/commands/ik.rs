@@ -764,6 +764,8 @@ pub(crate) struct ChoiceSpec {
     weights: Vec<f64>,
     /// The joint change from --from (pareto's tie-break among the non-dominated).
     change: IkCriterion,
+    /// How the method is named in messages (`--choose`, `[choose] method`).
+    label: String,
 }
 
 impl ChoiceSpec {
@@ -852,14 +854,14 @@ impl ChoiceSpec {
             }
             (None, _) => vec![1.0; criteria.len()],
         };
-        Ok(ChoiceSpec { method, criteria, weights, change })
+        Ok(ChoiceSpec { method, criteria, weights, change, label: method_label.to_string() })
     }
 
     /// Ranks the solutions within limits; indices refer to `all.solutions`.
     pub(crate) fn rank(&self, robot: &Robot, all: &IkSolutions) -> Result<RankingJson, CliError> {
         let candidates: Vec<usize> = (0..all.solutions.len()).filter(|&i| all.solutions[i].within_limits).collect();
         let solutions: Vec<IkSolution> = candidates.iter().map(|&i| all.solutions[i].clone()).collect();
-        let decide = |e: DecideError| CliError::bad_input(format!("--choose: {}", one_line(&e.to_string())));
+        let decide = |e: DecideError| CliError::bad_input(format!("{}: {}", self.label, one_line(&e.to_string())));
         let matrix = ik_matrix(robot, &solutions, &self.criteria).map_err(decide)?;
         matrix.reject_zero_columns().map_err(decide)?;
         let describe = |weight: Option<&f64>, c: &Criterion| CriterionJson {

@@ -670,11 +670,16 @@ pub fn write_report(out: &mut dyn Write, m: &MoveJson, every: usize) -> Result<(
     for iv in &m.intervals {
         writeln!(
             out,
-            "  interval {} .. {} s: {} ({})",
+            "  interval {} .. {} s: {} ({}){}",
             fixed(iv.start_s, 3),
             fixed(iv.end_s, 3),
             if iv.feasible { "feasible" } else { "NOT feasible" },
-            iv.configuration.as_deref().unwrap_or("no configuration")
+            iv.configuration.as_deref().unwrap_or("no configuration"),
+            match iv.decision {
+                Some(reach::motion::tracking::Decision::Criterion) => ", chosen by [choose]",
+                Some(reach::motion::tracking::Decision::CriterionRejected) => ", [choose] not met: default kept (K14)",
+                _ => "",
+            }
         )?;
         for r in &iv.reasons {
             writeln!(out, "    {r}")?;

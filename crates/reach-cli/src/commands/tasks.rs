@@ -304,15 +304,15 @@ pub fn run(args: &TasksArgs, out: &mut dyn Write) -> Result<(), CliError> {
     };
     let rates = match &file.max_velocity {
         Some(v) => {
+            if v.len() != dof {
+                return Err(CliError::bad_input(format!("{origin}: `max_velocity` needs {dof} values [deg/s]")));
+            }
             let si = robot
                 .joints()
                 .iter()
                 .zip(v)
                 .map(|(j, &x)| to_si(j.kind, x, crate::numbers::AngleInput::Degrees))
                 .collect::<Vec<f64>>();
-            if v.len() != dof {
-                return Err(CliError::bad_input(format!("{origin}: `max_velocity` needs {dof} values [deg/s]")));
-            }
             Some(JointRates::new(si, None).map_err(|e| CliError::bad_input(format!("{origin}: max_velocity: {e}")))?)
         }
         None => JointRates::from_robot(robot, None).ok(),
@@ -324,7 +324,9 @@ pub fn run(args: &TasksArgs, out: &mut dyn Write) -> Result<(), CliError> {
     };
     if let Some(b) = budget {
         if !b.is_finite() || b < 0.0 {
-            return Err(CliError::bad_input(format!("--budget: must be a finite number of seconds >= 0, got {b}")));
+            return Err(CliError::bad_input(format!(
+                "--budget (or budget_s): must be a finite number of seconds >= 0, got {b}"
+            )));
         }
         if rates.is_none() {
             return Err(CliError::bad_input(format!(
