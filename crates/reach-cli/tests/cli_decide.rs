@@ -382,7 +382,26 @@ fn plan_choose_ranks_the_configurations_of_each_interval() {
     );
     let r = json(&["plan", j2.0.to_str().unwrap(), "--json"]);
     assert_eq!(interval_choices(&r), vec![("shoulder=w config=+β wrist=e5".into(), "criterion".into())]);
-    // Bad [choose]: unknown criterion, weight count, clearance without a scene.
+    // A requirement no configuration meets (limit margin >= 0.45): the default is realised (K14).
+    let strict = temp_file(
+        "strict.toml",
+        &example.replace("weights = [0.5, 0.5]", "weights = [0.5, 0.5]\nrequire = { limits = 0.45 }"),
+    );
+    let r = json(&["plan", strict.0.to_str().unwrap(), "--json"]);
+    assert_eq!(interval_choices(&r), vec![("shoulder=w config=+β wrist=e5".into(), "criterion_rejected".into())]);
+    assert!(r["motions"][0]["events"].as_array().unwrap().iter().any(|e| e["code"] == "K14"));
+    // A requirement one configuration meets (limit margin >= 0.2) keeps the ranking's choice.
+    let loose = temp_file(
+        "loose.toml",
+        &example.replace("weights = [0.5, 0.5]", "weights = [0.5, 0.5]\nrequire = { limits = 0.2 }"),
+    );
+    let r = json(&["plan", loose.0.to_str().unwrap(), "--json"]);
+    assert_eq!(interval_choices(&r)[0].1, "criterion");
+    // Bad [choose]: unknown criterion, weight count, clearance without a scene, requirement
+    // on a criterion not listed.
+    let not_listed =
+        temp_file("req.toml", &example.replace("weights = [0.5, 0.5]", "weights = [0.5, 0.5]\nrequire = { j2 = 1.0 }"));
+    fails(&["plan", not_listed.0.to_str().unwrap()], 2, &["[choose] require", "`j2` is not one of the criteria"]);
     for (from, to, needle) in [
         ("[\"limits\", \"manipulability\"]", "[\"limits\", \"luck\"]", "unknown criterion 'luck'"),
         ("weights = [0.5, 0.5]", "weights = [0.5]", "expected 2 weights"),

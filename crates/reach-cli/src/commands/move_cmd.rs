@@ -161,6 +161,11 @@ pub struct PlanChoice {
     pub criteria: Vec<String>,
     /// One weight per criterion (default equal).
     pub weights: Option<Vec<f64>>,
+    /// Hard bounds `criterion = bound` on listed criteria (a maximum for less-is-better, a
+    /// minimum for more-is-better ones): a configuration breaking one does not satisfy the
+    /// choice; none satisfying it realises the default (K14).
+    #[serde(default)]
+    pub require: std::collections::BTreeMap<String, f64>,
 }
 
 impl PlanChoice {
@@ -185,7 +190,20 @@ impl PlanChoice {
             .collect::<Result<Vec<_>, _>>()
             .map_err(bad)?;
         let weights = self.weights.clone().unwrap_or_else(|| vec![1.0; criteria.len()]);
-        reach::decide::TrackChooser::new(robot, criteria, weights, method).map_err(bad)
+        let mut requirements = Vec::with_capacity(self.require.len());
+        for (name, &bound) in &self.require {
+            let key = name.replace('-', "_");
+            let Some(criterion) = criteria.iter().position(|c| c.describe().name == key) else {
+                return Err(CliError::bad_input(format!(
+                    "[choose] require: `{name}` is not one of the criteria ({})",
+                    self.criteria.join(", ")
+                )));
+            };
+            requirements.push(reach::decide::motion_criteria::Requirement { criterion, bound });
+        }
+        reach::decide::TrackChooser::new(robot, criteria, weights, method)
+            .and_then(|c| c.with_requirements(requirements))
+            .map_err(bad)
     }
 }
 
