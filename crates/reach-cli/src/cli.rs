@@ -208,10 +208,16 @@ pub enum Command {
             each leg with the minimum-change IK and re-checked. Exit status 3 (after the report) \
             when the target is unreachable or no detour exists.\n\n\
             --json prints {\"outcome\", \"blocked\", \"start_deg\", \"waypoints_m\", \
-            \"configurations_deg\", \"leg_s_deg\", \"min_clearance_m\"}.",
+            \"configurations_deg\", \"leg_s_deg\", \"min_clearance_m\"}.\n\n\
+            --choose topsis|vikor|weighted-sum plans both sides of the obstacle (the thesis's \
+            base side and the far side) and ranks those that succeed by --criteria s (Σ S of the \
+            legs [rad], less), clearance [m] (more), path_length (gripper polyline [m], less) \
+            with --weights; a single feasible side is reported as the only candidate. JSON adds \
+            \"criteria\" and \"sides\": [{\"side\", \"outcome\", \"values\", \"score\", \"chosen\"}].",
         after_help = "Examples:\n  \
             reach avoid planar3 --start 60,-40,-30 --to 2.4,0.2 --obstacle 2.0,0.7\n  \
-            reach avoid planar3 --from 2.4245,1.0344 --to 2.4,0.2 --obstacle 2.0,0.7 --json"
+            reach avoid planar3 --from 2.4245,1.0344 --to 2.4,0.2 --obstacle 2.0,0.7 --json\n  \
+            reach avoid planar3 --start 60,-40,-30 --to 2.4,0.2 --obstacle 2.0,0.7 --choose topsis"
     )]
     Avoid(crate::commands::avoid::AvoidArgs),
 

@@ -413,3 +413,44 @@ fn plan_choose_ranks_the_configurations_of_each_interval() {
         fails(&["plan", file.0.to_str().unwrap()], 2, &["[choose]", needle]);
     }
 }
+
+// ---------------------------------------------------------------------------------------
+// reach avoid --choose
+
+#[test]
+fn avoid_choose_plans_both_sides_and_says_when_only_one_is_feasible() {
+    let args =
+        ["avoid", "planar3", "--start", "60,-40,-30", "--to", "2.4,0.2", "--obstacle", "2.0,0.7", "--step", "0.1"];
+    let mut with = args.to_vec();
+    with.extend(["--choose", "topsis", "--json"]);
+    let r = json(&with);
+    let sides = r["sides"].as_array().unwrap();
+    assert_eq!(sides.len(), 2);
+    assert_eq!((sides[0]["side"].as_str(), sides[0]["chosen"].as_bool()), (Some("base_side"), Some(true)));
+    assert_eq!(sides[1]["outcome"]["outcome"], "leg_blocked");
+    assert!(sides[1]["values"].as_array().unwrap().is_empty() && sides[0]["score"].is_null());
+    // The chosen plan is the thesis's (the plan without --choose).
+    let mut plain = args.to_vec();
+    plain.push("--json");
+    let p = json(&plain);
+    assert_eq!(p["waypoints_m"], r["waypoints_m"]);
+    let values = nums(&sides[0]["values"]);
+    let s_deg: f64 = nums(&p["leg_s_deg"]).iter().sum();
+    assert!((values[0] - s_deg.to_radians()).abs() < 1e-9);
+    assert!((values[1] - p["min_clearance_m"].as_f64().unwrap()).abs() < 1e-12);
+    let mut text = args.to_vec();
+    text.extend(["--choose", "vikor"]);
+    assert!(ok(&text).contains("one feasible candidate: nothing to rank"));
+    let mut bad = args.to_vec();
+    bad.extend(["--choose", "electre"]);
+    fails(&bad, 2, &["--choose", "electre"]);
+    let mut bad = args.to_vec();
+    bad.extend(["--choose", "topsis", "--criteria", "s,luck"]);
+    fails(&bad, 2, &["unknown criterion `luck`"]);
+    let mut bad = args.to_vec();
+    bad.extend(["--choose", "topsis", "--weights", "1,1"]);
+    fails(&bad, 2, &["expected 3 weights"]);
+    let mut bad = args.to_vec();
+    bad.extend(["--choose", "topsis", "--printed-waypoints"]);
+    assert_eq!(reach(&bad).code, 2);
+}
