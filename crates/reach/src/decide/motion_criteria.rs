@@ -359,11 +359,22 @@ pub fn choose_motion(
 /// Per-interval configuration choice in path tracking by motion criteria
 /// ([`tracking::Criterion`]).
 ///
-/// Among the feasible configurations of an interval, their tracks are ranked with
+/// Among the feasible configurations of an interval, their tracks are ranked like
 /// [`choose_motion`] and the best is realised. A track on which a criterion cannot be evaluated
-/// (e.g. a single sample for a rate criterion is fine, but a track left without samples is
-/// not), or which breaks one of the `requirements`, does not satisfy the criterion; when no
-/// track satisfies it, tracking keeps the default configuration (the paper's K14).
+/// (no samples, times that do not increase, a joint vector that does not fit the robot), or
+/// which breaks one of the [`Requirement`]s, does not satisfy the choice; when no track
+/// satisfies it, tracking keeps the default configuration (the paper's K14).
+///
+/// # Example
+/// ```
+/// use reach::decide::{Method, MotionCriterion, TrackChooser};
+/// let robot = reach::model::presets::get("log-loader").unwrap();
+/// let limits = MotionCriterion::parse("limits", &robot, None, None).unwrap();
+/// let j2 = MotionCriterion::parse("j2", &robot, None, None).unwrap();
+/// let chooser = TrackChooser::new(&robot, vec![limits, j2], vec![0.7, 0.3], Method::Topsis).unwrap();
+/// // Pass `Some(&chooser)` as the criterion of `reach::motion::tracking::track`.
+/// assert_eq!(chooser.criteria().len(), 2);
+/// ```
 #[derive(Debug, Clone)]
 pub struct TrackChooser<'r> {
     robot: &'r Robot,
