@@ -40,6 +40,10 @@ Examples:
                                             the solution closest to home
   reach ik planar3 --xyz 2.4,0.2,0 --scan 0.01 --csv
                                             seed 000's table of configurations
+  reach ik ur5 --xyz 0.4,-0.2,0.3 --rpy 180,0,0 --choose topsis --criteria change,limits,manipulability --weights 0.5,0.3,0.2
+                                            rank the IK solutions by several criteria
+  reach tasks ur5 visiting examples/tasks_visiting.toml --budget 6
+                                            least-energy tour of target points
   reach demo                                a tour of every preset
 
 Exit status: 0 success, 1 internal error, 2 bad input (arguments, numbers, robot files),
@@ -121,13 +125,23 @@ pub enum Command {
             robot's structure (a closed form where one fits, else numeric) or named with \
             --solver. Every solution is verified by forward kinematics and labelled with its \
             branch; without --all the one within limits closest to --from (default: home; \
-            least Σ wᵢ·|qᵢ − fromᵢ|, weights --weights) is printed.\n\n\
+            least Σ wᵢ·|qᵢ − fromᵢ|, joint weights --joint-weights) is printed.\n\n\
+            --choose topsis|vikor|weighted-sum|pareto ranks the solutions within limits by \
+            --criteria (change = Σ wᵢ·|qᵢ − fromᵢ| [rad] less is better, limits = smallest \
+            normalised distance to a joint limit, manipulability, sigma_min: more is better; \
+            default change,limits,manipulability) with --weights, one per criterion (default \
+            equal), and prints the ranking table: raw and normalised value per criterion, the \
+            score (TOPSIS closeness, VIKOR Q, weighted sum) and whether the solution is \
+            Pareto-optimal; rank 1 is chosen. --weights always means criterion weights and \
+            needs --choose; joint weights are --joint-weights. See docs/choosing.md.\n\n\
             Units: metres, degrees (prismatic joints in metres); rpy is R = Rz(yaw)·Ry(pitch)·Rx(roll); \
             --matrix is 16 numbers row-major, last row 0 0 0 1. Comma lists may start with a minus.\n\n\
             --json prints {\"robot\", \"solver\", \"status\" (ok, unreachable, singular, \
             outside_limits, orientation_unreachable, no_convergence), \"reason\", \"solutions\": \
             [{\"q_deg\", \"branch\", \"position_error_m\", \"orientation_error_rad\", \
-            \"within_limits\", \"violations\", \"singular\"}], \"chosen\"}. A status other than \
+            \"within_limits\", \"violations\", \"singular\"}], \"chosen\", with --choose \"ranking\": \
+            {\"method\", \"criteria\": [{\"name\", \"unit\", \"direction\", \"weight\"}], \"score\", \
+            \"ranked\": [{\"solution\", \"rank\", \"score\", \"values\", \"normalised\", \"pareto_optimal\"}]}}. A status other than \
             ok prints the report, one line on stderr, and exits with status 3.\n\n\
             --scan DEG (planar arm of seed 000, position target): the thesis's table of \
             configurations, alpha from alpha_min to 180 deg in steps of DEG, and the row with the \
@@ -137,6 +151,8 @@ pub enum Command {
             reach ik puma560 --xyz 0.5,-0.2,0.3 --rpy 180,0,0 --all\n  \
             reach ik ur5 --matrix -1,0,0,0.4,0,1,0,-0.2,0,0,-1,0.3,0,0,0,1 --json\n  \
             reach ik spbu6 --matrix 1,0,0,0,0,0,1,3,0,-1,0,5,0,0,0,1\n  \
+            reach ik ur5 --matrix -1,0,0,0.4,0,1,0,-0.2,0,0,-1,0.3,0,0,0,1 --from 0,-90,90,-90,-90,0 --choose topsis --criteria change,limits,manipulability,sigma_min --weights 0.25,0.25,0.25,0.25\n  \
+            reach ik puma560 --xyz 0.5,-0.2,0.3 --rpy 180,0,0 --choose vikor --joint-weights 1,1,1,0.2,0.2,0.2\n  \
             reach ik welder6r --xyz 0.05,0.74,0.07 --rpy 0,-41.8685,-50.1944 --from 105,-33,43,-170,-155,138\n  \
             reach ik planar3 --xyz 2,1,0 --free-angle -30 --all\n  \
             reach ik planar3 --xyz 2.4,0.2,0 --scan 0.01 --from 60,-40,-30 --csv"
@@ -193,10 +209,16 @@ pub enum Command {
             each leg with the minimum-change IK and re-checked. Exit status 3 (after the report) \
             when the target is unreachable or no detour exists.\n\n\
             --json prints {\"outcome\", \"blocked\", \"start_deg\", \"waypoints_m\", \
-            \"configurations_deg\", \"leg_s_deg\", \"min_clearance_m\"}.",
+            \"configurations_deg\", \"leg_s_deg\", \"min_clearance_m\"}.\n\n\
+            --choose topsis|vikor|weighted-sum plans both sides of the obstacle (the thesis's \
+            base side and the far side) and ranks those that succeed by --criteria s (Σ S of the \
+            legs [rad], less), clearance [m] (more), path_length (gripper polyline [m], less) \
+            with --weights; a single feasible side is reported as the only candidate. JSON adds \
+            \"criteria\" and \"sides\": [{\"side\", \"outcome\", \"values\", \"score\", \"chosen\"}].",
         after_help = "Examples:\n  \
             reach avoid planar3 --start 60,-40,-30 --to 2.4,0.2 --obstacle 2.0,0.7\n  \
-            reach avoid planar3 --from 2.4245,1.0344 --to 2.4,0.2 --obstacle 2.0,0.7 --json"
+            reach avoid planar3 --from 2.4245,1.0344 --to 2.4,0.2 --obstacle 2.0,0.7 --json\n  \
+            reach avoid planar3 --start 60,-40,-30 --to 2.4,0.2 --obstacle 2.0,0.7 --choose topsis"
     )]
     Avoid(crate::commands::avoid::AvoidArgs),
 
@@ -238,4 +260,30 @@ pub enum Command {
             reach plan examples/seed001_tool_vs_joint.toml\n  \
             reach plan examples/seed003_welding.toml --json")]
     Plan(crate::commands::move_cmd::PlanArgs),
+
+    /// Seed 001's planning tasks: order pick-and-place trips (collection) or target points
+    /// (visiting) by least energy J1, and the most that fit a time budget.
+    #[command(
+        long_about = "Seed 001's planning tasks on the energy functional J1 = Σ wᵢ·|Δqᵢ|. Every point \
+            of the task file gets one configuration (IK within limits closest to the start or \
+            container configuration, or the rank-1 solution of the file's [choose] ranking). \
+            visiting: one open tour from the start through every reachable target, exact \
+            (Held–Karp) up to 12 targets, nearest neighbour + 2-opt beyond. collection: trips \
+            container -> object -> container; their total J1 does not depend on the order. \
+            Unreachable points are reported and skipped. Durations: synchronised point-to-point \
+            moves within the joint speed limits (robot file or the task's max_velocity) with the \
+            task's profile; --budget S also reports the largest number of points that fit in S \
+            seconds. Task format: docs/task-format.md.\n\n\
+            --json prints {\"robot\", \"task\", \"solver\", \"choice\", \"node0_q_deg\", \"points\": \
+            [{\"index\", \"xyz_m\", \"rpy_deg\", \"q_deg\", \"branch\", \"reason\"}], \"unreachable\", \
+            \"plan\": {\"order\", \"legs\": [{\"point\", \"j1_rad\", \"duration_s\"}], \"total_j1_rad\", \
+            \"total_duration_s\", \"exact\", \"method\"}, \"budget_s\", \"within_budget\"}.\n\n\
+            Exit status 2 for bad input, including a task whose points are all unreachable; 3 \
+            when the container is unreachable.",
+        after_help = "Examples:\n  \
+            reach tasks ur5 visiting examples/tasks_visiting.toml\n  \
+            reach tasks ur5 visiting examples/tasks_visiting.toml --budget 6 --json\n  \
+            reach tasks ur5 collection examples/tasks_collection.toml --budget 8"
+    )]
+    Tasks(crate::commands::tasks::TasksArgs),
 }

@@ -229,7 +229,7 @@ fn weights_change_the_chosen_solution() {
     // Arm joints only, from home: |θ1| + |θ2| + |θ3| over the feasible branches of notes 003
     // §5.3 (θ1 = 105.2482° on the `w` shoulder): +β e5 181.53, −β e5 152.49, +β −e5
     // 105.2482 + 6.9711 + 31.8536 = 144.07 (least), −β −e5 171.26; the `−w` shoulder is worse.
-    let arm_only = json(&["ik", "welder6r", "--matrix", &m, "--weights", "1,1,1,0,0,0", "--json"]);
+    let arm_only = json(&["ik", "welder6r", "--matrix", &m, "--joint-weights", "1,1,1,0,0,0", "--json"]);
     let i = arm_only["chosen"].as_u64().unwrap() as usize;
     assert_eq!(arm_only["solutions"][i]["branch"], "shoulder=w config=+β wrist=−e5", "{arm_only}");
     // Any weights: the chosen one has the least Σ wᵢ·|θᵢ| (wrapped) among the feasible
@@ -238,7 +238,7 @@ fn weights_change_the_chosen_solution() {
         [[1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0, 1.0 / 18.0, 1.0 / 18.0, 1.0 / 18.0], [0.0, 0.0, 0.0, 1.0, 1.0, 1.0]]
     {
         let text: Vec<String> = weights.iter().map(|w| w.to_string()).collect();
-        let report = json(&["ik", "welder6r", "--matrix", &m, "--weights", &text.join(","), "--json"]);
+        let report = json(&["ik", "welder6r", "--matrix", &m, "--joint-weights", &text.join(","), "--json"]);
         let cost = |q: &[f64]| -> f64 { q.iter().zip(&weights).map(|(v, w)| w * angle_gap(*v, 0.0).abs()).sum() };
         let best = all["solutions"]
             .as_array()
@@ -374,10 +374,10 @@ fn comma_lists_may_start_with_a_minus() {
     for q in &a {
         assert!(b.iter().any(|r| same_angles(q, r, 1e-6)), "{q:?} not in {b:?}");
     }
-    // Negative --from, --weights and --free-angle values.
+    // Negative --from, --joint-weights and --free-angle values.
     let q = chosen_q(&json(&["ik", "ur5", "--matrix", &m, "--from", "-100,-50,-60,-10,-90,-20", "--json"]));
     assert!(a.iter().any(|r| same_angles(&q, r, 1e-9)));
-    let w = json(&["ik", "ur5", "--matrix", &m, "--weights", "1,1,1,0.5,0.5,0.5", "--json"]);
+    let w = json(&["ik", "ur5", "--matrix", &m, "--joint-weights", "1,1,1,0.5,0.5,0.5", "--json"]);
     assert_eq!(w["status"], "ok");
     let report = json(&["ik", "planar3", "--xyz", "2,1,0", "--free-angle", "-30", "--json"]);
     assert_eq!(report["status"], "ok");
@@ -408,7 +408,10 @@ fn bad_input_exits_2_with_empty_stdout() {
     bad(&["ik", "puma560", "--matrix", identity, "--solver", "planar"], &["planar", "puma560", "3 joints"]);
     bad(&["ik", "puma560", "--matrix", identity, "--from", "1,2,3"], &["--from", "6 joints"]);
     bad(&["ik", "puma560", "--matrix", identity, "--from", "0,0,nan,0,0,0"], &["--from", "joint 3"]);
-    bad(&["ik", "puma560", "--matrix", identity, "--weights", "1,1,1,1,1,-1"], &["--weights value 6", "negative"]);
+    bad(
+        &["ik", "puma560", "--matrix", identity, "--joint-weights", "1,1,1,1,1,-1"],
+        &["--joint-weights value 6", "negative"],
+    );
     bad(&["ik", "puma560", "--matrix", identity, "--restarts", "0"], &["--restarts"]);
     bad(&["ik", "planar3", "--xyz", "2,1,0", "--step", "-1"], &["--step", "positive"]);
     bad(&["ik", "planar3", "--xyz", "2,1,0", "--free-angle", "inf"], &["--free-angle", "finite"]);
@@ -421,6 +424,9 @@ fn bad_input_exits_2_with_empty_stdout() {
         &["ik", "puma560", "--xyz", "0,0,0", "--matrix", identity],
         &["ik", "puma560", "--matrix", identity, "--rpy", "0,0,0"],
         &["ik", "planar3", "--xyz", "2,1,0", "--csv"],
+        // --weights are criterion weights: they need --choose (joint weights are --joint-weights).
+        &["ik", "puma560", "--matrix", identity, "--weights", "1,1,1,1,1,1"],
+        &["ik", "puma560", "--matrix", identity, "--criteria", "change"],
     ] {
         let run = reach(args);
         assert_eq!(run.code, 2, "{args:?}: {}", run.stderr);
@@ -436,9 +442,20 @@ fn help_and_demo_show_ik() {
     let help = ok(&["--help"]);
     assert!(help.contains("reach ik puma560 --xyz") && help.contains("--scan 0.01"), "{help}");
     let help = ok(&["ik", "--help"]);
-    for needle in
-        ["--matrix", "--all", "--from", "--weights", "--solver", "--free-angle", "--scan", "--json", "Examples:"]
-    {
+    for needle in [
+        "--matrix",
+        "--all",
+        "--from",
+        "--joint-weights",
+        "--choose",
+        "--criteria",
+        "--weights",
+        "--solver",
+        "--free-angle",
+        "--scan",
+        "--json",
+        "Examples:",
+    ] {
         assert!(help.contains(needle), "ik --help lacks {needle}");
     }
     let demo = ok(&["demo"]);
@@ -448,4 +465,20 @@ fn help_and_demo_show_ik() {
     assert!(demo.contains("*1  shoulder=front elbow=up wrist=noflip"), "{demo}");
     let puma = demo.lines().skip_while(|l| !l.starts_with("puma560 — fk(")).nth(4).unwrap();
     assert!(puma.contains("20.0000  -40.0000   30.0000   10.0000   40.0000  -30.0000"), "{puma}");
+}
+
+#[test]
+fn a_half_turn_matrix_is_read_exactly() {
+    // R = diag(−1, 1, −1) (a half turn about y): nalgebra's iterative `from_matrix` stalls on
+    // half turns; the pose reached must be the one given.
+    let m = "-1,0,0,0.4,0,1,0,-0.2,0,0,-1,0.3,0,0,0,1";
+    let report = json(&["ik", "ur5", "--matrix", m, "--json"]);
+    let q: Vec<String> = chosen_q(&report).iter().map(|v| v.to_string()).collect();
+    let mut args = vec!["fk", "ur5"];
+    args.extend(q.iter().map(String::as_str));
+    args.push("--json");
+    let fk = json(&args);
+    let rows: Vec<f64> = fk["pose"]["matrix"].as_array().unwrap().iter().flat_map(nums).collect();
+    let want: Vec<f64> = m.split(',').map(|v| v.parse().unwrap()).collect();
+    assert!(rows.iter().zip(&want).all(|(a, b)| (a - b).abs() < 1e-9), "{rows:?}");
 }

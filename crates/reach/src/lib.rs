@@ -35,7 +35,8 @@
 //! * [`model`] — `Robot`, joints, limits, TOML and URDF parsing, presets.
 //! * [`kinematics`] — forward kinematics, Jacobian, manipulability.
 //! * [`ik`] — inverse kinematics: closed forms with all branches, numeric solver.
-//! * [`decide`] — criteria, multi-criteria choice, task sequencing.
+//! * [`decide`] — criteria (IK solutions, whole motions, detours), multi-criteria choice
+//!   (weighted sum, TOPSIS, VIKOR, Pareto), path tracking's per-interval choice, task sequencing.
 //! * [`motion`] — time profiles, joint/tool-space motion, path tracking, events.
 //! * [`effort`] — J1/J2/S functionals, dynamics and energy.
 //! * [`world`] — scenes, collision, detours, configuration space.

@@ -3,6 +3,8 @@
 use std::io::Write;
 
 use clap::Args;
+use reach::decide::Method;
+use reach::decide::detour_choice::{DetourCriterion, DetourRanking, choose_detour};
 use reach::ik::planar::PlanarRedundant;
 use reach::world::detour::{DetourOptions, DetourOutcome, SweepTest, WaypointRule, plan_detour};
 use serde::Serialize;
@@ -48,9 +50,36 @@ pub struct AvoidArgs {
     #[arg(long)]
     pub printed_waypoints: bool,
 
+    /// Plan both sides of the obstacle (base side, the thesis's, and far side) and rank the
+    /// ones that succeed with this method: topsis, vikor or weighted-sum. One feasible side is
+    /// reported as the only candidate.
+    #[arg(long, value_name = "METHOD", conflicts_with = "printed_waypoints")]
+    pub choose: Option<String>,
+
+    /// With --choose: criteria from s (Σ S of the legs, less), clearance (more), path_length
+    /// (gripper polyline, less); default all three.
+    #[arg(long, value_name = "C1,..", requires = "choose")]
+    pub criteria: Option<String>,
+
+    /// With --choose: one weight per criterion (default equal).
+    #[arg(long, value_name = "W1,..", allow_hyphen_values = true, requires = "choose")]
+    pub weights: Option<String>,
+
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
+}
+
+/// One side of the obstacle in the `--choose` output.
+#[derive(Debug, Serialize)]
+struct SideJson {
+    side: &'static str,
+    outcome: DetourOutcome,
+    /// Criterion values (empty when the side failed).
+    values: Vec<f64>,
+    /// The method's score when two sides were ranked.
+    score: Option<f64>,
+    chosen: bool,
 }
 
 #[derive(Debug, Serialize)]
@@ -63,6 +92,10 @@ struct AvoidJson {
     configurations_deg: Vec<[f64; 3]>,
     leg_s_deg: Vec<f64>,
     min_clearance_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    criteria: Option<Vec<String>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    sides: Option<Vec<SideJson>>,
 }
 
 fn pair(label: &str, text: &str) -> Result<[f64; 2], CliError> {
@@ -142,8 +175,61 @@ pub fn run(args: &AvoidArgs, out: &mut dyn Write) -> Result<(), CliError> {
         waypoints: if args.printed_waypoints { WaypointRule::PaperPrinted } else { WaypointRule::Perpendicular },
         ..DetourOptions::default()
     };
-    let plan =
-        plan_detour(&arm, &start, target, &obstacles, &options).map_err(|e| CliError::bad_input(e.to_string()))?;
+    let (plan, sides, names) = match &args.choose {
+        None => (
+            plan_detour(&arm, &start, target, &obstacles, &options).map_err(|e| CliError::bad_input(e.to_string()))?,
+            None,
+            None,
+        ),
+        Some(method) => {
+            let method = Method::parse(method).ok_or_else(|| {
+                CliError::bad_input(format!("--choose: unknown method `{method}` (known: topsis, vikor, weighted-sum)"))
+            })?;
+            let names: Vec<String> = args
+                .criteria
+                .as_deref()
+                .unwrap_or("s,clearance,path_length")
+                .split(',')
+                .map(|t| t.trim().into())
+                .collect();
+            let criteria = names
+                .iter()
+                .map(|n| {
+                    DetourCriterion::parse(n).ok_or_else(|| {
+                        CliError::bad_input(format!(
+                            "--criteria: unknown criterion `{n}` (known: s, clearance, path_length)"
+                        ))
+                    })
+                })
+                .collect::<Result<Vec<_>, _>>()?;
+            let weights = match &args.weights {
+                Some(t) => t.split(',').map(|w| parse_finite("--weights", w.trim())).collect::<Result<Vec<_>, _>>()?,
+                None => vec![1.0; criteria.len()],
+            };
+            let ranking = DetourRanking { criteria: &criteria, weights: &weights, method };
+            let choice = choose_detour(&arm, &start, target, &obstacles, &options, &ranking)
+                .map_err(|e| CliError::bad_input(format!("--choose: {e}")))?;
+            let score = |i: usize| {
+                let r = choice.ranking.as_ref()?;
+                let row = choice.successful.iter().position(|&k| k == i)?;
+                r.candidate(row).map(|c| c.score)
+            };
+            let sides = choice
+                .candidates
+                .iter()
+                .enumerate()
+                .map(|(i, c)| SideJson {
+                    side: c.side,
+                    outcome: c.plan.outcome,
+                    values: c.values.clone(),
+                    score: score(i),
+                    chosen: choice.chosen == Some(i),
+                })
+                .collect();
+            let shown = choice.chosen.unwrap_or(0);
+            (choice.candidates[shown].plan.clone(), Some(sides), Some(names))
+        }
+    };
     let deg3 = |q: &[f64; 3]| q.map(f64::to_degrees);
     let failed = !matches!(plan.outcome, DetourOutcome::Direct | DetourOutcome::Detour { .. });
     if args.json {
@@ -158,6 +244,8 @@ pub fn run(args: &AvoidArgs, out: &mut dyn Write) -> Result<(), CliError> {
                 configurations_deg: plan.configurations.iter().map(deg3).collect(),
                 leg_s_deg: plan.leg_s.iter().map(|s| s.to_degrees()).collect(),
                 min_clearance_m: plan.min_clearance,
+                criteria: names.clone(),
+                sides,
             },
         )?;
     } else {
@@ -172,6 +260,33 @@ pub fn run(args: &AvoidArgs, out: &mut dyn Write) -> Result<(), CliError> {
             let q = plan.configurations.get(i).map_or("-".into(), |q| deg3(q).map(|v| fixed(v, 6)).join(", "));
             let s = plan.leg_s.get(i).map_or("-".into(), |s| fixed(s.to_degrees(), 6));
             writeln!(out, "  -> ({}, {}) m   q = [{q}] deg   S = {s} deg", fixed(w[0], 6), fixed(w[1], 6))?;
+        }
+        if let (Some(sides), Some(names)) = (&sides, &names) {
+            let ok = sides.iter().filter(|s| !s.values.is_empty()).count();
+            let note = match ok {
+                0 => "no side succeeds".to_string(),
+                1 => "one feasible candidate: nothing to rank".to_string(),
+                _ => format!("ranked by --choose over {}", names.join(", ")),
+            };
+            writeln!(out, "sides of the obstacle ({note}):")?;
+            for side in sides {
+                let values = if side.values.is_empty() {
+                    "-".to_string()
+                } else {
+                    names
+                        .iter()
+                        .zip(&side.values)
+                        .map(|(n, v)| {
+                            let unit = DetourCriterion::parse(n).map_or(String::new(), |c| c.describe().unit);
+                            format!("{n} {} {unit}", fixed(*v, 6))
+                        })
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                };
+                let score = side.score.map_or(String::new(), |s| format!(", score {}", fixed(s, 4)));
+                let mark = if side.chosen { "*" } else { " " };
+                writeln!(out, "  {mark} {:<9}  {}  [{values}{score}]", side.side, outcome_text(&side.outcome))?;
+            }
         }
     }
     if failed {

@@ -14,8 +14,9 @@
 use std::io::Write;
 
 use clap::{ArgGroup, Args};
-use nalgebra::{Isometry3, Matrix3, Matrix4, Point3, Translation3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Matrix3, Matrix4, Point3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use reach::Robot;
+use reach::decide::{Criterion, DecideError, IkCriterion, Method, ik_matrix, rank};
 use reach::ik::planar::{PaperScan, PlanarRedundant, ScanRow};
 use reach::ik::{IkError, IkFailure, IkOptions, IkSolution, IkSolutions, IkTarget, SolverKind};
 use reach::model::JointKind;
@@ -57,8 +58,27 @@ pub struct IkArgs {
     #[arg(long, value_name = "Q1,..,QN", allow_hyphen_values = true)]
     pub from: Option<String>,
 
-    /// Weights w1,..,wn of the joint changes when choosing (default: all 1).
+    /// Weights w1,..,wn of the joint changes Σ wᵢ·|qᵢ − fromᵢ| (the closest-solution rule and
+    /// the `change` criterion; default: all 1).
     #[arg(long, value_name = "W1,..,WN", allow_hyphen_values = true)]
+    pub joint_weights: Option<String>,
+
+    /// Choose among the solutions within limits by several criteria: topsis, vikor,
+    /// weighted-sum or pareto (the non-dominated ones; among them the least joint change).
+    /// Default without --choose: the least joint change.
+    #[arg(long, value_name = "METHOD")]
+    pub choose: Option<String>,
+
+    /// With --choose: the criteria, comma-separated, from change (Σ wᵢ·|qᵢ − fromᵢ| [rad],
+    /// less), limits (smallest normalised distance to a joint limit, more), manipulability
+    /// (Yoshikawa, more), sigma_min (smallest singular value, more). Default:
+    /// change,limits,manipulability.
+    #[arg(long, value_name = "C1,..,CK", requires = "choose")]
+    pub criteria: Option<String>,
+
+    /// With --choose (not pareto): one weight per criterion, >= 0, not all 0 (normalised to
+    /// sum 1). Default: equal weights.
+    #[arg(long, value_name = "W1,..,WK", allow_hyphen_values = true, requires = "choose")]
     pub weights: Option<String>,
 
     /// Solver name (auto, planar, yaw-two-link, yaw-planar3, two-link-wrist,
@@ -81,7 +101,7 @@ pub struct IkArgs {
 
     /// Planar arm (seed 000): print the thesis's table of configurations for the position
     /// --xyz, alpha from alpha_min to 180 in steps of DEG, and the row with the least S.
-    #[arg(long, value_name = "DEG", allow_hyphen_values = true, requires = "xyz", conflicts_with_all = ["rpy", "matrix", "all", "json", "solver", "free_angle", "step", "restarts", "weights"])]
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true, requires = "xyz", conflicts_with_all = ["rpy", "matrix", "all", "json", "solver", "free_angle", "step", "restarts", "joint_weights", "choose"])]
     pub scan: Option<String>,
 
     /// With --scan: print the full table as CSV.
@@ -110,6 +130,53 @@ pub struct IkJson {
     pub solutions: Vec<SolutionJson>,
     /// Index of the chosen solution in `solutions` (`null` when none is within limits).
     pub chosen: Option<usize>,
+    /// With `--choose`: the ranking of the solutions within limits (`solutions` then lists
+    /// every solution).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ranking: Option<RankingJson>,
+}
+
+/// The `--choose` ranking in the JSON output.
+#[derive(Debug, Clone, Serialize)]
+pub struct RankingJson {
+    /// `topsis`, `vikor`, `weighted-sum` or `pareto`.
+    pub method: String,
+    /// The criteria, in column order, with the normalised weights.
+    pub criteria: Vec<CriterionJson>,
+    /// Meaning of `score`.
+    pub score: String,
+    /// The candidates, best first.
+    pub ranked: Vec<RankedJson>,
+}
+
+/// One criterion of a ranking.
+#[derive(Debug, Clone, Serialize)]
+pub struct CriterionJson {
+    /// Name.
+    pub name: String,
+    /// Unit of the raw values.
+    pub unit: String,
+    /// `more_is_better` or `less_is_better`.
+    pub direction: reach::decide::Direction,
+    /// Weight, normalised to sum 1 (`null` for pareto).
+    pub weight: Option<f64>,
+}
+
+/// One ranked solution.
+#[derive(Debug, Clone, Serialize)]
+pub struct RankedJson {
+    /// Index into `solutions`.
+    pub solution: usize,
+    /// 1-based rank (pareto: 1 for the chosen, then the other non-dominated, then the rest).
+    pub rank: usize,
+    /// The method's score (`null` for pareto).
+    pub score: Option<f64>,
+    /// Raw criterion values, in the criteria's units.
+    pub values: Vec<f64>,
+    /// Normalised values as the method uses them (`null` for pareto).
+    pub normalised: Option<Vec<f64>>,
+    /// Whether no other candidate is better or equal on every criterion and better on one.
+    pub pareto_optimal: bool,
 }
 
 /// One solution in the JSON output.
@@ -167,10 +234,11 @@ pub fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
         return run_scan(args, robot, &from, step, out);
     }
     let target = target_of(args)?;
-    let weights = match &args.weights {
+    let weights = match &args.joint_weights {
         Some(text) => weights_of(robot, text)?,
         None => vec![1.0; robot.dof()],
     };
+    let choice = args.choose.as_deref().map(|m| ChoiceSpec::parse(m, args, &from, &weights)).transpose()?;
     let options = options_of(args, &from)?;
     let (kind, named) = match args.solver.as_deref() {
         None | Some("auto") => (SolverKind::detect(robot), false),
@@ -178,9 +246,14 @@ pub fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
     };
     let solver = kind.build(robot).map_err(ik_error)?;
     let all = solver.solve(robot, &target, &options).map_err(ik_error)?;
-    let chosen = all.closest_to(&from, &weights).and_then(|c| all.solutions.iter().position(|s| std::ptr::eq(s, c)));
+    let closest = all.closest_to(&from, &weights).and_then(|c| all.solutions.iter().position(|s| std::ptr::eq(s, c)));
+    let ranking = match &choice {
+        Some(c) if closest.is_some() => Some(c.rank(robot, &all)?),
+        _ => None,
+    };
+    let chosen = ranking.as_ref().map_or(closest, |r| r.ranked.first().map(|e| e.solution));
     let shown: Vec<usize> = match chosen {
-        Some(i) if !args.all => vec![i],
+        Some(i) if !args.all && ranking.is_none() => vec![i],
         _ => (0..all.solutions.len()).collect(),
     };
     if args.json {
@@ -191,6 +264,7 @@ pub fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
             reason: all.failure.as_ref().map(|f| one_line(&f.to_string())),
             solutions: shown.iter().map(|&i| solution_json(robot, &all.solutions[i])).collect(),
             chosen: chosen.and_then(|c| shown.iter().position(|&i| i == c)),
+            ranking: ranking.clone(),
         };
         write_json(out, &report)?;
     } else {
@@ -200,8 +274,8 @@ pub fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
         head.pair("target", target_text(&target));
         let from_note = if args.from.is_some() { "--from" } else { "home" };
         head.pair("from", format!("{} ({from_note})", q_text(robot, &q_to_display(robot, &from))));
-        if args.weights.is_some() {
-            head.pair("weights", nums(&weights));
+        if args.joint_weights.is_some() {
+            head.pair("joint weights", nums(&weights));
         }
         let feasible = all.feasible().count();
         let status = match &all.failure {
@@ -211,7 +285,18 @@ pub fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
         head.pair("status", status);
         head.write(out, "")?;
         match chosen {
-            Some(i) if !args.all => write_chosen(out, robot, &all.solutions[i])?,
+            Some(i) if ranking.is_some() => {
+                if args.all {
+                    writeln!(out, "solutions (* = chosen by --choose):")?;
+                    write_solution_table(out, robot, &all, chosen, "  ", false)?;
+                }
+                if let Some(r) = &ranking {
+                    write_ranking(out, &all, r)?;
+                }
+                let method = ranking.as_ref().map_or("", |r| r.method.as_str());
+                write_chosen(out, robot, &all.solutions[i], &format!("within limits, rank 1 of --choose {method}"))?;
+            }
+            Some(i) if !args.all => write_chosen(out, robot, &all.solutions[i], CLOSEST_RULE)?,
             _ if all.solutions.is_empty() => {}
             _ => {
                 writeln!(out, "solutions (* = chosen: least Σ wᵢ·|qᵢ − fromᵢ| within limits):")?;
@@ -291,14 +376,21 @@ fn pose_from_matrix(v: &[f64]) -> Result<Isometry3<f64>, CliError> {
         ));
     }
     let translation = Translation3::new(m[(0, 3)], m[(1, 3)], m[(2, 3)]);
-    Ok(Isometry3::from_parts(translation, UnitQuaternion::from_matrix(&r)))
+    // Closed form (Shepperd): `UnitQuaternion::from_matrix`'s iteration starts at the identity
+    // and stalls on half-turns (diag(−1, 1, −1) came back as a 0.0155° roll).
+    let rotation = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(r));
+    Ok(Isometry3::from_parts(translation, rotation))
 }
 
-/// `--weights`: one finite, non-negative weight per joint.
+/// `--joint-weights`: one finite, non-negative weight per joint.
 fn weights_of(robot: &Robot, text: &str) -> Result<Vec<f64>, CliError> {
-    let w = number_list("--weights", text, robot.dof(), "one weight per joint")?;
+    let w = number_list("--joint-weights", text, robot.dof(), "one weight per joint")?;
     if let Some(i) = w.iter().position(|&x| x < 0.0) {
-        return Err(CliError::bad_input(format!("--weights value {}: must not be negative, got {}", i + 1, num(w[i]))));
+        return Err(CliError::bad_input(format!(
+            "--joint-weights value {}: must not be negative, got {}",
+            i + 1,
+            num(w[i])
+        )));
     }
     Ok(w)
 }
@@ -423,8 +515,11 @@ fn singular_cell(s: &IkSolution) -> String {
     }
 }
 
-fn write_chosen(out: &mut dyn Write, robot: &Robot, s: &IkSolution) -> Result<(), CliError> {
-    writeln!(out, "chosen (within limits, least Σ wᵢ·|qᵢ − fromᵢ|; --all lists every solution):")?;
+/// Why the solution was chosen without --choose.
+const CLOSEST_RULE: &str = "within limits, least Σ wᵢ·|qᵢ − fromᵢ|; --all lists every solution";
+
+fn write_chosen(out: &mut dyn Write, robot: &Robot, s: &IkSolution, why: &str) -> Result<(), CliError> {
+    writeln!(out, "chosen ({why}):")?;
     let mut t = Table::key_value();
     t.pair("branch", s.branch.to_string());
     let q = q_to_display(robot, &s.q);
@@ -645,4 +740,249 @@ fn demo_case(out: &mut dyn Write, robot: &Robot, what: &str, pose: &Isometry3<f6
         all.feasible().count()
     )?;
     write_solution_table(out, robot, &all, chosen, "  ", true)
+}
+
+// ---------------------------------------------------------------------------------------------
+// --choose: multi-criteria choice among the solutions within limits.
+// ---------------------------------------------------------------------------------------------
+
+/// IK criteria names accepted by `--criteria`.
+const IK_CRITERIA: [&str; 4] = ["change", "limits", "manipulability", "sigma_min"];
+
+/// A `--choose` method: a ranking method, or the Pareto filter.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum ChoiceMethod {
+    Rank(Method),
+    Pareto,
+}
+
+/// `--choose`, `--criteria`, `--weights` (or a task file's `[choose]`), checked.
+#[derive(Debug, Clone)]
+pub(crate) struct ChoiceSpec {
+    method: ChoiceMethod,
+    criteria: Vec<IkCriterion>,
+    weights: Vec<f64>,
+    /// The joint change from --from (pareto's tie-break among the non-dominated).
+    change: IkCriterion,
+    /// How the method is named in messages (`--choose`, `[choose] method`).
+    label: String,
+}
+
+impl ChoiceSpec {
+    fn parse(method: &str, args: &IkArgs, from: &[f64], joint_weights: &[f64]) -> Result<Self, CliError> {
+        let weights = match &args.weights {
+            None => None,
+            Some(text) => Some(
+                split(text)
+                    .iter()
+                    .enumerate()
+                    .map(|(i, t)| parse_finite(&format!("--weights value {}", i + 1), t))
+                    .collect::<Result<Vec<f64>, _>>()?,
+            ),
+        };
+        let names = split(args.criteria.as_deref().unwrap_or("change,limits,manipulability"));
+        Self::new(method, &names, weights.as_deref(), from, joint_weights, ["--choose", "--criteria", "--weights"])
+    }
+
+    /// Checks a method name, criterion names and weights; `labels` name the three inputs in
+    /// messages (`--choose`, `--criteria`, `--weights` or a task file's keys).
+    pub(crate) fn new(
+        method: &str,
+        names: &[String],
+        weights: Option<&[f64]>,
+        from: &[f64],
+        joint_weights: &[f64],
+        labels: [&str; 3],
+    ) -> Result<Self, CliError> {
+        let [method_label, criteria_label, weights_label] = labels;
+        let method = match method.trim().to_ascii_lowercase().as_str() {
+            "pareto" => ChoiceMethod::Pareto,
+            m => ChoiceMethod::Rank(Method::parse(m).ok_or_else(|| {
+                CliError::bad_input(format!(
+                    "{method_label}: unknown method `{method}` (known: topsis, vikor, weighted-sum, pareto)"
+                ))
+            })?),
+        };
+        let change = IkCriterion::JointChange { reference: from.to_vec(), weights: joint_weights.to_vec() };
+        if names.is_empty() {
+            return Err(CliError::bad_input(format!("{criteria_label}: no criteria given")));
+        }
+        let mut criteria = Vec::with_capacity(names.len());
+        for (k, name) in names.iter().enumerate() {
+            let c = match name.to_ascii_lowercase().replace('-', "_").as_str() {
+                "change" => change.clone(),
+                "limits" => IkCriterion::LimitMargin,
+                "manipulability" => IkCriterion::Manipulability,
+                "sigma_min" => IkCriterion::SigmaMin,
+                _ => {
+                    return Err(CliError::bad_input(format!(
+                        "{criteria_label}: unknown criterion `{name}` (known: {})",
+                        IK_CRITERIA.join(", ")
+                    )));
+                }
+            };
+            if criteria.contains(&c) || names[..k].iter().any(|n| n.eq_ignore_ascii_case(name)) {
+                return Err(CliError::bad_input(format!("{criteria_label}: `{name}` is given twice")));
+            }
+            criteria.push(c);
+        }
+        let weights = match (weights, method) {
+            (Some(_), ChoiceMethod::Pareto) => {
+                return Err(CliError::bad_input(format!("{weights_label}: the pareto filter takes no weights")));
+            }
+            (Some(w), _) => {
+                if w.len() != criteria.len() {
+                    return Err(CliError::bad_input(format!(
+                        "{weights_label}: expected {} weights, one per criterion ({}), got {}",
+                        criteria.len(),
+                        names.join(","),
+                        w.len()
+                    )));
+                }
+                if let Some(i) = w.iter().position(|x| !x.is_finite() || *x < 0.0) {
+                    return Err(CliError::bad_input(format!(
+                        "{weights_label} value {} ({}): must be finite and not negative, got {}",
+                        i + 1,
+                        names[i],
+                        num(w[i])
+                    )));
+                }
+                if w.iter().all(|&x| x == 0.0) {
+                    return Err(CliError::bad_input(format!("{weights_label}: all weights are zero")));
+                }
+                w.to_vec()
+            }
+            (None, _) => vec![1.0; criteria.len()],
+        };
+        Ok(ChoiceSpec { method, criteria, weights, change, label: method_label.to_string() })
+    }
+
+    /// Ranks the solutions within limits; indices refer to `all.solutions`.
+    pub(crate) fn rank(&self, robot: &Robot, all: &IkSolutions) -> Result<RankingJson, CliError> {
+        let candidates: Vec<usize> = (0..all.solutions.len()).filter(|&i| all.solutions[i].within_limits).collect();
+        let solutions: Vec<IkSolution> = candidates.iter().map(|&i| all.solutions[i].clone()).collect();
+        let decide = |e: DecideError| CliError::bad_input(format!("{}: {}", self.label, one_line(&e.to_string())));
+        let matrix = ik_matrix(robot, &solutions, &self.criteria).map_err(decide)?;
+        matrix.reject_zero_columns().map_err(decide)?;
+        let describe = |weight: Option<&f64>, c: &Criterion| CriterionJson {
+            name: c.name.clone(),
+            unit: c.unit.clone(),
+            direction: c.direction,
+            weight: weight.copied(),
+        };
+        match self.method {
+            ChoiceMethod::Rank(method) => {
+                let ranking = rank(&matrix, &self.weights, method).map_err(decide)?;
+                Ok(RankingJson {
+                    method: method.as_str().into(),
+                    criteria: ranking
+                        .criteria
+                        .iter()
+                        .zip(&ranking.weights)
+                        .map(|(c, w)| describe(Some(w), c))
+                        .collect(),
+                    score: match method {
+                        Method::WeightedSum => "weighted sum of min-max scores (1 = best), higher is better",
+                        Method::Topsis => "closeness C = d-/(d+ + d-) to the ideal, higher is better",
+                        Method::Vikor => "compromise index Q (v = 0.5), lower is better",
+                    }
+                    .into(),
+                    ranked: ranking
+                        .ranked
+                        .iter()
+                        .map(|e| RankedJson {
+                            solution: candidates[e.index],
+                            rank: e.rank,
+                            score: Some(e.score),
+                            values: matrix.rows()[e.index].clone(),
+                            normalised: Some(e.normalised.clone()),
+                            pareto_optimal: e.pareto_optimal,
+                        })
+                        .collect(),
+                })
+            }
+            ChoiceMethod::Pareto => {
+                // The non-dominated ones first, least weighted joint change first (the seeds'
+                // rule), then the dominated ones in the same order.
+                let front = matrix.pareto();
+                let cost: Vec<f64> = solutions
+                    .iter()
+                    .map(|s| self.change.evaluate(robot, &s.q))
+                    .collect::<Result<_, _>>()
+                    .map_err(decide)?;
+                let mut order: Vec<usize> = (0..solutions.len()).collect();
+                order.sort_by(|&a, &b| {
+                    (!front.contains(&a)).cmp(&!front.contains(&b)).then(cost[a].total_cmp(&cost[b])).then(a.cmp(&b))
+                });
+                Ok(RankingJson {
+                    method: "pareto".into(),
+                    criteria: matrix.criteria().iter().map(|c| describe(None, c)).collect(),
+                    score: "none: non-dominated first, then least joint change from --from".into(),
+                    ranked: order
+                        .iter()
+                        .enumerate()
+                        .map(|(k, &i)| RankedJson {
+                            solution: candidates[i],
+                            rank: k + 1,
+                            score: None,
+                            values: matrix.rows()[i].clone(),
+                            normalised: None,
+                            pareto_optimal: front.contains(&i),
+                        })
+                        .collect(),
+                })
+            }
+        }
+    }
+}
+
+/// The ranking table: rank, solution, branch, per criterion raw [unit] and normalised value,
+/// score, Pareto flag.
+fn write_ranking(out: &mut dyn Write, all: &IkSolutions, r: &RankingJson) -> Result<(), CliError> {
+    let weights: Vec<String> =
+        r.criteria.iter().map(|c| c.weight.map_or(c.name.clone(), |w| format!("{} {}", c.name, fixed(w, 3)))).collect();
+    let label = if r.criteria.iter().any(|c| c.weight.is_some()) { "weights" } else { "criteria" };
+    writeln!(out, "ranking (--choose {}; {label} {}):", r.method, weights.join(", "))?;
+    let mut headers: Vec<(String, Align)> =
+        vec![("rank".into(), Align::Right), ("#".into(), Align::Right), ("branch".into(), Align::Left)];
+    for c in &r.criteria {
+        let arrow = match c.direction {
+            reach::decide::Direction::MoreIsBetter => "↑",
+            reach::decide::Direction::LessIsBetter => "↓",
+        };
+        headers.push((format!("{}{arrow} [{}]", c.name, c.unit), Align::Right));
+        if r.ranked.first().is_some_and(|e| e.normalised.is_some()) {
+            headers.push((format!("{} norm", c.name), Align::Right));
+        }
+    }
+    let score_header = match r.method.as_str() {
+        "topsis" => "closeness",
+        "vikor" => "Q",
+        "weighted-sum" => "score",
+        _ => "",
+    };
+    if !score_header.is_empty() {
+        headers.push((score_header.into(), Align::Right));
+    }
+    headers.push(("pareto".into(), Align::Left));
+    let refs: Vec<(&str, Align)> = headers.iter().map(|(h, a)| (h.as_str(), *a)).collect();
+    let mut t = Table::new(&refs);
+    for e in &r.ranked {
+        let mut row =
+            vec![e.rank.to_string(), (e.solution + 1).to_string(), all.solutions[e.solution].branch.to_string()];
+        for (j, v) in e.values.iter().enumerate() {
+            row.push(fixed(*v, 4));
+            if let Some(n) = &e.normalised {
+                row.push(fixed(n[j], 4));
+            }
+        }
+        if let Some(s) = e.score {
+            row.push(fixed(s, 4));
+        }
+        row.push(if e.pareto_optimal { "yes" } else { "dominated" }.into());
+        t.row(row);
+    }
+    t.write(out, "  ")?;
+    writeln!(out, "  score: {}; ↑ more is better, ↓ less is better", r.score)?;
+    Ok(())
 }

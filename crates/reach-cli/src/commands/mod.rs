@@ -13,3 +13,4 @@ pub mod jacobian;
 pub mod move_cmd;
 pub mod robot_show;
 pub mod robots;
+pub mod tasks;

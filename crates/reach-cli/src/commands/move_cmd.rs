@@ -146,6 +146,65 @@ pub struct MoveSpec {
     pub dt: Option<f64>,
     /// J1/J2 weights.
     pub weights: Option<Vec<f64>>,
+    /// Per-interval configuration choice in tool space (task files' `[choose]`).
+    pub choose: Option<PlanChoice>,
+}
+
+/// A task file's `[choose]`: rank the feasible configurations of each tool-space interval by
+/// motion criteria (`reach::decide::TrackChooser`; docs/task-format.md).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlanChoice {
+    /// `topsis`, `vikor` or `weighted-sum`.
+    pub method: String,
+    /// Motion criterion names (`reach::decide::motion_criteria::MOTION_CRITERIA`).
+    pub criteria: Vec<String>,
+    /// One weight per criterion (default equal).
+    pub weights: Option<Vec<f64>>,
+    /// Hard bounds `criterion = bound` on listed criteria (a maximum for less-is-better, a
+    /// minimum for more-is-better ones): a configuration breaking one does not satisfy the
+    /// choice; none satisfying it realises the default (K14).
+    #[serde(default)]
+    pub require: std::collections::BTreeMap<String, f64>,
+}
+
+impl PlanChoice {
+    /// The chooser for `robot` (J1/J2 criteria use the motion's `joint_weights`).
+    fn chooser<'r>(
+        &self,
+        robot: &'r Robot,
+        joint_weights: Option<&[f64]>,
+    ) -> Result<reach::decide::TrackChooser<'r>, CliError> {
+        let bad =
+            |e: reach::decide::DecideError| CliError::bad_input(format!("[choose]: {}", one_line(&e.to_string())));
+        let method = reach::decide::Method::parse(&self.method).ok_or_else(|| {
+            CliError::bad_input(format!(
+                "[choose] method: unknown `{}` (known: topsis, vikor, weighted-sum)",
+                self.method
+            ))
+        })?;
+        let criteria = self
+            .criteria
+            .iter()
+            .map(|n| reach::decide::MotionCriterion::parse(n, robot, joint_weights, None))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(bad)?;
+        let weights = self.weights.clone().unwrap_or_else(|| vec![1.0; criteria.len()]);
+        let mut requirements = Vec::with_capacity(self.require.len());
+        for (name, &bound) in &self.require {
+            let key = name.replace('-', "_");
+            let Some(criterion) = criteria.iter().position(|c| c.describe().name == key) else {
+                return Err(CliError::bad_input(format!(
+                    "[choose] require: `{name}` is not one of the criteria ({})",
+                    self.criteria.join(", ")
+                )));
+            };
+            requirements.push(reach::decide::motion_criteria::Requirement { criterion, bound });
+        }
+        reach::decide::TrackChooser::new(robot, criteria, weights, method)
+            .and_then(|c| c.with_requirements(requirements))
+            .map_err(bad)
+    }
 }
 
 /// One sample of the JSON output (what `reach drive` reads: `t_s`, `q_deg`).
@@ -177,6 +236,10 @@ pub struct IntervalJson {
     pub feasible: bool,
     /// Every limit broken (by any configuration tracked), with where.
     pub reasons: Vec<String>,
+    /// How the configuration was chosen (tool space): `default`, `only_feasible`,
+    /// `first_feasible`, `criterion` (`[choose]`), `criterion_rejected` (K14), `not_realizable`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub decision: Option<reach::motion::tracking::Decision>,
 }
 
 /// One event of the JSON output.
@@ -281,6 +344,7 @@ impl MoveArgs {
             speed: self.speed.as_deref().map(|t| parse_number("--speed", t)).transpose()?,
             dt: self.dt.as_deref().map(|t| parse_number("--dt", t)).transpose()?,
             weights: self.weights.as_deref().map(|t| parse_list("--weights", t)).transpose()?,
+            choose: None,
         })
     }
 }
@@ -308,7 +372,7 @@ fn motion_error(e: impl std::fmt::Display) -> CliError {
     CliError::bad_input(one_line(&e.to_string()))
 }
 
-fn profile_of(name: Option<ProfileName>, default: ProfileName) -> Result<Profile, CliError> {
+pub(crate) fn profile_of(name: Option<ProfileName>, default: ProfileName) -> Result<Profile, CliError> {
     Ok(match name.unwrap_or(default) {
         ProfileName::Cycloidal => Profile::Cycloidal,
         ProfileName::Quintic => Profile::Quintic,
@@ -419,6 +483,7 @@ fn joint_space(robot: &Robot, spec: &MoveSpec) -> Result<Computed, CliError> {
         configuration: Some("joint".into()),
         feasible: reasons.is_empty(),
         reasons,
+        decision: None,
     };
     Ok((times, q, qd, vec![interval], Vec::new()))
 }
@@ -490,7 +555,9 @@ fn tool_space(robot: &Robot, spec: &MoveSpec) -> Result<Computed, CliError> {
     let dt = spec.dt.unwrap_or(motion.duration() / 100.0);
     let path = motion.sample_time(dt).map_err(motion_error)?;
     let tracked = TrackedPath::sampled(&path.samples).map_err(motion_error)?;
-    let report = track(robot, &tracked, &TrackingOptions::default(), None).map_err(motion_error)?;
+    let chooser = spec.choose.as_ref().map(|c| c.chooser(robot, spec.weights.as_deref())).transpose()?;
+    let criterion = chooser.as_ref().map(|c| c as &dyn reach::motion::tracking::Criterion);
+    let report = track(robot, &tracked, &TrackingOptions::default(), criterion).map_err(motion_error)?;
     // Samples: the realised trajectory when every interval is realised; otherwise the per-sample
     // IK nearest to the previous sample with the limits ignored (so that J1/J2 and the curves
     // are still reported next to the reasons), or the realised part when even that fails.
@@ -540,6 +607,7 @@ fn tool_space(robot: &Robot, spec: &MoveSpec) -> Result<Computed, CliError> {
                 configuration: iv.chosen.and_then(|c| report.configurations.get(c)).map(ToString::to_string),
                 feasible: iv.chosen.is_some(),
                 reasons,
+                decision: Some(iv.decision),
             }
         })
         .collect();
@@ -619,11 +687,16 @@ pub fn write_report(out: &mut dyn Write, m: &MoveJson, every: usize) -> Result<(
     for iv in &m.intervals {
         writeln!(
             out,
-            "  interval {} .. {} s: {} ({})",
+            "  interval {} .. {} s: {} ({}){}",
             fixed(iv.start_s, 3),
             fixed(iv.end_s, 3),
             if iv.feasible { "feasible" } else { "NOT feasible" },
-            iv.configuration.as_deref().unwrap_or("no configuration")
+            iv.configuration.as_deref().unwrap_or("no configuration"),
+            match iv.decision {
+                Some(reach::motion::tracking::Decision::Criterion) => ", chosen by [choose]",
+                Some(reach::motion::tracking::Decision::CriterionRejected) => ", [choose] not met: default kept (K14)",
+                _ => "",
+            }
         )?;
         for r in &iv.reasons {
             writeln!(out, "    {r}")?;
@@ -704,6 +777,7 @@ struct TaskFile {
     defaults: MotionFile,
     #[serde(rename = "motion")]
     motions: Vec<MotionFile>,
+    choose: Option<PlanChoice>,
 }
 
 #[derive(Debug, Default, Clone, Deserialize)]
@@ -785,6 +859,7 @@ pub fn load_task(text: &str, origin: &str) -> Result<(Robot, String, Vec<MoveSpe
             speed: m.speed.or(d.speed),
             dt: m.dt.or(d.dt),
             weights: m.weights.clone().or(d.weights.clone()),
+            choose: file.choose.clone(),
         });
     }
     if specs.is_empty() {

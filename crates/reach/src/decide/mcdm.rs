@@ -138,6 +138,20 @@ impl DecisionMatrix {
         Ok(weights.iter().map(|w| w / sum).collect())
     }
 
+    /// Fails with [`DecideError::ZeroColumn`] naming the first criterion whose value is zero for
+    /// every candidate (e.g. manipulability when every candidate is singular). The methods
+    /// themselves accept such a column (it cannot discriminate, see the module docs); callers
+    /// that want the user to drop it instead call this first.
+    ///
+    /// # Errors
+    /// [`DecideError::ZeroColumn`].
+    pub fn reject_zero_columns(&self) -> Result<(), DecideError> {
+        match (0..self.criteria.len()).find(|&j| self.column(j).all(|v| v == 0.0)) {
+            Some(j) => Err(DecideError::ZeroColumn { criterion: self.criteria[j].name.clone() }),
+            None => Ok(()),
+        }
+    }
+
     /// True when candidate `a` dominates `b`: at least as good on every criterion and strictly
     /// better on one.
     pub fn dominates(&self, a: usize, b: usize) -> bool {
@@ -333,7 +347,8 @@ pub fn rank(matrix: &DecisionMatrix, weights: &[f64], method: Method) -> Result<
                 let (best, worst) = matrix.best_worst(j);
                 let span = best - worst;
                 for (i, e) in entries.iter_mut().enumerate() {
-                    e.normalised[j] = if span == 0.0 { 0.0 } else { (best - matrix.rows[i][j]) / span };
+                    // `+ 0.0` turns the −0 of a best value on a less-is-better column into 0.
+                    e.normalised[j] = if span == 0.0 { 0.0 } else { (best - matrix.rows[i][j]) / span + 0.0 };
                 }
             }
             for e in &mut entries {

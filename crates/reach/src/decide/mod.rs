@@ -4,15 +4,23 @@
 //! - [`mcdm`]: a [`DecisionMatrix`] of candidates × [`Criterion`]s ranked by
 //!   [`Method::WeightedSum`], [`Method::Topsis`] or [`Method::Vikor`], plus a Pareto filter.
 //! - [`ik_criteria`]: criteria computed for a set of IK solutions and [`choose`] among them.
+//! - [`motion_criteria`]: criteria of whole motions (J1, J2, duration, peak rates, limits,
+//!   manipulability, clearance, tool path length), [`choose_motion`], and [`TrackChooser`]
+//!   for path tracking's per-interval choice of configuration.
+//! - [`detour_choice`]: seed 000's detour around a point obstacle, both sides planned and
+//!   ranked ([`detour_choice::choose_detour`]).
 //! - [`sequence`]: ordering of targets ("visiting") and pick-and-place trips ("collection")
 //!   on a cost matrix, exact (Held–Karp) for small sets and heuristic beyond (seed 001 §8–9).
 
+pub mod detour_choice;
 pub mod ik_criteria;
 pub mod mcdm;
+pub mod motion_criteria;
 pub mod sequence;
 
 pub use ik_criteria::{IkCriterion, choose, ik_matrix};
 pub use mcdm::{Criterion, DecisionMatrix, Direction, Method, RankedCandidate, Ranking, rank};
+pub use motion_criteria::{MotionCriterion, SampledMotion, TrackChooser, choose_motion, motion_matrix};
 
 use crate::kinematics::KinematicsError;
 
@@ -95,6 +103,28 @@ pub enum DecideError {
         to: usize,
         /// The value.
         value: f64,
+    },
+    /// A criterion is zero for every candidate, so it cannot discriminate.
+    #[error("criterion '{criterion}' is 0 for every candidate (all-zero column); it cannot discriminate, drop it")]
+    ZeroColumn {
+        /// Criterion name.
+        criterion: String,
+    },
+    /// A criterion name is not known.
+    #[error("unknown criterion '{name}' (known: {known})")]
+    UnknownCriterion {
+        /// The name given.
+        name: String,
+        /// The known names, comma-separated.
+        known: String,
+    },
+    /// A criterion cannot be set up or evaluated (missing speed limits, no scene, bad motion).
+    #[error("criterion '{criterion}': {reason}")]
+    Criterion {
+        /// Criterion name.
+        criterion: String,
+        /// What is wrong.
+        reason: String,
     },
     /// A time budget is negative or NaN.
     #[error("time budget {0} s must be finite and >= 0")]

@@ -415,6 +415,38 @@ pub fn joint_change_costs(
     }
     let mut configs = vec![Some(start.to_vec())];
     configs.extend(targets.iter().map(|t| t.closest_to(start, weights).map(|s| s.q.clone())));
+    config_costs(robot, configs, weights)
+}
+
+/// Builds [`ConfigCosts`] from configurations already chosen (node 0 first; `None`:
+/// unreachable): the J1 matrix `Σ ωᵢ |qᵢ − q'ᵢ|` between them, revolute differences wrapped.
+///
+/// # Errors
+/// [`DecideError::BadVector`] when `weights` or a configuration does not have one finite value
+/// per joint (weights also `>= 0`), or node 0 is `None`.
+pub fn config_costs(
+    robot: &Robot,
+    configs: Vec<Option<Vec<f64>>>,
+    weights: &[f64],
+) -> Result<ConfigCosts, DecideError> {
+    let dof = robot.dof();
+    if weights.len() != dof || weights.iter().any(|x| !x.is_finite() || *x < 0.0) {
+        return Err(DecideError::BadVector {
+            what: "joint weights",
+            reason: format!("expected {dof} finite values >= 0, got {weights:?}"),
+        });
+    }
+    if configs.first().is_none_or(Option::is_none) {
+        return Err(DecideError::BadVector { what: "configurations", reason: "node 0 (start) is missing".into() });
+    }
+    if let Some(k) =
+        configs.iter().position(|c| c.as_ref().is_some_and(|q| q.len() != dof || q.iter().any(|v| !v.is_finite())))
+    {
+        return Err(DecideError::BadVector {
+            what: "configurations",
+            reason: format!("node {k}: expected {dof} finite joint values"),
+        });
+    }
     let j1 = |a: &[f64], b: &[f64]| -> f64 {
         robot
             .joints()

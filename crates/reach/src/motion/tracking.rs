@@ -821,6 +821,19 @@ impl TrackingReport {
 pub trait Criterion {
     /// The score of one configuration's trajectory over an interval.
     fn score(&self, track: &ConfigurationTrack) -> Option<f64>;
+
+    /// Index (into `feasible`) of the configuration to realise, or `None` when none satisfies
+    /// the criterion. Default: the lowest finite [`score`](Criterion::score) (first on a tie);
+    /// criteria that compare the candidates with each other (multi-criteria rankings,
+    /// [`crate::decide::TrackChooser`]) override it.
+    fn choose(&self, feasible: &[&ConfigurationTrack]) -> Option<usize> {
+        feasible
+            .iter()
+            .enumerate()
+            .filter_map(|(k, t)| self.score(t).filter(|v| v.is_finite()).map(|v| (k, v)))
+            .min_by(|x, y| x.1.total_cmp(&y.1))
+            .map(|(k, _)| k)
+    }
 }
 
 impl<F: Fn(&ConfigurationTrack) -> Option<f64>> Criterion for F {
@@ -1727,12 +1740,9 @@ fn track_with(
                         None if fallback == default => (Some(fallback), Decision::Default),
                         None => (Some(fallback), Decision::FirstFeasible),
                         Some(cr) => {
-                            let best = feasible
-                                .iter()
-                                .filter_map(|&c| cr.score(&tracks[c]).filter(|v| v.is_finite()).map(|v| (c, v)))
-                                .min_by(|x, y| x.1.total_cmp(&y.1));
-                            match best {
-                                Some((c, _)) => (Some(c), Decision::Criterion),
+                            let candidates: Vec<&ConfigurationTrack> = feasible.iter().map(|&c| &tracks[c]).collect();
+                            match cr.choose(&candidates).and_then(|k| feasible.get(k).copied()) {
+                                Some(c) => (Some(c), Decision::Criterion),
                                 None => {
                                     event(
                                         &mut events,

@@ -46,6 +46,9 @@ pub enum WaypointRule {
     /// On the perpendicular to `KH` (`K1H`) at `H`, base side (notes 000 D5).
     #[default]
     Perpendicular,
+    /// On the same perpendicular, the other side (away from the base): the alternative detour
+    /// that [`crate::decide::detour_choice`] ranks against the base-side one.
+    PerpendicularFar,
     /// The printed Table 6 formulas: `H + (L/7)·(−dx, dy)/|d|`.
     PaperPrinted,
 }
@@ -220,12 +223,13 @@ pub fn waypoint(h: P2, s: P2, radius: f64, rule: WaypointRule) -> Option<P2> {
     Some(match rule {
         // Table 6 as printed (D5): (−dx, +dy).
         WaypointRule::PaperPrinted => [h[0] - radius * u[0], h[1] + radius * u[1]],
-        WaypointRule::Perpendicular => {
+        WaypointRule::Perpendicular | WaypointRule::PerpendicularFar => {
             let c1 = [h[0] - radius * u[1], h[1] + radius * u[0]];
             let c2 = [h[0] + radius * u[1], h[1] - radius * u[0]];
             // Base side: the candidate nearer the base O (the thesis's "side of the
-            // mounting axis"); a tie keeps the counter-clockwise one.
-            if c2[0].hypot(c2[1]) < c1[0].hypot(c1[1]) { c2 } else { c1 }
+            // mounting axis"); a tie keeps the counter-clockwise one. Far side: the other.
+            let c2_nearer = c2[0].hypot(c2[1]) < c1[0].hypot(c1[1]);
+            if c2_nearer == (rule == WaypointRule::Perpendicular) { c2 } else { c1 }
         }
     })
 }

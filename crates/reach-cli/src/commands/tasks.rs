@@ -1,0 +1,564 @@
+//! `reach tasks` — seed 001's planning tasks on the energy functional J1 (notes 001 §8):
+//! *collection* (pick-and-place trips container → object → container) and *visiting* (an
+//! open tour of target points), with unreachable points reported and skipped, and the largest
+//! number of points that fit a time budget.
+//!
+//! Every point gets one configuration: the IK solution within limits closest to node 0 (the
+//! start configuration, or the container's configuration) by `Σ wᵢ·|Δqᵢ|`, or the rank-1
+//! solution of the file's `[choose]` ranking (as `reach ik --choose`). The cost of a move is
+//! J1 between configurations (revolute differences wrapped); its duration is the synchronised
+//! point-to-point duration within the joint speed limits with the file's profile. Visiting is
+//! exact (Held–Karp) up to 12 reachable targets, nearest neighbour + 2-opt beyond; collection's
+//! total energy does not depend on the order, so only the budget selects (shortest trips first,
+//! optimal). See `docs/task-format.md`.
+//!
+//! Exit status: 0; 2 for bad input, including a task in which no point is reachable; 3 when
+//! the container itself is unreachable.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion};
+use reach::Robot;
+use reach::decide::motion_criteria::point_to_point_duration;
+use reach::decide::sequence::{
+    EXACT_MAX_TARGETS, Sequence, collection, collection_within_budget, config_costs, visiting, visiting_within_budget,
+};
+use reach::effort::SEED001_WEIGHTS;
+use reach::ik::{IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SolverKind};
+use reach::motion::JointRates;
+use serde::{Deserialize, Serialize};
+
+use super::ik::ChoiceSpec;
+use super::move_cmd::{ProfileName, profile_of};
+use crate::error::{CliError, one_line};
+use crate::numbers::{parse_finite, q_text, q_to_display, to_si};
+use crate::output::{Align, Table, fixed, fixeds, write_json};
+use crate::robot_arg::RobotArgs;
+
+/// Which planning task.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TaskKind {
+    /// Trips container → object → container for every object.
+    Collection,
+    /// One open tour from the start through every target.
+    Visiting,
+}
+
+/// Arguments of `reach tasks`.
+#[derive(Debug, Clone, Args)]
+pub struct TasksArgs {
+    /// The robot.
+    #[command(flatten)]
+    pub robot: RobotArgs,
+
+    /// The task: collection or visiting.
+    #[arg(value_name = "TASK_KIND")]
+    pub kind: TaskKind,
+
+    /// Task file (TOML, docs/task-format.md "reach tasks").
+    #[arg(value_name = "TASK_FILE")]
+    pub file: PathBuf,
+
+    /// Time budget in seconds: also report the largest number of points that fit (overrides
+    /// the file's `budget_s`).
+    #[arg(long, value_name = "S", allow_hyphen_values = true)]
+    pub budget: Option<String>,
+
+    /// Print JSON (see docs/task-format.md).
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TasksFile {
+    #[serde(default)]
+    description: String,
+    start: Option<Vec<f64>>,
+    container: Option<Vec<f64>>,
+    #[serde(default)]
+    objects: Vec<Vec<f64>>,
+    #[serde(default)]
+    targets: Vec<Vec<f64>>,
+    orientation: Option<Vec<f64>>,
+    weights: Option<Vec<f64>>,
+    profile: Option<ProfileName>,
+    max_velocity: Option<Vec<f64>>,
+    budget_s: Option<f64>,
+    choose: Option<ChooseFile>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ChooseFile {
+    method: String,
+    criteria: Option<Vec<String>>,
+    weights: Option<Vec<f64>>,
+}
+
+/// One point of the task in the JSON output.
+#[derive(Debug, Clone, Serialize)]
+pub struct PointJson {
+    /// 1-based point number (as in the file).
+    pub index: usize,
+    /// Tool position, metres.
+    pub xyz_m: [f64; 3],
+    /// Tool orientation roll, pitch, yaw in degrees (`null`: position only).
+    pub rpy_deg: Option<[f64; 3]>,
+    /// The chosen configuration (degrees; prismatic metres), `null` when unreachable.
+    pub q_deg: Option<Vec<f64>>,
+    /// Branch label of the chosen configuration.
+    pub branch: Option<String>,
+    /// Why the point is unreachable (`null` when reachable).
+    pub reason: Option<String>,
+}
+
+/// One leg (visiting) or trip (collection).
+#[derive(Debug, Clone, Serialize)]
+pub struct LegJson {
+    /// 1-based point number.
+    pub point: usize,
+    /// J1 of the leg (visiting: from the previous point; collection: container → object →
+    /// container), rad.
+    pub j1_rad: f64,
+    /// Duration of the leg within the speed limits, seconds (`null` without limits).
+    pub duration_s: Option<f64>,
+}
+
+/// A plan in the JSON output.
+#[derive(Debug, Clone, Serialize)]
+pub struct PlanJson {
+    /// Point numbers in execution order.
+    pub order: Vec<usize>,
+    /// Per leg or trip.
+    pub legs: Vec<LegJson>,
+    /// Σ J1, rad.
+    pub total_j1_rad: f64,
+    /// Σ duration, seconds (`null` without limits).
+    pub total_duration_s: Option<f64>,
+    /// Whether the plan is provably optimal.
+    pub exact: bool,
+    /// How it was found.
+    pub method: String,
+}
+
+/// The JSON output of `reach tasks`.
+#[derive(Debug, Clone, Serialize)]
+pub struct TasksJson {
+    /// Robot name.
+    pub robot: String,
+    /// `collection` or `visiting`.
+    pub task: TaskKind,
+    /// The file's description.
+    pub description: String,
+    /// IK solver.
+    pub solver: String,
+    /// How each point's configuration was chosen.
+    pub choice: String,
+    /// Node 0: the start (visiting) or container (collection) configuration, degrees.
+    pub node0_q_deg: Vec<f64>,
+    /// Every point.
+    pub points: Vec<PointJson>,
+    /// Unreachable point numbers (skipped).
+    pub unreachable: Vec<usize>,
+    /// The least-energy plan over every reachable point.
+    pub plan: PlanJson,
+    /// With a budget: the budget, seconds.
+    pub budget_s: Option<f64>,
+    /// With a budget: the largest number of points that fit, and how.
+    pub within_budget: Option<PlanJson>,
+}
+
+/// A tool target from 3 numbers (position; with `orientation` a pose) or 6 (pose).
+fn target_of(field: &str, v: &[f64], orientation: Option<&[f64]>) -> Result<(IkTarget, PointJson), CliError> {
+    if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+        return Err(CliError::bad_input(format!("{field}: value {} is not a finite number", i + 1)));
+    }
+    let (xyz, rpy) = match (v.len(), orientation) {
+        (3, None) => ([v[0], v[1], v[2]], None),
+        (3, Some(o)) => ([v[0], v[1], v[2]], Some([o[0], o[1], o[2]])),
+        (6, _) => ([v[0], v[1], v[2]], Some([v[3], v[4], v[5]])),
+        (n, _) => {
+            return Err(CliError::bad_input(format!(
+                "{field}: expected 3 numbers x,y,z [m] or 6 x,y,z [m], roll,pitch,yaw [deg], got {n}"
+            )));
+        }
+    };
+    let p = Point3::new(xyz[0], xyz[1], xyz[2]);
+    let target = match rpy {
+        None => IkTarget::Position(p),
+        Some(r) => IkTarget::Pose(Isometry3::from_parts(
+            Translation3::from(p.coords),
+            UnitQuaternion::from_euler_angles(r[0].to_radians(), r[1].to_radians(), r[2].to_radians()),
+        )),
+    };
+    Ok((target, PointJson { index: 0, xyz_m: xyz, rpy_deg: rpy, q_deg: None, branch: None, reason: None }))
+}
+
+/// How configurations are picked: the closest rule or a `[choose]` ranking.
+struct Picker<'a> {
+    robot: &'a Robot,
+    solver: Box<dyn IkSolver>,
+    weights: Vec<f64>,
+    choose: Option<&'a ChooseFile>,
+}
+
+impl Picker<'_> {
+    /// The configuration for `target` relative to `from`, with its branch, or why none.
+    fn pick(&self, target: &IkTarget, from: &[f64]) -> Result<Result<(Vec<f64>, String), String>, CliError> {
+        let options = IkOptions { seed: Some(from.to_vec()), ..IkOptions::default() };
+        let all: IkSolutions = self
+            .solver
+            .solve(self.robot, target, &options)
+            .map_err(|e| CliError::bad_input(format!("IK: {}", one_line(&e.to_string()))))?;
+        let index = match all.closest_to(from, &self.weights) {
+            None => None,
+            Some(c) => match self.choose {
+                None => all.solutions.iter().position(|s| std::ptr::eq(s, c)),
+                Some(ch) => {
+                    let spec = self.spec(ch, from)?;
+                    spec.rank(self.robot, &all)?.ranked.first().map(|e| e.solution)
+                }
+            },
+        };
+        Ok(match index {
+            Some(i) => Ok((all.solutions[i].q.clone(), all.solutions[i].branch.to_string())),
+            None => Err(one_line(&all.failure.unwrap_or(IkFailure::OrientationUnreachable).to_string())),
+        })
+    }
+
+    fn spec(&self, ch: &ChooseFile, from: &[f64]) -> Result<ChoiceSpec, CliError> {
+        let names =
+            ch.criteria.clone().unwrap_or_else(|| vec!["change".into(), "limits".into(), "manipulability".into()]);
+        ChoiceSpec::new(
+            &ch.method,
+            &names,
+            ch.weights.as_deref(),
+            from,
+            &self.weights,
+            ["[choose] method", "[choose] criteria", "[choose] weights"],
+        )
+    }
+}
+
+/// Runs `reach tasks`.
+///
+/// # Errors
+/// See the module docs.
+pub fn run(args: &TasksArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let robot = &args.robot.load()?.robot;
+    let dof = robot.dof();
+    let origin = args.file.display().to_string();
+    let text = std::fs::read_to_string(&args.file).map_err(|e| CliError::bad_input(format!("{origin}: {e}")))?;
+    let file: TasksFile =
+        toml::from_str(&text).map_err(|e| CliError::bad_input(format!("{origin}: {}", one_line(&e.to_string()))))?;
+    let (points_field, points) = match args.kind {
+        TaskKind::Collection => {
+            if !file.targets.is_empty() {
+                return Err(CliError::bad_input(format!("{origin}: `targets` belong to visiting; use `objects`")));
+            }
+            ("objects", &file.objects)
+        }
+        TaskKind::Visiting => {
+            if file.container.is_some() || !file.objects.is_empty() {
+                return Err(CliError::bad_input(format!(
+                    "{origin}: `container`/`objects` belong to collection; use `targets`"
+                )));
+            }
+            ("targets", &file.targets)
+        }
+    };
+    if points.is_empty() {
+        return Err(CliError::bad_input(format!("{origin}: `{points_field}` is empty (empty candidate set)")));
+    }
+    if let Some(o) = &file.orientation
+        && (o.len() != 3 || o.iter().any(|v| !v.is_finite()))
+    {
+        return Err(CliError::bad_input(format!(
+            "{origin}: `orientation` needs 3 finite numbers roll,pitch,yaw [deg]"
+        )));
+    }
+    let weights = match &file.weights {
+        Some(w) => {
+            if w.len() != dof || w.iter().any(|x| !x.is_finite() || *x < 0.0) {
+                return Err(CliError::bad_input(format!(
+                    "{origin}: `weights` needs {dof} finite joint weights >= 0, got {w:?}"
+                )));
+            }
+            w.clone()
+        }
+        None if dof == 6 => SEED001_WEIGHTS.to_vec(),
+        None => vec![1.0; dof],
+    };
+    let start = match &file.start {
+        Some(v) => {
+            if v.len() != dof || v.iter().any(|x| !x.is_finite()) {
+                return Err(CliError::bad_input(format!("{origin}: `start` needs {dof} finite joint values [deg]")));
+            }
+            robot.joints().iter().zip(v).map(|(j, &x)| to_si(j.kind, x, crate::numbers::AngleInput::Degrees)).collect()
+        }
+        None => robot.home(),
+    };
+    let rates = match &file.max_velocity {
+        Some(v) => {
+            if v.len() != dof {
+                return Err(CliError::bad_input(format!("{origin}: `max_velocity` needs {dof} values [deg/s]")));
+            }
+            let si = robot
+                .joints()
+                .iter()
+                .zip(v)
+                .map(|(j, &x)| to_si(j.kind, x, crate::numbers::AngleInput::Degrees))
+                .collect::<Vec<f64>>();
+            Some(JointRates::new(si, None).map_err(|e| CliError::bad_input(format!("{origin}: max_velocity: {e}")))?)
+        }
+        None => JointRates::from_robot(robot, None).ok(),
+    };
+    let profile = profile_of(file.profile, ProfileName::Cycloidal)?;
+    let budget = match &args.budget {
+        Some(t) => Some(parse_finite("--budget", t)?),
+        None => file.budget_s,
+    };
+    if let Some(b) = budget {
+        if !b.is_finite() || b < 0.0 {
+            return Err(CliError::bad_input(format!(
+                "--budget (or budget_s): must be a finite number of seconds >= 0, got {b}"
+            )));
+        }
+        if rates.is_none() {
+            return Err(CliError::bad_input(format!(
+                "--budget: robot `{}` has no joint speed limits; give `max_velocity` [deg/s] in the task file",
+                robot.name()
+            )));
+        }
+    }
+    let kind = SolverKind::detect(robot);
+    let picker = Picker {
+        robot,
+        solver: kind.build(robot).map_err(|e| CliError::bad_input(one_line(&e.to_string())))?,
+        weights: weights.clone(),
+        choose: file.choose.as_ref(),
+    };
+    if let Some(ch) = &file.choose {
+        picker.spec(ch, &start)?; // check the section before solving anything
+    }
+    // Node 0.
+    let node0 = match args.kind {
+        TaskKind::Visiting => start.clone(),
+        TaskKind::Collection => {
+            let Some(c) = &file.container else {
+                return Err(CliError::bad_input(format!("{origin}: collection needs `container` = [x, y, z]")));
+            };
+            let (target, _) = target_of("container", c, file.orientation.as_deref())?;
+            match picker.pick(&target, &start)? {
+                Ok((q, _)) => q,
+                Err(reason) => return Err(CliError::NoSolution(format!("the container is unreachable: {reason}"))),
+            }
+        }
+    };
+    let mut rows = Vec::with_capacity(points.len());
+    let mut configs = vec![Some(node0.clone())];
+    for (k, p) in points.iter().enumerate() {
+        let (target, mut row) = target_of(&format!("{points_field}[{}]", k + 1), p, file.orientation.as_deref())?;
+        row.index = k + 1;
+        match picker.pick(&target, &node0)? {
+            Ok((q, branch)) => {
+                row.q_deg = Some(q_to_display(robot, &q).into_iter().map(|v| v + 0.0).collect());
+                row.branch = Some(branch);
+                configs.push(Some(q));
+            }
+            Err(reason) => {
+                row.reason = Some(reason);
+                configs.push(None);
+            }
+        }
+        rows.push(row);
+    }
+    let unreachable: Vec<usize> = rows.iter().filter(|r| r.reason.is_some()).map(|r| r.index).collect();
+    if unreachable.len() == rows.len() {
+        let reasons: Vec<String> =
+            rows.iter().map(|r| format!("{} ({})", r.index, r.reason.clone().unwrap_or_default())).collect();
+        return Err(CliError::bad_input(format!(
+            "{origin}: no point of `{points_field}` is reachable: {}",
+            reasons.join("; ")
+        )));
+    }
+    let decide = |e: reach::decide::DecideError| CliError::internal(one_line(&e.to_string()));
+    let costs = config_costs(robot, configs.clone(), &weights).map_err(decide)?;
+    let durations = match &rates {
+        None => None,
+        Some(r) => {
+            let mut d = vec![vec![f64::INFINITY; configs.len()]; configs.len()];
+            for (i, a) in configs.iter().enumerate() {
+                for (j, b) in configs.iter().enumerate() {
+                    if let (Some(a), Some(b)) = (a, b) {
+                        let delta: Vec<f64> = robot
+                            .joints()
+                            .iter()
+                            .enumerate()
+                            .map(|(n, jt)| reach::motion::joint_space::joint_difference(jt, a[n], b[n]))
+                            .collect();
+                        d[i][j] =
+                            if i == j { 0.0 } else { point_to_point_duration(&delta, r, profile).map_err(decide)? };
+                    }
+                }
+            }
+            Some(d)
+        }
+    };
+    let c = &costs.costs;
+    let plan = match args.kind {
+        TaskKind::Visiting => visiting(c),
+        TaskKind::Collection => collection(c),
+    }
+    .map_err(decide)?;
+    let within = match (budget, &durations) {
+        (Some(b), Some(d)) => Some(
+            match args.kind {
+                TaskKind::Visiting => visiting_within_budget(c, d, b),
+                TaskKind::Collection => collection_within_budget(c, d, b),
+            }
+            .map_err(decide)?,
+        ),
+        _ => None,
+    };
+    let report = TasksJson {
+        robot: robot.name().to_string(),
+        task: args.kind,
+        description: file.description.clone(),
+        solver: kind.as_str().to_string(),
+        choice: match &file.choose {
+            None => "closest: least Σ wᵢ·|Δqᵢ| from node 0 within limits".into(),
+            Some(ch) => format!(
+                "[choose] {} over {}",
+                ch.method,
+                ch.criteria.as_ref().map_or("change,limits,manipulability".into(), |c| c.join(","))
+            ),
+        },
+        node0_q_deg: q_to_display(robot, &node0).into_iter().map(|v| v + 0.0).collect(),
+        points: rows,
+        unreachable,
+        plan: plan_json(args.kind, &plan, durations.as_deref(), false),
+        budget_s: budget,
+        within_budget: within.as_ref().map(|s| plan_json(args.kind, s, durations.as_deref(), true)),
+    };
+    if args.json {
+        return write_json(out, &report);
+    }
+    write_text(out, robot, &report)
+}
+
+fn plan_json(kind: TaskKind, s: &Sequence, d: Option<&[Vec<f64>]>, budget: bool) -> PlanJson {
+    let mut prev = 0;
+    let legs: Vec<LegJson> = s
+        .order
+        .iter()
+        .zip(&s.legs)
+        .map(|(&j, &cost)| {
+            let duration = d.map(|d| match kind {
+                TaskKind::Visiting => d[prev][j],
+                TaskKind::Collection => d[0][j] + d[j][0],
+            });
+            prev = j;
+            LegJson { point: j, j1_rad: cost, duration_s: duration }
+        })
+        .collect();
+    let total_duration_s = d.map(|_| legs.iter().filter_map(|l| l.duration_s).sum());
+    let method = match (kind, budget, s.exact) {
+        (TaskKind::Collection, false, _) => "trips in increasing J1 (total J1 does not depend on the order)".into(),
+        (TaskKind::Collection, true, _) => "shortest trips first (optimal for the count)".into(),
+        (TaskKind::Visiting, false, true) => {
+            format!("exact: Held–Karp dynamic programming (≤ {EXACT_MAX_TARGETS} targets)")
+        }
+        (TaskKind::Visiting, true, true) => {
+            format!(
+                "exact: dynamic programming over subsets, most targets then least time (≤ {EXACT_MAX_TARGETS} targets)"
+            )
+        }
+        (TaskKind::Visiting, false, false) => {
+            format!("heuristic: nearest neighbour + 2-opt (> {EXACT_MAX_TARGETS} targets; not proven optimal)")
+        }
+        (TaskKind::Visiting, true, false) => format!(
+            "heuristic: longest prefix within budget of the nearest-neighbour + 2-opt tour on durations (> {EXACT_MAX_TARGETS} targets)"
+        ),
+    };
+    PlanJson { order: s.order.clone(), total_j1_rad: s.cost, total_duration_s, legs, exact: s.exact, method }
+}
+
+fn write_plan(out: &mut dyn Write, kind: TaskKind, p: &PlanJson, points: &[PointJson]) -> Result<(), CliError> {
+    let leg = if kind == TaskKind::Collection { "trip" } else { "leg" };
+    let mut t = Table::new(&[
+        ("step", Align::Right),
+        ("point", Align::Right),
+        ("xyz [m]", Align::Left),
+        (if kind == TaskKind::Collection { "trip J1 [rad]" } else { "leg J1 [rad]" }, Align::Right),
+        (if kind == TaskKind::Collection { "trip [s]" } else { "leg [s]" }, Align::Right),
+        ("cumulative [s]", Align::Right),
+    ]);
+    let mut cumulative = 0.0;
+    for (k, l) in p.legs.iter().enumerate() {
+        let point = &points[l.point - 1];
+        cumulative += l.duration_s.unwrap_or(0.0);
+        t.row(vec![
+            (k + 1).to_string(),
+            l.point.to_string(),
+            fixeds(&point.xyz_m, 3),
+            fixed(l.j1_rad, 4),
+            l.duration_s.map_or("-".into(), |d| fixed(d, 3)),
+            l.duration_s.map_or("-".into(), |_| fixed(cumulative, 3)),
+        ]);
+    }
+    t.write(out, "  ")?;
+    let total_time = p.total_duration_s.map_or(String::new(), |d| format!(", duration {} s", fixed(d, 3)));
+    writeln!(out, "  total: {} {leg}(s), J1 {} rad{total_time}", p.legs.len(), fixed(p.total_j1_rad, 4))?;
+    Ok(())
+}
+
+fn write_text(out: &mut dyn Write, robot: &Robot, r: &TasksJson) -> Result<(), CliError> {
+    if !r.description.is_empty() {
+        writeln!(out, "{}", r.description)?;
+    }
+    let mut head = Table::key_value();
+    head.pair("robot", format!("{} ({} joints)", r.robot, robot.dof()));
+    let (kind, node) = match r.task {
+        TaskKind::Collection => ("collection: trips container -> object -> container", "container q"),
+        TaskKind::Visiting => ("visiting: one open tour from the start", "start q"),
+    };
+    head.pair("task", kind);
+    let shown: Vec<f64> = r.node0_q_deg.iter().map(|v| (v * 1e4).round() / 1e4 + 0.0).collect();
+    head.pair(node, q_text(robot, &shown));
+    head.pair("solver", r.solver.clone());
+    head.pair("choice", r.choice.clone());
+    head.pair("cost", "J1 = Σ wᵢ·|Δqᵢ| between configurations; durations synchronised within the speed limits");
+    let reachable = r.points.len() - r.unreachable.len();
+    head.pair("points", format!("{} ({reachable} reachable, {} unreachable)", r.points.len(), r.unreachable.len()));
+    head.write(out, "")?;
+    if !r.unreachable.is_empty() {
+        writeln!(out, "unreachable (skipped):")?;
+        for p in r.points.iter().filter(|p| p.reason.is_some()) {
+            writeln!(
+                out,
+                "  point {} at {} m: {}",
+                p.index,
+                fixeds(&p.xyz_m, 3),
+                p.reason.clone().unwrap_or_default()
+            )?;
+        }
+    }
+    writeln!(out, "plan over every reachable point ({}):", r.plan.method)?;
+    write_plan(out, r.task, &r.plan, &r.points)?;
+    if let (Some(b), Some(p)) = (r.budget_s, &r.within_budget) {
+        writeln!(
+            out,
+            "within the budget of {} s: {} of {reachable} point(s) ({}):",
+            fixed(b, 3),
+            p.legs.len(),
+            p.method
+        )?;
+        write_plan(out, r.task, p, &r.points)?;
+    }
+    Ok(())
+}

@@ -1,0 +1,456 @@
+//! End-to-end tests of the decision features: `reach ik --choose` (rankings that explain
+//! themselves; different criteria and methods choose different solutions for the same pose)
+//! and `reach tasks` (visiting against brute force, collection and budgets, unreachable
+//! points skipped), and their bad input (exit 2, empty stdout) and exit 3.
+
+use std::path::PathBuf;
+use std::process::{Command, Stdio};
+
+use serde_json::Value;
+
+struct Run {
+    code: i32,
+    stdout: String,
+    stderr: String,
+}
+
+fn reach(args: &[&str]) -> Run {
+    let out = Command::new(env!("CARGO_BIN_EXE_reach")).args(args).stdin(Stdio::null()).output().expect("run reach");
+    Run {
+        code: out.status.code().expect("reach was killed by a signal"),
+        stdout: String::from_utf8(out.stdout).expect("stdout is UTF-8"),
+        stderr: String::from_utf8(out.stderr).expect("stderr is UTF-8"),
+    }
+}
+
+fn ok(args: &[&str]) -> String {
+    let run = reach(args);
+    assert_eq!(run.code, 0, "reach {args:?} failed: {}", run.stderr);
+    run.stdout
+}
+
+fn json(args: &[&str]) -> Value {
+    let text = ok(args);
+    serde_json::from_str(&text).unwrap_or_else(|e| panic!("reach {args:?}: bad JSON ({e}):\n{text}"))
+}
+
+/// Exit `code`, nothing on stdout, one `error: ` line mentioning every needle.
+fn fails(args: &[&str], code: i32, needles: &[&str]) {
+    let run = reach(args);
+    assert_eq!(run.code, code, "reach {args:?}: expected exit {code}, got {}; stderr: {}", run.code, run.stderr);
+    assert!(run.stdout.is_empty(), "reach {args:?}: stdout not empty: {}", run.stdout);
+    assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
+    for n in needles {
+        assert!(run.stderr.contains(n), "reach {args:?}: stderr lacks {n:?}: {}", run.stderr);
+    }
+}
+
+fn nums(v: &Value) -> Vec<f64> {
+    v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
+}
+
+/// Wrapped difference of two angles in degrees, in radians.
+fn gap_rad(a: f64, b: f64) -> f64 {
+    let d = (a - b).to_radians();
+    (d + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI
+}
+
+const UR5_POSE: &str = "-1,0,0,0.4,0,1,0,-0.2,0,0,-1,0.3,0,0,0,1";
+const UR5_FROM: &str = "0,-90,90,-90,-90,0";
+
+fn chosen_branch(report: &Value) -> String {
+    let i = report["chosen"].as_u64().unwrap() as usize;
+    report["solutions"][i]["branch"].as_str().unwrap().to_string()
+}
+
+#[test]
+fn choose_ranks_the_solutions_within_limits_and_explains_the_ranking() {
+    let criteria = "change,limits,manipulability,sigma_min";
+    let args = |method: &str| -> Vec<String> {
+        let mut a: Vec<String> =
+            ["ik", "ur5", "--matrix", UR5_POSE, "--from", UR5_FROM, "--choose", method, "--criteria", criteria]
+                .map(String::from)
+                .to_vec();
+        if method != "pareto" {
+            a.extend(["--weights".into(), "0.25,0.25,0.25,0.25".into()]);
+        }
+        a.push("--json".into());
+        a
+    };
+    let run = |method: &str| {
+        let a = args(method);
+        json(&a.iter().map(String::as_str).collect::<Vec<_>>())
+    };
+    let topsis = run("topsis");
+    let ranking = &topsis["ranking"];
+    let ranked = ranking["ranked"].as_array().unwrap();
+    let feasible: Vec<usize> = (0..topsis["solutions"].as_array().unwrap().len())
+        .filter(|&i| topsis["solutions"][i]["within_limits"] == true)
+        .collect();
+    assert_eq!(ranked.len(), feasible.len());
+    assert_eq!(ranked[0]["solution"], topsis["chosen"]);
+    let weights: Vec<f64> =
+        ranking["criteria"].as_array().unwrap().iter().map(|c| c["weight"].as_f64().unwrap()).collect();
+    assert!((weights.iter().sum::<f64>() - 1.0).abs() < 1e-12 && (weights[0] - 0.25).abs() < 1e-12);
+    let from: Vec<f64> = UR5_FROM.split(',').map(|v| v.parse().unwrap()).collect();
+    let mut previous = f64::INFINITY;
+    for (k, e) in ranked.iter().enumerate() {
+        assert_eq!(e["rank"].as_u64().unwrap() as usize, k + 1);
+        let score = e["score"].as_f64().unwrap();
+        assert!((0.0..=1.0).contains(&score) && score <= previous, "closeness sorted: {ranking}");
+        previous = score;
+        // The `change` value is Σ |qᵢ − fromᵢ| (wrapped, joint weights 1) of that solution.
+        let q = nums(&topsis["solutions"][e["solution"].as_u64().unwrap() as usize]["q_deg"]);
+        let change: f64 = q.iter().zip(&from).map(|(a, b)| gap_rad(*a, *b).abs()).sum();
+        assert!((nums(&e["values"])[0] - change).abs() < 1e-9, "{e}");
+        assert_eq!(nums(&e["normalised"]).len(), 4);
+    }
+    // Another method picks another solution for the same pose, weights and criteria.
+    let vikor = run("vikor");
+    assert_ne!(chosen_branch(&topsis), chosen_branch(&vikor), "TOPSIS and VIKOR agree: {vikor}");
+    assert_eq!(vikor["ranking"]["ranked"][0]["solution"], vikor["chosen"]);
+    // Pareto: the chosen one is non-dominated and has the least change among those.
+    let pareto = run("pareto");
+    let pr = pareto["ranking"]["ranked"].as_array().unwrap();
+    assert_eq!(pr[0]["pareto_optimal"], true);
+    let front_change = |e: &Value| nums(&e["values"])[0];
+    assert!(pr.iter().filter(|e| e["pareto_optimal"] == true).all(|e| front_change(e) >= front_change(&pr[0])));
+    // The human-readable table names its columns and the score.
+    let text = ok(&[
+        "ik",
+        "ur5",
+        "--matrix",
+        UR5_POSE,
+        "--from",
+        UR5_FROM,
+        "--choose",
+        "topsis",
+        "--criteria",
+        criteria,
+        "--weights",
+        "0.25,0.25,0.25,0.25",
+    ]);
+    for needle in ["ranking (--choose topsis", "change↓ [rad]", "change norm", "manipulability↑", "closeness", "pareto"]
+    {
+        assert!(text.contains(needle), "{needle}: {text}");
+    }
+}
+
+#[test]
+fn different_criteria_choose_different_solutions_for_the_same_pose() {
+    // PUMA 560, the README example: least joint change and largest limit margin disagree.
+    let base = ["ik", "puma560", "--xyz", "0.5,-0.2,0.3", "--rpy", "180,0,0", "--choose", "topsis", "--json"];
+    let by = |criteria: &str| {
+        let mut a = base.to_vec();
+        a.extend(["--criteria", criteria]);
+        json(&a)
+    };
+    let change = by("change");
+    let limits = by("limits");
+    assert_ne!(chosen_branch(&change), chosen_branch(&limits));
+    // `change` alone agrees with the default closest-solution rule.
+    let closest = json(&["ik", "puma560", "--xyz", "0.5,-0.2,0.3", "--rpy", "180,0,0", "--json"]);
+    let q = |r: &Value| nums(&r["solutions"][r["chosen"].as_u64().unwrap() as usize]["q_deg"]);
+    assert!(q(&change).iter().zip(q(&closest)).all(|(a, b)| (a - b).abs() < 1e-9));
+}
+
+#[test]
+fn choose_bad_input_exits_2() {
+    let pose = ["ik", "ur5", "--matrix", UR5_POSE];
+    let with = |extra: &[&'static str]| {
+        let mut a = pose.to_vec();
+        a.extend_from_slice(extra);
+        a
+    };
+    fails(&with(&["--choose", "electre"]), 2, &["--choose", "unknown method `electre`", "topsis"]);
+    fails(&with(&["--choose", "topsis", "--criteria", "change,stiffness"]), 2, &["unknown criterion `stiffness`"]);
+    fails(
+        &with(&["--choose", "topsis", "--criteria", "change,limits", "--weights", "1,2,3"]),
+        2,
+        &["--weights", "expected 2 weights", "got 3"],
+    );
+    fails(
+        &with(&["--choose", "vikor", "--criteria", "change,limits", "--weights", "1,-1"]),
+        2,
+        &["--weights value 2 (limits)", "negative"],
+    );
+    fails(
+        &with(&["--choose", "topsis", "--criteria", "change,limits", "--weights", "0,0"]),
+        2,
+        &["all weights are zero"],
+    );
+    fails(&with(&["--choose", "topsis", "--criteria", "change,change"]), 2, &["given twice"]);
+    fails(&with(&["--choose", "pareto", "--weights", "1,1,1"]), 2, &["pareto", "no weights"]);
+    fails(&with(&["--choose", "topsis", "--weights", "1,nan,1"]), 2, &["--weights value 2"]);
+    // log-loader stretched along x: every solution has a joint at a limit, so the limit margin
+    // is 0 for all of them: an all-zero column cannot discriminate.
+    fails(
+        &["ik", "log-loader", "--xyz", "2,0,0", "--choose", "topsis", "--criteria", "change,limits"],
+        2,
+        &["criterion 'limits'", "all-zero column"],
+    );
+    // Empty candidate set: no solution within limits → the ik exit status 3, report on stdout.
+    let run = reach(&["ik", "ur5", "--xyz", "3,0,0", "--choose", "topsis"]);
+    assert_eq!(run.code, 3, "{}", run.stderr);
+}
+
+// ---------------------------------------------------------------------------------------
+// reach tasks
+
+struct TempFile(PathBuf);
+
+impl Drop for TempFile {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.0);
+    }
+}
+
+fn temp_file(name: &str, contents: &str) -> TempFile {
+    let path = std::env::temp_dir().join(format!("reach-decide-{}-{name}", std::process::id()));
+    std::fs::write(&path, contents).unwrap();
+    TempFile(path)
+}
+
+const SEED001: [f64; 6] = [1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0, 1.0 / 18.0, 1.0 / 18.0, 1.0 / 18.0];
+
+fn j1_deg(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).zip(SEED001).map(|((x, y), w)| w * gap_rad(*x, *y).abs()).sum()
+}
+
+fn permutations(items: &mut Vec<usize>, k: usize, visit: &mut dyn FnMut(&[usize])) {
+    if k == items.len() {
+        visit(items);
+        return;
+    }
+    for i in k..items.len() {
+        items.swap(k, i);
+        permutations(items, k + 1, visit);
+        items.swap(k, i);
+    }
+}
+
+#[test]
+fn visiting_is_optimal_against_brute_force_and_skips_unreachable_points() {
+    let r = json(&["tasks", "ur5", "visiting", "../../examples/tasks_visiting.toml", "--budget", "6", "--json"]);
+    assert_eq!(r["unreachable"], serde_json::json!([7]));
+    assert!(r["points"][6]["reason"].as_str().unwrap().contains("out of reach"));
+    let plan = &r["plan"];
+    assert_eq!(plan["exact"], true);
+    let order: Vec<usize> = plan["order"].as_array().unwrap().iter().map(|v| v.as_u64().unwrap() as usize).collect();
+    let mut sorted = order.clone();
+    sorted.sort_unstable();
+    assert_eq!(sorted, vec![1, 2, 3, 4, 5, 6, 8, 9]);
+    // Brute force over the 8! tours with J1 recomputed from the printed configurations.
+    let q = |n: usize| if n == 0 { nums(&r["node0_q_deg"]) } else { nums(&r["points"][n - 1]["q_deg"]) };
+    let configs: Vec<Vec<f64>> = (0..=9).map(|n| if n == 7 { vec![] } else { q(n) }).collect();
+    let tour = |o: &[usize]| -> f64 {
+        let mut prev = 0;
+        o.iter()
+            .map(|&j| {
+                let c = j1_deg(&configs[prev], &configs[j]);
+                prev = j;
+                c
+            })
+            .sum()
+    };
+    let mut best = f64::INFINITY;
+    permutations(&mut sorted, 0, &mut |o| best = best.min(tour(o)));
+    let total = plan["total_j1_rad"].as_f64().unwrap();
+    assert!((total - best).abs() < 1e-6 * best, "plan {total} vs brute force {best}");
+    assert!((tour(&order) - total).abs() < 1e-6 * total);
+    let legs: f64 = plan["legs"].as_array().unwrap().iter().map(|l| l["j1_rad"].as_f64().unwrap()).sum();
+    assert!((legs - total).abs() < 1e-9);
+    // Budget: fewer points, within the budget; a larger budget never fits fewer.
+    let within = &r["within_budget"];
+    let count = within["order"].as_array().unwrap().len();
+    assert!(count < 8 && count > 0);
+    assert!(within["total_duration_s"].as_f64().unwrap() <= 6.0);
+    let larger = json(&["tasks", "ur5", "visiting", "../../examples/tasks_visiting.toml", "--budget", "9", "--json"]);
+    assert!(larger["within_budget"]["order"].as_array().unwrap().len() >= count);
+    let text = ok(&["tasks", "ur5", "visiting", "../../examples/tasks_visiting.toml", "--budget", "6"]);
+    for needle in ["unreachable (skipped)", "point 7", "exact: Held–Karp", "within the budget of 6.000 s"] {
+        assert!(text.contains(needle), "{needle}: {text}");
+    }
+}
+
+#[test]
+fn more_than_twelve_targets_use_the_heuristic_and_say_so() {
+    let points: Vec<String> = (0..14)
+        .map(|k| {
+            let a = f64::from(k) * 0.4;
+            format!("[{:.4}, {:.4}, 0.1]", 0.45 * a.cos(), 0.45 * a.sin())
+        })
+        .collect();
+    let file = temp_file("ring.toml", &format!("orientation = [180, 0, 0]\ntargets = [{}]\n", points.join(", ")));
+    let r = json(&["tasks", "ur5", "visiting", file.0.to_str().unwrap(), "--json"]);
+    assert_eq!(r["plan"]["exact"], false);
+    assert!(r["plan"]["method"].as_str().unwrap().starts_with("heuristic"));
+    assert_eq!(r["plan"]["order"].as_array().unwrap().len(), 14);
+}
+
+#[test]
+fn collection_trips_and_budget() {
+    let r = json(&["tasks", "ur5", "collection", "../../examples/tasks_collection.toml", "--budget", "8", "--json"]);
+    assert_eq!(r["unreachable"], serde_json::json!([5]));
+    let node0 = nums(&r["node0_q_deg"]);
+    let plan = &r["plan"];
+    // Each trip's J1 is there and back between the container and the object's configuration.
+    for leg in plan["legs"].as_array().unwrap() {
+        let q = nums(&r["points"][leg["point"].as_u64().unwrap() as usize - 1]["q_deg"]);
+        assert!((leg["j1_rad"].as_f64().unwrap() - 2.0 * j1_deg(&node0, &q)).abs() < 1e-9);
+    }
+    assert_eq!(plan["legs"].as_array().unwrap().len(), 6);
+    // Budget: the shortest trips, as many as fit.
+    let mut trips: Vec<f64> =
+        plan["legs"].as_array().unwrap().iter().map(|l| l["duration_s"].as_f64().unwrap()).collect();
+    trips.sort_by(f64::total_cmp);
+    let within = &r["within_budget"];
+    let taken = within["legs"].as_array().unwrap().len();
+    let shortest: f64 = trips[..taken].iter().sum();
+    assert!((within["total_duration_s"].as_f64().unwrap() - shortest).abs() < 1e-9);
+    assert!(shortest <= 8.0 && (taken == trips.len() || shortest + trips[taken] > 8.0), "{trips:?} {taken}");
+    assert!(r["choice"].as_str().unwrap().contains("topsis"));
+}
+
+#[test]
+fn tasks_bad_input_and_infeasible() {
+    let none = temp_file("none.toml", "targets = [[3, 0, 0], [0, 4, 0]]\n");
+    fails(
+        &["tasks", "ur5", "visiting", none.0.to_str().unwrap()],
+        2,
+        &["no point of `targets` is reachable", "1 (", "2 ("],
+    );
+    let empty = temp_file("empty.toml", "targets = []\n");
+    fails(&["tasks", "ur5", "visiting", empty.0.to_str().unwrap()], 2, &["`targets` is empty"]);
+    let far = temp_file("far.toml", "container = [3, 0, 0]\nobjects = [[0.4, 0, 0.1]]\n");
+    fails(&["tasks", "ur5", "collection", far.0.to_str().unwrap()], 3, &["container is unreachable"]);
+    let weights = temp_file(
+        "weights.toml",
+        "targets = [[0.4, 0, 0.1]]\n[choose]\nmethod = \"topsis\"\ncriteria = [\"change\", \"limits\"]\nweights = [1.0]\n",
+    );
+    fails(&["tasks", "ur5", "visiting", weights.0.to_str().unwrap()], 2, &["[choose] weights", "expected 2 weights"]);
+    let negative = temp_file(
+        "negative.toml",
+        "targets = [[0.4, 0, 0.1]]\n[choose]\nmethod = \"vikor\"\ncriteria = [\"change\", \"limits\"]\nweights = [1.0, -2.0]\n",
+    );
+    fails(&["tasks", "ur5", "visiting", negative.0.to_str().unwrap()], 2, &["[choose] weights value 2", "negative"]);
+    let unknown =
+        temp_file("unknown.toml", "targets = [[0.4, 0, 0.1]]\n[choose]\nmethod = \"topsis\"\ncriteria = [\"luck\"]\n");
+    fails(&["tasks", "ur5", "visiting", unknown.0.to_str().unwrap()], 2, &["unknown criterion `luck`"]);
+    let key = temp_file("key.toml", "targets = [[0.4, 0, 0.1]]\nspeed = 3\n");
+    fails(&["tasks", "ur5", "visiting", key.0.to_str().unwrap()], 2, &["speed"]);
+    let wrong = temp_file("wrong.toml", "targets = [[0.4, 0]]\n");
+    fails(&["tasks", "ur5", "visiting", wrong.0.to_str().unwrap()], 2, &["targets[1]", "got 2"]);
+    let kind = temp_file("kind.toml", "targets = [[0.4, 0, 0.1]]\n");
+    fails(&["tasks", "ur5", "collection", kind.0.to_str().unwrap()], 2, &["`targets` belong to visiting"]);
+    let ok_file = temp_file("ok.toml", "targets = [[0.4, 0, 0.1]]\n");
+    fails(&["tasks", "ur5", "visiting", ok_file.0.to_str().unwrap(), "--budget", "-1"], 2, &["--budget"]);
+    // puma560 has no speed limits: a budget needs max_velocity in the file.
+    fails(&["tasks", "puma560", "visiting", ok_file.0.to_str().unwrap(), "--budget", "5"], 2, &["max_velocity"]);
+    fails(&["tasks", "ur5", "visiting", "/nonexistent/task.toml"], 2, &["/nonexistent/task.toml"]);
+}
+
+// ---------------------------------------------------------------------------------------
+// reach plan: [choose] per path interval
+
+fn interval_choices(r: &Value) -> Vec<(String, String)> {
+    r["motions"][0]["intervals"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|i| (i["configuration"].as_str().unwrap_or("").to_string(), i["decision"].as_str().unwrap().to_string()))
+        .collect()
+}
+
+#[test]
+fn plan_choose_ranks_the_configurations_of_each_interval() {
+    let example = std::fs::read_to_string("../../examples/choose_tracking.toml").unwrap();
+    let chosen = json(&["plan", "../../examples/choose_tracking.toml", "--json"]);
+    assert_eq!(interval_choices(&chosen), vec![("shoulder=w config=−β wrist=e5".into(), "criterion".into())]);
+    // Without [choose] the default configuration is realised.
+    let start = example.find("\n[choose]").unwrap();
+    let end = example.find("[[motion]]").unwrap();
+    let plain = temp_file("plain.toml", &format!("{}{}", &example[..start], &example[end..]));
+    let r = json(&["plan", plain.0.to_str().unwrap(), "--json"]);
+    assert_eq!(interval_choices(&r), vec![("shoulder=w config=+β wrist=e5".into(), "default".into())]);
+    // Another criterion (J2, less joint motion) chooses the other configuration.
+    let j2 = temp_file(
+        "j2.toml",
+        &example
+            .replace("criteria = [\"limits\", \"manipulability\"]", "criteria = [\"j2\"]")
+            .replace("weights = [0.5, 0.5]", ""),
+    );
+    let r = json(&["plan", j2.0.to_str().unwrap(), "--json"]);
+    assert_eq!(interval_choices(&r), vec![("shoulder=w config=+β wrist=e5".into(), "criterion".into())]);
+    // A requirement no configuration meets (limit margin >= 0.45): the default is realised (K14).
+    let strict = temp_file(
+        "strict.toml",
+        &example.replace("weights = [0.5, 0.5]", "weights = [0.5, 0.5]\nrequire = { limits = 0.45 }"),
+    );
+    let r = json(&["plan", strict.0.to_str().unwrap(), "--json"]);
+    assert_eq!(interval_choices(&r), vec![("shoulder=w config=+β wrist=e5".into(), "criterion_rejected".into())]);
+    assert!(r["motions"][0]["events"].as_array().unwrap().iter().any(|e| e["code"] == "K14"));
+    // A requirement one configuration meets (limit margin >= 0.2) keeps the ranking's choice.
+    let loose = temp_file(
+        "loose.toml",
+        &example.replace("weights = [0.5, 0.5]", "weights = [0.5, 0.5]\nrequire = { limits = 0.2 }"),
+    );
+    let r = json(&["plan", loose.0.to_str().unwrap(), "--json"]);
+    assert_eq!(interval_choices(&r)[0].1, "criterion");
+    // Bad [choose]: unknown criterion, weight count, clearance without a scene, requirement
+    // on a criterion not listed.
+    let not_listed =
+        temp_file("req.toml", &example.replace("weights = [0.5, 0.5]", "weights = [0.5, 0.5]\nrequire = { j2 = 1.0 }"));
+    fails(&["plan", not_listed.0.to_str().unwrap()], 2, &["[choose] require", "`j2` is not one of the criteria"]);
+    for (from, to, needle) in [
+        ("[\"limits\", \"manipulability\"]", "[\"limits\", \"luck\"]", "unknown criterion 'luck'"),
+        ("weights = [0.5, 0.5]", "weights = [0.5]", "expected 2 weights"),
+        ("weights = [0.5, 0.5]", "weights = [0.5, -0.5]", "must be finite and >= 0"),
+        ("[\"limits\", \"manipulability\"]", "[\"limits\", \"clearance\"]", "needs a scene"),
+        ("method = \"topsis\"", "method = \"electre\"", "unknown `electre`"),
+    ] {
+        let file = temp_file("bad-choose.toml", &example.replace(from, to));
+        fails(&["plan", file.0.to_str().unwrap()], 2, &["[choose]", needle]);
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// reach avoid --choose
+
+#[test]
+fn avoid_choose_plans_both_sides_and_says_when_only_one_is_feasible() {
+    let args =
+        ["avoid", "planar3", "--start", "60,-40,-30", "--to", "2.4,0.2", "--obstacle", "2.0,0.7", "--step", "0.1"];
+    let mut with = args.to_vec();
+    with.extend(["--choose", "topsis", "--json"]);
+    let r = json(&with);
+    let sides = r["sides"].as_array().unwrap();
+    assert_eq!(sides.len(), 2);
+    assert_eq!((sides[0]["side"].as_str(), sides[0]["chosen"].as_bool()), (Some("base_side"), Some(true)));
+    assert_eq!(sides[1]["outcome"]["outcome"], "leg_blocked");
+    assert!(sides[1]["values"].as_array().unwrap().is_empty() && sides[0]["score"].is_null());
+    // The chosen plan is the thesis's (the plan without --choose).
+    let mut plain = args.to_vec();
+    plain.push("--json");
+    let p = json(&plain);
+    assert_eq!(p["waypoints_m"], r["waypoints_m"]);
+    let values = nums(&sides[0]["values"]);
+    let s_deg: f64 = nums(&p["leg_s_deg"]).iter().sum();
+    assert!((values[0] - s_deg.to_radians()).abs() < 1e-9);
+    assert!((values[1] - p["min_clearance_m"].as_f64().unwrap()).abs() < 1e-12);
+    let mut text = args.to_vec();
+    text.extend(["--choose", "vikor"]);
+    assert!(ok(&text).contains("one feasible candidate: nothing to rank"));
+    let mut bad = args.to_vec();
+    bad.extend(["--choose", "electre"]);
+    fails(&bad, 2, &["--choose", "electre"]);
+    let mut bad = args.to_vec();
+    bad.extend(["--choose", "topsis", "--criteria", "s,luck"]);
+    fails(&bad, 2, &["unknown criterion `luck`"]);
+    let mut bad = args.to_vec();
+    bad.extend(["--choose", "topsis", "--weights", "1,1"]);
+    fails(&bad, 2, &["expected 3 weights"]);
+    let mut bad = args.to_vec();
+    bad.extend(["--choose", "topsis", "--printed-waypoints"]);
+    assert_eq!(reach(&bad).code, 2);
+}
