@@ -69,8 +69,10 @@ pub struct SelfClearance {
     pub link_b: usize,
     /// Distance between the two capsules, metres (negative: overlap).
     pub clearance_m: f64,
-    /// Whether they collide under the touching policy.
+    /// Whether they collide under the touching policy (always `false` for an exempt pair).
     pub colliding: bool,
+    /// Whether the pair is on the scene's allowed-collision list (not checked).
+    pub exempt: bool,
 }
 
 /// Where the tool point is relative to one tool-zone entry.
@@ -125,15 +127,79 @@ pub struct CollisionChecker<'a> {
     /// Bounding sphere of each obstacle (broad phase; `None`: always tested).
     bounds: Vec<Option<(Vector3<f64>, f64)>>,
     max_radius: f64,
+    /// Per 0-based link `i`: bit `j` set when the pair `(i, j)` is exempt from self-collision.
+    exempt: Vec<u64>,
+    /// An allowed-collision entry that names no link of the robot (reported by `check`).
+    exempt_error: Option<WorldError>,
+}
+
+/// Resolves one link name of an allowed-collision entry to a 0-based link index: a joint
+/// name (link `k` ends at joint `k`'s frame), `link<k>` (1-based) or `tool` (link `dof + 1`).
+fn link_index(robot: &Robot, name: &str) -> Result<usize, WorldError> {
+    let n = robot.dof();
+    if let Some(k) = robot.joints().iter().position(|j| j.name == name) {
+        return Ok(k);
+    }
+    if name == "tool" {
+        return Ok(n);
+    }
+    if let Some(k) = name.strip_prefix("link").and_then(|k| k.parse::<usize>().ok())
+        && (1..=n + 1).contains(&k)
+    {
+        return Ok(k - 1);
+    }
+    let names: Vec<&str> = robot.joints().iter().map(|j| j.name.as_str()).collect();
+    Err(WorldError::Input(format!(
+        "allowed_self_collisions: unknown link `{name}` (expected a joint name of {} ({}), link1..link{}, or tool)",
+        robot.name(),
+        names.join(", "),
+        n + 1
+    )))
+}
+
+/// The exemption bit masks of `scene`'s allowed-collision list for `robot`.
+fn exempt_masks(robot: &Robot, scene: &Scene) -> Result<Vec<u64>, WorldError> {
+    let n = robot.dof();
+    if n + 1 > 64 && !scene.allowed_self_collisions.is_empty() {
+        return Err(WorldError::Input(format!("allowed_self_collisions: at most 63 joints, the robot has {n}")));
+    }
+    let mut masks = vec![0_u64; n + 1];
+    for [a, b] in &scene.allowed_self_collisions {
+        let (i, j) = (link_index(robot, a)?, link_index(robot, b)?);
+        if i == j {
+            return Err(WorldError::Input(format!(
+                "allowed_self_collisions: pair [`{a}`, `{b}`] names one link twice"
+            )));
+        }
+        masks[i] |= 1 << j;
+        masks[j] |= 1 << i;
+    }
+    Ok(masks)
 }
 
 impl<'a> CollisionChecker<'a> {
-    /// Prepares buffers for `robot` in `scene`.
+    /// Prepares buffers for `robot` in `scene`, checking the scene's allowed-collision list.
+    ///
+    /// # Errors
+    /// [`WorldError::Input`] naming the entry when [`Scene::allowed_self_collisions`] names a
+    /// link the robot does not have, or one link twice.
+    pub fn try_new(robot: &'a Robot, scene: &'a Scene) -> Result<Self, WorldError> {
+        let checker = CollisionChecker::new(robot, scene);
+        match checker.exempt_error {
+            Some(e) => Err(e),
+            None => Ok(checker),
+        }
+    }
+
+    /// Prepares buffers for `robot` in `scene`. A bad allowed-collision list is reported by
+    /// every [`CollisionChecker::check`] and [`CollisionChecker::report`] (use
+    /// [`CollisionChecker::try_new`] to see it at once).
     #[must_use]
     pub fn new(robot: &'a Robot, scene: &'a Scene) -> Self {
         let n = robot.dof();
         let links = robot.links();
         let radii: Vec<f64> = (0..=n).map(|k| links.get(k.min(n - 1)).map_or(0.0, |l| l.radius)).collect();
+        let exempt = exempt_masks(robot, scene);
         let margin = match scene.touching {
             Touching::Closed => CONTACT,
             Touching::Open => -CONTACT,
@@ -148,6 +214,8 @@ impl<'a> CollisionChecker<'a> {
             margin,
             bounds: scene.obstacles.iter().map(|o| o.shape.bounding_sphere()).collect(),
             max_radius: links.iter().map(|l| l.radius).fold(0.0, f64::max),
+            exempt: exempt.as_ref().map_or_else(|_| vec![0; n + 1], Clone::clone),
+            exempt_error: exempt.err(),
         }
     }
 
@@ -165,6 +233,9 @@ impl<'a> CollisionChecker<'a> {
 
     /// Computes the link points of `q` into the buffers.
     fn update(&mut self, q: &[f64]) -> Result<(), WorldError> {
+        if let Some(e) = &self.exempt_error {
+            return Err(e.clone());
+        }
         let tool = self.robot.frames_into(q, &mut self.frames)?;
         self.points[0] = self.robot.base().translation.vector;
         for (p, f) in self.points[1..].iter_mut().zip(&self.frames) {
@@ -191,7 +262,8 @@ impl<'a> CollisionChecker<'a> {
     /// Checks `q`: tool zone, then self-collision, then obstacles; the first failure wins.
     ///
     /// # Errors
-    /// [`WorldError::Kinematics`] when `q` has the wrong length or a non-finite value.
+    /// [`WorldError::Kinematics`] when `q` has the wrong length or a non-finite value;
+    /// [`WorldError::Input`] when the scene's allowed-collision list names an unknown link.
     pub fn check(&mut self, q: &[f64]) -> Result<Verdict, WorldError> {
         self.update(q)?;
         Ok(self.classify())
@@ -209,6 +281,9 @@ impl<'a> CollisionChecker<'a> {
         let act = &self.active;
         for (x, &i) in act.iter().enumerate() {
             for &j in act.iter().skip(x + 2) {
+                if (self.exempt[i] >> j) & 1 == 1 {
+                    continue;
+                }
                 let d = super::distance::segment_segment_sq(
                     &self.points[i],
                     &self.points[i + 1],
@@ -250,7 +325,7 @@ impl<'a> CollisionChecker<'a> {
     /// Every clearance of `q` (allocates the report).
     ///
     /// # Errors
-    /// [`WorldError::Kinematics`] when `q` has the wrong length or a non-finite value.
+    /// As [`CollisionChecker::check`].
     pub fn report(&mut self, q: &[f64]) -> Result<Report, WorldError> {
         self.update(q)?;
         let verdict = self.classify();
@@ -288,11 +363,13 @@ impl<'a> CollisionChecker<'a> {
                 .sqrt()
                     - self.radii[i]
                     - self.radii[j];
+                let exempt = (self.exempt[i] >> j) & 1 == 1;
                 self_pairs.push(SelfClearance {
                     link_a: i + 1,
                     link_b: j + 1,
                     clearance_m: d,
-                    colliding: d <= self.margin,
+                    colliding: !exempt && d <= self.margin,
+                    exempt,
                 });
             }
         }
