@@ -173,3 +173,24 @@ fn bad_grids_are_rejected() {
     assert!(e.contains("no allowed node"), "{e}");
     assert!(fit_region(&grid(FREE, 30.0), &FitOptions { max_planes: 4 }).is_err());
 }
+
+#[test]
+#[ignore]
+fn explore() {
+    for (name, text) in [
+        ("free", FREE.to_string()),
+        ("ceiling", CEILING.to_string()),
+        ("c800", CEILING.replace("[0, 0, 1200]", "[0, 0, 800]")),
+        ("two", TWO_PLANES.to_string()),
+    ] {
+        let g = grid(&text, 15.0);
+        let t = std::time::Instant::now();
+        let fit = fit_region(&g, &FitOptions::default()).unwrap();
+        println!("== {name} {:?}", t.elapsed());
+        for p in &fit.parts {
+            println!("  {} F={} A={}", p.name, p.cut_forbidden, p.cut_allowed);
+        }
+        println!("  fit: {:?}", fit.confusion);
+        println!("  val5: {:?}", confusion(&fit.region, &grid(&text, 5.0)).unwrap());
+    }
+}

@@ -390,13 +390,13 @@ fn ellipse_frame(phi_deg: f64, q: [f64; 3], c: (f64, f64)) -> (f64, f64) {
 
 /// Best semi-axes `(a, b, cost)` of an ellipse for nodes given as `(u, v, is_target)`: a node
 /// is inside (cut) when `u²/a² + v²/b² < 1`; cost = `w.0`·targets outside + `w.1`·others
-/// inside. `a` on a 1° grid, `b` by an exact sweep over the node thresholds (midpoints).
-fn best_axes(pts: &[(f64, f64, bool)], step: f64, w: (f64, f64)) -> Option<(f64, f64, f64)> {
+/// inside. `a` from `a_values`, `b` by an exact sweep over the node thresholds (the midpoint
+/// between consecutive thresholds, for margin on both sides).
+fn best_axes(pts: &[(f64, f64, bool)], a_values: &[f64], w: (f64, f64)) -> Option<(f64, f64, f64)> {
     let total_targets = pts.iter().filter(|p| p.2).count() as f64;
     let mut best: Option<(f64, f64, f64)> = None;
     let mut th: Vec<(f64, bool)> = Vec::with_capacity(pts.len());
-    let mut a = step;
-    while a <= MAX_SEMI_AXIS {
+    for &a in a_values {
         th.clear();
         for &(u, v, t) in pts {
             let r = 1.0 - (u / a).powi(2);
@@ -404,8 +404,8 @@ fn best_axes(pts: &[(f64, f64, bool)], step: f64, w: (f64, f64)) -> Option<(f64,
                 th.push((v.abs() / r.sqrt(), t));
             }
         }
-        th.sort_by(|x, y| x.0.total_cmp(&y.0));
-        // b just below the first threshold: nothing inside.
+        th.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
+        // b below the first threshold: nothing inside.
         let mut cost = w.0 * total_targets;
         let mut k = 0;
         while k < th.len() {
@@ -414,15 +414,25 @@ fn best_axes(pts: &[(f64, f64, bool)], step: f64, w: (f64, f64)) -> Option<(f64,
                 cost += if th[k].1 { -w.0 } else { w.1 };
                 k += 1;
             }
-            let next = if k < th.len() { th[k].0 } else { t0 + step };
-            let b = if t0 < step * 0.25 { 0.5 * (t0 + next).max(step * 0.25) } else { 0.5 * (t0 + next) };
+            let next = if k < th.len() { th[k].0 } else { t0 + 1.0 };
+            let b = 0.5 * (t0 + next).max(0.5);
             if b > t0 && b <= MAX_SEMI_AXIS && best.is_none_or(|x| cost < x.2) {
                 best = Some((a, b, cost));
             }
         }
-        a += 1.0;
     }
     best
+}
+
+/// Semi-axis candidates: coarse (geometric, 8 % apart) for searching, then 0.5° steps
+/// within ±10 % of the coarse optimum.
+fn coarse_axes() -> Vec<f64> {
+    std::iter::successors(Some(2.0), |a| Some(a * 1.08)).take_while(|a| *a <= MAX_SEMI_AXIS).collect()
+}
+
+fn fine_axes(a: f64) -> Vec<f64> {
+    let lo = (0.9 * a).max(0.5);
+    (0..).map(|k| lo + 0.5 * f64::from(k)).take_while(|x| *x <= (1.1 * a).min(MAX_SEMI_AXIS)).collect()
 }
 
 /// The cost of cutting with `p` the admitted nodes, relative to not cutting.
@@ -461,7 +471,8 @@ fn fit_cylinder(
     let nodes: Vec<([f64; 3], bool)> =
         (0..n.q.len()).filter(|&i| inside[i] && (targets[i] || positives[i])).map(|i| (n.q[i], targets[i])).collect();
     // x = [k3, m3, k4, m4, φ]; the semi-axes are optimal for each x.
-    let eval = |x: &[f64; 5]| {
+    let coarse = coarse_axes();
+    let eval = |x: &[f64; 5], a_values: &[f64]| {
         let pts: Vec<(f64, f64, bool)> = nodes
             .iter()
             .map(|(q, t)| {
@@ -469,7 +480,7 @@ fn fit_cylinder(
                 (u, v, *t)
             })
             .collect();
-        best_axes(&pts, 2.0, w)
+        best_axes(&pts, a_values, w)
     };
     // Pattern search from the centroid line with the principal tilt, and from that line moved
     // away from the admitted allowed nodes (the ellipse's centre lies on the forbidden side
@@ -490,15 +501,15 @@ fn fit_cylinder(
     let mut best: Option<([f64; 5], (f64, f64, f64))> = None;
     for (shift, tilt) in [(0.0, phi), (60.0, across), (120.0, across), (200.0, across)] {
         let mut x = [l3[1], l3[0] + shift * dx / norm, l4[1], l4[0] + shift * dy / norm, tilt];
-        let Some(mut fx) = eval(&x) else { continue };
+        let Some(mut fx) = eval(&x, &coarse) else { continue };
         let mut h = [0.25, 20.0, 0.25, 20.0, 20.0];
-        while h[4] >= 1.0 {
+        while h[4] >= 2.0 {
             let mut improved = false;
             for k in 0..5 {
                 for sign in [1.0, -1.0] {
                     let mut y = x;
                     y[k] += sign * h[k];
-                    if let Some(fy) = eval(&y)
+                    if let Some(fy) = eval(&y, &coarse)
                         && fy.2 < fx.2
                     {
                         (x, fx, improved) = (y, fy, true);
@@ -513,7 +524,8 @@ fn fit_cylinder(
             best = Some((x, fx));
         }
     }
-    let (x, fx) = best?;
+    let (x, coarse_fx) = best?;
+    let fx = eval(&x, &fine_axes(coarse_fx.0))?;
     let p = Primitive::EllipticCylinder {
         phi_deg: x[4].rem_euclid(180.0),
         a: fx.0,
@@ -545,6 +557,8 @@ fn fit_kinematic(
         s.unwrap_or((0.0, 0.0))
     });
     let (mut m3, mut m4, mut aa, mut bb) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    // Per section there are few nodes: every semi-axis on a 0.5° grid.
+    let section_axes: Vec<f64> = (1..=(2.0 * MAX_SEMI_AXIS) as u32).map(|k| 0.5 * f64::from(k)).collect();
     for c in &cents {
         let pts: Vec<(f64, f64, bool)> = (0..n.q.len())
             .filter(|&i| n.idx[i][0] == c.0 && inside[i] && (targets[i] || positives[i]))
@@ -553,7 +567,7 @@ fn fit_kinematic(
                 (u, v, targets[i])
             })
             .collect();
-        let Some((a, b, _)) = best_axes(&pts, 1.0, w) else { continue };
+        let Some((a, b, _)) = best_axes(&pts, &section_axes, w) else { continue };
         let x = n.axes[0][c.0];
         m3.push((x, c.1, 1.0));
         m4.push((x, c.2, 1.0));
