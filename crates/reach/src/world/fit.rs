@@ -33,9 +33,10 @@
 //!
 //! A primitive is kept only when it lowers the error count. The region is composed in the
 //! paper's order (box, Ω1, Ω2, Ω3, Ω4, Ω5, Ω6; eqs. 3 and 8); a primitive that cuts no
-//! node in that order is dropped. The fit minimises the total number of misclassified grid
-//! nodes; it is not conservative (forbidden nodes may be classified allowed, see
-//! [`Confusion::false_allowed`]).
+//! node in that order is dropped. The fit minimises the number of misclassified grid nodes,
+//! forbidden nodes classified allowed weighted by [`FitOptions::false_allowed_weight`]. It is
+//! not conservative: forbidden nodes may be classified allowed ([`Confusion::false_allowed`]);
+//! a larger weight trades them for lost allowed nodes.
 
 use serde::Serialize;
 
@@ -53,11 +54,15 @@ const MAX_SEMI_AXIS: f64 = 400.0;
 pub struct FitOptions {
     /// Most half-spaces fitted (the paper uses 3).
     pub max_planes: usize,
+    /// Cost of a forbidden node classified allowed, relative to an allowed node classified
+    /// forbidden (1: minimise the total error; larger: a more conservative region that loses
+    /// allowed nodes to admit fewer forbidden ones). Finite and positive.
+    pub false_allowed_weight: f64,
 }
 
 impl Default for FitOptions {
     fn default() -> Self {
-        FitOptions { max_planes: 3 }
+        FitOptions { max_planes: 3, false_allowed_weight: 1.0 }
     }
 }
 
@@ -202,10 +207,14 @@ fn confusion_of(region: &Region, n: &Nodes) -> Confusion {
 ///
 /// # Errors
 /// [`WorldError::Input`] when the grid does not sweep exactly three joints or has no allowed
-/// node, or `max_planes` exceeds 3.
+/// node, `max_planes` exceeds 3 or `false_allowed_weight` is not finite and positive.
 pub fn fit_region(grid: &CspaceGrid, options: &FitOptions) -> Result<Fit, WorldError> {
     if options.max_planes > 3 {
         return Err(WorldError::Input(format!("max_planes is at most 3 (Ω2–Ω4), got {}", options.max_planes)));
+    }
+    let w = options.false_allowed_weight;
+    if !(w.is_finite() && w > 0.0) {
+        return Err(WorldError::Input(format!("false_allowed_weight must be finite and positive, got {w}")));
     }
     let n = nodes(grid)?;
     let truth: Vec<bool> = n.class.iter().map(|c| *c == NodeClass::Allowed).collect();
@@ -214,7 +223,7 @@ pub fn fit_region(grid: &CspaceGrid, options: &FitOptions) -> Result<Fit, WorldE
     }
     let obstacle: Vec<bool> = n.class.iter().map(|c| *c == NodeClass::ObstacleCollision).collect();
     let free: Vec<bool> = truth.iter().zip(&obstacle).map(|(a, o)| *a || *o).collect();
-    let weights = (1.0, 1.0);
+    let weights = (options.false_allowed_weight, 1.0);
     // `inside[i]`: the model so far admits node i (every node lies in the box).
     let mut inside = vec![true; n.q.len()];
 
