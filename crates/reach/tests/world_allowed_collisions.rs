@@ -1,7 +1,7 @@
 //! The scene's allowed-collision list: link pairs exempt from the self-collision check.
 
 use reach::model::{LinkGeometry, Robot, RobotSpec, presets};
-use reach::world::{CollisionChecker, Scene, Verdict};
+use reach::world::{CollisionChecker, PairSurvey, Scene, Verdict};
 
 /// UR5 with 5 cm capsules on every link (a realistic arm radius).
 fn ur5(radius: f64) -> Robot {
@@ -63,4 +63,28 @@ fn unknown_or_repeated_links_are_errors() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("two link names") && e.contains("entry 1"), "{e}");
+}
+
+#[test]
+fn survey_finds_the_always_colliding_wrist_pair() {
+    // MoveIt setup-assistant style: 2000 random configurations within the limits; the pair
+    // whose capsules overlap by construction collides in every one of them.
+    let robot = ur5(0.05);
+    let scene = Scene::new();
+    let mut checker = CollisionChecker::new(&robot, &scene);
+    let survey = checker.survey_self_collisions(2000, 42).unwrap();
+    assert_eq!(survey.len(), 10, "{survey:?}"); // non-adjacent pairs of 6 links
+    let always: Vec<_> = survey.iter().filter(|p| p.always()).collect();
+    assert_eq!(always.len(), 1, "{survey:?}");
+    assert_eq!((always[0].link_a, always[0].link_b), (4, 6));
+    assert_eq!((always[0].name_a.as_str(), always[0].name_b.as_str()), ("wrist_1", "wrist_3"));
+    // The other pairs really do collide sometimes, or never: they stay checked.
+    assert!(survey.iter().any(|p| !p.always() && !p.never()));
+    assert!(survey.iter().any(PairSurvey::never));
+    assert!(survey.iter().all(|p| p.samples == 2000 && p.colliding <= 2000));
+    // Reproducible, and the suggested list frees the home configuration.
+    assert_eq!(checker.survey_self_collisions(2000, 42).unwrap(), survey);
+    let listed = always.iter().fold(Scene::new(), |s, p| s.with_allowed_self_collision(&p.name_a, &p.name_b));
+    assert_eq!(CollisionChecker::try_new(&robot, &listed).unwrap().check(&HOME).unwrap(), Verdict::Free);
+    assert!(checker.survey_self_collisions(0, 1).is_err());
 }

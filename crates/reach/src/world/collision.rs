@@ -133,6 +133,44 @@ pub struct CollisionChecker<'a> {
     exempt_error: Option<WorldError>,
 }
 
+/// How often one pair of non-adjacent links collides over random configurations
+/// ([`CollisionChecker::survey_self_collisions`]), ignoring the allowed-collision list.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PairSurvey {
+    /// 1-based link number.
+    pub link_a: usize,
+    /// 1-based link number.
+    pub link_b: usize,
+    /// Name of link `a` as an allowed-collision entry takes it (joint name or `tool`).
+    pub name_a: String,
+    /// Name of link `b`.
+    pub name_b: String,
+    /// Configurations in which the pair collides.
+    pub colliding: usize,
+    /// Configurations sampled.
+    pub samples: usize,
+}
+
+impl PairSurvey {
+    /// Collides in every sample: a candidate for the allowed-collision list (the links'
+    /// capsules overlap by construction, as MoveIt's setup assistant's "always in collision").
+    #[must_use]
+    pub fn always(&self) -> bool {
+        self.samples > 0 && self.colliding == self.samples
+    }
+
+    /// Collides in no sample.
+    #[must_use]
+    pub fn never(&self) -> bool {
+        self.colliding == 0
+    }
+}
+
+/// The name of 0-based link `k` for allowed-collision entries.
+fn link_name(robot: &Robot, k: usize) -> String {
+    robot.joints().get(k).map_or_else(|| "tool".to_string(), |j| j.name.clone())
+}
+
 /// Resolves one link name of an allowed-collision entry to a 0-based link index: a joint
 /// name (link `k` ends at joint `k`'s frame), `link<k>` (1-based) or `tool` (link `dof + 1`).
 fn link_index(robot: &Robot, name: &str) -> Result<usize, WorldError> {
@@ -236,6 +274,11 @@ impl<'a> CollisionChecker<'a> {
         if let Some(e) = &self.exempt_error {
             return Err(e.clone());
         }
+        self.update_points(q)
+    }
+
+    /// Computes the link points of `q` into the buffers (no allowed-collision check).
+    fn update_points(&mut self, q: &[f64]) -> Result<(), WorldError> {
         let tool = self.robot.frames_into(q, &mut self.frames)?;
         self.points[0] = self.robot.base().translation.vector;
         for (p, f) in self.points[1..].iter_mut().zip(&self.frames) {
@@ -250,6 +293,15 @@ impl<'a> CollisionChecker<'a> {
             }
         }
         Ok(())
+    }
+
+    /// Clearance between the capsules of 0-based links `i` and `j` in the buffers, metres.
+    #[inline]
+    fn pair_clearance(&self, i: usize, j: usize) -> f64 {
+        super::distance::segment_segment_sq(&self.points[i], &self.points[i + 1], &self.points[j], &self.points[j + 1])
+            .sqrt()
+            - self.radii[i]
+            - self.radii[j]
     }
 
     /// World positions of the link points of the last checked configuration (base origin,
@@ -284,14 +336,7 @@ impl<'a> CollisionChecker<'a> {
                 if (self.exempt[i] >> j) & 1 == 1 {
                     continue;
                 }
-                let d = super::distance::segment_segment_sq(
-                    &self.points[i],
-                    &self.points[i + 1],
-                    &self.points[j],
-                    &self.points[j + 1],
-                )
-                .sqrt();
-                if d - self.radii[i] - self.radii[j] <= self.margin {
+                if self.pair_clearance(i, j) <= self.margin {
                     return Verdict::SelfCollision { link_a: i + 1, link_b: j + 1 };
                 }
             }
@@ -320,6 +365,69 @@ impl<'a> CollisionChecker<'a> {
             }
         }
         Verdict::Free
+    }
+
+    /// Samples `samples` configurations uniformly within the joint limits (revolute joints
+    /// with infinite limits over `[−π, π)`), seeded by `seed`, and counts per pair of
+    /// non-adjacent links how often they collide, ignoring the scene's allowed-collision list.
+    /// Pairs that collide [`PairSurvey::always`] are the candidates for that list.
+    ///
+    /// # Errors
+    /// [`WorldError::Input`] for `samples == 0` or a prismatic joint with an infinite limit;
+    /// as [`CollisionChecker::check`] otherwise.
+    pub fn survey_self_collisions(&mut self, samples: usize, seed: u64) -> Result<Vec<PairSurvey>, WorldError> {
+        if samples == 0 {
+            return Err(WorldError::Input("the self-collision survey needs at least one sample".into()));
+        }
+        let mut ranges = Vec::with_capacity(self.robot.dof());
+        for j in self.robot.joints() {
+            let (lo, hi) = (j.limits.lower, j.limits.upper);
+            if lo.is_finite() && hi.is_finite() {
+                ranges.push((lo, hi));
+            } else if j.kind == crate::model::JointKind::Revolute {
+                ranges.push((-std::f64::consts::PI, std::f64::consts::PI));
+            } else {
+                return Err(WorldError::Input(format!(
+                    "joint `{}`: cannot sample a prismatic joint with an infinite limit",
+                    j.name
+                )));
+            }
+        }
+        let n = self.robot.dof() + 1;
+        let mut counts = vec![0_usize; n * n];
+        let mut seen = vec![false; n * n];
+        let mut rng = crate::rng::SplitMix64(seed);
+        let mut q = vec![0.0; ranges.len()];
+        for _ in 0..samples {
+            for (v, (lo, hi)) in q.iter_mut().zip(&ranges) {
+                *v = lo + (hi - lo) * rng.next_f64();
+            }
+            self.update_points(&q)?;
+            for (x, &i) in self.active.iter().enumerate() {
+                for &j in self.active.iter().skip(x + 2) {
+                    seen[i * n + j] = true;
+                    if self.pair_clearance(i, j) <= self.margin {
+                        counts[i * n + j] += 1;
+                    }
+                }
+            }
+        }
+        let mut out = Vec::new();
+        for i in 0..n {
+            for j in i + 1..n {
+                if seen[i * n + j] {
+                    out.push(PairSurvey {
+                        link_a: i + 1,
+                        link_b: j + 1,
+                        name_a: link_name(self.robot, i),
+                        name_b: link_name(self.robot, j),
+                        colliding: counts[i * n + j],
+                        samples,
+                    });
+                }
+            }
+        }
+        Ok(out)
     }
 
     /// Every clearance of `q` (allocates the report).
@@ -354,15 +462,7 @@ impl<'a> CollisionChecker<'a> {
         let mut self_pairs = Vec::new();
         for (x, &i) in self.active.iter().enumerate() {
             for &j in self.active.iter().skip(x + 2) {
-                let d = super::distance::segment_segment_sq(
-                    &self.points[i],
-                    &self.points[i + 1],
-                    &self.points[j],
-                    &self.points[j + 1],
-                )
-                .sqrt()
-                    - self.radii[i]
-                    - self.radii[j];
+                let d = self.pair_clearance(i, j);
                 let exempt = (self.exempt[i] >> j) & 1 == 1;
                 self_pairs.push(SelfClearance {
                     link_a: i + 1,

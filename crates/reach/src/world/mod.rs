@@ -34,7 +34,7 @@ pub mod rfunction;
 mod scene;
 mod shape;
 
-pub use collision::{CollisionChecker, Contact, LinkClearance, Report, SelfClearance, Verdict};
+pub use collision::{CollisionChecker, Contact, LinkClearance, PairSurvey, Report, SelfClearance, Verdict};
 pub use planner::{Blocked, Goal, Plan, PlanError, PlanOptions, PlanStats, plan};
 pub use scene::{Obstacle, Scene, Touching};
 pub use shape::Shape;
