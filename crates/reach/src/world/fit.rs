@@ -46,6 +46,9 @@ use super::rfunction::{Parabola, Primitive, Region};
 
 /// Number of plane normals tried by the support-plane search.
 const PLANE_DIRECTIONS: usize = 4000;
+/// Largest grid [`fit_region`] accepts (the search costs grow with the node count; 15° over
+/// the Varan box is 2601 nodes, 7.5° is 18 513). Validate on finer grids with [`confusion`].
+pub const MAX_FIT_NODES: usize = 20_000;
 /// Largest semi-axis tried, degrees.
 const MAX_SEMI_AXIS: f64 = 400.0;
 
@@ -207,7 +210,8 @@ fn confusion_of(region: &Region, n: &Nodes) -> Confusion {
 ///
 /// # Errors
 /// [`WorldError::Input`] when the grid does not sweep exactly three joints or has no allowed
-/// node, `max_planes` exceeds 3 or `false_allowed_weight` is not finite and positive.
+/// node or more than [`MAX_FIT_NODES`] nodes, `max_planes` exceeds 3 or
+/// `false_allowed_weight` is not finite and positive.
 pub fn fit_region(grid: &CspaceGrid, options: &FitOptions) -> Result<Fit, WorldError> {
     if options.max_planes > 3 {
         return Err(WorldError::Input(format!("max_planes is at most 3 (Ω2–Ω4), got {}", options.max_planes)));
@@ -215,6 +219,12 @@ pub fn fit_region(grid: &CspaceGrid, options: &FitOptions) -> Result<Fit, WorldE
     let w = options.false_allowed_weight;
     if !(w.is_finite() && w > 0.0) {
         return Err(WorldError::Input(format!("false_allowed_weight must be finite and positive, got {w}")));
+    }
+    if grid.classes.len() > MAX_FIT_NODES {
+        return Err(WorldError::Input(format!(
+            "fitting takes a grid of at most {MAX_FIT_NODES} nodes, got {} (use a coarser step)",
+            grid.classes.len()
+        )));
     }
     let n = nodes(grid)?;
     let truth: Vec<bool> = n.class.iter().map(|c| *c == NodeClass::Allowed).collect();
