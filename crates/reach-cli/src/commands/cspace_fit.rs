@@ -80,25 +80,24 @@ fn poly(c: &[f64; 4], x: &str) -> String {
 fn describe(p: &Primitive, l: &[String; 3]) -> (&'static str, String) {
     let f = |x: f64| fixed(x, 4);
     match p {
-        Primitive::HalfSpace { d, b } => (
-            "half-space",
-            format!("{}·{} {:+.4}·{} {:+.4}·{} − ({}) ≥ 0", f(d[0]), l[0], d[1], l[1], d[2], l[2], f(*b)),
-        ),
+        Primitive::HalfSpace { d, b } => {
+            ("half-space", format!("{}·{} {:+.4}·{} {:+.4}·{} {:+.4} ≥ 0", f(d[0]), l[0], d[1], l[1], d[2], l[2], -b))
+        }
         Primitive::EllipticCylinder { phi_deg, a, b, centre } => (
             "elliptic cylinder (outside)",
             format!(
-                "u²/a² + v²/b² − 1 ≥ 0, φ = {}°, a = {}°, b = {}°, centre {} = {}·{} + {}°, {} = {}·{} + {}°",
+                "u²/a² + v²/b² − 1 ≥ 0, φ = {}°, a = {}°, b = {}°, centre {} = {}·{} {:+.2}°, {} = {}·{} {:+.2}°",
                 fixed(*phi_deg, 2),
                 fixed(*a, 2),
                 fixed(*b, 2),
                 l[1],
                 f(centre[0]),
                 l[0],
-                fixed(centre[1], 2),
+                centre[1],
                 l[2],
                 f(centre[2]),
                 l[0],
-                fixed(centre[3], 2)
+                centre[3]
             ),
         ),
         Primitive::ParabolicCylinder { phi_deg, vertex, p, variant } => (

@@ -15,11 +15,15 @@
 //!    touches it at its support point; the greedy pass keeps, up to three times, the plane
 //!    that cuts off the most forbidden nodes not yet cut off. No allowed node is lost.
 //! 2. **Elliptic cylinder Ω1** (eq. 4, corrected): fitted to the forbidden nodes (outside θ)
-//!    left inside the box and the planes. Per section `q2 = const` the centroid of those
-//!    nodes, a weighted least-squares line `c(q2)` through the centroids (the paper's line
-//!    `l`), the tilt φ from the principal axis of the pooled, centred nodes, then the
-//!    semi-axes `a` (1° steps) and `b` (exact sweep over the node thresholds) that minimise
-//!    the misclassified nodes.
+//!    left inside the box and the planes. Start: per section `q2 = const` the centroid of
+//!    those nodes, a weighted least-squares line `c(q2)` through the centroids (the paper's
+//!    line `l`) and the tilt φ of the principal axis of the pooled, centred nodes; also that
+//!    line moved 60°, 120° and 200° away from the allowed nodes with the major axis across
+//!    (the ellipse's centre lies on the forbidden side of the contour it bounds). From each
+//!    start a pattern search over the centre line `(k3, m3, k4, m4)` and φ, with the semi-axes
+//!    optimal for every candidate: `a` on a grid 8 % apart (then 0.5° steps around the best),
+//!    `b` by an exact sweep over the node thresholds. The cost is the number of misclassified
+//!    nodes among those the model still admits.
 //! 3. **Parabolic cylinder Ω6** (eq. 11, corrected, variant `s² − 2p·t`): fitted to the
 //!    obstacle nodes that form whole columns along q4 (every node of a `(q2, q3)` column that
 //!    the model still admits hits the obstacle: the middle link hits it whatever q4 is).
@@ -27,9 +31,10 @@
 //!    the axis angle by a 1° scan, and vertex and focal parameter by least squares
 //!    `t = A·s² + B·s + C` in the rotated frame (smallest residual wins).
 //! 4. **Ω5**: the remaining obstacle nodes; both the paper's elliptic cylinder with a linear
-//!    centre (tunnel case, eq. 9) and its kinematic ellipse with cubic centre and semi-axes
-//!    (two-plane case, eqs. 13–14: per-section semi-axes at the common tilt, then cubic
-//!    least squares) are fitted, and the one with fewer errors is kept.
+//!    centre (tunnel case, eq. 9; as step 2) and its kinematic ellipse with cubic centre and
+//!    semi-axes (two-plane case, eqs. 13–14: per-section centroids and semi-axes, 0.5° grid,
+//!    at the common principal tilt, then cubic least squares in q2) are fitted, and the one
+//!    with fewer errors is kept.
 //!
 //! A primitive is kept only when it lowers the error count. The region is composed in the
 //! paper's order (box, Ω1, Ω2, Ω3, Ω4, Ω5, Ω6; eqs. 3 and 8); a primitive that cuts no
