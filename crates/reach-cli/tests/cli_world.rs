@@ -98,3 +98,36 @@ fn avoid_failures_and_bad_input() {
     assert_eq!(run.code, 2);
     assert!(run.stderr.contains("no_such_scene"));
 }
+
+#[test]
+fn cspace_fit_prints_primitives_and_confusion() {
+    // Seed 004: the R-function region fitted to the 15° grid of the ceiling scene (635 allowed).
+    let v = json(&["cspace", "varan4", "examples/seed004_ceiling.toml", "--fix", "q1=0", "--fit", "--json"]);
+    let fit = &v["fit"];
+    assert_eq!(fit["joints"], serde_json::json!([2, 3, 4]));
+    let names: Vec<&str> = fit["primitives"].as_array().unwrap().iter().map(|p| p["name"].as_str().unwrap()).collect();
+    assert_eq!(&names[..4], ["Ω1", "Ω2", "Ω3", "Ω4"]);
+    assert!(names.contains(&"Ω5"), "{names:?}");
+    assert_eq!(fit["primitives"][1]["kind"], "half-space");
+    assert!(fit["primitives"][1]["coefficients"]["HalfSpace"]["d"].is_array());
+    let c = &fit["confusion"];
+    let n = |k: &str| c[k].as_u64().unwrap();
+    assert_eq!(n("true_allowed") + n("false_allowed") + n("false_forbidden") + n("true_forbidden"), 2601);
+    assert_eq!(n("true_allowed") + n("false_forbidden"), 635);
+    assert!(c["rate"].as_f64().unwrap() < 0.08);
+    // Without --fit there is no "fit" key.
+    let v = json(&["cspace", "varan4", "examples/seed004_free.toml", "--fix", "q1=0", "--json"]);
+    assert!(v.get("fit").is_none());
+    // Text: the primitives table and the confusion block.
+    let run = reach(&["cspace", "varan4", "examples/seed004_free.toml", "--fix", "q1=0", "--fit"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(
+        run.stdout.contains("elliptic cylinder (outside)") && run.stdout.contains("false allowed"),
+        "{}",
+        run.stdout
+    );
+    // Four swept joints: bad input, one line on stderr.
+    let run = reach(&["cspace", "varan4", "examples/seed004_free.toml", "--step", "60", "--fit"]);
+    assert_eq!(run.code, 2);
+    assert!(run.stderr.contains("exactly three swept joints") && run.stdout.is_empty(), "{}", run.stderr);
+}

@@ -1,6 +1,7 @@
 //! World queries: one collision check of a 6-link arm against 20 primitives (target ≤ 1 µs),
 //! the 1° C-space grid of `varan4` (≈ 7 million nodes, target ≤ 2 s on 2 cores), and seed
-//! 004's R-function membership test against the direct link–zone intersection.
+//! 004's R-function membership test (the region fitted to the scene's 15° grid) against the
+//! direct link–zone intersection, on the same 1000 configurations.
 //!
 //! Run with `cargo bench -p reach --bench world` (add `--no-default-features` for the
 //! single-threaded grid).
@@ -11,7 +12,7 @@ use std::time::Duration;
 use criterion::{Criterion, criterion_group, criterion_main};
 use reach::model::{LinkGeometry, Robot, RobotSpec, presets};
 use reach::world::cspace::{GridSpec, classify_grid};
-use reach::world::rfunction::{Parabola, Primitive, Region};
+use reach::world::fit::{FitOptions, fit_region};
 use reach::world::{CollisionChecker, Scene};
 
 /// UR5 with 3 cm capsules and a scene of 20 primitives around it, none touching at `Q`.
@@ -95,28 +96,6 @@ fn cspace(c: &mut Criterion) {
     group.finish();
 }
 
-/// An R-function region with the structure of the paper's tunnel case (eq. 8): the box,
-/// elliptic cylinder Ω1, three planes, cylinder Ω5 and parabolic cylinder Ω6. The paper
-/// prints no coefficients; the cost does not depend on their values.
-fn tunnel_region() -> Region {
-    Region {
-        limits: [[0.0, 120.0], [-120.0, 120.0], [-120.0, 120.0]],
-        primitives: vec![
-            Primitive::EllipticCylinder { phi_deg: 30.0, a: 60.0, b: 35.0, centre: [-0.5, 10.0, 0.1, -20.0] },
-            Primitive::HalfSpace { d: [1.0, 0.5, 0.2], b: -150.0 },
-            Primitive::HalfSpace { d: [-0.3, 1.0, 0.4], b: -200.0 },
-            Primitive::HalfSpace { d: [0.2, -0.7, 1.0], b: -210.0 },
-            Primitive::EllipticCylinder { phi_deg: 110.0, a: 50.0, b: 20.0, centre: [-1.5, 90.0, -0.1, 0.0] },
-            Primitive::ParabolicCylinder {
-                phi_deg: 15.0,
-                vertex: [100.0, -60.0],
-                p: 8.0,
-                variant: Parabola::SquareFirst,
-            },
-        ],
-    }
-}
-
 fn membership(c: &mut Criterion) {
     // 1000 configurations on a pseudo-random spread over the box (degrees).
     let mut s = 7_u64;
@@ -126,25 +105,34 @@ fn membership(c: &mut Criterion) {
     };
     let qs: Vec<[f64; 3]> =
         (0..1000).map(|_| [120.0 * next(), 240.0 * next() - 120.0, 240.0 * next() - 120.0]).collect();
-    let region = tunnel_region();
     let varan = presets::get("varan4").unwrap();
-    let scene = Scene::from_toml_str(include_str!("../../../examples/seed004_ceiling.toml")).unwrap();
-    let mut checker = CollisionChecker::new(&varan, &scene);
-    let mut group = c.benchmark_group("seed004_1000_configurations");
-    group.bench_function("rfunction_membership", |b| {
-        b.iter(|| qs.iter().filter(|q| region.contains(black_box(**q))).count())
-    });
-    group.bench_function("direct_fk_and_link_zone_intersection", |b| {
-        b.iter(|| {
-            qs.iter()
-                .filter(|q| {
-                    let r = [0.0, q[0].to_radians(), q[1].to_radians(), q[2].to_radians()];
-                    checker.check(black_box(&r)).unwrap().is_free()
-                })
-                .count()
-        })
-    });
-    group.finish();
+    for (name, text) in [
+        ("ceiling", include_str!("../../../examples/seed004_ceiling.toml")),
+        ("two_planes", include_str!("../../../examples/seed004_two_planes.toml")),
+    ] {
+        let scene = Scene::from_toml_str(text).unwrap();
+        // The region fitted to the scene's 15° grid (reach::world::fit): box, Ω1–Ω4, Ω5 (, Ω6).
+        let grid = classify_grid(&varan, &scene, &GridSpec::new(4, 15f64.to_radians()).fix(0, 0.0)).unwrap();
+        let region = fit_region(&grid, &FitOptions::default()).unwrap().region;
+        let mut checker = CollisionChecker::new(&varan, &scene);
+        let direct = |checker: &mut CollisionChecker<'_>, q: &[f64; 3]| {
+            let r = [0.0, q[0].to_radians(), q[1].to_radians(), q[2].to_radians()];
+            checker.check(&r).unwrap().is_free()
+        };
+        let agree = qs.iter().filter(|q| region.contains(**q) == direct(&mut checker, q)).count();
+        eprintln!(
+            "seed004 {name}: fitted region with {} primitives agrees with the direct check on {agree} of 1000",
+            region.primitives.len()
+        );
+        let mut group = c.benchmark_group(format!("seed004_{name}_1000_configurations"));
+        group.bench_function("fitted_rfunction_membership", |b| {
+            b.iter(|| qs.iter().filter(|q| region.contains(black_box(**q))).count())
+        });
+        group.bench_function("direct_fk_and_link_zone_intersection", |b| {
+            b.iter(|| qs.iter().filter(|q| direct(&mut checker, black_box(q))).count())
+        });
+        group.finish();
+    }
 }
 
 criterion_group!(benches, collision, cspace, membership);

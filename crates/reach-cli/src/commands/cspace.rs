@@ -7,6 +7,7 @@ use reach::world::cspace::{GridCounts, GridSpec, classify_grid};
 use serde::Serialize;
 
 use crate::commands::check::load_scene;
+use crate::commands::cspace_fit;
 use crate::error::CliError;
 use crate::numbers::parse_finite;
 use crate::output::{Align, Table, write_json};
@@ -34,6 +35,11 @@ pub struct CspaceArgs {
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
+
+    /// Fit seed 004's R-function region to the grid (exactly three swept joints) and print
+    /// its primitives and confusion counts.
+    #[arg(long)]
+    pub fit: bool,
 }
 
 /// JSON output of `reach cspace`.
@@ -49,6 +55,9 @@ struct CspaceJson {
     obstacle_collision: usize,
     /// Counts per value of the first swept joint.
     sections: Vec<Section>,
+    /// `--fit`: the fitted region's primitives and confusion counts.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    fit: Option<cspace_fit::FitJson>,
 }
 
 #[derive(Debug, Serialize)]
@@ -62,7 +71,9 @@ struct Section {
 /// Classifies the grid and prints the counts.
 ///
 /// # Errors
-/// [`CliError::BadInput`] for a bad robot, scene, step or `--fix`; [`CliError::Output`].
+/// [`CliError::BadInput`] for a bad robot, scene, step or `--fix`, or `--fit` on a grid
+/// that does not sweep three joints; [`CliError::NoSolution`] for `--fit` without an
+/// allowed node; [`CliError::Output`].
 pub fn run(args: &CspaceArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let loaded = args.robot.load()?;
     let robot = &loaded.robot;
@@ -94,6 +105,7 @@ pub fn run(args: &CspaceArgs, out: &mut dyn Write) -> Result<(), CliError> {
             .map(|(counts, v)| Section { joint: j + 1, value_deg: v.to_degrees(), counts })
             .collect()
     });
+    let fit = if args.fit { Some(cspace_fit::fit(&grid)?.1) } else { None };
     let c = grid.counts;
     if args.json {
         return write_json(
@@ -108,6 +120,7 @@ pub fn run(args: &CspaceArgs, out: &mut dyn Write) -> Result<(), CliError> {
                 self_collision: c.self_collision,
                 obstacle_collision: c.obstacle_collision,
                 sections,
+                fit,
             },
         );
     }
@@ -132,6 +145,9 @@ pub fn run(args: &CspaceArgs, out: &mut dyn Write) -> Result<(), CliError> {
             ]);
         }
         t.write(out, "  ")?;
+    }
+    if let Some(f) = &fit {
+        cspace_fit::write_text(out, f)?;
     }
     Ok(())
 }

@@ -69,8 +69,10 @@ pub struct SelfClearance {
     pub link_b: usize,
     /// Distance between the two capsules, metres (negative: overlap).
     pub clearance_m: f64,
-    /// Whether they collide under the touching policy.
+    /// Whether they collide under the touching policy (always `false` for an exempt pair).
     pub colliding: bool,
+    /// Whether the pair is on the scene's allowed-collision list (not checked).
+    pub exempt: bool,
 }
 
 /// Where the tool point is relative to one tool-zone entry.
@@ -125,15 +127,117 @@ pub struct CollisionChecker<'a> {
     /// Bounding sphere of each obstacle (broad phase; `None`: always tested).
     bounds: Vec<Option<(Vector3<f64>, f64)>>,
     max_radius: f64,
+    /// Per 0-based link `i`: bit `j` set when the pair `(i, j)` is exempt from self-collision.
+    exempt: Vec<u64>,
+    /// An allowed-collision entry that names no link of the robot (reported by `check`).
+    exempt_error: Option<WorldError>,
+}
+
+/// How often one pair of non-adjacent links collides over random configurations
+/// ([`CollisionChecker::survey_self_collisions`]), ignoring the allowed-collision list.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PairSurvey {
+    /// 1-based link number.
+    pub link_a: usize,
+    /// 1-based link number.
+    pub link_b: usize,
+    /// Name of link `a` as an allowed-collision entry takes it (joint name or `tool`).
+    pub name_a: String,
+    /// Name of link `b`.
+    pub name_b: String,
+    /// Configurations in which the pair collides.
+    pub colliding: usize,
+    /// Configurations sampled.
+    pub samples: usize,
+}
+
+impl PairSurvey {
+    /// Collides in every sample: a candidate for the allowed-collision list (the links'
+    /// capsules overlap by construction, as MoveIt's setup assistant's "always in collision").
+    #[must_use]
+    pub fn always(&self) -> bool {
+        self.samples > 0 && self.colliding == self.samples
+    }
+
+    /// Collides in no sample.
+    #[must_use]
+    pub fn never(&self) -> bool {
+        self.colliding == 0
+    }
+}
+
+/// The name of 0-based link `k` for allowed-collision entries.
+fn link_name(robot: &Robot, k: usize) -> String {
+    robot.joints().get(k).map_or_else(|| "tool".to_string(), |j| j.name.clone())
+}
+
+/// Resolves one link name of an allowed-collision entry to a 0-based link index: a joint
+/// name (link `k` ends at joint `k`'s frame), `link<k>` (1-based) or `tool` (link `dof + 1`).
+fn link_index(robot: &Robot, name: &str) -> Result<usize, WorldError> {
+    let n = robot.dof();
+    if let Some(k) = robot.joints().iter().position(|j| j.name == name) {
+        return Ok(k);
+    }
+    if name == "tool" {
+        return Ok(n);
+    }
+    if let Some(k) = name.strip_prefix("link").and_then(|k| k.parse::<usize>().ok())
+        && (1..=n + 1).contains(&k)
+    {
+        return Ok(k - 1);
+    }
+    let names: Vec<&str> = robot.joints().iter().map(|j| j.name.as_str()).collect();
+    Err(WorldError::Input(format!(
+        "allowed_self_collisions: unknown link `{name}` (expected a joint name of {} ({}), link1..link{}, or tool)",
+        robot.name(),
+        names.join(", "),
+        n + 1
+    )))
+}
+
+/// The exemption bit masks of `scene`'s allowed-collision list for `robot`.
+fn exempt_masks(robot: &Robot, scene: &Scene) -> Result<Vec<u64>, WorldError> {
+    let n = robot.dof();
+    if n + 1 > 64 && !scene.allowed_self_collisions.is_empty() {
+        return Err(WorldError::Input(format!("allowed_self_collisions: at most 63 joints, the robot has {n}")));
+    }
+    let mut masks = vec![0_u64; n + 1];
+    for [a, b] in &scene.allowed_self_collisions {
+        let (i, j) = (link_index(robot, a)?, link_index(robot, b)?);
+        if i == j {
+            return Err(WorldError::Input(format!(
+                "allowed_self_collisions: pair [`{a}`, `{b}`] names one link twice"
+            )));
+        }
+        masks[i] |= 1 << j;
+        masks[j] |= 1 << i;
+    }
+    Ok(masks)
 }
 
 impl<'a> CollisionChecker<'a> {
-    /// Prepares buffers for `robot` in `scene`.
+    /// Prepares buffers for `robot` in `scene`, checking the scene's allowed-collision list.
+    ///
+    /// # Errors
+    /// [`WorldError::Input`] naming the entry when [`Scene::allowed_self_collisions`] names a
+    /// link the robot does not have, or one link twice.
+    pub fn try_new(robot: &'a Robot, scene: &'a Scene) -> Result<Self, WorldError> {
+        let checker = CollisionChecker::new(robot, scene);
+        match checker.exempt_error {
+            Some(e) => Err(e),
+            None => Ok(checker),
+        }
+    }
+
+    /// Prepares buffers for `robot` in `scene`. A bad allowed-collision list is reported by
+    /// every [`CollisionChecker::check`] and [`CollisionChecker::report`] (use
+    /// [`CollisionChecker::try_new`] to see it at once).
     #[must_use]
     pub fn new(robot: &'a Robot, scene: &'a Scene) -> Self {
         let n = robot.dof();
         let links = robot.links();
         let radii: Vec<f64> = (0..=n).map(|k| links.get(k.min(n - 1)).map_or(0.0, |l| l.radius)).collect();
+        let exempt = exempt_masks(robot, scene);
         let margin = match scene.touching {
             Touching::Closed => CONTACT,
             Touching::Open => -CONTACT,
@@ -148,6 +252,8 @@ impl<'a> CollisionChecker<'a> {
             margin,
             bounds: scene.obstacles.iter().map(|o| o.shape.bounding_sphere()).collect(),
             max_radius: links.iter().map(|l| l.radius).fold(0.0, f64::max),
+            exempt: exempt.as_ref().map_or_else(|_| vec![0; n + 1], Clone::clone),
+            exempt_error: exempt.err(),
         }
     }
 
@@ -165,6 +271,14 @@ impl<'a> CollisionChecker<'a> {
 
     /// Computes the link points of `q` into the buffers.
     fn update(&mut self, q: &[f64]) -> Result<(), WorldError> {
+        if let Some(e) = &self.exempt_error {
+            return Err(e.clone());
+        }
+        self.update_points(q)
+    }
+
+    /// Computes the link points of `q` into the buffers (no allowed-collision check).
+    fn update_points(&mut self, q: &[f64]) -> Result<(), WorldError> {
         let tool = self.robot.frames_into(q, &mut self.frames)?;
         self.points[0] = self.robot.base().translation.vector;
         for (p, f) in self.points[1..].iter_mut().zip(&self.frames) {
@@ -181,6 +295,15 @@ impl<'a> CollisionChecker<'a> {
         Ok(())
     }
 
+    /// Clearance between the capsules of 0-based links `i` and `j` in the buffers, metres.
+    #[inline]
+    fn pair_clearance(&self, i: usize, j: usize) -> f64 {
+        super::distance::segment_segment_sq(&self.points[i], &self.points[i + 1], &self.points[j], &self.points[j + 1])
+            .sqrt()
+            - self.radii[i]
+            - self.radii[j]
+    }
+
     /// World positions of the link points of the last checked configuration (base origin,
     /// frame origins, tool point).
     #[must_use]
@@ -191,7 +314,8 @@ impl<'a> CollisionChecker<'a> {
     /// Checks `q`: tool zone, then self-collision, then obstacles; the first failure wins.
     ///
     /// # Errors
-    /// [`WorldError::Kinematics`] when `q` has the wrong length or a non-finite value.
+    /// [`WorldError::Kinematics`] when `q` has the wrong length or a non-finite value;
+    /// [`WorldError::Input`] when the scene's allowed-collision list names an unknown link.
     pub fn check(&mut self, q: &[f64]) -> Result<Verdict, WorldError> {
         self.update(q)?;
         Ok(self.classify())
@@ -209,14 +333,10 @@ impl<'a> CollisionChecker<'a> {
         let act = &self.active;
         for (x, &i) in act.iter().enumerate() {
             for &j in act.iter().skip(x + 2) {
-                let d = super::distance::segment_segment_sq(
-                    &self.points[i],
-                    &self.points[i + 1],
-                    &self.points[j],
-                    &self.points[j + 1],
-                )
-                .sqrt();
-                if d - self.radii[i] - self.radii[j] <= self.margin {
+                if (self.exempt[i] >> j) & 1 == 1 {
+                    continue;
+                }
+                if self.pair_clearance(i, j) <= self.margin {
                     return Verdict::SelfCollision { link_a: i + 1, link_b: j + 1 };
                 }
             }
@@ -247,10 +367,73 @@ impl<'a> CollisionChecker<'a> {
         Verdict::Free
     }
 
+    /// Samples `samples` configurations uniformly within the joint limits (revolute joints
+    /// with infinite limits over `[−π, π)`), seeded by `seed`, and counts per pair of
+    /// non-adjacent links how often they collide, ignoring the scene's allowed-collision list.
+    /// Pairs that collide [`PairSurvey::always`] are the candidates for that list.
+    ///
+    /// # Errors
+    /// [`WorldError::Input`] for `samples == 0` or a prismatic joint with an infinite limit;
+    /// as [`CollisionChecker::check`] otherwise.
+    pub fn survey_self_collisions(&mut self, samples: usize, seed: u64) -> Result<Vec<PairSurvey>, WorldError> {
+        if samples == 0 {
+            return Err(WorldError::Input("the self-collision survey needs at least one sample".into()));
+        }
+        let mut ranges = Vec::with_capacity(self.robot.dof());
+        for j in self.robot.joints() {
+            let (lo, hi) = (j.limits.lower, j.limits.upper);
+            if lo.is_finite() && hi.is_finite() {
+                ranges.push((lo, hi));
+            } else if j.kind == crate::model::JointKind::Revolute {
+                ranges.push((-std::f64::consts::PI, std::f64::consts::PI));
+            } else {
+                return Err(WorldError::Input(format!(
+                    "joint `{}`: cannot sample a prismatic joint with an infinite limit",
+                    j.name
+                )));
+            }
+        }
+        let n = self.robot.dof() + 1;
+        let mut counts = vec![0_usize; n * n];
+        let mut seen = vec![false; n * n];
+        let mut rng = crate::rng::SplitMix64(seed);
+        let mut q = vec![0.0; ranges.len()];
+        for _ in 0..samples {
+            for (v, (lo, hi)) in q.iter_mut().zip(&ranges) {
+                *v = lo + (hi - lo) * rng.next_f64();
+            }
+            self.update_points(&q)?;
+            for (x, &i) in self.active.iter().enumerate() {
+                for &j in self.active.iter().skip(x + 2) {
+                    seen[i * n + j] = true;
+                    if self.pair_clearance(i, j) <= self.margin {
+                        counts[i * n + j] += 1;
+                    }
+                }
+            }
+        }
+        let mut out = Vec::new();
+        for i in 0..n {
+            for j in i + 1..n {
+                if seen[i * n + j] {
+                    out.push(PairSurvey {
+                        link_a: i + 1,
+                        link_b: j + 1,
+                        name_a: link_name(self.robot, i),
+                        name_b: link_name(self.robot, j),
+                        colliding: counts[i * n + j],
+                        samples,
+                    });
+                }
+            }
+        }
+        Ok(out)
+    }
+
     /// Every clearance of `q` (allocates the report).
     ///
     /// # Errors
-    /// [`WorldError::Kinematics`] when `q` has the wrong length or a non-finite value.
+    /// As [`CollisionChecker::check`].
     pub fn report(&mut self, q: &[f64]) -> Result<Report, WorldError> {
         self.update(q)?;
         let verdict = self.classify();
@@ -279,20 +462,14 @@ impl<'a> CollisionChecker<'a> {
         let mut self_pairs = Vec::new();
         for (x, &i) in self.active.iter().enumerate() {
             for &j in self.active.iter().skip(x + 2) {
-                let d = super::distance::segment_segment_sq(
-                    &self.points[i],
-                    &self.points[i + 1],
-                    &self.points[j],
-                    &self.points[j + 1],
-                )
-                .sqrt()
-                    - self.radii[i]
-                    - self.radii[j];
+                let d = self.pair_clearance(i, j);
+                let exempt = (self.exempt[i] >> j) & 1 == 1;
                 self_pairs.push(SelfClearance {
                     link_a: i + 1,
                     link_b: j + 1,
                     clearance_m: d,
-                    colliding: d <= self.margin,
+                    colliding: !exempt && d <= self.margin,
+                    exempt,
                 });
             }
         }

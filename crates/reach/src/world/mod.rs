@@ -12,6 +12,7 @@
 //!   through two waypoints on the `L/7` circle.
 //! * [`cspace`] — seed 004: joint-grid enumeration and classification of every node.
 //! * [`rfunction`] — seed 004: Rvachev's R-conjunction and the region primitives.
+//! * [`fit`] — seed 004: fitting those primitives to a classified grid; confusion counts.
 //! * [`planner`] — collision-free joint-space motion between joint vectors or to a pose:
 //!   seeded bidirectional RRT-Connect with shortcutting.
 //!
@@ -27,12 +28,13 @@ mod collision;
 pub mod cspace;
 pub mod detour;
 pub mod distance;
+pub mod fit;
 pub mod planner;
 pub mod rfunction;
 mod scene;
 mod shape;
 
-pub use collision::{CollisionChecker, Contact, LinkClearance, Report, SelfClearance, Verdict};
+pub use collision::{CollisionChecker, Contact, LinkClearance, PairSurvey, Report, SelfClearance, Verdict};
 pub use planner::{Blocked, Goal, Plan, PlanError, PlanOptions, PlanStats, plan};
 pub use scene::{Obstacle, Scene, Touching};
 pub use shape::Shape;

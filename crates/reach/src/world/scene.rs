@@ -51,6 +51,8 @@ pub struct Obstacle {
 /// `max`), `box` (`center`, `half_extents`, optional `rpy`), `capsule` (`a`, `b`, `radius`),
 /// `halfspace` (`point`, `outward_normal`), `rectangle` (`center`, `half_extents = [hx, hy]`,
 /// optional `rpy`; the rectangle lies in its local x–y plane).
+/// `allowed_self_collisions = [["wrist_1", "wrist_3"]]` (optional) exempts link pairs from
+/// the self-collision check.
 #[derive(Debug, Clone, PartialEq, Default, Serialize)]
 pub struct Scene {
     /// Forbidden zones.
@@ -60,6 +62,11 @@ pub struct Scene {
     pub tool_zone: Vec<Obstacle>,
     /// Touching policy for obstacles.
     pub touching: Touching,
+    /// Pairs of links exempt from the self-collision check (an allowed-collision list, like
+    /// MoveIt's allowed-collision matrix), by link name: a joint name of the robot (link `k`
+    /// is the segment ending at joint `k`'s frame), `link<k>` (1-based) or `tool`. Names are
+    /// resolved against the robot by [`super::CollisionChecker::try_new`].
+    pub allowed_self_collisions: Vec<[String; 2]>,
 }
 
 #[derive(Deserialize)]
@@ -74,6 +81,8 @@ struct SceneFile {
     obstacles: Vec<ShapeField>,
     #[serde(default)]
     tool_zone: Vec<ShapeField>,
+    #[serde(default)]
+    allowed_self_collisions: Vec<Vec<String>>,
 }
 
 fn default_angle() -> AngleUnit {
@@ -143,7 +152,8 @@ impl Scene {
     /// [`WorldError::Parse`] with line and column for syntax errors, unknown fields and wrong
     /// types; [`WorldError::Shape`] naming the shape for an unknown kind, a missing or foreign
     /// field, NaN/infinity, a radius ≤ 0, an inverted or flat box, a zero normal, or a
-    /// rotation that is not finite.
+    /// rotation that is not finite; [`WorldError::Input`] for an `allowed_self_collisions`
+    /// entry that is not a pair of names.
     pub fn from_toml_str(text: &str) -> Result<Scene, WorldError> {
         let file: SceneFile = toml::from_str(text).map_err(|e| {
             let (line, column) = e.span().map_or((1, 1), |s| line_column(text, s.start));
@@ -151,6 +161,16 @@ impl Scene {
         })?;
         let (ls, an) = (file.length_unit.to_si(), file.angle_unit.to_si());
         let mut scene = Scene { touching: file.touching, ..Scene::default() };
+        for (i, pair) in file.allowed_self_collisions.into_iter().enumerate() {
+            let [a, b]: [String; 2] = pair.try_into().map_err(|p: Vec<String>| {
+                WorldError::Input(format!(
+                    "allowed_self_collisions entry {}: needs two link names, got {}",
+                    i + 1,
+                    p.len()
+                ))
+            })?;
+            scene.allowed_self_collisions.push([a, b]);
+        }
         for (i, f) in file.obstacles.into_iter().enumerate() {
             let name = f.name.clone().unwrap_or_else(|| format!("obstacle{}", i + 1));
             let shape = build_shape("obstacle", &name, &f, ls, an)?;
@@ -181,6 +201,14 @@ impl Scene {
         validate("obstacle", &name, &shape)?;
         self.obstacles.push(Obstacle { name, shape });
         Ok(self)
+    }
+
+    /// Exempts the link pair `(a, b)` from the self-collision check (builder style); names as
+    /// in [`Scene::allowed_self_collisions`], checked when a collision checker is built.
+    #[must_use]
+    pub fn with_allowed_self_collision(mut self, a: impl Into<String>, b: impl Into<String>) -> Self {
+        self.allowed_self_collisions.push([a.into(), b.into()]);
+        self
     }
 
     /// Adds a tool-zone shape after checking its numbers (builder style).
