@@ -25,6 +25,8 @@
 //! [`JointMotion`](crate::motion::JointMotion), use its `delta()` (the difference it actually
 //! travels) with [`j1_of_delta`].
 
+pub mod dynamics;
+
 use serde::Serialize;
 use thiserror::Error;
 
