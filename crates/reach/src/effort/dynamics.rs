@@ -488,11 +488,8 @@ pub fn joint_rates<Q: AsRef<[f64]>>(
     // Slopes of the segments.
     let slope = |k: usize, i: usize| diffs.diff(i, q[k].as_ref()[i], q[k + 1].as_ref()[i]) / (times[k + 1] - times[k]);
     if m == 2 {
-        for i in 0..n {
-            qd[0][i] = slope(0, i);
-            qd[1][i] = slope(0, i);
-        }
-        return Ok((qd, qdd));
+        let rate: Vec<f64> = (0..n).map(|i| slope(0, i)).collect();
+        return Ok((vec![rate.clone(), rate], qdd));
     }
     for k in 1..m - 1 {
         let (h1, h2) = (times[k] - times[k - 1], times[k + 1] - times[k]);
