@@ -99,3 +99,19 @@ fn rates_are_wrap_safe_for_revolute_joints() {
     assert!(qd.iter().all(|v| (v[0] - 1.0).abs() < 1e-9), "{qd:?}");
     assert!(qdd.iter().all(|v| v[0].abs() < 1e-6), "{qdd:?}");
 }
+
+#[test]
+fn energy_with_known_rates_agrees_with_energy_from_positions() {
+    let (m, r, delta, duration) = (2.0, 0.4, 1.2, 1.0);
+    let robot = turntable(m, r);
+    let times: Vec<f64> = (0..=200).map(|k| duration * k as f64 / 200.0).collect();
+    let q: Vec<Vec<f64>> = times.iter().map(|&t| vec![cycloidal(t, delta, duration).0]).collect();
+    let qd: Vec<Vec<f64>> = times.iter().map(|&t| vec![cycloidal(t, delta, duration).1]).collect();
+    let expected = m * r * r * (2.0 * delta / duration).powi(2);
+    let with_rates = reach::effort::dynamics::trajectory_energy_with_rates(&robot, &times, &q, &qd).unwrap();
+    assert!((with_rates - expected).abs() < 1e-3 * expected, "{with_rates} vs {expected}");
+    let from_positions = trajectory_energy(&robot, &times, &q).unwrap();
+    assert!((with_rates - from_positions).abs() < 1e-3 * expected);
+    let err = reach::effort::dynamics::trajectory_energy_with_rates(&robot, &times, &q, &qd[..10]).unwrap_err();
+    assert!(err.to_string().contains("qd samples"), "{err}");
+}

@@ -30,7 +30,9 @@
 //! [`mechanical_energy`] is `E = ∫ Σᵢ |τᵢ(t)·q̇ᵢ(t)| dt` (joules) by the trapezoid rule over the
 //! samples: the energy the joint drives deliver, counting braking (negative power) as spent,
 //! since drives without regeneration do not recover it. [`trajectory_energy`] takes only times
-//! and joint positions and estimates the rates by finite differences (see [`joint_rates`]).
+//! and joint positions and estimates the rates by finite differences (see [`joint_rates`]);
+//! [`trajectory_energy_with_rates`] takes the rates the samples carry and differentiates only
+//! them for the accelerations.
 //!
 //! # Example
 //! ```
@@ -57,7 +59,7 @@ use crate::model::{JointKind, LinkInertial, Robot};
 pub enum DynamicsError {
     /// The robot description gives no link masses.
     #[error(
-        "robot `{robot}` has no inertial data (give `[joints.inertial]` for every joint, or `<inertial>` in the URDF)"
+        "robot `{robot}` has no inertial data: give `[joints.inertial]` for every joint, or `<inertial>` in the URDF"
     )]
     NoInertialData {
         /// Robot name.
@@ -472,14 +474,24 @@ pub fn joint_rates<Q: AsRef<[f64]>>(
     times: &[f64],
     q: &[Q],
 ) -> Result<(Vec<Vec<f64>>, Vec<Vec<f64>>), DynamicsError> {
+    derivatives(times, q, robot.dof(), "q", &Differences::for_robot(robot))
+}
+
+/// First and second derivatives of sampled vectors (the scheme of [`joint_rates`]).
+#[allow(clippy::type_complexity)]
+fn derivatives<Q: AsRef<[f64]>>(
+    times: &[f64],
+    q: &[Q],
+    n: usize,
+    field: &str,
+    diffs: &Differences,
+) -> Result<(Vec<Vec<f64>>, Vec<Vec<f64>>), DynamicsError> {
     check_times(times)?;
-    check_length("q samples", q.len(), times.len())?;
-    let n = robot.dof();
+    check_length(&format!("{field} samples"), q.len(), times.len())?;
     for (k, row) in q.iter().enumerate() {
-        check_vector(&format!("q[{k}]"), row.as_ref(), n)?;
+        check_vector(&format!("{field}[{k}]"), row.as_ref(), n)?;
     }
     let m = times.len();
-    let diffs = Differences::for_robot(robot);
     let mut qd = vec![vec![0.0; n]; m];
     let mut qdd = vec![vec![0.0; n]; m];
     if m < 2 {
@@ -507,6 +519,29 @@ pub fn joint_rates<Q: AsRef<[f64]>>(
         qd[m - 1][i] = slope(m - 2, i) + qdd[m - 1][i] * hn / 2.0;
     }
     Ok((qd, qdd))
+}
+
+/// Mechanical energy `∫ Σᵢ |τᵢ·q̇ᵢ| dt` (joules) of samples that carry positions (rad / m) and
+/// rates (rad/s / m/s), as the motion planners' output does: `q̈` is the derivative of the
+/// given `q̇` by the central differences of [`joint_rates`] (literal increments), torques from
+/// [`inverse_dynamics`], trapezoid rule ([`mechanical_energy`]).
+///
+/// # Errors
+/// As [`trajectory_energy`], with `qd` samples named too.
+pub fn trajectory_energy_with_rates<Q: AsRef<[f64]>>(
+    robot: &Robot,
+    times: &[f64],
+    q: &[Q],
+    qd: &[Q],
+) -> Result<f64, DynamicsError> {
+    if !robot.has_dynamics() {
+        return Err(DynamicsError::NoInertialData { robot: robot.name().to_string() });
+    }
+    let (qdd, _) = derivatives(times, qd, robot.dof(), "qd", &Differences::Literal)?;
+    let qdd: Vec<&[f64]> = qdd.iter().map(Vec::as_slice).collect();
+    let q: Vec<&[f64]> = q.iter().map(AsRef::as_ref).collect();
+    let qd: Vec<&[f64]> = qd.iter().map(AsRef::as_ref).collect();
+    mechanical_energy(robot, times, &q, &qd, &qdd)
 }
 
 /// Mechanical energy `∫ Σᵢ |τᵢ·q̇ᵢ| dt` (joules) of a motion given only by sample times (s)
