@@ -266,13 +266,15 @@ impl<'r> Dynamics<'r> {
             let body = &self.bodies[i];
             let rot = t.rotation.matrix();
             let c = rot * body.com;
-            let inertia = rot * body.inertia * rot.transpose();
             let a_com = a + wd.cross(&c) + w.cross(&w.cross(&c));
+            // Euler's equation in the link's axes (cheaper than rotating the tensor).
+            let (w_local, wd_local) = (rot.tr_mul(&w), rot.tr_mul(&wd));
+            let iw = body.inertia * w_local;
             self.axis[i] = z;
             self.origin[i] = o;
             self.com[i] = c;
             self.force[i] = a_com * body.mass;
-            self.moment[i] = inertia * wd + w.cross(&(inertia * w));
+            self.moment[i] = rot * (body.inertia * wd_local + w_local.cross(&iw));
             t *= link.after;
             prev_origin = o;
             acc = a;
