@@ -245,7 +245,8 @@ pub enum Command {
             q(t) = q0 + λ(τ)(q1 − q0); --space tool moves the tool point on a straight line and \
             turns it about one fixed axis, tracked through IK with branch continuity (intervals \
             between singular positions, events K1–K14). J1 = Σ wᵢ|Δqᵢ|, J2 = Σ wᵢ·(total \
-            variation of qᵢ). energy_j is null: dynamics (link masses) are not built yet.\n\n\
+            variation of qᵢ). energy_j = ∫ Σ|τᵢ·q̇ᵢ| dt in joules (Newton–Euler torques) when \
+            the robot file gives link masses (puma560), else null with the reason in energy_note.\n\n\
             Exit status 3 when the motion breaks a joint range or speed limit (the report is \
             printed, the reason goes to stderr); 2 for bad input.",
         after_help = "Examples:\n  \

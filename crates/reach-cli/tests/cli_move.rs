@@ -79,10 +79,12 @@ fn joint_move_endpoints_profile_and_j_values() {
     // Tool point: the pole (3 cos q1, 3 sin q1, 5) (notes 001 §5.2).
     let x = &samples[50]["xyz_m"];
     assert!((f(&x[0]) - 3.0 * (PI / 4.0).cos()).abs() < 1e-9 && (f(&x[2]) - 5.0).abs() < 1e-9);
-    // J1 = (1/3)·π/2 + (1/18)·π/2 = 7π/36; monotone, so J2 = J1; energy not built.
+    // J1 = (1/3)·π/2 + (1/18)·π/2 = 7π/36; monotone, so J2 = J1; spbu6 has no link masses.
     assert!((f(&v["effort"]["j1"]) - 7.0 * PI / 36.0).abs() < 1e-12);
     assert!((f(&v["effort"]["j2"]) - 7.0 * PI / 36.0).abs() < 1e-12);
     assert!(v["effort"]["energy_j"].is_null());
+    let note = v["effort"]["energy_note"].as_str().unwrap();
+    assert!(note.contains("spbu6") && note.contains("inertial"), "{note}");
     assert_eq!(v["intervals"][0]["feasible"], true);
 }
 
@@ -203,4 +205,31 @@ fn bad_input_and_infeasible() {
     assert_eq!(run.code, 3);
     assert!(run.stdout.contains("NOT feasible"), "{}", run.stdout);
     assert!(run.stderr.contains("joint 4 (q4) position outside -90.000 .. 90.000 deg"), "{}", run.stderr);
+}
+
+/// Puma 560 (link masses in its robot file): the mechanical energy of a rest-to-rest move is
+/// reported, and it is at least the potential energy gained, `∫|P| dt ≥ |∫P dt| = |ΔV|`.
+#[test]
+fn puma560_move_reports_mechanical_energy() {
+    let args = ["move", "puma560", "--from", "0,0,0,0,0,0", "--to", "20,-40,30,0,10,0", "--duration", "2"];
+    let run = reach(&[&args[..], &["--json"]].concat());
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let v = json(&run);
+    let energy = f(&v["effort"]["energy_j"]);
+    assert!(v["effort"]["energy_note"].is_null());
+    let puma = reach::model::presets::get("puma560").unwrap();
+    let rad = |d: [f64; 6]| d.map(f64::to_radians);
+    let dv = reach::effort::dynamics::potential_energy(&puma, &rad([20.0, -40.0, 30.0, 0.0, 10.0, 0.0])).unwrap()
+        - reach::effort::dynamics::potential_energy(&puma, &[0.0; 6]).unwrap();
+    assert!(dv.abs() > 5.0 && energy >= dv.abs(), "E = {energy} J, ΔV = {dv} J");
+    // The same motion's samples through the library give the same number.
+    let samples = v["samples"].as_array().unwrap();
+    let times: Vec<f64> = samples.iter().map(|s| f(&s["t_s"])).collect();
+    let qs: Vec<Vec<f64>> = samples.iter().map(|s| q(s).iter().map(|d| d.to_radians()).collect()).collect();
+    let qds: Vec<Vec<f64>> =
+        samples.iter().map(|s| s["qd_deg_s"].as_array().unwrap().iter().map(|d| f(d).to_radians()).collect()).collect();
+    let lib = reach::effort::dynamics::trajectory_energy_with_rates(&puma, &times, &qs, &qds).unwrap();
+    assert!((lib - energy).abs() < 1e-6 * energy, "{lib} vs {energy}");
+    let text = reach(&args);
+    assert!(text.stdout.contains("energy: ") && text.stdout.contains(" J"), "{}", text.stdout);
 }

@@ -8,8 +8,10 @@
 //!
 //! Output: samples (t, q, q̇, tool pose), per-interval status, events (tool space: the
 //! K1–K14 log of the tracking), J1 and J2 (seed 001's weights for 6-joint robots, else 1; the
-//! wrap policy of `reach::effort::Differences::for_robot`), and a feasibility summary. The
-//! physical energy is `null`: the dynamics (link masses, Newton–Euler) are not built yet.
+//! wrap policy of `reach::effort::Differences::for_robot`), the mechanical energy
+//! `∫ Σ|τᵢ·q̇ᵢ| dt` when the robot file gives link masses (Newton–Euler torques,
+//! `reach::effort::dynamics::trajectory_energy_with_rates`; otherwise `null` with the reason in
+//! `energy_note`), and a feasibility summary.
 //!
 //! Exit status: 0 feasible; 3 infeasible (a joint outside its limits, an unrealisable
 //! interval) after printing the report, with one line on stderr; 2 for bad input.
@@ -20,6 +22,7 @@ use std::path::PathBuf;
 use clap::{Args, ValueEnum};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 use reach::Robot;
+use reach::effort::dynamics::trajectory_energy_with_rates;
 use reach::effort::{Differences, SEED001_WEIGHTS, j1, j2};
 use reach::motion::joint_space::EndChoice;
 use reach::motion::sample::PerSampleIk;
@@ -110,8 +113,9 @@ pub struct MoveArgs {
     pub csv: Option<PathBuf>,
 
     /// Print JSON: {"robot", "space", "samples": [{"t_s", "q_deg", "qd_deg_s", "xyz_m",
-    /// "rpy_deg"}], "intervals", "events", "effort": {"j1", "j2", "energy_j": null},
-    /// "feasible", "reasons"} (energy_j is null: dynamics are not built yet).
+    /// "rpy_deg"}], "intervals", "events", "effort": {"j1", "j2", "energy_j", "energy_note"},
+    /// "feasible", "reasons"} (energy_j is null, with the reason in energy_note, when the robot
+    /// has no link masses).
     #[arg(long)]
     pub json: bool,
 }
@@ -260,8 +264,11 @@ pub struct EffortJson {
     pub j1: f64,
     /// `Σ wᵢ·(total variation of qᵢ over the samples)` (radians).
     pub j2: f64,
-    /// Mechanical energy: `null`, dynamics not built yet.
+    /// Mechanical energy `∫ Σ|τᵢ·q̇ᵢ| dt`, joules (rigid links, no friction); `null` when it
+    /// cannot be computed (see `energy_note`).
     pub energy_j: Option<f64>,
+    /// Why `energy_j` is `null` (e.g. no link masses in the robot file); `null` otherwise.
+    pub energy_note: Option<String>,
     /// The weights used.
     pub weights: Vec<f64>,
 }
@@ -416,6 +423,10 @@ pub fn compute(robot: &Robot, spec: &MoveSpec) -> Result<MoveJson, CliError> {
         ),
         _ => (0.0, 0.0),
     };
+    let (energy_j, energy_note) = match trajectory_energy_with_rates(robot, &times, &q, &qd) {
+        Ok(e) => (Some(e), None),
+        Err(e) => (None, Some(e.to_string())),
+    };
     let mut samples = Vec::with_capacity(q.len());
     for ((t, qk), qdk) in times.iter().zip(&q).zip(&qd) {
         let pose = robot.fk(qk).map_err(motion_error)?;
@@ -439,7 +450,7 @@ pub fn compute(robot: &Robot, spec: &MoveSpec) -> Result<MoveJson, CliError> {
         samples,
         intervals,
         events,
-        effort: EffortJson { j1: j1v, j2: j2v, energy_j: None, weights },
+        effort: EffortJson { j1: j1v, j2: j2v, energy_j, energy_note, weights },
         feasible,
         reasons,
     })
@@ -705,12 +716,11 @@ pub fn write_report(out: &mut dyn Write, m: &MoveJson, every: usize) -> Result<(
     for e in &m.events {
         writeln!(out, "  {} [t = {} s] {}", e.code, fixed(e.t_s, 3), e.message)?;
     }
-    writeln!(
-        out,
-        "  J1 = {}  J2 = {}  energy: n/a (dynamics not built yet)",
-        fixed(m.effort.j1, 6),
-        fixed(m.effort.j2, 6)
-    )?;
+    let energy = match (m.effort.energy_j, &m.effort.energy_note) {
+        (Some(e), _) => format!("{} J", fixed(e, 3)),
+        (None, note) => format!("n/a ({})", note.as_deref().unwrap_or("not computed")),
+    };
+    writeln!(out, "  J1 = {}  J2 = {}  energy: {energy}", fixed(m.effort.j1, 6), fixed(m.effort.j2, 6))?;
     writeln!(
         out,
         "  {}",

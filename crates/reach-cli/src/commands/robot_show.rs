@@ -342,5 +342,20 @@ fn write_human(loaded: &LoadedRobot, out: &mut dyn Write) -> Result<(), CliError
     writeln!(out)?;
     writeln!(out, "base  {}", u.transform(robot.base()))?;
     writeln!(out, "tool  {}", u.transform(robot.tool()))?;
+    if robot.has_dynamics() {
+        // Mass properties in SI units, centre of mass in each joint's link frame.
+        writeln!(out, "dynamics (SI; gravity {} m/s²):", nums(robot.gravity().as_slice()))?;
+        for (j, b) in robot.joints().iter().zip(robot.inertials()) {
+            let i = &b.inertia;
+            writeln!(
+                out,
+                "  {}: mass {} kg, com {} m, inertia [ixx iyy izz ixy ixz iyz] {} kg·m²",
+                j.name,
+                num(b.mass),
+                nums(b.com.as_slice()),
+                nums(&[i[(0, 0)], i[(1, 1)], i[(2, 2)], i[(0, 1)], i[(0, 2)], i[(1, 2)]])
+            )?;
+        }
+    }
     Ok(())
 }

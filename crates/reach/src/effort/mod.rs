@@ -1,4 +1,6 @@
-//! Effort and energy: the seeds' kinematic cost functionals J1, J2 and S.
+//! Effort and energy: the seeds' kinematic cost functionals J1, J2 and S, and (in
+//! [`dynamics`]) the physical model — Newton–Euler joint torques and the mechanical energy
+//! `∫ Σ|τᵢ·q̇ᵢ| dt` of a motion, for robots whose description gives link masses.
 //!
 //! These are the seeds' stand-ins for energy, computed from joint values only (no masses):
 //!
@@ -24,6 +26,8 @@
 //! choice for [`j2`] over densely sampled IK output; for [`j1`] of a motion planned with
 //! [`JointMotion`](crate::motion::JointMotion), use its `delta()` (the difference it actually
 //! travels) with [`j1_of_delta`].
+
+pub mod dynamics;
 
 use serde::Serialize;
 use thiserror::Error;

@@ -74,6 +74,9 @@ pub enum ModelError {
     /// A link geometry entry is invalid or their number does not match the joints.
     #[error("links: {0}")]
     Links(String),
+    /// The dynamics data as a whole is invalid (gravity not finite, wrong number of entries).
+    #[error("dynamics: {0}")]
+    Dynamics(String),
     /// The description file is not valid TOML or does not follow the format.
     #[error("robot file, line {line}, column {column}: {message}")]
     Parse {

@@ -8,6 +8,7 @@
 //! [`presets`].
 
 mod error;
+mod inertia;
 mod joint;
 mod robot;
 mod toml_format;
@@ -17,6 +18,7 @@ pub mod presets;
 pub mod seed000;
 
 pub use error::ModelError;
+pub use inertia::{LinkInertial, STANDARD_GRAVITY};
 pub use joint::{
     Convention, DhParams, Joint, JointDrive, JointGeometry, JointKind, Limits, LinkGeometry, StepMode, Wiring,
 };

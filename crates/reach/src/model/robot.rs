@@ -1,6 +1,9 @@
-use nalgebra::Isometry3;
+use nalgebra::{Isometry3, Vector3};
 
-use super::{Convention, Joint, JointDrive, JointGeometry, JointKind, LinkGeometry, ModelError, StepMode};
+use super::{
+    Convention, Joint, JointDrive, JointGeometry, JointKind, LinkGeometry, LinkInertial, ModelError, STANDARD_GRAVITY,
+    StepMode,
+};
 use crate::kinematics::chain::Chain;
 
 /// Plain-data description of a robot, SI units and radians, before validation.
@@ -20,6 +23,11 @@ pub struct RobotSpec {
     pub tool: Isometry3<f64>,
     /// Optional collision geometry, one entry per joint's link, or empty.
     pub links: Vec<LinkGeometry>,
+    /// Optional mass properties, one entry per joint's link (frames: see [`LinkInertial`]),
+    /// or empty when the description gives no dynamics.
+    pub inertials: Vec<LinkInertial>,
+    /// Gravitational acceleration in the world frame, m/s² (default `(0, 0, −9.80665)`).
+    pub gravity: Vector3<f64>,
 }
 
 impl RobotSpec {
@@ -34,6 +42,8 @@ impl RobotSpec {
             base: Isometry3::identity(),
             tool: Isometry3::identity(),
             links: Vec::new(),
+            inertials: Vec::new(),
+            gravity: Vector3::new(0.0, 0.0, -STANDARD_GRAVITY),
         }
     }
 }
@@ -70,7 +80,10 @@ impl Robot {
     /// # Errors
     /// [`ModelError`] naming the joint and field when a number is NaN or infinite, limits are
     /// not ordered, a velocity limit is not positive, a joint is not in the robot's convention,
-    /// a transform is not finite, link geometry does not match the joints, or there are no joints.
+    /// a transform is not finite, link geometry does not match the joints, or there are no joints;
+    /// [`ModelError::Joint`] naming the `inertial.…` field for a bad mass, centre of mass or
+    /// inertia; [`ModelError::Dynamics`] for a non-finite gravity or a wrong number of
+    /// inertial entries.
     pub fn new(mut spec: RobotSpec) -> Result<Self, ModelError> {
         if spec.joints.is_empty() {
             return Err(ModelError::NoJoints);
@@ -99,6 +112,7 @@ impl Robot {
                 )));
             }
         }
+        check_inertials(&spec)?;
         let chain = Chain::compile(&spec);
         Ok(Robot { spec, chain })
     }
@@ -150,6 +164,35 @@ impl Robot {
     #[must_use]
     pub fn links(&self) -> &[LinkGeometry] {
         &self.spec.links
+    }
+
+    /// Mass properties per link (empty when the description gives none; see [`LinkInertial`]
+    /// for the frames).
+    #[must_use]
+    pub fn inertials(&self) -> &[LinkInertial] {
+        &self.spec.inertials
+    }
+
+    /// Whether the description gives mass properties, so that dynamics can be computed.
+    #[must_use]
+    pub fn has_dynamics(&self) -> bool {
+        !self.spec.inertials.is_empty()
+    }
+
+    /// Gravitational acceleration in the world frame, m/s².
+    #[must_use]
+    pub fn gravity(&self) -> &Vector3<f64> {
+        &self.spec.gravity
+    }
+
+    /// A copy of this robot with mass properties, one entry per joint (frames: see
+    /// [`LinkInertial`]), or none (empty vector).
+    ///
+    /// # Errors
+    /// As [`Robot::new`]: the number of entries, or a mass, centre of mass or inertia that is
+    /// not valid (the error names the joint and the `inertial.…` field).
+    pub fn with_inertials(&self, inertials: Vec<LinkInertial>) -> Result<Robot, ModelError> {
+        Robot::new(RobotSpec { inertials, ..self.spec.clone() })
     }
 
     /// The validated plain data.
@@ -276,6 +319,30 @@ fn validate_joint(number: usize, joint: &Joint, convention: Convention) -> Resul
     }
     if let Some(drive) = &joint.drive {
         validate_drive(number, joint, drive)?;
+    }
+    Ok(())
+}
+
+fn check_inertials(spec: &RobotSpec) -> Result<(), ModelError> {
+    if let Some(v) = spec.gravity.iter().find(|v| !v.is_finite()) {
+        return Err(ModelError::Dynamics(format!("`gravity` must be finite, got {v}")));
+    }
+    if spec.inertials.is_empty() {
+        return Ok(());
+    }
+    if spec.inertials.len() != spec.joints.len() {
+        return Err(ModelError::Dynamics(format!(
+            "{} inertial entries for {} joints (give one per joint, or none)",
+            spec.inertials.len(),
+            spec.joints.len()
+        )));
+    }
+    for (i, (joint, inertial)) in spec.joints.iter().zip(&spec.inertials).enumerate() {
+        inertial.check().map_err(|(field, message)| ModelError::Joint {
+            joint: i + 1,
+            name: joint.name.clone(),
+            message: format!("`{field}` {message}"),
+        })?;
     }
     Ok(())
 }

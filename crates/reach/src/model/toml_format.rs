@@ -1,11 +1,11 @@
 //! The TOML robot description format (documented in `docs/robot-format.md`).
 
-use nalgebra::{Isometry3, Translation3, UnitQuaternion};
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use serde::Deserialize;
 
 use super::{
-    Convention, DhParams, Joint, JointDrive, JointGeometry, JointKind, Limits, LinkGeometry, ModelError, Robot,
-    RobotSpec, StepMode, Wiring,
+    Convention, DhParams, Joint, JointDrive, JointGeometry, JointKind, Limits, LinkGeometry, LinkInertial, ModelError,
+    Robot, RobotSpec, STANDARD_GRAVITY, StepMode, Wiring,
 };
 
 /// Length unit of a description file.
@@ -107,6 +107,8 @@ struct RobotFile {
     joints: Vec<JointField>,
     #[serde(default)]
     links: Vec<LinkField>,
+    /// Gravitational acceleration in the world frame, m/s² (not scaled by `length_unit`).
+    gravity: Option<[f64; 3]>,
 }
 
 fn default_convention() -> FileConvention {
@@ -143,6 +145,20 @@ struct JointField {
     #[serde(default)]
     flip: bool,
     drive: Option<DriveField>,
+    inertial: Option<InertialField>,
+}
+
+/// `[joints.inertial]`: mass properties of the link the joint moves, in that link's frame
+/// (see `docs/robot-format.md`); `com` in the file length unit, `inertia` in kg·(length unit)².
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct InertialField {
+    mass: f64,
+    #[serde(default)]
+    com: [f64; 3],
+    /// `[ixx, iyy, izz, ixy, ixz, iyz]` about the centre of mass.
+    #[serde(default)]
+    inertia: [f64; 6],
 }
 
 /// `[joints.drive]`: the stepper drive of one joint (see `docs/robot-format.md`).
@@ -230,7 +246,22 @@ impl Robot {
             FileConvention::Mdh => Convention::Mdh,
         };
         let mut joints = Vec::with_capacity(file.joints.len());
+        let mut inertials = Vec::with_capacity(file.joints.len());
+        let with_inertial = file.joints.iter().filter(|j| j.inertial.is_some()).count();
         for (i, j) in file.joints.into_iter().enumerate() {
+            match j.inertial {
+                Some(b) => {
+                    inertials.push(LinkInertial::new(b.mass, Vector3::from(b.com) * ls, b.inertia.map(|v| v * ls * ls)))
+                }
+                None if with_inertial > 0 => {
+                    let name = j.name.unwrap_or_else(|| format!("joint{}", i + 1));
+                    let message = "no `[joints.inertial]`: give one for every joint or for none (a massless link \
+                                   is `mass = 0`)"
+                        .into();
+                    return Err(ModelError::Joint { joint: i + 1, name, message });
+                }
+                None => {}
+            }
             let drive = j.drive.map(|d| JointDrive {
                 steps_per_rev: d.steps_per_rev,
                 microstepping: d.microstepping,
@@ -289,6 +320,8 @@ impl Robot {
             base: transform(file.base),
             tool: transform(file.tool),
             links: file.links.into_iter().map(|l| LinkGeometry { radius: l.radius * ls }).collect(),
+            inertials,
+            gravity: file.gravity.map_or(Vector3::new(0.0, 0.0, -STANDARD_GRAVITY), Vector3::from),
         };
         Ok((Robot::new(spec)?, units))
     }

@@ -4,6 +4,8 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use nalgebra::{Isometry3, Unit, Vector3};
 
+use super::LinkInertial;
+
 use super::toml_format::xyz_rpy;
 use super::{Convention, Joint, JointGeometry, JointKind, Limits, ModelError, Robot, RobotSpec};
 use crate::tolerance::AXIS_MIN_NORM;
@@ -26,6 +28,14 @@ impl Robot {
     /// Revolute, continuous and prismatic joints become joints (continuous ones unlimited);
     /// fixed joints fold into the next joint's origin, or into the tool transform after the
     /// last movable joint. The base link frame is the world frame.
+    ///
+    /// Each link's `<inertial>` (mass, origin, inertia about the centre of mass in the origin's
+    /// axes) becomes the [`LinkInertial`] of the movable joint whose child it is, expressed in
+    /// that child link frame; links hanging below it on the chain by fixed joints are folded in
+    /// (parallel-axis theorem), links before the first movable joint are fixed to the base and
+    /// ignored. Links on side branches of the tree are not part of the chain and carry no mass
+    /// in the model. When every link of the chain is massless and inertia-free, the robot has
+    /// no dynamics (empty [`RobotSpec::inertials`]). Gravity is the default `(0, 0, −9.80665)`.
     ///
     /// # Errors
     /// [`ModelError::Urdf`] for XML errors, unknown link names, a branched tree without a
@@ -116,12 +126,25 @@ impl Robot {
         }
         path.reverse();
 
+        let link_inertial = |name: &str| -> LinkInertial {
+            urdf.links.iter().find(|l| l.name == name).map_or_else(LinkInertial::zero, |l| {
+                let b = &l.inertial;
+                let i = &b.inertia;
+                LinkInertial::new(b.mass.value, Vector3::zeros(), [i.ixx, i.iyy, i.izz, i.ixy, i.ixz, i.iyz])
+                    .transformed(&xyz_rpy(b.origin.xyz.0, b.origin.rpy.0, 1.0, 1.0))
+            })
+        };
         let mut joints = Vec::new();
+        let mut inertials: Vec<LinkInertial> = Vec::new();
         let mut pending = Isometry3::identity();
         for j in path {
             let origin = pending * xyz_rpy(j.origin.xyz.0, j.origin.rpy.0, 1.0, 1.0);
             let kind = match j.joint_type {
                 urdf_rs::JointType::Fixed => {
+                    // `origin` places the fixed child in the last movable joint's child frame.
+                    if let Some(last) = inertials.last_mut() {
+                        *last = last.combined(&link_inertial(&j.child.link).transformed(&origin));
+                    }
                     pending = origin;
                     continue;
                 }
@@ -168,6 +191,7 @@ impl Robot {
                 home: limits.default_home(),
                 flip: false,
             });
+            inertials.push(link_inertial(&j.child.link));
             pending = Isometry3::identity();
         }
         let spec = RobotSpec {
@@ -178,6 +202,12 @@ impl Robot {
             base: Isometry3::identity(),
             tool: pending,
             links: Vec::new(),
+            inertials: if inertials.iter().all(|b| b.mass == 0.0 && b.inertia.amax() == 0.0) {
+                Vec::new()
+            } else {
+                inertials
+            },
+            ..RobotSpec::new("", Convention::Urdf, Vec::new())
         };
         Robot::new(spec)
     }
