@@ -40,13 +40,34 @@ fn values_match_hand_computations() {
     // Manipulability: the minimum over the samples.
     let least = q.iter().map(|qk| robot.manipulability(qk).unwrap().yoshikawa).fold(f64::INFINITY, f64::min);
     assert!((v("manipulability") - least).abs() < 1e-12);
-    for name in MOTION_CRITERIA.iter().filter(|n| **n != "clearance" && **n != "duration") {
+    for name in MOTION_CRITERIA.iter().filter(|n| !["clearance", "duration", "energy"].contains(n)) {
         let d = c(name, &robot).describe();
         assert_eq!(&d.name, name);
         assert!(!d.unit.is_empty());
     }
     assert_eq!(c("limits", &robot).describe().direction, Direction::MoreIsBetter);
     assert_eq!(c("j2", &robot).describe().direction, Direction::LessIsBetter);
+}
+
+#[test]
+fn energy_is_the_mechanical_work_of_the_dynamics_model() {
+    // puma560 carries link masses: lifting the upper arm costs at least the potential energy
+    // gained, and the criterion is the dynamics module's number.
+    let puma = presets::get("puma560").unwrap();
+    let t: Vec<f64> = (0..=50).map(|k| f64::from(k) * 0.02).collect();
+    let q: Vec<Vec<f64>> = t.iter().map(|&s| vec![0.0, 0.4 * s, -0.2 * s, 0.0, 0.0, 0.0]).collect();
+    let e = c("energy", &puma).evaluate(&puma, &SampledMotion::new(&t, &q)).unwrap();
+    let expected = reach::effort::dynamics::trajectory_energy(&puma, &t, &q).unwrap();
+    assert!((e - expected).abs() < 1e-12 * expected.max(1.0), "{e} vs {expected}");
+    let gained = reach::effort::dynamics::potential_energy(&puma, &q[50]).unwrap()
+        - reach::effort::dynamics::potential_energy(&puma, &q[0]).unwrap();
+    assert!(gained > 0.0 && e >= gained - 1e-9, "energy {e} J < potential energy gained {gained} J");
+    let d = c("energy", &puma).describe();
+    assert_eq!((d.name.as_str(), d.unit.as_str(), d.direction), ("energy", "J", Direction::LessIsBetter));
+    // spbu6 has no masses: a named error, not a made-up value.
+    let spbu6 = presets::get("spbu6").unwrap();
+    let err = MotionCriterion::parse("energy", &spbu6, None, None).unwrap_err().to_string();
+    assert!(err.contains("energy") && err.contains("spbu6"), "{err}");
 }
 
 #[test]

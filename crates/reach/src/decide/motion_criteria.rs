@@ -9,10 +9,9 @@
 //! [`TrackChooser`] plugs these criteria into path tracking's per-interval choice of
 //! configuration ([`tracking::Criterion`]; seed 003's user criterion, notes 003 §7 item 5).
 //!
-//! **Physical energy.** The dynamics-based energy (`effort::dynamics`, link masses) is not in
-//! this module yet. It plugs in as one more [`MotionCriterion`] variant (unit `J`, less is
-//! better) evaluated in [`MotionCriterion::evaluate`], named `energy` in
-//! [`MotionCriterion::parse`]; nothing else needs to change.
+//! **Physical energy** (`energy`) needs link masses in the robot model: it is the mechanical
+//! work `∫ Σ|τᵢ q̇ᵢ| dt` of [`effort::dynamics::trajectory_energy`] (Newton–Euler torques with
+//! gravity, rates from the samples).
 
 use serde::Serialize;
 
@@ -108,11 +107,14 @@ pub enum MotionCriterion {
     /// Length of the tool point's path through the sampled configurations (forward
     /// kinematics, straight segments between samples). Unit `m`; less is better.
     ToolPathLength,
-    // Physical energy (effort::dynamics) plugs in here: see the module docs.
+    /// Mechanical energy `∫ Σ|τᵢ q̇ᵢ| dt` ([`effort::dynamics::trajectory_energy`]: recursive
+    /// Newton–Euler with gravity, joint rates by central differences of the samples, braking
+    /// counted as spent). Needs link masses in the robot model. Unit `J`; less is better.
+    Energy,
 }
 
 /// Names accepted by [`MotionCriterion::parse`], in a stable order.
-pub const MOTION_CRITERIA: [&str; 10] = [
+pub const MOTION_CRITERIA: [&str; 11] = [
     "j1",
     "j2",
     "duration",
@@ -123,6 +125,7 @@ pub const MOTION_CRITERIA: [&str; 10] = [
     "sigma_min",
     "clearance",
     "path_length",
+    "energy",
 ];
 
 impl MotionCriterion {
@@ -132,8 +135,8 @@ impl MotionCriterion {
     ///
     /// # Errors
     /// [`DecideError::UnknownCriterion`] for an unknown name; [`DecideError::Criterion`] when
-    /// the robot has no speed limits (duration) or no scene with obstacles is given
-    /// (clearance); [`DecideError::BadVector`] for weights that do not fit the robot.
+    /// the robot has no speed limits (duration), no scene with obstacles is given
+    /// (clearance) or the robot has no link masses (energy); [`DecideError::BadVector`] for weights that do not fit the robot.
     pub fn parse(
         name: &str,
         robot: &Robot,
@@ -177,6 +180,13 @@ impl MotionCriterion {
                 }
             },
             "path_length" => MotionCriterion::ToolPathLength,
+            "energy" if robot.has_dynamics() => MotionCriterion::Energy,
+            "energy" => {
+                return Err(DecideError::Criterion {
+                    criterion: "energy".into(),
+                    reason: format!("robot `{}` has no link masses (docs/robot-format.md, inertial)", robot.name()),
+                });
+            }
             _ => {
                 return Err(DecideError::UnknownCriterion {
                     name: name.to_string(),
@@ -201,6 +211,7 @@ impl MotionCriterion {
             MotionCriterion::MinSigma => ("sigma_min", "1", More),
             MotionCriterion::Clearance { .. } => ("clearance", "m", More),
             MotionCriterion::ToolPathLength => ("path_length", "m", Less),
+            MotionCriterion::Energy => ("energy", "J", Less),
         };
         Criterion::new(name, unit, direction)
     }
@@ -272,6 +283,7 @@ impl MotionCriterion {
                 }
                 Ok(length)
             }
+            MotionCriterion::Energy => effort::dynamics::trajectory_energy(robot, motion.t, q).map_err(|e| failed(&e)),
         }
     }
 }
