@@ -40,6 +40,10 @@ Examples:
                                             the solution closest to home
   reach ik planar3 --xyz 2.4,0.2,0 --scan 0.01 --csv
                                             seed 000's table of configurations
+  reach path planar3 examples/path_planar3_post.toml --from 60,-40,-30 --to 0,-30,-30 --duration 10 --svg path.svg
+                                            a collision-free path past an obstacle, drawn
+  reach cspace varan4 examples/seed004_ceiling.toml --fix q1=0 --png sections
+                                            C-space section images, one per value of q2
   reach demo                                a tour of every preset
 
 Exit status: 0 success, 1 internal error, 2 bad input (arguments, numbers, robot files),
@@ -237,4 +241,23 @@ pub enum Command {
             reach plan examples/seed001_tool_vs_joint.toml\n  \
             reach plan examples/seed003_welding.toml --json")]
     Plan(crate::commands::move_cmd::PlanArgs),
+
+    /// A collision-free joint-space path through a scene (RRT-Connect), timed and re-checked.
+    #[command(
+        long_about = "Plans a collision-free joint-space path from --from to --to (degrees) or to a \
+            tool pose (--to-pose x,y,z,roll,pitch,yaw in metres and degrees; every feasible, \
+            collision-free IK solution is a goal) with RRT-Connect and random shortcutting \
+            (seeded: the same --seed gives the same path unless the --budget-ms wall-time budget \
+            cuts the search). The waypoints are then timed with cycloidal segments that stop at \
+            each waypoint (fastest within the speed limits, or --duration shared by length), \
+            sampled, and every sample is re-checked for collisions: the report gives the \
+            waypoints, the planning statistics (iterations, time, joint-space path length before \
+            and after shortcutting), the duration and the smallest clearance.\n\n\
+            Exit status 3 (after the report) when no path is found: budget exhausted, start or \
+            goal in collision, no IK solution for the goal pose.",
+        after_help = "Examples:\n  \
+            reach path planar3 examples/path_planar3_post.toml --from 60,-40,-30 --to 0,-30,-30 --duration 10\n  \
+            reach path planar3 examples/path_planar3_post.toml --from 60,-40,-30 --to 0,-30,-30 --duration 10 --json --svg path.svg"
+    )]
+    Path(Box<crate::commands::path::PathArgs>),
 }

@@ -11,5 +11,6 @@ pub mod fk;
 pub mod ik;
 pub mod jacobian;
 pub mod move_cmd;
+pub mod path;
 pub mod robot_show;
 pub mod robots;
