@@ -53,7 +53,7 @@ pub struct SectionArgs {
     #[arg(long = "png", value_name = "DIR")]
     pub png_dir: Option<std::path::PathBuf>,
 
-    /// Width of the PNG images in pixels (default 860).
+    /// Width of the PNG images in pixels (default 920).
     #[arg(long, value_name = "PX", requires = "png_dir")]
     pub png_width: Option<u32>,
 }

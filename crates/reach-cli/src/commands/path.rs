@@ -195,15 +195,18 @@ pub fn run(args: &PathArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let robot = args.robot.load()?.robot;
     let scene = load_scene(&args.scene)?;
     let split = |t: &str| t.split(',').map(str::to_string).collect::<Vec<_>>();
-    let start = parse_joint_values(&robot, &split(&args.from), AngleInput::Degrees)
-        .map_err(|e| CliError::bad_input(format!("--from: {e}")))?
-        .si;
+    let from = parse_joint_values(&robot, &split(&args.from), AngleInput::Degrees)
+        .map_err(|e| CliError::bad_input(format!("--from: {e}")))?;
+    let start = from.si.clone();
+    // The ends as typed (no round trip through radians in the report).
+    let mut typed_goal = None;
     let goal = match (&args.to, &args.to_pose) {
-        (Some(t), None) => Goal::Joints(
-            parse_joint_values(&robot, &split(t), AngleInput::Degrees)
-                .map_err(|e| CliError::bad_input(format!("--to: {e}")))?
-                .si,
-        ),
+        (Some(t), None) => {
+            let to = parse_joint_values(&robot, &split(t), AngleInput::Degrees)
+                .map_err(|e| CliError::bad_input(format!("--to: {e}")))?;
+            typed_goal = Some(to.deg);
+            Goal::Joints(to.si)
+        }
         (None, Some(p)) => match pose_end("--to-pose", p)? {
             End::Pose(v) => Goal::Target(IkTarget::Pose(pose_of(&v))),
             End::Joints(_) => return Err(CliError::internal("pose parser returned joints")),
@@ -264,6 +267,10 @@ pub fn run(args: &PathArgs, out: &mut dyn Write) -> Result<(), CliError> {
             };
             json.found = true;
             json.waypoints_deg = p.waypoints.iter().map(|q| q_to_display(&robot, q)).collect();
+            json.waypoints_deg[0].clone_from(&from.deg);
+            if let (Some(last), Some(g)) = (json.waypoints_deg.last_mut(), typed_goal) {
+                *last = g;
+            }
             if path_length(&p.waypoints) <= 1e-12 {
                 return Err(CliError::bad_input("--from and --to are the same configuration: nothing to plan"));
             }

@@ -429,7 +429,7 @@ pub fn cspace_section(
     (y_label, y_values): (&str, &[f64]),
     class_at: &dyn Fn(usize, usize) -> NodeClass,
 ) -> Svg {
-    let (width, height) = (860.0, 700.0);
+    let (width, height) = (920.0, 700.0);
     let mut svg = Svg::new(width, height);
     svg.text(width / 2.0, 26.0, title, "title", Anchor::Middle);
     let (xe, ye) = (cell_edges(x_values), cell_edges(y_values));
