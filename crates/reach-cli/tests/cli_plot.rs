@@ -292,3 +292,29 @@ fn path_bad_input_exits_2_with_one_line() {
         one_error_line(&run);
     }
 }
+
+#[test]
+fn path_to_a_pose_ends_at_the_pose() {
+    let run =
+        reach(&["path", "ur5", POST, "--from", "0,-90,90,-90,-90,0", "--to-pose", "0.4,-0.2,0.3,180,0,0", "--json"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let v: Value = serde_json::from_str(&run.stdout).unwrap();
+    let last: Vec<String> = v["waypoints_deg"]
+        .as_array()
+        .unwrap()
+        .last()
+        .unwrap()
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.to_string())
+        .collect();
+    let mut args = vec!["fk", "ur5", "--json", "--"];
+    args.extend(last.iter().map(String::as_str));
+    let fk = reach(&args);
+    assert_eq!(fk.code, 0, "{}", fk.stderr);
+    let fk: Value = serde_json::from_str(&fk.stdout).unwrap();
+    for (got, want) in fk["pose"]["xyz_m"].as_array().unwrap().iter().zip([0.4, -0.2, 0.3]) {
+        assert!((got.as_f64().unwrap() - want).abs() < 1e-6, "{fk}");
+    }
+}
