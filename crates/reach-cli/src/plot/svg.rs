@@ -50,6 +50,12 @@ fn px(v: f64) -> String {
     if r == 0.0 { "0".into() } else { format!("{r}") }
 }
 
+/// Whether every value is finite (marks with a NaN coordinate, e.g. a sample without an IK
+/// solution, are left out instead of writing an invalid SVG).
+fn finite(values: &[f64]) -> bool {
+    values.iter().all(|v| v.is_finite())
+}
+
 /// Text alignment relative to the anchor point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Anchor {
@@ -120,6 +126,9 @@ impl Svg {
 
     /// A rectangle.
     pub fn rect(&mut self, x: f64, y: f64, w: f64, h: f64, class: &str) {
+        if !finite(&[x, y, w, h]) {
+            return;
+        }
         self.raw(&format!(
             "<rect class=\"{class}\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>",
             px(x),
@@ -131,6 +140,9 @@ impl Svg {
 
     /// A straight line.
     pub fn line(&mut self, a: (f64, f64), b: (f64, f64), class: &str) {
+        if !finite(&[a.0, a.1, b.0, b.1]) {
+            return;
+        }
         self.raw(&format!(
             "<line class=\"{class}\" x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\"/>",
             px(a.0),
@@ -153,25 +165,31 @@ impl Svg {
 
     /// An open polyline (nothing for fewer than two points).
     pub fn polyline(&mut self, points: &[(f64, f64)], class: &str) {
-        if points.len() >= 2 {
+        if points.len() >= 2 && points.iter().all(|p| finite(&[p.0, p.1])) {
             self.raw(&format!("<polyline class=\"{class}\" points=\"{}\"/>", Self::points(points)));
         }
     }
 
     /// A closed polygon (nothing for fewer than three points).
     pub fn polygon(&mut self, points: &[(f64, f64)], class: &str) {
-        if points.len() >= 3 {
+        if points.len() >= 3 && points.iter().all(|p| finite(&[p.0, p.1])) {
             self.raw(&format!("<polygon class=\"{class}\" points=\"{}\"/>", Self::points(points)));
         }
     }
 
     /// A circle of radius `r` pixels.
     pub fn circle(&mut self, c: (f64, f64), r: f64, class: &str) {
+        if !finite(&[c.0, c.1, r]) {
+            return;
+        }
         self.raw(&format!("<circle class=\"{class}\" cx=\"{}\" cy=\"{}\" r=\"{}\"/>", px(c.0), px(c.1), px(r)));
     }
 
     /// Text at `(x, y)` (baseline), escaped.
     pub fn text(&mut self, x: f64, y: f64, text: &str, class: &str, anchor: Anchor) {
+        if !finite(&[x, y]) {
+            return;
+        }
         self.raw(&format!(
             "<text class=\"{class}\" x=\"{}\" y=\"{}\" text-anchor=\"{}\">{}</text>",
             px(x),
@@ -217,8 +235,8 @@ impl Svg {
     }
 }
 
-/// "Nice" tick values (1, 2, 5 × 10ᵏ steps) covering `[lo, hi]` with at most about `target`
-/// ticks; returns the ticks and the step.
+/// "Nice" tick values (1, 2, 5 × 10ᵏ steps) within `[lo, hi]`, about `target` of them (at most
+/// 1.5 × `target` + 1); returns the ticks and the step.
 #[must_use]
 pub fn nice_ticks(lo: f64, hi: f64, target: usize) -> (Vec<f64>, f64) {
     let span = hi - lo;
@@ -227,7 +245,9 @@ pub fn nice_ticks(lo: f64, hi: f64, target: usize) -> (Vec<f64>, f64) {
     }
     let raw = span / target.max(1) as f64;
     let mag = 10f64.powf(raw.log10().floor());
-    let step = [1.0, 2.0, 5.0, 10.0].iter().map(|m| m * mag).find(|s| *s >= raw).unwrap_or(10.0 * mag);
+    // The finest 1-2-5 step that gives at most half as many ticks again as asked for.
+    let limit = 1.5 * target.max(1) as f64;
+    let step = [1.0, 2.0, 5.0, 10.0].iter().map(|m| m * mag).find(|s| span / s <= limit).unwrap_or(10.0 * mag);
     let first = (lo / step).ceil() as i64;
     let last = (hi / step).floor() as i64;
     ((first..=last).map(|k| k as f64 * step).collect(), step)
@@ -363,10 +383,13 @@ impl Panel {
         }
     }
 
-    /// A polyline through data points.
+    /// A polyline through data points; a point with a non-finite coordinate (a sample without
+    /// a solution) breaks the line into pieces.
     pub fn polyline(&self, svg: &mut Svg, points: &[(f64, f64)], class: &str) {
-        let pts: Vec<(f64, f64)> = points.iter().map(|&p| self.p(p)).collect();
-        svg.polyline(&pts, class);
+        for piece in points.split(|p| !(p.0.is_finite() && p.1.is_finite())) {
+            let pts: Vec<(f64, f64)> = piece.iter().map(|&p| self.p(p)).collect();
+            svg.polyline(&pts, class);
+        }
     }
 
     /// A polygon through data points.
@@ -418,6 +441,17 @@ mod tests {
         assert_eq!(p.p((8.0, 4.0)), (90.0, 10.0));
         let e = Panel::equal_aspect(0.0, 0.0, 200.0, 100.0, (0.0, 1.0), (0.0, 1.0));
         assert!((e.scale_x() - 100.0).abs() < 1e-12 && (e.yr.1 - e.yr.0 - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn marks_with_non_finite_coordinates_are_left_out() {
+        let mut svg = Svg::new(100.0, 50.0);
+        let p = Panel::new(0.0, 0.0, 100.0, 50.0, (0.0, 4.0), (0.0, 4.0));
+        p.polyline(&mut svg, &[(0.0, 0.0), (1.0, 1.0), (2.0, f64::NAN), (3.0, 3.0), (4.0, 4.0)], "curve");
+        p.dot(&mut svg, (f64::NAN, 1.0), 2.0, "start");
+        let text = svg.finish();
+        assert_eq!(text.matches("<polyline").count(), 2);
+        assert!(!text.contains("NaN") && !text.contains("<circle"));
     }
 
     #[test]
