@@ -49,7 +49,7 @@ pub fn joint_series(robot: &Robot, q_display: &[Vec<f64>], qd_display: &[Vec<f64
             let shown = |v: f64| if joint.kind == JointKind::Revolute { v.to_degrees() } else { v };
             let (lo, hi) = (joint.limits.lower, joint.limits.upper);
             JointSeries {
-                label: if joint.name.is_empty() {
+                label: if joint.name.is_empty() || joint.name == format!("q{}", i + 1) {
                     format!("q{}", i + 1)
                 } else {
                     format!("q{} ({})", i + 1, joint.name)
