@@ -44,6 +44,10 @@ Examples:
                                             rank the IK solutions by several criteria
   reach tasks ur5 visiting examples/tasks_visiting.toml --budget 6
                                             least-energy tour of target points
+  reach path planar3 examples/path_planar3_post.toml --from 60,-40,-30 --to 0,-30,-30 --duration 10 --svg path.svg
+                                            a collision-free path past an obstacle, drawn
+  reach cspace varan4 examples/seed004_ceiling.toml --fix q1=0 --png sections
+                                            C-space section images, one per value of q2
   reach demo                                a tour of every preset
 
 Exit status: 0 success, 1 internal error, 2 bad input (arguments, numbers, robot files),
@@ -287,4 +291,22 @@ pub enum Command {
             reach tasks ur5 collection examples/tasks_collection.toml --budget 8"
     )]
     Tasks(crate::commands::tasks::TasksArgs),
+    /// A collision-free joint-space path through a scene (RRT-Connect), timed and re-checked.
+    #[command(
+        long_about = "Plans a collision-free joint-space path from --from to --to (degrees) or to a \
+            tool pose (--to-pose x,y,z,roll,pitch,yaw in metres and degrees; every feasible, \
+            collision-free IK solution is a goal) with RRT-Connect and random shortcutting \
+            (seeded: the same --seed gives the same path unless the --budget-ms wall-time budget \
+            cuts the search). The waypoints are then timed with cycloidal segments that stop at \
+            each waypoint (fastest within the speed limits, or --duration shared by length), \
+            sampled, and every sample is re-checked for collisions: the report gives the \
+            waypoints, the planning statistics (iterations, time, joint-space path length before \
+            and after shortcutting), the duration and the smallest clearance.\n\n\
+            Exit status 3 (after the report) when no path is found: budget exhausted, start or \
+            goal in collision, no IK solution for the goal pose.",
+        after_help = "Examples:\n  \
+            reach path planar3 examples/path_planar3_post.toml --from 60,-40,-30 --to 0,-30,-30 --duration 10\n  \
+            reach path planar3 examples/path_planar3_post.toml --from 60,-40,-30 --to 0,-30,-30 --duration 10 --json --svg path.svg"
+    )]
+    Path(Box<crate::commands::path::PathArgs>),
 }

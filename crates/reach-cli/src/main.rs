@@ -11,6 +11,7 @@ mod commands;
 mod error;
 mod numbers;
 mod output;
+mod plot;
 mod robot_arg;
 
 use std::io::{BufWriter, Write};
@@ -57,6 +58,7 @@ fn run(command: &Command, out: &mut dyn Write) -> Result<(), CliError> {
         Command::Move(args) => commands::move_cmd::run(args, out),
         Command::Plan(args) => commands::move_cmd::run_plan(args, out),
         Command::Tasks(args) => commands::tasks::run(args, out),
+        Command::Path(args) => commands::path::run(args, out),
     }
 }
 

@@ -126,3 +126,28 @@ fn union_reading_of_theta_is_not_what_the_counts_use() {
     let g = grid(&scene(&format!("{only_z}{z_part}")));
     assert!(g.counts.allowed > 1041 && g.counts.allowed <= 2523, "{}", g.counts.allowed);
 }
+
+#[test]
+fn progress_hook_counts_every_node_once_per_chunk_and_changes_nothing() {
+    use reach::world::cspace::{PROGRESS_CHUNK, classify_grid, classify_grid_with_progress};
+    use std::sync::Mutex;
+    let varan = reach::model::presets::get("varan4").unwrap();
+    let scene = reach::world::Scene::from_toml_str(include_str!("../../../examples/seed004_ceiling.toml")).unwrap();
+    let spec = reach::world::cspace::GridSpec::new(4, 3f64.to_radians()).fix(0, 0.0);
+    let calls = Mutex::new(Vec::new());
+    let with = classify_grid_with_progress(&varan, &scene, &spec, &|done, total| {
+        calls.lock().unwrap().push((done, total));
+    })
+    .unwrap();
+    let plain = classify_grid(&varan, &scene, &spec).unwrap();
+    assert_eq!(with, plain);
+    let nodes = plain.counts.nodes;
+    assert_eq!(nodes, 41 * 81 * 81);
+    let mut calls = calls.into_inner().unwrap();
+    assert_eq!(calls.len(), nodes.div_ceil(PROGRESS_CHUNK));
+    assert!(calls.iter().all(|&(_, total)| total == nodes));
+    calls.sort_unstable();
+    // `done` values are distinct running totals ending at the node count.
+    assert!(calls.windows(2).all(|w| w[0].0 < w[1].0));
+    assert_eq!(calls.last().unwrap().0, nodes);
+}

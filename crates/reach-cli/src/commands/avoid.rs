@@ -68,6 +68,10 @@ pub struct AvoidArgs {
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
+
+    /// Drawings of the arm poses: --svg FILE, --png FILE, --png-width PX.
+    #[command(flatten)]
+    pub draw: crate::plot::DrawArgs,
 }
 
 /// One side of the obstacle in the `--choose` output.
@@ -175,6 +179,7 @@ pub fn run(args: &AvoidArgs, out: &mut dyn Write) -> Result<(), CliError> {
         waypoints: if args.printed_waypoints { WaypointRule::PaperPrinted } else { WaypointRule::Perpendicular },
         ..DetourOptions::default()
     };
+    args.draw.check_files()?;
     let (plan, sides, names) = match &args.choose {
         None => (
             plan_detour(&arm, &start, target, &obstacles, &options).map_err(|e| CliError::bad_input(e.to_string()))?,
@@ -230,6 +235,11 @@ pub fn run(args: &AvoidArgs, out: &mut dyn Write) -> Result<(), CliError> {
             (choice.candidates[shown].plan.clone(), Some(sides), Some(names))
         }
     };
+    if args.draw.any() {
+        let title = format!("{}: {}", robot.name(), outcome_text(&plan.outcome));
+        let radius = options.circle_radius(&arm);
+        args.draw.write(&crate::plot::drawings::detour(&title, &arm, &start, &plan, &obstacles, radius))?;
+    }
     let deg3 = |q: &[f64; 3]| q.map(f64::to_degrees);
     let failed = !matches!(plan.outcome, DetourOutcome::Direct | DetourOutcome::Detour { .. });
     if args.json {

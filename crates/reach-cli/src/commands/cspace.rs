@@ -3,7 +3,7 @@
 use std::io::Write;
 
 use clap::Args;
-use reach::world::cspace::{GridCounts, GridSpec, classify_grid};
+use reach::world::cspace::{CspaceGrid, GridCounts, GridSpec, classify_grid_with_progress, grid_axes};
 use serde::Serialize;
 
 use crate::commands::check::load_scene;
@@ -11,6 +11,7 @@ use crate::commands::cspace_fit;
 use crate::error::CliError;
 use crate::numbers::parse_finite;
 use crate::output::{Align, Table, write_json};
+use crate::plot::progress::Progress;
 use crate::robot_arg::RobotArgs;
 
 /// Arguments of `reach cspace`.
@@ -40,6 +41,26 @@ pub struct CspaceArgs {
     /// its primitives and confusion counts.
     #[arg(long)]
     pub fit: bool,
+    /// Section images: --svg DIR, --png DIR, --png-width PX.
+    #[command(flatten)]
+    pub sections: SectionArgs,
+}
+
+/// Where `reach cspace` draws its section images.
+#[derive(Debug, Clone, Default, Args)]
+pub struct SectionArgs {
+    /// Write one SVG image per value of the first swept joint into DIR (created if needed):
+    /// the next two swept joints, each node coloured by its class.
+    #[arg(long = "svg", value_name = "DIR")]
+    pub svg_dir: Option<std::path::PathBuf>,
+
+    /// The same images as PNG into DIR.
+    #[arg(long = "png", value_name = "DIR")]
+    pub png_dir: Option<std::path::PathBuf>,
+
+    /// Width of the PNG images in pixels (default 920).
+    #[arg(long, value_name = "PX", requires = "png_dir")]
+    pub png_width: Option<u32>,
 }
 
 /// JSON output of `reach cspace`.
@@ -96,7 +117,21 @@ pub fn run(args: &CspaceArgs, out: &mut dyn Write) -> Result<(), CliError> {
         let v = parse_finite(&format!("--fix {name}"), value)?;
         spec = spec.fix(index - 1, v.to_radians());
     }
-    let grid = classify_grid(robot, &scene, &spec).map_err(|e| CliError::bad_input(e.to_string()))?;
+    let axes = grid_axes(robot, &spec).map_err(|e| CliError::bad_input(e.to_string()))?;
+    let swept: Vec<usize> = (0..axes.len()).filter(|&j| axes[j].len() > 1).collect();
+    if args.sections.any() && !(2..=3).contains(&swept.len()) {
+        return Err(CliError::bad_input(format!(
+            "--svg/--png section images need 2 or 3 swept joints, this grid sweeps {} (fix the others with --fix)",
+            swept.len()
+        )));
+    }
+    args.sections.prepare()?;
+    let total = axes.iter().map(Vec::len).product::<usize>();
+    let bar = Progress::new(total as u64, "classifying", args.json);
+    let grid = classify_grid_with_progress(robot, &scene, &spec, &|done, _| bar.set(done as u64))
+        .map_err(|e| CliError::bad_input(e.to_string()))?;
+    bar.finish();
+    args.sections.write(robot, &grid, &swept)?;
     let first = grid.axes.iter().position(|a| a.len() > 1);
     let sections: Vec<Section> = first.map_or_else(Vec::new, |j| {
         grid.counts_by(j)
@@ -150,4 +185,84 @@ pub fn run(args: &CspaceArgs, out: &mut dyn Write) -> Result<(), CliError> {
         cspace_fit::write_text(out, f)?;
     }
     Ok(())
+}
+
+impl SectionArgs {
+    fn any(&self) -> bool {
+        self.svg_dir.is_some() || self.png_dir.is_some()
+    }
+
+    /// Creates the output directories (before the grid is computed).
+    fn prepare(&self) -> Result<(), CliError> {
+        if let Some(d) = &self.svg_dir {
+            crate::plot::ensure_dir("--svg", d)?;
+        }
+        if let Some(d) = &self.png_dir {
+            crate::plot::ensure_dir("--png", d)?;
+        }
+        Ok(())
+    }
+
+    /// One image per value of the first swept joint (`swept[0]`; a single image for a
+    /// two-joint grid) over the last two swept joints, named `section-qJ-VALUE.svg`.
+    fn write(&self, robot: &reach::Robot, grid: &CspaceGrid, swept: &[usize]) -> Result<(), CliError> {
+        if !self.any() {
+            return Ok(());
+        }
+        let shown =
+            |j: usize, v: f64| crate::numbers::from_si(robot.joints()[j].kind, v, crate::numbers::AngleInput::Degrees);
+        let name = |j: usize| format!("q{} [{}]", j + 1, crate::numbers::display_unit(robot.joints()[j].kind));
+        let (section, jx, jy) = match swept {
+            [a, b, c] => (Some(*a), *b, *c),
+            [b, c] => (None, *b, *c),
+            _ => return Ok(()),
+        };
+        let xs: Vec<f64> = grid.axes[jx].iter().map(|v| shown(jx, *v)).collect();
+        let ys: Vec<f64> = grid.axes[jy].iter().map(|v| shown(jy, *v)).collect();
+        let sections: Vec<Option<usize>> = match section {
+            Some(j) => (0..grid.axes[j].len()).map(Some).collect(),
+            None => vec![None],
+        };
+        // Row-major strides: node index = Σ index_j · stride_j.
+        let mut stride = vec![1usize; grid.axes.len()];
+        for j in (0..grid.axes.len().saturating_sub(1)).rev() {
+            stride[j] = stride[j + 1] * grid.axes[j + 1].len();
+        }
+        let fixed: Vec<String> = (0..grid.axes.len())
+            .filter(|j| grid.axes[*j].len() == 1)
+            .map(|j| format!("q{} = {}", j + 1, crate::output::num(shown(j, grid.axes[j][0]))))
+            .collect();
+        for s in sections {
+            let (base, what, file) = match (section, s) {
+                (Some(j), Some(k)) => {
+                    let v = shown(j, grid.axes[j][k]);
+                    (
+                        k * stride[j],
+                        format!(
+                            "section q{} = {} {}",
+                            j + 1,
+                            crate::output::num(v),
+                            crate::numbers::display_unit(robot.joints()[j].kind)
+                        ),
+                        format!("section-q{}-{}", j + 1, crate::plot::file_number(v)),
+                    )
+                }
+                _ => (0, "C-space".to_string(), "section".to_string()),
+            };
+            let title = if fixed.is_empty() {
+                format!("{} — {what}", robot.name())
+            } else {
+                format!("{} — {what} ({})", robot.name(), fixed.join(", "))
+            };
+            let class_at = |ix: usize, iy: usize| grid.classes[base + ix * stride[jx] + iy * stride[jy]];
+            let drawing = crate::plot::drawings::cspace_section(&title, (&name(jx), &xs), (&name(jy), &ys), &class_at);
+            if let Some(d) = &self.svg_dir {
+                crate::plot::write_svg("--svg", &d.join(format!("{file}.svg")), &drawing)?;
+            }
+            if let Some(d) = &self.png_dir {
+                crate::plot::write_png("--png", &d.join(format!("{file}.png")), &drawing, self.png_width)?;
+            }
+        }
+        Ok(())
+    }
 }

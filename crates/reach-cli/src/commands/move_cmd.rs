@@ -118,6 +118,10 @@ pub struct MoveArgs {
     /// has no link masses).
     #[arg(long)]
     pub json: bool,
+
+    /// Drawings: --svg FILE, --png FILE, --png-width PX.
+    #[command(flatten)]
+    pub draw: crate::plot::DrawArgs,
 }
 
 /// One end of a motion.
@@ -324,7 +328,8 @@ fn parse_number(option: &str, text: &str) -> Result<f64, CliError> {
     }
 }
 
-fn pose_end(option: &str, text: &str) -> Result<End, CliError> {
+/// Parses `x,y,z,roll,pitch,yaw` (metres, degrees) into [`End::Pose`].
+pub(crate) fn pose_end(option: &str, text: &str) -> Result<End, CliError> {
     let v = parse_list(option, text)?;
     let a: [f64; 6] = v.as_slice().try_into().map_err(|_| {
         CliError::bad_input(format!("{option}: expected x,y,z,roll,pitch,yaw (6 numbers), got {}", v.len()))
@@ -356,7 +361,8 @@ impl MoveArgs {
     }
 }
 
-fn pose_of(v: &[f64; 6]) -> Isometry3<f64> {
+/// The pose of `[x, y, z, roll, pitch, yaw]` (metres, degrees).
+pub(crate) fn pose_of(v: &[f64; 6]) -> Isometry3<f64> {
     Isometry3::from_parts(
         Translation3::new(v[0], v[1], v[2]),
         UnitQuaternion::from_euler_angles(v[3].to_radians(), v[4].to_radians(), v[5].to_radians()),
@@ -744,7 +750,11 @@ fn infeasible(m: &MoveJson) -> CliError {
 pub fn run(args: &MoveArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let robot = args.robot.load()?.robot;
     let spec = args.spec()?;
+    args.draw.check_files()?;
     let m = compute(&robot, &spec)?;
+    if args.draw.any() {
+        args.draw.write(&move_drawing(&robot, &spec, &m))?;
+    }
     if let Some(path) = &args.csv {
         write_csv(path, &m)?;
     }
@@ -775,6 +785,10 @@ pub struct PlanArgs {
     /// Print JSON: {"task", "motions": [… as `reach move --json` …]}.
     #[arg(long)]
     pub json: bool,
+
+    /// Drawings: --svg DIR, --png DIR (one file per motion), --png-width PX.
+    #[command(flatten)]
+    pub draw: crate::plot::DrawArgs,
 }
 
 #[derive(Debug, Deserialize)]
@@ -901,6 +915,7 @@ pub fn run_plan(args: &PlanArgs, out: &mut dyn Write) -> Result<(), CliError> {
         .map_err(|e| CliError::bad_input(format!("{}: {e}", args.task.display())))?;
     let (robot, description, specs) = load_task(&text, &args.task.display().to_string())?;
     let motions = plan(&robot, &specs)?;
+    write_plan_drawings(&args.draw, &robot, &specs, &motions)?;
     if args.json {
         write_json(
             out,
@@ -943,6 +958,58 @@ pub fn write_comparison(out: &mut dyn Write, motions: &[MoveJson]) -> Result<(),
             fixed(m.effort.j2, 6),
             if m.feasible { "feasible".to_string() } else { format!("infeasible ({})", m.reasons.len()) }
         )?;
+    }
+    Ok(())
+}
+
+// ---------------------------------------------------------------------------------------------
+// Drawings (--svg / --png) of `reach move` and `reach plan`
+// ---------------------------------------------------------------------------------------------
+
+/// The joint curves and tool path of one computed motion.
+fn move_drawing(robot: &Robot, spec: &MoveSpec, m: &MoveJson) -> crate::plot::Svg {
+    use crate::plot::drawings::{TrajectoryDrawing, joint_series, title, trajectory};
+    let default =
+        if spec.space == Space::Tool && spec.speed.is_some() { ProfileName::Linear } else { ProfileName::Cycloidal };
+    let profile = spec.profile.unwrap_or(default);
+    let profile = profile.to_possible_value().map_or_else(String::new, |v| v.get_name().to_string());
+    let space = match m.space {
+        Space::Joint => "joint-space",
+        Space::Tool => "tool-space",
+    };
+    let label = if m.name.is_empty() { String::new() } else { format!("{}: ", m.name) };
+    let q: Vec<Vec<f64>> = m.samples.iter().map(|s| s.q_deg.clone()).collect();
+    let qd: Vec<Vec<f64>> = m.samples.iter().map(|s| s.qd_deg_s.clone()).collect();
+    trajectory(&TrajectoryDrawing {
+        title: title(robot, &format!("{label}{space} move, {profile} profile, {} s", fixed(m.duration_s, 3))),
+        times: m.samples.iter().map(|s| s.t_s).collect(),
+        joints: joint_series(robot, &q, &qd),
+        tool: m.samples.iter().map(|s| s.xyz_m).collect(),
+        tool_waypoints: Vec::new(),
+        obstacles: &[],
+    })
+}
+
+/// `reach plan --svg DIR / --png DIR`: one drawing per motion, `DIR/motion-K.svg` (`.png`).
+fn write_plan_drawings(
+    draw: &crate::plot::DrawArgs,
+    robot: &Robot,
+    specs: &[MoveSpec],
+    motions: &[MoveJson],
+) -> Result<(), CliError> {
+    for (option, dir) in [("--svg", &draw.svg), ("--png", &draw.png)] {
+        if let Some(dir) = dir {
+            crate::plot::ensure_dir(option, dir)?;
+        }
+    }
+    for (k, (spec, m)) in specs.iter().zip(motions).enumerate() {
+        let drawing = move_drawing(robot, spec, m);
+        if let Some(dir) = &draw.svg {
+            crate::plot::write_svg("--svg", &dir.join(format!("motion-{}.svg", k + 1)), &drawing)?;
+        }
+        if let Some(dir) = &draw.png {
+            crate::plot::write_png("--png", &dir.join(format!("motion-{}.png", k + 1)), &drawing, draw.png_width)?;
+        }
     }
     Ok(())
 }

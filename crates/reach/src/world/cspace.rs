@@ -1,6 +1,8 @@
 //! Seed 004: configuration-space grids — enumerate joint values on a grid and classify
 //! every node (notes 004 §4 A).
 
+use std::sync::atomic::{AtomicUsize, Ordering};
+
 use serde::Serialize;
 
 use super::{CollisionChecker, Scene, Verdict, WorldError};
@@ -228,20 +230,58 @@ fn classify_range(
 /// assert_eq!(grid.counts.nodes, 9 * 17 * 17);
 /// ```
 pub fn classify_grid(robot: &Robot, scene: &Scene, spec: &GridSpec) -> Result<CspaceGrid, WorldError> {
+    classify_grid_with_progress(robot, scene, spec, &|_, _| {})
+}
+
+/// Nodes classified between two calls of the progress hook of
+/// [`classify_grid_with_progress`] (one chunk).
+pub const PROGRESS_CHUNK: usize = 4096;
+
+/// [`classify_grid`] that reports its progress: `progress(done, total)` is called after every
+/// chunk of [`PROGRESS_CHUNK`] nodes (from the worker threads, in no particular order;
+/// `done` counts the nodes classified so far and reaches `total` on the last call).
+///
+/// # Errors
+/// See [`grid_axes`].
+///
+/// # Example
+/// ```
+/// use std::sync::atomic::{AtomicUsize, Ordering};
+/// use reach::world::{Scene, cspace::{GridSpec, classify_grid_with_progress}};
+/// let varan = reach::model::presets::get("varan4").unwrap();
+/// let spec = GridSpec::new(4, 5f64.to_radians()).fix(0, 0.0);
+/// let most = AtomicUsize::new(0);
+/// let grid = classify_grid_with_progress(&varan, &Scene::new(), &spec, &|done, _total| {
+///     most.fetch_max(done, Ordering::Relaxed);
+/// })
+/// .unwrap();
+/// assert_eq!(most.into_inner(), grid.counts.nodes);
+/// ```
+pub fn classify_grid_with_progress(
+    robot: &Robot,
+    scene: &Scene,
+    spec: &GridSpec,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<CspaceGrid, WorldError> {
     let axes = grid_axes(robot, spec)?;
     let total: usize = axes.iter().map(Vec::len).product();
     let mut classes = vec![NodeClass::Allowed; total];
+    let done = AtomicUsize::new(0);
+    let chunk_done = |n: usize| progress(done.fetch_add(n, Ordering::Relaxed) + n, total);
     #[cfg(feature = "parallel")]
     {
         use rayon::prelude::*;
-        const CHUNK: usize = 4096;
-        classes
-            .par_chunks_mut(CHUNK)
-            .enumerate()
-            .try_for_each(|(c, chunk)| classify_range(robot, scene, &axes, c * CHUNK, chunk))?;
+        classes.par_chunks_mut(PROGRESS_CHUNK).enumerate().try_for_each(|(c, chunk)| {
+            classify_range(robot, scene, &axes, c * PROGRESS_CHUNK, chunk)?;
+            chunk_done(chunk.len());
+            Ok::<(), WorldError>(())
+        })?;
     }
     #[cfg(not(feature = "parallel"))]
-    classify_range(robot, scene, &axes, 0, &mut classes)?;
+    for (c, chunk) in classes.chunks_mut(PROGRESS_CHUNK).enumerate() {
+        classify_range(robot, scene, &axes, c * PROGRESS_CHUNK, chunk)?;
+        chunk_done(chunk.len());
+    }
     let mut counts = GridCounts::default();
     for c in &classes {
         counts.add(*c);

@@ -81,6 +81,16 @@ impl Default for DetourOptions {
     }
 }
 
+impl DetourOptions {
+    /// The waypoint circle's radius for `arm`, metres: [`DetourOptions::radius`], or the mean
+    /// link length / 7 (the thesis's `L/7`).
+    #[must_use]
+    pub fn circle_radius(&self, arm: &PlanarRedundant) -> f64 {
+        let l = arm.lengths();
+        self.radius.unwrap_or((l[0] + l[1] + l[2]) / 21.0)
+    }
+}
+
 /// What the planner decided.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[serde(tag = "outcome", rename_all = "snake_case")]
@@ -331,8 +341,7 @@ pub fn plan_detour(
     if !start.iter().all(|v| v.is_finite()) || !finite(&target) || !obstacles.iter().all(finite) {
         return Err(WorldError::Input("detour: start, target and obstacles must be finite numbers".into()));
     }
-    let l = arm.lengths();
-    let radius = options.radius.unwrap_or((l[0] + l[1] + l[2]) / 21.0);
+    let radius = options.circle_radius(arm);
     if !(radius.is_finite() && radius > 0.0) {
         return Err(WorldError::Input(format!("detour: circle radius must be positive, got {radius} m")));
     }

@@ -80,6 +80,8 @@ pub struct PlanStats {
     pub checks: usize,
     /// Waypoints of the raw path, before shortcutting.
     pub raw_waypoints: usize,
+    /// Length of the raw path before shortcutting, [`path_length`] (rad / m).
+    pub raw_length: f64,
     /// Wall time of the whole call (IK, search, shortcutting), seconds.
     pub time_s: f64,
 }
@@ -179,6 +181,19 @@ pub enum PlanError {
     /// An IK error.
     #[error(transparent)]
     Ik(#[from] IkError),
+}
+
+/// Length of a joint-space polyline: the sum of the Euclidean norms of the steps between
+/// consecutive waypoints (radians and metres mixed, as the planner measures edges).
+///
+/// # Example
+/// ```
+/// use reach::world::planner::path_length;
+/// assert_eq!(path_length(&[vec![0.0, 0.0], vec![3.0, 4.0], vec![3.0, 5.0]]), 6.0);
+/// ```
+#[must_use]
+pub fn path_length(waypoints: &[Vec<f64>]) -> f64 {
+    waypoints.windows(2).map(|w| w[0].iter().zip(&w[1]).map(|(a, b)| (b - a) * (b - a)).sum::<f64>().sqrt()).sum()
 }
 
 /// Straight-line edge checker with the arm-size bound of the module docs.
@@ -513,6 +528,7 @@ pub fn plan(
     }
     let (mut path, goal_index) = raw.unwrap_or_default();
     let raw_waypoints = path.len();
+    let raw_length = path_length(&path);
 
     // Random shortcutting: replace the section between two waypoints by a straight edge.
     for _ in 0..options.shortcut_attempts {
@@ -534,6 +550,7 @@ pub fn plan(
             nodes: start_tree.len() + goal_tree.len(),
             checks: edges.checks,
             raw_waypoints,
+            raw_length,
             time_s: t0.elapsed().as_secs_f64(),
         },
     })
