@@ -141,7 +141,8 @@ pub enum Command {
             [{\"q_deg\", \"branch\", \"position_error_m\", \"orientation_error_rad\", \
             \"within_limits\", \"violations\", \"singular\"}], \"chosen\", with --choose \"ranking\": \
             {\"method\", \"criteria\": [{\"name\", \"unit\", \"direction\", \"weight\"}], \"score\", \
-            \"ranked\": [{\"solution\", \"rank\", \"score\", \"values\", \"normalised\", \"pareto_optimal\"}]}}. A status other than \
+            \"ranked\": [{\"solution\", \"rank\", \"score\", \"values\", \"normalised\", \"pareto_optimal\"}], vikor only \"vikor\": \
+            {\"dq\", \"acceptable_advantage\", \"acceptable_stability\", \"compromise\"}}}. A status other than \
             ok prints the report, one line on stderr, and exits with status 3.\n\n\
             --scan DEG (planar arm of seed 000, position target): the thesis's table of \
             configurations, alpha from alpha_min to 180 deg in steps of DEG, and the row with the \

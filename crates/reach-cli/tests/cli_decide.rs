@@ -155,6 +155,50 @@ fn different_criteria_choose_different_solutions_for_the_same_pose() {
 }
 
 #[test]
+fn vikor_reports_its_acceptance_conditions_and_the_compromise_set() {
+    // PUMA 560, the README pose, change/limits/manipulability: two solutions within limits, one
+    // best on change (Q = 0), the other on limits and manipulability (Q = 0.5). With m = 2,
+    // DQ = 1/(m − 1) = 1, so C1 (Q(a″) − Q(a′) ≥ DQ) fails and both form the compromise set;
+    // C2 holds (Q = 0 means best by S and by R).
+    let args = ["ik", "puma560", "--xyz", "0.5,-0.2,0.3", "--rpy", "180,0,0", "--choose", "vikor"];
+    let with = |extra: &[&'static str]| [args.as_slice(), extra].concat();
+    let r = json(&with(&["--criteria", "change,limits,manipulability", "--weights", "0.5,0.3,0.2", "--json"]));
+    let ranked = r["ranking"]["ranked"].as_array().unwrap();
+    assert_eq!(ranked.len(), 2, "{r}");
+    let q: Vec<f64> = ranked.iter().map(|e| e["score"].as_f64().unwrap()).collect();
+    assert!(q[0].abs() < 1e-12 && (q[1] - 0.5).abs() < 1e-12, "{q:?}");
+    let v = &r["ranking"]["vikor"];
+    assert_eq!(v["dq"].as_f64(), Some(1.0), "{v}");
+    assert_eq!((&v["acceptable_advantage"], &v["acceptable_stability"]), (&Value::Bool(false), &Value::Bool(true)));
+    let set: Vec<&Value> = ranked.iter().map(|e| &e["solution"]).collect();
+    assert_eq!(v["compromise"].as_array().unwrap().iter().collect::<Vec<_>>(), set, "{v}");
+    let text = ok(&with(&["--criteria", "change,limits,manipulability", "--weights", "0.5,0.3,0.2"]));
+    let numbers: Vec<String> = ranked.iter().map(|e| format!("#{}", e["solution"].as_u64().unwrap() + 1)).collect();
+    let line = format!(
+        "C1 advantage (ΔQ ≥ DQ = 1.000) fails, C2 stability (also best by S or R) holds → compromise set {}",
+        numbers.join(", ")
+    );
+    assert!(text.contains(&line), "{line}: {text}");
+    // The UR5 example of docs/choosing.md: #3 is accepted on its own.
+    let text = ok(&[
+        "ik",
+        "ur5",
+        "--matrix",
+        UR5_POSE,
+        "--from",
+        UR5_FROM,
+        "--choose",
+        "vikor",
+        "--criteria",
+        "change,limits,manipulability,sigma_min",
+    ]);
+    assert!(text.contains("holds, C2 stability (also best by S or R) holds → compromise #3"), "{text}");
+    // Other methods print no VIKOR line and no `vikor` object.
+    let topsis = json(&["ik", "puma560", "--xyz", "0.5,-0.2,0.3", "--rpy", "180,0,0", "--choose", "topsis", "--json"]);
+    assert!(topsis["ranking"].get("vikor").is_none());
+}
+
+#[test]
 fn choose_bad_input_exits_2() {
     let pose = ["ik", "ur5", "--matrix", UR5_POSE];
     let with = |extra: &[&'static str]| {
