@@ -462,6 +462,62 @@ fn plan_choose_ranks_the_configurations_of_each_interval() {
 // reach avoid --choose
 
 #[test]
+fn move_choose_flags_act_as_the_task_files_choose() {
+    // The motion of examples/choose_tracking.toml given on the command line.
+    let line = [
+        "move",
+        "ur5",
+        "--from-pose",
+        "0.4,-0.2,0.3,180,0,0",
+        "--to-pose",
+        "0.4,0.2,0.3,180,0,0",
+        "--space",
+        "tool",
+        "--duration",
+        "4",
+        "--dt",
+        "0.1",
+    ];
+    let with = |extra: &[&'static str]| [line.as_slice(), extra, &["--json"]].concat();
+    let choices = |r: &Value| -> Vec<(String, String)> {
+        r["intervals"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|i| (i["configuration"].as_str().unwrap().to_string(), i["decision"].as_str().unwrap().to_string()))
+            .collect()
+    };
+    let chosen = json(&with(&["--choose", "topsis", "--criteria", "limits,manipulability", "--weights", "0.5,0.5"]));
+    assert_eq!(choices(&chosen), vec![("shoulder=w config=−β wrist=e5".into(), "criterion".into())]);
+    // The same samples as `reach plan` on the task file with that [choose].
+    let plan = json(&["plan", "../../examples/choose_tracking.toml", "--json"]);
+    assert_eq!(chosen["samples"], plan["motions"][0]["samples"]);
+    // Without --choose the default configuration; with j2 (less joint motion) the other one.
+    let plain = json(&with(&[]));
+    assert_eq!(choices(&plain), vec![("shoulder=w config=+β wrist=e5".into(), "default".into())]);
+    let j2 = json(&with(&["--choose", "vikor", "--criteria", "j2"]));
+    assert_eq!(choices(&j2), vec![("shoulder=w config=+β wrist=e5".into(), "criterion".into())]);
+    let text = ok(&line.iter().copied().chain(["--choose", "topsis", "--criteria", "limits"]).collect::<Vec<_>>());
+    assert!(text.contains("(shoulder=w config=−β wrist=e5), chosen by the criteria"), "{text}");
+    // J1/J2 joint weights are --joint-weights: joint 1 alone moving 90° gives J1 = π/2.
+    let joint = ["move", "ur5", "--from", "0,0,0,0,0,0", "--to", "90,0,0,0,0,0"];
+    let r = json(&[joint.as_slice(), &["--joint-weights", "1,0,0,0,0,0", "--json"]].concat());
+    assert!((r["effort"]["j1"].as_f64().unwrap() - std::f64::consts::FRAC_PI_2).abs() < 1e-12, "{r}");
+    // Bad input: exit 2, naming the flag.
+    let bad = |extra: &[&'static str], needles: &[&str]| fails(&[line.as_slice(), extra].concat(), 2, needles);
+    bad(&["--choose", "nope", "--criteria", "limits"], &["--choose method", "nope"]);
+    bad(&["--choose", "topsis", "--criteria", "limits,bogus"], &["--choose", "bogus"]);
+    bad(&["--choose", "topsis", "--criteria", "limits", "--weights", "1,2"], &["--choose", "weights"]);
+    // Usage errors (clap, several lines): --choose needs --criteria, --weights needs --choose.
+    for (extra, needle) in [(&["--choose", "topsis"][..], "--criteria"), (&["--weights", "1"][..], "--choose")] {
+        let run = reach(&[line.as_slice(), extra].concat());
+        assert_eq!(run.code, 2, "{extra:?}: {}", run.stderr);
+        assert!(run.stdout.is_empty() && run.stderr.contains(needle), "{extra:?}: {}", run.stderr);
+    }
+    fails(&[joint.as_slice(), &["--choose", "topsis", "--criteria", "limits"]].concat(), 2, &["--space tool"]);
+}
+
+#[test]
 fn avoid_choose_plans_both_sides_and_says_when_only_one_is_feasible() {
     let args =
         ["avoid", "planar3", "--start", "60,-40,-30", "--to", "2.4,0.2", "--obstacle", "2.0,0.7", "--step", "0.1"];
