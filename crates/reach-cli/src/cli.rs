@@ -145,7 +145,8 @@ pub enum Command {
             [{\"q_deg\", \"branch\", \"position_error_m\", \"orientation_error_rad\", \
             \"within_limits\", \"violations\", \"singular\"}], \"chosen\", with --choose \"ranking\": \
             {\"method\", \"criteria\": [{\"name\", \"unit\", \"direction\", \"weight\"}], \"score\", \
-            \"ranked\": [{\"solution\", \"rank\", \"score\", \"values\", \"normalised\", \"pareto_optimal\"}]}}. A status other than \
+            \"ranked\": [{\"solution\", \"rank\", \"score\", \"values\", \"normalised\", \"pareto_optimal\"}], vikor only \"vikor\": \
+            {\"dq\", \"acceptable_advantage\", \"acceptable_stability\", \"compromise\"}}}. A status other than \
             ok prints the report, one line on stderr, and exits with status 3.\n\n\
             --scan DEG (planar arm of seed 000, position target): the thesis's table of \
             configurations, alpha from alpha_min to 180 deg in steps of DEG, and the row with the \
@@ -249,14 +250,19 @@ pub enum Command {
             q(t) = q0 + λ(τ)(q1 − q0); --space tool moves the tool point on a straight line and \
             turns it about one fixed axis, tracked through IK with branch continuity (intervals \
             between singular positions, events K1–K14). J1 = Σ wᵢ|Δqᵢ|, J2 = Σ wᵢ·(total \
-            variation of qᵢ). energy_j = ∫ Σ|τᵢ·q̇ᵢ| dt in joules (Newton–Euler torques) when \
-            the robot file gives link masses (puma560), else null with the reason in energy_note.\n\n\
+            variation of qᵢ), joint weights --joint-weights. energy_j = ∫ Σ|τᵢ·q̇ᵢ| dt in joules \
+            (Newton–Euler torques) when the robot file gives link masses (puma560), else null with \
+            the reason in energy_note.\n\n\
+            --choose METHOD --criteria C1,.. [--weights w1,..] (tool space): the configuration \
+            of each interval is ranked by motion criteria, as a task file's [choose] \
+            (docs/choosing.md); the default is kept when none satisfies them (K14).\n\n\
             Exit status 3 when the motion breaks a joint range or speed limit (the report is \
             printed, the reason goes to stderr); 2 for bad input.",
         after_help = "Examples:\n  \
             reach move spbu6 --from 0,0,0,0,0,0 --to 90,0,0,90,0,0 --duration 10 --dt 0.1\n  \
             reach move spbu6 --from 0,0,0,0,0,0 --to 90,0,0,90,0,0 --space tool --duration 10 --json\n  \
-            reach move ur5 --from 0,-90,90,0,90,0 --to 45,-60,60,0,90,0 --profile quintic --duration 2 --csv m.csv"
+            reach move ur5 --from 0,-90,90,0,90,0 --to 45,-60,60,0,90,0 --profile quintic --duration 2 --csv m.csv\n  \
+            reach move ur5 --from-pose 0.4,-0.2,0.3,180,0,0 --to-pose 0.4,0.2,0.3,180,0,0 --space tool --duration 4 --dt 0.1 --choose topsis --criteria limits,manipulability"
     )]
     Move(Box<crate::commands::move_cmd::MoveArgs>),
 

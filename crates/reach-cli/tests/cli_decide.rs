@@ -109,6 +109,14 @@ fn choose_ranks_the_solutions_within_limits_and_explains_the_ranking() {
     let vikor = run("vikor");
     assert_ne!(chosen_branch(&topsis), chosen_branch(&vikor), "TOPSIS and VIKOR agree: {vikor}");
     assert_eq!(vikor["ranking"]["ranked"][0]["solution"], vikor["chosen"]);
+    // docs/choosing.md: there VIKOR's choice (#3) passes both acceptance conditions on its own.
+    let acceptance = &vikor["ranking"]["vikor"];
+    assert_eq!(
+        (&acceptance["acceptable_advantage"], &acceptance["acceptable_stability"]),
+        (&Value::Bool(true), &Value::Bool(true))
+    );
+    assert_eq!(acceptance["compromise"], Value::Array(vec![vikor["chosen"].clone()]));
+    assert_eq!(vikor["chosen"], 2);
     // Pareto: the chosen one is non-dominated and has the least change among those.
     let pareto = run("pareto");
     let pr = pareto["ranking"]["ranked"].as_array().unwrap();
@@ -152,6 +160,36 @@ fn different_criteria_choose_different_solutions_for_the_same_pose() {
     let closest = json(&["ik", "puma560", "--xyz", "0.5,-0.2,0.3", "--rpy", "180,0,0", "--json"]);
     let q = |r: &Value| nums(&r["solutions"][r["chosen"].as_u64().unwrap() as usize]["q_deg"]);
     assert!(q(&change).iter().zip(q(&closest)).all(|(a, b)| (a - b).abs() < 1e-9));
+}
+
+#[test]
+fn vikor_reports_its_acceptance_conditions_and_the_compromise_set() {
+    // PUMA 560, the README pose, change/limits/manipulability: two solutions within limits, one
+    // best on change (Q = 0), the other on limits and manipulability (Q = 0.5). With m = 2,
+    // DQ = 1/(m − 1) = 1, so C1 (Q(a″) − Q(a′) ≥ DQ) fails and both form the compromise set;
+    // C2 holds (Q = 0 means best by S and by R).
+    let args = ["ik", "puma560", "--xyz", "0.5,-0.2,0.3", "--rpy", "180,0,0", "--choose", "vikor"];
+    let with = |extra: &[&'static str]| [args.as_slice(), extra].concat();
+    let r = json(&with(&["--criteria", "change,limits,manipulability", "--weights", "0.5,0.3,0.2", "--json"]));
+    let ranked = r["ranking"]["ranked"].as_array().unwrap();
+    assert_eq!(ranked.len(), 2, "{r}");
+    let q: Vec<f64> = ranked.iter().map(|e| e["score"].as_f64().unwrap()).collect();
+    assert!(q[0].abs() < 1e-12 && (q[1] - 0.5).abs() < 1e-12, "{q:?}");
+    let v = &r["ranking"]["vikor"];
+    assert_eq!(v["dq"].as_f64(), Some(1.0), "{v}");
+    assert_eq!((&v["acceptable_advantage"], &v["acceptable_stability"]), (&Value::Bool(false), &Value::Bool(true)));
+    let set: Vec<&Value> = ranked.iter().map(|e| &e["solution"]).collect();
+    assert_eq!(v["compromise"].as_array().unwrap().iter().collect::<Vec<_>>(), set, "{v}");
+    let text = ok(&with(&["--criteria", "change,limits,manipulability", "--weights", "0.5,0.3,0.2"]));
+    let numbers: Vec<String> = ranked.iter().map(|e| format!("#{}", e["solution"].as_u64().unwrap() + 1)).collect();
+    let line = format!(
+        "C1 advantage (ΔQ ≥ DQ = 1.000) fails, C2 stability (also best by S or R) holds → compromise set {}",
+        numbers.join(", ")
+    );
+    assert!(text.contains(&line), "{line}: {text}");
+    // Other methods print no VIKOR line and no `vikor` object.
+    let topsis = json(&["ik", "puma560", "--xyz", "0.5,-0.2,0.3", "--rpy", "180,0,0", "--choose", "topsis", "--json"]);
+    assert!(topsis["ranking"].get("vikor").is_none());
 }
 
 #[test]
@@ -416,6 +454,62 @@ fn plan_choose_ranks_the_configurations_of_each_interval() {
 
 // ---------------------------------------------------------------------------------------
 // reach avoid --choose
+
+#[test]
+fn move_choose_flags_act_as_the_task_files_choose() {
+    // The motion of examples/choose_tracking.toml given on the command line.
+    let line = [
+        "move",
+        "ur5",
+        "--from-pose",
+        "0.4,-0.2,0.3,180,0,0",
+        "--to-pose",
+        "0.4,0.2,0.3,180,0,0",
+        "--space",
+        "tool",
+        "--duration",
+        "4",
+        "--dt",
+        "0.1",
+    ];
+    let with = |extra: &[&'static str]| [line.as_slice(), extra, &["--json"]].concat();
+    let choices = |r: &Value| -> Vec<(String, String)> {
+        r["intervals"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|i| (i["configuration"].as_str().unwrap().to_string(), i["decision"].as_str().unwrap().to_string()))
+            .collect()
+    };
+    let chosen = json(&with(&["--choose", "topsis", "--criteria", "limits,manipulability", "--weights", "0.5,0.5"]));
+    assert_eq!(choices(&chosen), vec![("shoulder=w config=−β wrist=e5".into(), "criterion".into())]);
+    // The same samples as `reach plan` on the task file with that [choose].
+    let plan = json(&["plan", "../../examples/choose_tracking.toml", "--json"]);
+    assert_eq!(chosen["samples"], plan["motions"][0]["samples"]);
+    // Without --choose the default configuration; with j2 (less joint motion) the other one.
+    let plain = json(&with(&[]));
+    assert_eq!(choices(&plain), vec![("shoulder=w config=+β wrist=e5".into(), "default".into())]);
+    let j2 = json(&with(&["--choose", "vikor", "--criteria", "j2"]));
+    assert_eq!(choices(&j2), vec![("shoulder=w config=+β wrist=e5".into(), "criterion".into())]);
+    let text = ok(&line.iter().copied().chain(["--choose", "topsis", "--criteria", "limits"]).collect::<Vec<_>>());
+    assert!(text.contains("(shoulder=w config=−β wrist=e5), chosen by the criteria"), "{text}");
+    // J1/J2 joint weights are --joint-weights: joint 1 alone moving 90° gives J1 = π/2.
+    let joint = ["move", "ur5", "--from", "0,0,0,0,0,0", "--to", "90,0,0,0,0,0"];
+    let r = json(&[joint.as_slice(), &["--joint-weights", "1,0,0,0,0,0", "--json"]].concat());
+    assert!((r["effort"]["j1"].as_f64().unwrap() - std::f64::consts::FRAC_PI_2).abs() < 1e-12, "{r}");
+    // Bad input: exit 2, naming the flag.
+    let bad = |extra: &[&'static str], needles: &[&str]| fails(&[line.as_slice(), extra].concat(), 2, needles);
+    bad(&["--choose", "nope", "--criteria", "limits"], &["--choose method", "nope"]);
+    bad(&["--choose", "topsis", "--criteria", "limits,bogus"], &["--choose", "bogus"]);
+    bad(&["--choose", "topsis", "--criteria", "limits", "--weights", "1,2"], &["--choose", "weights"]);
+    // Usage errors (clap, several lines): --choose needs --criteria, --weights needs --choose.
+    for (extra, needle) in [(&["--choose", "topsis"][..], "--criteria"), (&["--weights", "1"][..], "--choose")] {
+        let run = reach(&[line.as_slice(), extra].concat());
+        assert_eq!(run.code, 2, "{extra:?}: {}", run.stderr);
+        assert!(run.stdout.is_empty() && run.stderr.contains(needle), "{extra:?}: {}", run.stderr);
+    }
+    fails(&[joint.as_slice(), &["--choose", "topsis", "--criteria", "limits"]].concat(), 2, &["--space tool"]);
+}
 
 #[test]
 fn avoid_choose_plans_both_sides_and_says_when_only_one_is_feasible() {

@@ -82,6 +82,58 @@ fn vikor_on_fighter_aircraft_by_hand() {
     // Q: A1 0.0306, A3 0.1818, A4 0.8612, A2 1.
     assert_eq!(r.order(), vec![0, 2, 3, 1]);
     assert!((r.candidate(0).unwrap().score - 0.030612).abs() < 1e-6);
+    // Acceptance (Opricovic & Tzeng 2004 §3 step 5), m = 4 so DQ = 1/3:
+    // C1 fails: Q(A3) − Q(A1) = 0.1818 − 0.0306 = 0.151 < 1/3;
+    // C2 holds: A1 is best by R (1/7 < 0.2 of A3), though not by S (A3's 0.4083 < A1's 0.4262).
+    // Compromise set: Q − Q(A1) < 1/3 → A1 and A3 (A4 is 0.831 behind).
+    let acceptance = r.vikor.as_ref().unwrap();
+    assert!((acceptance.dq - 1.0 / 3.0).abs() < 1e-15);
+    assert!(!acceptance.acceptable_advantage);
+    assert!(acceptance.acceptable_stability);
+    assert!(!acceptance.accepted());
+    assert_eq!(acceptance.compromise, vec![0, 2]);
+}
+
+/// Less-is-better rows whose columns already run from 0 to 1, so the regrets are the values.
+fn unit_regrets(rows: Vec<Vec<f64>>) -> DecisionMatrix {
+    let criteria = (0..rows[0].len()).map(|j| Criterion::new(format!("c{j}"), "1", Less)).collect();
+    DecisionMatrix::new(criteria, rows).unwrap()
+}
+
+#[test]
+fn vikor_acceptable_advantage_without_stability_gives_the_first_two() {
+    // Hand-computed from the definitions (Opricovic & Tzeng 2004, v = 0.5), equal weights 1/3,
+    // candidates X = (0, 0, 1), Y = (0.9, 0.9, 0.9), Z = (0.91, 0.1, 0), W = (1, 1, 1):
+    //   S: X 1/3, Y 0.9, Z 1.01/3, W 1;   R: X 1/3, Y 0.3, Z 0.91/3, W 1/3.
+    //   (S − 1/3)/(2/3): X 0, Y 0.85, Z 0.005, W 1;   (R − 0.3)/(1/30): X 1, Y 0, Z 0.1, W 1.
+    //   Q: X 0.5, Y 0.425, Z 0.0525, W 1 → order Z, Y, X, W.
+    // C1 holds: 0.425 − 0.0525 = 0.3725 ≥ DQ = 1/3. C2 fails: Z is neither best by S (X) nor
+    // by R (Y). Compromise set: Z and Y.
+    let m = unit_regrets(vec![vec![0.0, 0.0, 1.0], vec![0.9, 0.9, 0.9], vec![0.91, 0.1, 0.0], vec![1.0, 1.0, 1.0]]);
+    let r = rank(&m, &[1.0, 1.0, 1.0], Method::Vikor).unwrap();
+    assert_eq!(r.order(), vec![2, 1, 0, 3]);
+    for (i, q) in [0.5, 0.425, 0.0525, 1.0].into_iter().enumerate() {
+        assert!((r.candidate(i).unwrap().score - q).abs() < 1e-12, "Q of {i}");
+    }
+    let acceptance = r.vikor.as_ref().unwrap();
+    assert!(acceptance.acceptable_advantage);
+    assert!(!acceptance.acceptable_stability);
+    assert_eq!(acceptance.compromise, vec![2, 1]);
+}
+
+#[test]
+fn vikor_accepts_a_candidate_best_on_everything() {
+    // A0 = (0, 0) is best on both criteria: S = R = Q = 0; A1 = (1, 0.5) and A2 = (0.5, 1) have
+    // S = 0.75, R = 0.5, Q = 1. C1: 1 − 0 ≥ DQ = 1/2; C2: A0 best by S and R. Compromise: A0.
+    let m = unit_regrets(vec![vec![0.0, 0.0], vec![1.0, 0.5], vec![0.5, 1.0]]);
+    let r = rank(&m, &[1.0, 1.0], Method::Vikor).unwrap();
+    let acceptance = r.vikor.as_ref().unwrap();
+    assert!(acceptance.accepted());
+    assert_eq!((acceptance.dq, acceptance.compromise.clone()), (0.5, vec![0]));
+    // Only VIKOR reports the acceptance test.
+    for method in [Method::WeightedSum, Method::Topsis] {
+        assert!(rank(&m, &[1.0, 1.0], method).unwrap().vikor.is_none());
+    }
 }
 
 #[test]

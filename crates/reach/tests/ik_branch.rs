@@ -19,35 +19,17 @@ mod common;
 
 use std::f64::consts::{FRAC_PI_2, PI};
 
-use common::Rng;
+use common::{Rng, seed002_reference};
 use nalgebra::{Isometry3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use reach::Robot;
 use reach::angle::{nearest_equivalent, wrap};
 use reach::ik::spherical_wrist::SphericalWrist;
 use reach::ik::{Branch, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, SolverKind};
-use reach::model::{Convention, Joint, RobotSpec, presets};
+use reach::model::presets;
 use reach::motion::PathSample;
 use reach::motion::tracking::track_configuration;
 
 const CASES: usize = 2000;
-
-/// Notes 002 §2.3: the paper's PUMA-type structure without the lateral offset (d2 = d3 = 0).
-fn seed002_reference() -> Robot {
-    let r = |a: f64, alpha_deg: f64, d: f64| Joint::revolute(a, alpha_deg.to_radians(), d, 0.0);
-    Robot::new(RobotSpec::new(
-        "seed002-reference",
-        Convention::Dh,
-        vec![
-            r(0.0, 90.0, 0.3),
-            r(0.4318, 0.0, 0.0),
-            r(0.0203, -90.0, 0.0),
-            r(0.0, 90.0, 0.4318),
-            r(0.0, -90.0, 0.0),
-            r(0.0, 0.0, 0.05625),
-        ],
-    ))
-    .unwrap()
-}
 
 /// The robots, each with its solver kind and every label its solver can give.
 fn cases() -> Vec<(Robot, SolverKind, Vec<Branch>)> {

@@ -8,25 +8,16 @@ mod common;
 
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI, TAU};
 
-use nalgebra::{Isometry3, Matrix3, Matrix4, Rotation3, Translation3, UnitQuaternion, Vector3};
+use common::{SPBU6_T0 as T0, SPBU6_T1 as T1, find_solution as find, pose_from_rows as pose};
+use nalgebra::{Isometry3, Matrix3, Matrix4, Rotation3, UnitQuaternion, Vector3};
 use proptest::prelude::*;
 use reach::Robot;
 use reach::ik::two_link_wrist::TwoLinkWrist;
-use reach::ik::{IkFailure, IkOptions, IkSolution, IkSolutions, IkSolver, IkTarget, SingularityKind, SolverKind};
+use reach::ik::{IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, SolverKind};
 use reach::model::presets;
 
 fn spbu6() -> Robot {
     presets::get("spbu6").unwrap()
-}
-
-/// A pose from the rows `[R | p]` of a printed homogeneous matrix (exactly orthonormal ones).
-fn pose(rows: [[f64; 4]; 3]) -> Isometry3<f64> {
-    let r = Matrix3::from_fn(|i, j| rows[i][j]);
-    let rot = Rotation3::from_matrix_unchecked(r);
-    Isometry3::from_parts(
-        Translation3::new(rows[0][3], rows[1][3], rows[2][3]),
-        UnitQuaternion::from_rotation_matrix(&rot),
-    )
 }
 
 fn solve_with(robot: &Robot, target: &IkTarget, options: &IkOptions) -> IkSolutions {
@@ -37,24 +28,10 @@ fn solve(robot: &Robot, target: Isometry3<f64>) -> IkSolutions {
     solve_with(robot, &IkTarget::Pose(target), &IkOptions::default())
 }
 
-/// The solution equal to `q` up to whole turns, if any.
-fn find<'a>(all: &'a IkSolutions, q: &[f64], tol: f64) -> Option<&'a IkSolution> {
-    all.solutions.iter().find(|s| s.q.iter().zip(q).all(|(a, b)| reach::angle::wrap(a - b).abs() < tol))
-}
-
 /// Largest entry of |T_independent(q) − T_target|.
 fn pose_gap(robot: &Robot, q: &[f64], target: &Isometry3<f64>) -> f64 {
     common::max_abs_diff(&common::dh_product(robot, q), &target.to_homogeneous())
 }
-
-#[rustfmt::skip]
-const T0: [[f64; 4]; 3] = [[0.0, 0.0, 1.0, 3.0],
-                           [0.0, -1.0, 0.0, 0.0],
-                           [1.0, 0.0, 0.0, 5.0]];
-#[rustfmt::skip]
-const T1: [[f64; 4]; 3] = [[1.0, 0.0, 0.0, 0.0],
-                           [0.0, 0.0, 1.0, 3.0],
-                           [0.0, -1.0, 0.0, 5.0]];
 
 #[test]
 fn detect_picks_this_solver_for_spbu6() {

@@ -41,9 +41,12 @@
 // The notes' tables print π/4, π/2 and π rounded to 4 decimals; they are data, not constants.
 #![allow(clippy::approx_constant)]
 
+mod common;
+
 use std::f64::consts::{FRAC_PI_2, PI};
 
-use nalgebra::{Isometry3, Matrix3, Matrix4, Rotation3, Translation3, UnitQuaternion, Vector3};
+use common::{SPBU6_T0 as T0, SPBU6_T1 as T1, pose_from_rows as pose};
+use nalgebra::{Isometry3, Matrix3, Matrix4, Vector3};
 use reach::Robot;
 use reach::angle::wrap;
 use reach::effort::{Differences, SEED001_WEIGHTS, j1, j1_of_delta, j2};
@@ -56,24 +59,6 @@ use reach::motion::{JointMotion, Profile, ToolMotion, ToolPath};
 fn spbu6() -> Robot {
     presets::get("spbu6").unwrap()
 }
-
-/// A pose from the rows of a printed homogeneous matrix.
-fn pose(rows: [[f64; 4]; 3]) -> Isometry3<f64> {
-    let r = Matrix3::from_fn(|i, j| rows[i][j]);
-    Isometry3::from_parts(
-        Translation3::new(rows[0][3], rows[1][3], rows[2][3]),
-        UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(r)),
-    )
-}
-
-#[rustfmt::skip]
-const T0: [[f64; 4]; 3] = [[0.0, 0.0, 1.0, 3.0],
-                           [0.0, -1.0, 0.0, 0.0],
-                           [1.0, 0.0, 0.0, 5.0]];
-#[rustfmt::skip]
-const T1: [[f64; 4]; 3] = [[1.0, 0.0, 0.0, 0.0],
-                           [0.0, 0.0, 1.0, 3.0],
-                           [0.0, -1.0, 0.0, 5.0]];
 
 /// λ(t) written as the thesis's code does for t0 = 0 (notes §4.3 step 2.1).
 fn lambda(t: f64) -> f64 {

@@ -11,39 +11,13 @@ mod common;
 use std::collections::HashSet;
 use std::f64::consts::{FRAC_PI_2, PI};
 
-use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
+use common::{find_solution as find, pose_from_rows as pose, seed002_reference as reference};
+use nalgebra::{Isometry3, Vector3};
 use proptest::prelude::*;
 use reach::Robot;
 use reach::ik::spherical_wrist::SphericalWrist;
 use reach::ik::{IkFailure, IkOptions, IkSolution, IkSolutions, IkSolver, IkTarget, SingularityKind, SolverKind};
 use reach::model::{Convention, Joint, RobotSpec, presets};
-
-/// Notes 002 §2.3: d1 = 0.3, α1 = +90°; a2 = 0.4318; a3 = 0.0203, α3 = −90°; d4 = 0.4318,
-/// α4 = +90°; α5 = −90°; d6 = 0.05625 (metres).
-fn reference() -> Robot {
-    let r = |a: f64, alpha_deg: f64, d: f64| Joint::revolute(a, alpha_deg.to_radians(), d, 0.0);
-    Robot::new(RobotSpec::new(
-        "seed002-reference",
-        Convention::Dh,
-        vec![
-            r(0.0, 90.0, 0.3),
-            r(0.4318, 0.0, 0.0),
-            r(0.0203, -90.0, 0.0),
-            r(0.0, 90.0, 0.4318),
-            r(0.0, -90.0, 0.0),
-            r(0.0, 0.0, 0.05625),
-        ],
-    ))
-    .unwrap()
-}
-
-fn pose(rows: [[f64; 4]; 3]) -> Isometry3<f64> {
-    let rot = Rotation3::from_matrix_unchecked(Matrix3::from_fn(|i, j| rows[i][j]));
-    Isometry3::from_parts(
-        Translation3::new(rows[0][3], rows[1][3], rows[2][3]),
-        UnitQuaternion::from_rotation_matrix(&rot),
-    )
-}
 
 fn solve_with(robot: &Robot, target: &IkTarget, options: &IkOptions) -> IkSolutions {
     SphericalWrist::from_robot(robot).unwrap().solve(robot, target, options).unwrap()
@@ -51,10 +25,6 @@ fn solve_with(robot: &Robot, target: &IkTarget, options: &IkOptions) -> IkSoluti
 
 fn solve(robot: &Robot, target: Isometry3<f64>) -> IkSolutions {
     solve_with(robot, &IkTarget::Pose(target), &IkOptions::default())
-}
-
-fn find<'a>(all: &'a IkSolutions, q: &[f64], tol: f64) -> Option<&'a IkSolution> {
-    all.solutions.iter().find(|s| s.q.iter().zip(q).all(|(a, b)| reach::angle::wrap(a - b).abs() < tol))
 }
 
 fn find_deg(all: &IkSolutions, q_deg: [f64; 6]) -> &IkSolution {

@@ -12,17 +12,17 @@
 //! n = (M − P)/|MP| (tool x axis), e6 = (y1 − y2, x2 − x1, 0)/|M1P1| (tool y axis),
 //! l = n × e6 (tool z axis; the printed `l_x = n_z e_6y` lacks its minus, notes 003 §6.4).
 
+mod common;
+
 use std::f64::consts::{PI, TAU};
 
+use common::{WELD_M_MM as M_MM, WELD_P_MM as P_MM};
 use nalgebra::{Isometry3, Matrix3, Matrix4, Rotation3, Translation3, UnitQuaternion, Vector3};
 use proptest::prelude::*;
 use reach::Robot;
 use reach::ik::parallel_axes::{ParallelAxes, Shoulder, Wrist};
 use reach::ik::{IkFailure, IkOptions, IkSolution, IkSolutions, IkSolver, IkTarget, SingularityKind, SolverKind};
 use reach::model::{Convention, Joint, JointGeometry, RobotSpec, presets};
-
-const P_MM: [f64; 3] = [50.0, 740.0, 70.0];
-const M_MM: [f64; 3] = [500.0, 200.0, 700.0];
 
 fn welder() -> Robot {
     presets::get("welder6r").unwrap()
@@ -38,22 +38,9 @@ fn welder_table() -> Robot {
     Robot::new(spec).unwrap()
 }
 
-/// The weld's constant orientation: columns n, e6, l (notes 003 §5.1, with the corrected sign).
-fn weld_rotation() -> UnitQuaternion<f64> {
-    let (x1, y1, z1) = (P_MM[0], P_MM[1], P_MM[2]);
-    let (x2, y2, z2) = (M_MM[0], M_MM[1], M_MM[2]);
-    let n = Vector3::new(x2 - x1, y2 - y1, z2 - z1).normalize();
-    let e6 = Vector3::new(y1 - y2, x2 - x1, 0.0).normalize();
-    let l = Vector3::new(-n.z * e6.y, n.z * e6.x, n.x * e6.y - n.y * e6.x);
-    UnitQuaternion::from_matrix(&Matrix3::from_columns(&[n, e6, l]))
-}
-
 /// Tool pose at arc length `s_mm` from P along the weld.
 fn weld_pose(s_mm: f64) -> Isometry3<f64> {
-    let p = Vector3::from(P_MM);
-    let m = Vector3::from(M_MM);
-    let x = (p + (m - p).normalize() * s_mm) / 1000.0;
-    Isometry3::from_parts(Translation3::from(x), weld_rotation())
+    common::weld_pose(s_mm / 1000.0)
 }
 
 fn solve(robot: &Robot, pose: Isometry3<f64>, options: &IkOptions) -> IkSolutions {

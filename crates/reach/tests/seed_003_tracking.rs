@@ -12,10 +12,12 @@
 //! reconstruction [C], which reproduces the paper's qualitative claims: "+β" feasible, "−β"
 //! infeasible because θ4 leaves its range near the end, and no θ̇4 spike at the jump.
 
+mod common;
+
 use std::f64::consts::TAU;
 use std::sync::OnceLock;
 
-use nalgebra::{Isometry3, Matrix3, Translation3, UnitQuaternion, Vector3};
+use common::weld_pose;
 use reach::Robot;
 use reach::ik::parallel_axes::ParallelAxes;
 use reach::ik::{Branch, SolverKind};
@@ -26,8 +28,6 @@ use reach::motion::tracking::{
     track, track_configuration,
 };
 
-const P_MM: [f64; 3] = [50.0, 740.0, 70.0];
-const M_MM: [f64; 3] = [500.0, 200.0, 700.0];
 /// |MP| = √891000 mm (notes 003 §5.2).
 const LENGTH_MM: f64 = 943.927_962_802_4;
 /// rad/s → rev/min.
@@ -35,23 +35,6 @@ const RPM: f64 = 60.0 / TAU;
 
 fn welder() -> Robot {
     presets::get("welder6r").unwrap()
-}
-
-/// The weld's constant orientation: columns n, e6, l (notes 003 §5.1, corrected sign of l_x).
-fn weld_rotation() -> UnitQuaternion<f64> {
-    let (x1, y1, z1) = (P_MM[0], P_MM[1], P_MM[2]);
-    let (x2, y2, z2) = (M_MM[0], M_MM[1], M_MM[2]);
-    let n = Vector3::new(x2 - x1, y2 - y1, z2 - z1).normalize();
-    let e6 = Vector3::new(y1 - y2, x2 - x1, 0.0).normalize();
-    let l = Vector3::new(-n.z * e6.y, n.z * e6.x, n.x * e6.y - n.y * e6.x);
-    UnitQuaternion::from_matrix(&Matrix3::from_columns(&[n, e6, l]))
-}
-
-/// Tool pose at arc length `s` (metres) from P.
-fn weld_pose(s: f64) -> Isometry3<f64> {
-    let p = Vector3::from(P_MM) / 1000.0;
-    let m = Vector3::from(M_MM) / 1000.0;
-    Isometry3::from_parts(Translation3::from(p + (m - p).normalize() * s), weld_rotation())
 }
 
 /// Samples at the given arc lengths (mm) at 1 mm/s: t [s] = s [mm].

@@ -9,6 +9,9 @@
 //! a = (0, 400, 300, 0, 0, 50) mm, d = (0, 0, 0, 0, 200, 250) mm — Table 1 with α3 = 180°
 //! instead of the printed 0° — which is what `robots/welder6r.toml` holds.
 
+mod common;
+
+use common::{WELD_M_MM as M_MM, WELD_P_MM as P_MM};
 use nalgebra::Vector3;
 use reach::Robot;
 use reach::model::presets;
@@ -20,8 +23,6 @@ const POSITION_TOLERANCE_M: f64 = 1e-5; // 0.01 mm
 const AXIS_TOLERANCE: f64 = 1e-5;
 
 /// Start point P = (50, 740, 70) mm and end point M = (500, 200, 700) mm (notes 003 §5.1).
-const P_MM: [f64; 3] = [50.0, 740.0, 70.0];
-const M_MM: [f64; 3] = [500.0, 200.0, 700.0];
 /// n = (M − P)/|MP| and l (notes 003 §5.2); the orientation is constant along the path.
 const N: [f64; 3] = [0.476731, -0.572078, 0.667424];
 const L: [f64; 3] = [-0.427274, 0.512729, 0.744678];

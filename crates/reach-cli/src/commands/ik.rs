@@ -16,7 +16,7 @@ use std::io::Write;
 use clap::{ArgGroup, Args};
 use nalgebra::{Isometry3, Matrix3, Matrix4, Point3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use reach::Robot;
-use reach::decide::{Criterion, DecideError, IkCriterion, Method, ik_matrix, rank};
+use reach::decide::{Criterion, DecideError, IkCriterion, Method, VikorAcceptance, ik_matrix, rank};
 use reach::ik::planar::{PaperScan, PlanarRedundant, ScanRow};
 use reach::ik::{IkError, IkFailure, IkOptions, IkSolution, IkSolutions, IkTarget, SolverKind};
 use reach::model::JointKind;
@@ -147,6 +147,9 @@ pub struct RankingJson {
     pub score: String,
     /// The candidates, best first.
     pub ranked: Vec<RankedJson>,
+    /// VIKOR only: acceptance conditions C1/C2 and the compromise set (indices into `solutions`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub vikor: Option<VikorAcceptance>,
 }
 
 /// One criterion of a ranking.
@@ -899,6 +902,10 @@ impl ChoiceSpec {
                             pareto_optimal: e.pareto_optimal,
                         })
                         .collect(),
+                    vikor: ranking.vikor.map(|v| VikorAcceptance {
+                        compromise: v.compromise.iter().map(|&i| candidates[i]).collect(),
+                        ..v
+                    }),
                 })
             }
             ChoiceMethod::Pareto => {
@@ -930,6 +937,7 @@ impl ChoiceSpec {
                             pareto_optimal: front.contains(&i),
                         })
                         .collect(),
+                    vikor: None,
                 })
             }
         }
@@ -984,5 +992,18 @@ fn write_ranking(out: &mut dyn Write, all: &IkSolutions, r: &RankingJson) -> Res
     }
     t.write(out, "  ")?;
     writeln!(out, "  score: {}; ↑ more is better, ↓ less is better", r.score)?;
+    if let Some(v) = &r.vikor {
+        let yes = |b: bool| if b { "holds" } else { "fails" };
+        let set: Vec<String> = v.compromise.iter().map(|i| format!("#{}", i + 1)).collect();
+        let verdict = if v.accepted() { "compromise" } else { "compromise set" };
+        writeln!(
+            out,
+            "  VIKOR: C1 advantage (ΔQ ≥ DQ = {}) {}, C2 stability (also best by S or R) {} → {verdict} {}",
+            fixed(v.dq, 3),
+            yes(v.acceptable_advantage),
+            yes(v.acceptable_stability),
+            set.join(", ")
+        )?;
+    }
     Ok(())
 }

@@ -104,8 +104,22 @@ pub struct MoveArgs {
     #[arg(long, value_name = "S", allow_hyphen_values = true)]
     pub dt: Option<String>,
 
-    /// Weights w1,..,wn of J1/J2 (default: seed 001's for 6 joints, else all 1).
+    /// Joint weights w1,..,wn of J1/J2 (default: seed 001's for 6 joints, else all 1).
     #[arg(long, value_name = "W1,..,WN", allow_hyphen_values = true)]
+    pub joint_weights: Option<String>,
+
+    /// Tool space: choose the configuration of each path interval by motion criteria, as a
+    /// task file's `[choose]` (docs/choosing.md): topsis, vikor or weighted-sum.
+    #[arg(long, value_name = "METHOD", requires = "criteria")]
+    pub choose: Option<String>,
+
+    /// With --choose: the motion criteria, comma-separated (docs/choosing.md).
+    #[arg(long, value_name = "C1,..,CK", requires = "choose")]
+    pub criteria: Option<String>,
+
+    /// With --choose: one weight per criterion, >= 0, not all 0 (default equal). Joint weights
+    /// of J1/J2 are --joint-weights.
+    #[arg(long, value_name = "W1,..,WK", allow_hyphen_values = true, requires = "choose")]
     pub weights: Option<String>,
 
     /// Also write the samples as CSV to FILE.
@@ -174,6 +188,10 @@ pub struct PlanChoice {
     /// choice; none satisfying it realises the default (K14).
     #[serde(default)]
     pub require: std::collections::BTreeMap<String, f64>,
+    /// Given by `reach move --choose/--criteria/--weights` rather than a task file (error
+    /// messages then name the flags).
+    #[serde(skip)]
+    pub from_flags: bool,
 }
 
 impl PlanChoice {
@@ -183,11 +201,11 @@ impl PlanChoice {
         robot: &'r Robot,
         joint_weights: Option<&[f64]>,
     ) -> Result<reach::decide::TrackChooser<'r>, CliError> {
-        let bad =
-            |e: reach::decide::DecideError| CliError::bad_input(format!("[choose]: {}", one_line(&e.to_string())));
+        let label = if self.from_flags { "--choose" } else { "[choose]" };
+        let bad = |e: reach::decide::DecideError| CliError::bad_input(format!("{label}: {}", one_line(&e.to_string())));
         let method = reach::decide::Method::parse(&self.method).ok_or_else(|| {
             CliError::bad_input(format!(
-                "[choose] method: unknown `{}` (known: topsis, vikor, weighted-sum)",
+                "{label} method: unknown `{}` (known: topsis, vikor, weighted-sum)",
                 self.method
             ))
         })?;
@@ -355,8 +373,22 @@ impl MoveArgs {
             duration: self.duration.as_deref().map(|t| parse_number("--duration", t)).transpose()?,
             speed: self.speed.as_deref().map(|t| parse_number("--speed", t)).transpose()?,
             dt: self.dt.as_deref().map(|t| parse_number("--dt", t)).transpose()?,
-            weights: self.weights.as_deref().map(|t| parse_list("--weights", t)).transpose()?,
-            choose: None,
+            weights: self.joint_weights.as_deref().map(|t| parse_list("--joint-weights", t)).transpose()?,
+            choose: match (&self.choose, self.space) {
+                (None, _) => None,
+                (Some(_), Space::Joint) => {
+                    return Err(CliError::bad_input(
+                        "--choose: a joint-space move has no configuration to choose; use --space tool",
+                    ));
+                }
+                (Some(method), Space::Tool) => Some(PlanChoice {
+                    method: method.clone(),
+                    criteria: self.criteria.iter().flat_map(|c| c.split(',')).map(|c| c.trim().to_string()).collect(),
+                    weights: self.weights.as_deref().map(|t| parse_list("--weights", t)).transpose()?,
+                    require: Default::default(),
+                    from_flags: true,
+                }),
+            },
         })
     }
 }
@@ -710,8 +742,8 @@ pub fn write_report(out: &mut dyn Write, m: &MoveJson, every: usize) -> Result<(
             if iv.feasible { "feasible" } else { "NOT feasible" },
             iv.configuration.as_deref().unwrap_or("no configuration"),
             match iv.decision {
-                Some(reach::motion::tracking::Decision::Criterion) => ", chosen by [choose]",
-                Some(reach::motion::tracking::Decision::CriterionRejected) => ", [choose] not met: default kept (K14)",
+                Some(reach::motion::tracking::Decision::Criterion) => ", chosen by the criteria",
+                Some(reach::motion::tracking::Decision::CriterionRejected) => ", criteria not met: default kept (K14)",
                 _ => "",
             }
         )?;

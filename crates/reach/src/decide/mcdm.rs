@@ -1,7 +1,8 @@
 //! Multi-criteria decision methods on a decision matrix (candidates × criteria).
 //!
 //! Methods: weighted sum over min–max normalised scores, TOPSIS (vector normalisation,
-//! closeness coefficient), VIKOR (S, R, Q with `v = 0.5`) and a Pareto (non-dominated) filter.
+//! closeness coefficient), VIKOR (S, R, Q with `v = 0.5`, and the acceptance conditions C1/C2 with
+//! the compromise set, [`VikorAcceptance`]) and a Pareto (non-dominated) filter.
 //!
 //! Conventions shared by every method:
 //! - weights are non-negative, finite, not all zero, one per criterion; they are normalised
@@ -255,6 +256,60 @@ pub struct Ranking {
     pub weights: Vec<f64>,
     /// Candidates in rank order (best first).
     pub ranked: Vec<RankedCandidate>,
+    /// VIKOR only: whether the Q-best candidate is an acceptable compromise (conditions C1
+    /// and C2), and the compromise set when it is not.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub vikor: Option<VikorAcceptance>,
+}
+
+/// VIKOR's acceptance test of the Q-best candidate a′ (Opricovic & Tzeng 2004, EJOR
+/// 156:445–455, §3 step 5), with a″ the second by Q and m the number of candidates:
+///
+/// * C1, acceptable advantage: `Q(a″) − Q(a′) ≥ DQ`, `DQ = 1/(m − 1)`;
+/// * C2, acceptable stability: a′ is also best (possibly tied) by S or by R.
+///
+/// When both hold, a′ alone is the compromise solution. Otherwise the compromise set is
+/// a′, a″ when only C2 fails, and every candidate with `Q − Q(a′) < DQ` when C1 fails.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct VikorAcceptance {
+    /// `DQ = 1/(m − 1)` (0 with a single candidate, where both conditions hold trivially).
+    pub dq: f64,
+    /// C1: `Q(a″) − Q(a′) ≥ DQ`.
+    pub acceptable_advantage: bool,
+    /// C2: a′ is also best by S or by R.
+    pub acceptable_stability: bool,
+    /// The compromise set, candidate indices in Q order (best first); `[a′]` when C1 and C2 hold.
+    pub compromise: Vec<usize>,
+}
+
+impl VikorAcceptance {
+    /// C1, C2 and the compromise set of `ranked` (in Q order, best first, with S and R set).
+    fn of(ranked: &[RankedCandidate]) -> Self {
+        let m = ranked.len();
+        let dq = if m > 1 { 1.0 / (m - 1) as f64 } else { 0.0 };
+        let (Some(first), second) = (ranked.first(), ranked.get(1)) else {
+            return VikorAcceptance { dq, acceptable_advantage: true, acceptable_stability: true, compromise: vec![] };
+        };
+        let acceptable_advantage = second.is_none_or(|a2| a2.score - first.score >= dq);
+        let best = |f: fn(&RankedCandidate) -> Option<f64>| ranked.iter().filter_map(f).fold(f64::INFINITY, f64::min);
+        let (s_best, r_best) = (best(|c| c.vikor_s), best(|c| c.vikor_r));
+        let acceptable_stability =
+            first.vikor_s.is_some_and(|s| s <= s_best) || first.vikor_r.is_some_and(|r| r <= r_best);
+        let compromise = if !acceptable_advantage {
+            ranked.iter().take_while(|c| c.score - first.score < dq).map(|c| c.index).collect()
+        } else if !acceptable_stability {
+            ranked.iter().take(2).map(|c| c.index).collect()
+        } else {
+            vec![first.index]
+        };
+        VikorAcceptance { dq, acceptable_advantage, acceptable_stability, compromise }
+    }
+
+    /// Whether the Q-best candidate is the compromise solution on its own (C1 and C2 hold).
+    #[must_use]
+    pub fn accepted(&self) -> bool {
+        self.acceptable_advantage && self.acceptable_stability
+    }
 }
 
 impl Ranking {
@@ -375,7 +430,8 @@ pub fn rank(matrix: &DecisionMatrix, weights: &[f64], method: Method) -> Result<
     for (k, e) in entries.iter_mut().enumerate() {
         e.rank = k + 1;
     }
-    Ok(Ranking { method, criteria: matrix.criteria.clone(), weights: w, ranked: entries })
+    let vikor = (method == Method::Vikor).then(|| VikorAcceptance::of(&entries));
+    Ok(Ranking { method, criteria: matrix.criteria.clone(), weights: w, ranked: entries, vikor })
 }
 
 fn min_max(v: &[f64]) -> (f64, f64) {

@@ -19,7 +19,7 @@ pub mod motion_criteria;
 pub mod sequence;
 
 pub use ik_criteria::{IkCriterion, choose, ik_matrix};
-pub use mcdm::{Criterion, DecisionMatrix, Direction, Method, RankedCandidate, Ranking, rank};
+pub use mcdm::{Criterion, DecisionMatrix, Direction, Method, RankedCandidate, Ranking, VikorAcceptance, rank};
 pub use motion_criteria::{MotionCriterion, SampledMotion, TrackChooser, choose_motion, motion_matrix};
 
 use crate::kinematics::KinematicsError;

@@ -7,6 +7,7 @@ use nalgebra::{Isometry3, Point3, Rotation3, Vector3};
 use serde::Serialize;
 
 use crate::angle::fit_into_limits;
+use crate::effort::Differences;
 use crate::model::{JointKind, Robot};
 use crate::tolerance::{IK_DUPLICATE, IK_ORIENTATION, IK_POSITION, LIMIT_SLACK};
 
@@ -223,6 +224,10 @@ pub struct IkSolutions {
     pub solutions: Vec<IkSolution>,
     /// Set when no solution is within limits.
     pub failure: Option<IkFailure>,
+    /// How joint changes are measured by [`IkSolutions::closest_to`]: the robot's own rule
+    /// ([`Differences::for_robot`]: revolute wrapped, prismatic literal).
+    #[serde(skip)]
+    differences: Differences,
 }
 
 impl IkSolutions {
@@ -238,7 +243,9 @@ impl IkSolutions {
     }
 
     /// The feasible solution with the smallest weighted joint change from `from`
-    /// (`Σ wᵢ |qᵢ − fromᵢ|`, angle differences wrapped; seed 000's and 001's rule).
+    /// (`Σ wᵢ |qᵢ − fromᵢ|`, radians and metres; seed 000's and 001's rule). Revolute
+    /// differences are wrapped into (−π, π], prismatic ones taken literally
+    /// ([`Differences::for_robot`] of the solved robot).
     /// `weights` shorter than the joint vector count as 1 for the missing joints.
     #[must_use]
     pub fn closest_to(&self, from: &[f64], weights: &[f64]) -> Option<&IkSolution> {
@@ -246,7 +253,7 @@ impl IkSolutions {
             s.q.iter()
                 .zip(from)
                 .enumerate()
-                .map(|(i, (a, b))| weights.get(i).copied().unwrap_or(1.0) * crate::angle::wrap(a - b).abs())
+                .map(|(i, (a, b))| weights.get(i).copied().unwrap_or(1.0) * self.differences.diff(i, *b, *a).abs())
                 .sum()
         };
         self.feasible().min_by(|a, b| cost(a).total_cmp(&cost(b)))
@@ -259,7 +266,7 @@ impl IkSolutions {
     /// [`IkFailure::BranchAbsent`]. This defines [`IkSolver::solve_branch`](super::IkSolver::solve_branch).
     #[must_use]
     pub fn restricted_to(self, branch: &Branch) -> IkSolutions {
-        let IkSolutions { solver, solutions, failure } = self;
+        let IkSolutions { solver, solutions, failure, differences } = self;
         let any = !solutions.is_empty();
         let solutions: Vec<IkSolution> = solutions.into_iter().filter(|s| s.branch == *branch).collect();
         let failure = match limits_failure(&solutions) {
@@ -268,7 +275,7 @@ impl IkSolutions {
             None if solutions.is_empty() => failure,
             None => None,
         };
-        IkSolutions { solver, solutions, failure }
+        IkSolutions { solver, solutions, failure, differences }
     }
 }
 
@@ -317,6 +324,15 @@ fn same_angle(a: f64, b: f64) -> bool {
     // |d| < IK_DUPLICATE (< π) wraps to itself; |d| in [IK_DUPLICATE, π] also wraps to itself
     // and fails the test; only larger differences can wrap back near 0.
     d < IK_DUPLICATE || (d > std::f64::consts::PI && crate::angle::wrap(a - b).abs() < IK_DUPLICATE)
+}
+
+/// Whether two joint vectors are the same solution: revolute values by [`same_angle`], prismatic
+/// ones literally (`|a − b| < IK_DUPLICATE` metres — 0 m and 2π m are different).
+fn same_q(robot: &Robot, a: &[f64], b: &[f64]) -> bool {
+    a.iter().zip(b).zip(robot.joints()).all(|((a, b), j)| match j.kind {
+        JointKind::Revolute => same_angle(*a, *b),
+        JointKind::Prismatic => (a - b).abs() < IK_DUPLICATE,
+    })
 }
 
 /// The target of the FK check, prepared once per solve (the target rotation as a transposed
@@ -398,7 +414,7 @@ pub(crate) fn finish_within(
         if position_error > position_tolerance || orientation_error > orientation_tolerance {
             continue;
         }
-        if let Some(existing) = solutions.iter_mut().find(|s| s.q.iter().zip(&c.q).all(|(a, b)| same_angle(*a, *b))) {
+        if let Some(existing) = solutions.iter_mut().find(|s| same_q(robot, &s.q, &c.q)) {
             for k in c.singularities {
                 if !existing.singularities.contains(&k) {
                     existing.singularities.push(k);
@@ -431,11 +447,67 @@ pub(crate) fn finish_within(
         });
     }
     let failure = if solutions.is_empty() { Some(if_empty) } else { limits_failure(&solutions) };
-    Ok(IkSolutions { solver, solutions, failure })
+    Ok(IkSolutions { solver, solutions, failure, differences: Differences::for_robot(robot) })
 }
 
 /// The flange pose in the chain's own frame: `base⁻¹ · target · tool⁻¹`.
 #[must_use]
 pub(crate) fn chain_target(robot: &Robot, target: &Isometry3<f64>) -> Isometry3<f64> {
     robot.base().inverse() * target * robot.tool().inverse()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Base yaw about z, then a 10 m prismatic slide perpendicular to it (DH α₁ = −90°): the
+    /// tool is at `d·(−sin θ, cos θ, 0)`, so `(0, d)` and `(π, −d)` reach the same point.
+    fn yaw_slide() -> Robot {
+        Robot::from_toml_str(
+            "name = \"yaw-slide\"\nlength_unit = \"m\"\nangle_unit = \"deg\"\n\
+             [[joints]]\nname = \"yaw\"\nalpha = -90\nlimits = [-180, 180]\n\
+             [[joints]]\nname = \"slide\"\nkind = \"prismatic\"\nlimits = [-10, 10]\n",
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn closest_to_takes_prismatic_changes_literally() {
+        let robot = yaw_slide();
+        let pi = std::f64::consts::PI;
+        let target = IkTarget::Position(robot.fk(&[0.0, 4.0]).unwrap().translation.vector.into());
+        let candidates = vec![
+            Candidate::new(vec![0.0, 4.0], Branch::new([("side", "front")])),
+            Candidate::new(vec![pi, -4.0], Branch::new([("side", "back")])),
+        ];
+        let all = finish(&robot, &target, candidates, "test", IkFailure::OrientationUnreachable).unwrap();
+        assert_eq!(all.solutions.len(), 2, "{all:?}");
+        // From (0, −4): "front" moves the slide 8 m (cost 8), "back" turns the base by π (cost π).
+        // Wrapping the slide's 8 m as an angle (8 − 2π ≈ 1.72) would wrongly prefer "front".
+        let chosen = all.closest_to(&[0.0, -4.0], &[]).unwrap();
+        assert_eq!(chosen.branch.get("side"), Some("back"), "{chosen:?}");
+        // And from (0, 3.9) the slide change is small and "front" wins.
+        let chosen = all.closest_to(&[0.0, 3.9], &[]).unwrap();
+        assert_eq!(chosen.branch.get("side"), Some("front"), "{chosen:?}");
+    }
+
+    #[test]
+    fn prismatic_values_a_turn_apart_are_distinct_solutions() {
+        // Two collinear slides along z: (0, 2π) and (2π, 0) reach the same point but are
+        // different configurations (a revolute pair 2π apart would be one).
+        let robot = Robot::from_toml_str(
+            "name = \"double-slide\"\nlength_unit = \"m\"\nangle_unit = \"deg\"\n\
+             [[joints]]\nname = \"s1\"\nkind = \"prismatic\"\nlimits = [0, 10]\n\
+             [[joints]]\nname = \"s2\"\nkind = \"prismatic\"\nlimits = [0, 10]\n",
+        )
+        .unwrap();
+        let tau = std::f64::consts::TAU;
+        let target = IkTarget::Position(robot.fk(&[0.0, tau]).unwrap().translation.vector.into());
+        let candidates = vec![
+            Candidate::new(vec![0.0, tau], Branch::new([("slide", "2")])),
+            Candidate::new(vec![tau, 0.0], Branch::new([("slide", "1")])),
+        ];
+        let all = finish(&robot, &target, candidates, "test", IkFailure::OrientationUnreachable).unwrap();
+        assert_eq!(all.solutions.len(), 2, "{all:?}");
+    }
 }

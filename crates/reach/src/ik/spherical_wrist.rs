@@ -209,6 +209,37 @@ pub(crate) fn require_spherical_wrist(
     Ok(())
 }
 
+/// The twist signs `[sgn α1, sgn α3, sgn α4, sgn α5]` of a 6R arm with a spherical wrist whose
+/// twists are α1, α3, α4, α5 = ±90° and α2 = α6 = 0 (the families of [`SphericalWrist`] and
+/// [`TwoLinkWrist`](super::two_link_wrist::TwoLinkWrist)), or the `Unsupported` error naming
+/// the first twist that differs. `why1` and `why3` say what α1 and α3 = ±90° mean for `solver`.
+pub(crate) fn wrist_arm_twists(
+    robot: &Robot,
+    solver: &'static str,
+    joints: &[DhJoint; 6],
+    (why1, why3): (&str, &str),
+) -> Result<[f64; 4], IkError> {
+    let deg = |i: usize| joints[i].alpha.to_degrees();
+    let pm90 = |i: usize, why: &str| -> Result<f64, IkError> {
+        quarter_turn(joints[i].alpha)
+            .ok_or_else(|| unsupported(solver, robot, format!("α{} = {:.6}° (needs ±90°: {why})", i + 1, deg(i))))
+    };
+    let zero = |i: usize, why: &str| -> Result<(), IkError> {
+        if is_zero_angle(joints[i].alpha) {
+            Ok(())
+        } else {
+            Err(unsupported(solver, robot, format!("α{} = {:.6}° (needs 0°: {why})", i + 1, deg(i))))
+        }
+    };
+    let s1 = pm90(0, why1)?;
+    zero(1, "axes 2 and 3 parallel")?;
+    let s3 = pm90(2, why3)?;
+    let s4 = pm90(3, "axis 5 perpendicular to axis 4")?;
+    let s5 = pm90(4, "axis 6 perpendicular to axis 5")?;
+    zero(5, "the flange on the approach axis")?;
+    Ok([s1, s3, s4, s5])
+}
+
 /// `sgn(α)` when α = ±90° (within [`STRUCTURE_ANGLE`]).
 pub(crate) fn quarter_turn(alpha: f64) -> Option<f64> {
     if wrap(alpha - FRAC_PI_2).abs() <= STRUCTURE_ANGLE {
@@ -412,21 +443,12 @@ impl SphericalWrist {
         let joints = revolute_dh6(robot, NAME)?;
         let fail = |reason: String| Err(unsupported(NAME, robot, reason));
         require_spherical_wrist(robot, NAME, &joints)?;
-        let deg = |i: usize| joints[i].alpha.to_degrees();
-        let pm90 = |i: usize, why: &str| -> Result<f64, IkError> {
-            quarter_turn(joints[i].alpha)
-                .ok_or_else(|| unsupported(NAME, robot, format!("α{} = {:.6}° (needs ±90°: {why})", i + 1, deg(i))))
-        };
-        let s1 = pm90(0, "shoulder axis 2 perpendicular to the base axis 1")?;
-        if !is_zero_angle(joints[1].alpha) {
-            return fail(format!("α2 = {:.6}° (needs 0°: axes 2 and 3 parallel)", deg(1)));
-        }
-        let s3 = pm90(2, "wrist axis 4 perpendicular to the elbow axis 3")?;
-        let s4 = pm90(3, "axis 5 perpendicular to axis 4")?;
-        let s5 = pm90(4, "axis 6 perpendicular to axis 5")?;
-        if !is_zero_angle(joints[5].alpha) {
-            return fail(format!("α6 = {:.6}° (needs 0°: the flange on the approach axis)", deg(5)));
-        }
+        let [s1, s3, s4, s5] = wrist_arm_twists(
+            robot,
+            NAME,
+            &joints,
+            ("shoulder axis 2 perpendicular to the base axis 1", "wrist axis 4 perpendicular to the elbow axis 3"),
+        )?;
         if is_zero_length(joints[1].a) {
             return fail("a2 = 0: no upper arm (the elbow triangle of eqs. 10–16 degenerates)".into());
         }

@@ -87,9 +87,8 @@ use std::f64::consts::PI;
 use nalgebra::{IsometryMatrix3, Point3};
 
 use super::spherical_wrist::{
-    Arm, DhJoint, arm_branch, elbow_label, fallback_failure, flange_goal, free_theta, is_zero_angle, is_zero_length,
-    joint_values, quarter_turn, require_spherical_wrist, revolute_dh6, seed_thetas, unsupported, wrist_centre,
-    wrist_label,
+    Arm, DhJoint, arm_branch, elbow_label, fallback_failure, flange_goal, free_theta, is_zero_length, joint_values,
+    require_spherical_wrist, revolute_dh6, seed_thetas, unsupported, wrist_arm_twists, wrist_centre, wrist_label,
 };
 use super::{
     Branch, Candidate, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, finish,
@@ -137,21 +136,12 @@ impl TwoLinkWrist {
         let joints = revolute_dh6(robot, NAME)?;
         let fail = |reason: String| Err(unsupported(NAME, robot, reason));
         require_spherical_wrist(robot, NAME, &joints)?;
-        let deg = |i: usize| joints[i].alpha.to_degrees();
-        let pm90 = |i: usize, why: &str| -> Result<f64, IkError> {
-            quarter_turn(joints[i].alpha)
-                .ok_or_else(|| unsupported(NAME, robot, format!("α{} = {:.6}° (needs ±90°: {why})", i + 1, deg(i))))
-        };
-        let s1 = pm90(0, "ball-joint axes 1 and 2 perpendicular")?;
-        if !is_zero_angle(joints[1].alpha) {
-            return fail(format!("α2 = {:.6}° (needs 0°: axes 2 and 3 parallel)", deg(1)));
-        }
-        let s3 = pm90(2, "link 2 perpendicular to the elbow axis 3")?;
-        let s4 = pm90(3, "axis 5 perpendicular to axis 4")?;
-        let s5 = pm90(4, "axis 6 perpendicular to axis 5")?;
-        if !is_zero_angle(joints[5].alpha) {
-            return fail(format!("α6 = {:.6}° (needs 0°: the flange on the approach axis)", deg(5)));
-        }
+        let [s1, s3, s4, s5] = wrist_arm_twists(
+            robot,
+            NAME,
+            &joints,
+            ("ball-joint axes 1 and 2 perpendicular", "link 2 perpendicular to the elbow axis 3"),
+        )?;
         for (name, value, why) in [
             ("a1", joints[0].a, "axes 1 and 2 do not meet (no ball-joint shoulder)"),
             ("d2", joints[1].d, "lateral shoulder offset"),

@@ -35,12 +35,12 @@ use super::planar::{
     PhiInterval, PlanarChain, TwoLink, check_options, check_step, elbow_label, phi_intervals, phi_label,
     sample_intervals, two_link,
 };
-use super::yaw_two_link::{YawBranch, YawFrame};
+use super::yaw_two_link::{YawBranch, YawFrame, read_yaw_arm};
 use super::{
     Branch, Candidate, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, finish,
 };
 use crate::model::Robot;
-use crate::tolerance::{BOUNDARY, STRUCTURE_LENGTH};
+use crate::tolerance::BOUNDARY;
 
 const NAME: &str = "yaw-planar3";
 
@@ -61,19 +61,7 @@ impl YawPlanar3 {
     /// # Errors
     /// [`IkError::Unsupported`] naming the failed condition.
     pub fn from_robot(robot: &Robot) -> Result<Self, IkError> {
-        let unsupported =
-            |reason: String| IkError::Unsupported { solver: NAME, robot: robot.name().to_string(), reason };
-        if robot.dof() != 4 {
-            return Err(unsupported(format!("needs exactly 4 joints, the robot has {}", robot.dof())));
-        }
-        let links = &robot.chain.links;
-        let chain = PlanarChain::<3>::from_chain(&links[1..], 2).map_err(unsupported)?;
-        let yaw = YawFrame::from_chain(&links[0], robot.chain.first, chain.height).map_err(unsupported)?;
-        for (i, l) in chain.links.iter().take(2).enumerate() {
-            if l.length <= STRUCTURE_LENGTH {
-                return Err(unsupported(format!("link {} has zero length in the arm plane", i + 2)));
-            }
-        }
+        let (yaw, chain) = read_yaw_arm::<3>(robot, NAME, 2)?;
         Ok(YawPlanar3 { yaw, chain })
     }
 

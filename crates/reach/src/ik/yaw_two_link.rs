@@ -224,6 +224,30 @@ impl YawFrame {
     }
 }
 
+/// Reads a base yaw plus an `N`-link arm in a vertical plane from `robot` (`N + 1` joints; the
+/// families of [`YawTwoLink`] and [`YawPlanar3`](super::yaw_planar3::YawPlanar3)): the yaw
+/// frame and the planar chain, the first `nonzero` links of non-zero length in the arm plane.
+/// Errors are `solver`'s [`IkError::Unsupported`] naming the failed condition.
+pub(crate) fn read_yaw_arm<const N: usize>(
+    robot: &Robot,
+    solver: &'static str,
+    nonzero: usize,
+) -> Result<(YawFrame, PlanarChain<N>), IkError> {
+    let unsupported = |reason: String| IkError::Unsupported { solver, robot: robot.name().to_string(), reason };
+    if robot.dof() != N + 1 {
+        return Err(unsupported(format!("needs exactly {} joints, the robot has {}", N + 1, robot.dof())));
+    }
+    let links = &robot.chain.links;
+    let chain = PlanarChain::<N>::from_chain(&links[1..], 2).map_err(unsupported)?;
+    let yaw = YawFrame::from_chain(&links[0], robot.chain.first, chain.height).map_err(unsupported)?;
+    for (i, l) in chain.links.iter().take(nonzero).enumerate() {
+        if l.length <= STRUCTURE_LENGTH {
+            return Err(unsupported(format!("link {} has zero length in the arm plane", i + 2)));
+        }
+    }
+    Ok((yaw, chain))
+}
+
 /// Closed-form IK of a base yaw plus a two-link arm in a vertical plane (seed 000 appendix,
 /// `log-loader`): position targets, up to four solutions (`base=front|back`,
 /// `elbow=up|down`). See the [module docs](self).
@@ -241,19 +265,7 @@ impl YawTwoLink {
     /// # Errors
     /// [`IkError::Unsupported`] naming the failed condition.
     pub fn from_robot(robot: &Robot) -> Result<Self, IkError> {
-        let unsupported =
-            |reason: String| IkError::Unsupported { solver: NAME, robot: robot.name().to_string(), reason };
-        if robot.dof() != 3 {
-            return Err(unsupported(format!("needs exactly 3 joints, the robot has {}", robot.dof())));
-        }
-        let links = &robot.chain.links;
-        let chain = PlanarChain::<2>::from_chain(&links[1..], 2).map_err(unsupported)?;
-        let yaw = YawFrame::from_chain(&links[0], robot.chain.first, chain.height).map_err(unsupported)?;
-        for (i, l) in chain.links.iter().enumerate() {
-            if l.length <= STRUCTURE_LENGTH {
-                return Err(unsupported(format!("link {} has zero length in the arm plane", i + 2)));
-            }
-        }
+        let (yaw, chain) = read_yaw_arm::<2>(robot, NAME, 2)?;
         Ok(YawTwoLink { yaw, chain })
     }
 

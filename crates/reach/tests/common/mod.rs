@@ -1,6 +1,8 @@
 //! Helpers shared by the kinematics integration tests: an independent forward-kinematics
 //! implementation (a plain product of 4×4 homogeneous matrices, written out element by
-//! element), a finite-difference Jacobian, and a small deterministic random generator.
+//! element), a finite-difference Jacobian, a small deterministic random generator, and the
+//! seed papers' test data used by more than one test file (seed 001's poses T0/T1, the
+//! seed-002 reference arm, seed 003's weld).
 //!
 //! Nothing here calls the library's kinematics except `fd_jacobian`, which differentiates
 //! the library's own `fk_matrix` (the Jacobian is then checked against it).
@@ -8,9 +10,10 @@
 // Each test binary uses a different subset of these helpers.
 #![allow(dead_code)]
 
-use nalgebra::{Isometry3, Matrix3, Matrix4, Vector3};
+use nalgebra::{Isometry3, Matrix3, Matrix4, Rotation3, Translation3, UnitQuaternion, Vector3};
 use reach::Robot;
-use reach::model::{Convention, JointGeometry, JointKind, presets};
+use reach::ik::{IkSolution, IkSolutions};
+use reach::model::{Convention, Joint, JointGeometry, JointKind, RobotSpec, presets};
 
 /// Homogeneous rotation about x.
 #[rustfmt::skip]
@@ -214,4 +217,71 @@ impl Rng {
             })
             .collect()
     }
+}
+
+/// A pose from the rows `[R | p]` of a printed homogeneous matrix (exactly orthonormal ones).
+pub fn pose_from_rows(rows: [[f64; 4]; 3]) -> Isometry3<f64> {
+    let rot = Rotation3::from_matrix_unchecked(Matrix3::from_fn(|i, j| rows[i][j]));
+    Isometry3::from_parts(
+        Translation3::new(rows[0][3], rows[1][3], rows[2][3]),
+        UnitQuaternion::from_rotation_matrix(&rot),
+    )
+}
+
+/// The solution equal to `q` up to whole turns (every joint within `tol` radians), if any.
+pub fn find_solution<'a>(all: &'a IkSolutions, q: &[f64], tol: f64) -> Option<&'a IkSolution> {
+    all.solutions.iter().find(|s| s.q.iter().zip(q).all(|(a, b)| reach::angle::wrap(a - b).abs() < tol))
+}
+
+/// Seed 001's start pose T0 of `spbu6` (notes 001 §5.1), rows `[R | p]`, metres.
+#[rustfmt::skip]
+pub const SPBU6_T0: [[f64; 4]; 3] = [[0.0, 0.0, 1.0, 3.0],
+                                     [0.0, -1.0, 0.0, 0.0],
+                                     [1.0, 0.0, 0.0, 5.0]];
+/// Seed 001's end pose T1 of `spbu6` (notes 001 §5.1), rows `[R | p]`, metres.
+#[rustfmt::skip]
+pub const SPBU6_T1: [[f64; 4]; 3] = [[1.0, 0.0, 0.0, 0.0],
+                                     [0.0, 0.0, 1.0, 3.0],
+                                     [0.0, -1.0, 0.0, 5.0]];
+
+/// Notes 002 §2.3: the paper's PUMA-type structure without the lateral offset (d2 = d3 = 0):
+/// d1 = 0.3, α1 = +90°; a2 = 0.4318; a3 = 0.0203, α3 = −90°; d4 = 0.4318, α4 = +90°;
+/// α5 = −90°; d6 = 0.05625 (metres).
+pub fn seed002_reference() -> Robot {
+    let r = |a: f64, alpha_deg: f64, d: f64| Joint::revolute(a, alpha_deg.to_radians(), d, 0.0);
+    Robot::new(RobotSpec::new(
+        "seed002-reference",
+        Convention::Dh,
+        vec![
+            r(0.0, 90.0, 0.3),
+            r(0.4318, 0.0, 0.0),
+            r(0.0203, -90.0, 0.0),
+            r(0.0, 90.0, 0.4318),
+            r(0.0, -90.0, 0.0),
+            r(0.0, 0.0, 0.05625),
+        ],
+    ))
+    .unwrap()
+}
+
+/// Seed 003's weld start P, millimetres (notes 003 §5.1).
+pub const WELD_P_MM: [f64; 3] = [50.0, 740.0, 70.0];
+/// Seed 003's weld end M, millimetres (notes 003 §5.1).
+pub const WELD_M_MM: [f64; 3] = [500.0, 200.0, 700.0];
+
+/// The weld's constant orientation: columns n, e6, l (notes 003 §5.1, corrected sign of l_x).
+pub fn weld_rotation() -> UnitQuaternion<f64> {
+    let (x1, y1, z1) = (WELD_P_MM[0], WELD_P_MM[1], WELD_P_MM[2]);
+    let (x2, y2, z2) = (WELD_M_MM[0], WELD_M_MM[1], WELD_M_MM[2]);
+    let n = Vector3::new(x2 - x1, y2 - y1, z2 - z1).normalize();
+    let e6 = Vector3::new(y1 - y2, x2 - x1, 0.0).normalize();
+    let l = Vector3::new(-n.z * e6.y, n.z * e6.x, n.x * e6.y - n.y * e6.x);
+    UnitQuaternion::from_matrix(&Matrix3::from_columns(&[n, e6, l]))
+}
+
+/// The weld's tool pose at arc length `s` (metres) from P.
+pub fn weld_pose(s: f64) -> Isometry3<f64> {
+    let p = Vector3::from(WELD_P_MM) / 1000.0;
+    let m = Vector3::from(WELD_M_MM) / 1000.0;
+    Isometry3::from_parts(Translation3::from(p + (m - p).normalize() * s), weld_rotation())
 }
