@@ -294,7 +294,8 @@ pub enum Command {
         after_help = "Examples:\n  \
             reach tasks ur5 visiting examples/tasks_visiting.toml\n  \
             reach tasks ur5 visiting examples/tasks_visiting.toml --budget 6 --json\n  \
-            reach tasks ur5 collection examples/tasks_collection.toml --budget 8"
+            reach tasks ur5 collection examples/tasks_collection.toml --budget 8\n  \
+            reach tasks ur5 visiting examples/tasks_visiting.toml --budget 6 --svg tour.svg"
     )]
     Tasks(crate::commands::tasks::TasksArgs),
     /// A collision-free joint-space path through a scene (RRT-Connect), timed and re-checked.

@@ -1,5 +1,5 @@
 //! End-to-end tests of the drawings (`--svg`, `--png`) of `reach move`, `reach plan`,
-//! `reach avoid`, `reach cspace` and `reach path`, and of `reach path` itself.
+//! `reach avoid`, `reach cspace`, `reach path` and `reach tasks`, and of `reach path` itself.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -317,4 +317,65 @@ fn path_to_a_pose_ends_at_the_pose() {
     for (got, want) in fk["pose"]["xyz_m"].as_array().unwrap().iter().zip([0.4, -0.2, 0.3]) {
         assert!((got.as_f64().unwrap() - want).abs() < 1e-6, "{fk}");
     }
+}
+
+#[test]
+fn tasks_draw_the_plan_from_above() {
+    let dir = scratch("tasks");
+    // Visiting within a 6 s budget: one open route through the points of the budget's plan.
+    let visiting = dir.join("v.svg");
+    let run = reach(&[
+        "tasks",
+        "ur5",
+        "visiting",
+        "examples/tasks_visiting.toml",
+        "--budget",
+        "6",
+        "--json",
+        "--svg",
+        s(&visiting),
+    ]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let report: Value = serde_json::from_str(&run.stdout).unwrap();
+    let fitted = report["within_budget"]["order"].as_array().unwrap().len();
+    let points = report["points"].as_array().unwrap().len();
+    let text = svg_text(&visiting);
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    let routes: Vec<_> = doc
+        .descendants()
+        .filter(|n| n.tag_name().name() == "polyline" && n.attribute("class") == Some("route"))
+        .collect();
+    assert_eq!(routes.len(), 1);
+    // start + every point of the plan
+    assert_eq!(routes[0].attribute("points").unwrap().split_whitespace().count(), fitted + 1);
+    assert_eq!(count_class(&text, "waypoint") - 1, fitted - 1, "one legend box, the last point is `end`");
+    assert!(fitted < points, "the budget leaves points out: {fitted} of {points}");
+    // Collection: one round trip per object, as PNG too.
+    let (svg, png) = (dir.join("c.svg"), dir.join("c.png"));
+    let run = reach(&[
+        "tasks",
+        "ur5",
+        "collection",
+        "examples/tasks_collection.toml",
+        "--json",
+        "--svg",
+        s(&svg),
+        "--png",
+        s(&png),
+        "--png-width",
+        "410",
+    ]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let report: Value = serde_json::from_str(&run.stdout).unwrap();
+    let trips = report["plan"]["order"].as_array().unwrap().len();
+    let text = svg_text(&svg);
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    let routes =
+        doc.descendants().filter(|n| n.tag_name().name() == "polyline" && n.attribute("class") == Some("route"));
+    assert_eq!(routes.count(), trips);
+    assert_eq!(png_size(&png).0, 410);
+    // A drawing into a missing directory is bad input, before any work.
+    let run = reach(&["tasks", "ur5", "visiting", "examples/tasks_visiting.toml", "--svg", "/no/such/dir/t.svg"]);
+    assert_eq!(run.code, 2);
+    one_error_line(&run);
 }

@@ -35,6 +35,9 @@ use super::move_cmd::{ProfileName, profile_of};
 use crate::error::{CliError, one_line};
 use crate::numbers::{parse_finite, q_text, q_to_display, to_si};
 use crate::output::{Align, Table, fixed, fixeds, write_json};
+use crate::plot::drawings::{Route, tour_top_view};
+use crate::plot::{DrawArgs, Svg};
+
 use crate::robot_arg::RobotArgs;
 
 /// Which planning task.
@@ -70,6 +73,10 @@ pub struct TasksArgs {
     /// Print JSON (see docs/task-format.md).
     #[arg(long)]
     pub json: bool,
+
+    /// Draw the plan from above (xy): --svg FILE, --png FILE, --png-width PX.
+    #[command(flatten)]
+    pub draw: DrawArgs,
 }
 
 #[derive(Debug, Deserialize)]
@@ -250,6 +257,7 @@ impl Picker<'_> {
 /// See the module docs.
 pub fn run(args: &TasksArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let robot = &args.robot.load()?.robot;
+    args.draw.check_files()?;
     let dof = robot.dof();
     let origin = args.file.display().to_string();
     let text = std::fs::read_to_string(&args.file).map_err(|e| CliError::bad_input(format!("{origin}: {e}")))?;
@@ -445,10 +453,37 @@ pub fn run(args: &TasksArgs, out: &mut dyn Write) -> Result<(), CliError> {
         budget_s: budget,
         within_budget: within.as_ref().map(|s| plan_json(args.kind, s, durations.as_deref(), true)),
     };
+    if args.draw.any() {
+        args.draw.write(&top_view(robot, args.kind, &report, &node0)?)?;
+    }
     if args.json {
         return write_json(out, &report);
     }
     write_text(out, robot, &report)
+}
+
+/// The plan seen from above: the base, node 0 (the start tool position or the container), the
+/// points in plan order (the budget's plan when a budget is given), unreachable points grey.
+fn top_view(robot: &Robot, kind: TaskKind, report: &TasksJson, node0: &[f64]) -> Result<Svg, CliError> {
+    let xy = |v: &[f64]| [v[0], v[1]];
+    let base = xy(robot.base().translation.vector.as_slice());
+    let start = xy(robot.fk(node0).map_err(|e| CliError::internal(e.to_string()))?.translation.vector.as_slice());
+    let points: Vec<[f64; 2]> = report.points.iter().map(|p| xy(&p.xyz_m)).collect();
+    let plan = report.within_budget.as_ref().unwrap_or(&report.plan);
+    let order: Vec<usize> = plan.order.iter().map(|&k| k - 1).collect();
+    let (route, start_label, what) = match kind {
+        TaskKind::Visiting => (Route::Open, "start", "visiting"),
+        TaskKind::Collection => (Route::Trips, "container", "collection"),
+    };
+    let budget = report.budget_s.map_or(String::new(), |b| format!(", budget {b} s"));
+    let title = format!(
+        "{} — {what}: {} of {} points, J1 {:.4} rad{budget}",
+        robot.name(),
+        order.len(),
+        points.len(),
+        plan.total_j1_rad
+    );
+    tour_top_view(&title, base, (start, start_label), &points, &order, route)
 }
 
 fn plan_json(kind: TaskKind, s: &Sequence, d: Option<&[Vec<f64>]>, budget: bool) -> PlanJson {

@@ -470,36 +470,65 @@ pub fn cspace_section(
     svg
 }
 
-/// A top view (xy, metres) of `points` visited in `order` (indices into `points`), with the
-/// robot base at `base`: the route, each point numbered by its place in the order (its index
-/// in `points` in brackets), points not in the order in grey.
+/// How a tour leaves its start node (`reach tasks`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Route {
+    /// Visiting: one open path start → first point → … → last point.
+    Open,
+    /// Collection: a round trip start → point → start for every point in the order.
+    Trips,
+}
+
+/// A top view (xy, metres) of a tour: the robot base at `base`, the start node at `start.0`
+/// (labelled `start.1`: the start tool position or the container), the `points` visited in
+/// `order` (indices into `points`) along `route`, each point numbered by its place in the
+/// order (its number in the task file in brackets), points not in the order in grey
+/// (unreachable or beyond the budget).
 ///
 /// # Errors
 /// [`CliError::BadInput`] for an index out of range or a non-finite coordinate.
-#[allow(dead_code, reason = "for `reach tasks --svg`, wired by its command")]
-pub fn tour_top_view(title: &str, base: [f64; 2], points: &[[f64; 2]], order: &[usize]) -> Result<Svg, CliError> {
+pub fn tour_top_view(
+    title: &str,
+    base: [f64; 2],
+    start: ([f64; 2], &str),
+    points: &[[f64; 2]],
+    order: &[usize],
+    route: Route,
+) -> Result<Svg, CliError> {
     if let Some(&i) = order.iter().find(|&&i| i >= points.len()) {
         return Err(CliError::bad_input(format!(
             "tour: point index {i} out of range (there are {} points)",
             points.len()
         )));
     }
-    if let Some(i) = points.iter().chain(std::iter::once(&base)).position(|p| !p.iter().all(|v| v.is_finite())) {
+    let all = || points.iter().chain([&base, &start.0]);
+    if let Some(i) = all().position(|p| !p.iter().all(|v| v.is_finite())) {
         return Err(CliError::bad_input(format!("tour: point {} has a non-finite coordinate", i + 1)));
     }
     let (width, height) = (820.0, 760.0);
     let mut svg = Svg::new(width, height);
     svg.text(width / 2.0, 26.0, title, "title", Anchor::Middle);
-    let xr = padded_range(points.iter().map(|p| p[0]).chain([base[0]]));
-    let yr = padded_range(points.iter().map(|p| p[1]).chain([base[1]]));
+    let xr = padded_range(all().map(|p| p[0]));
+    let yr = padded_range(all().map(|p| p[1]));
     let grow = |r: (f64, f64)| {
         let s = (r.1 - r.0) * 0.08;
         (r.0 - s, r.1 + s)
     };
     let panel = Panel::equal_aspect(LEFT, 50.0, width - LEFT - 40.0, height - 150.0, grow(xr), grow(yr));
     panel.begin(&mut svg, "tour", "", "x [m]", "y [m]");
-    let route: Vec<(f64, f64)> = order.iter().map(|&i| (points[i][0], points[i][1])).collect();
-    panel.polyline(&mut svg, &route, "route");
+    let at = |i: usize| (points[i][0], points[i][1]);
+    let home = (start.0[0], start.0[1]);
+    match route {
+        Route::Open => {
+            let path: Vec<(f64, f64)> = std::iter::once(home).chain(order.iter().map(|&i| at(i))).collect();
+            panel.polyline(&mut svg, &path, "route");
+        }
+        Route::Trips => {
+            for &i in order {
+                panel.polyline(&mut svg, &[home, at(i), home], "route");
+            }
+        }
+    }
     for (i, p) in points.iter().enumerate() {
         if !order.contains(&i) {
             panel.dot(&mut svg, (p[0], p[1]), 4.0, "c-limits");
@@ -507,24 +536,20 @@ pub fn tour_top_view(title: &str, base: [f64; 2], points: &[[f64; 2]], order: &[
         }
     }
     for (rank, &i) in order.iter().enumerate() {
-        let class = if rank == 0 {
-            "start"
-        } else if rank + 1 == order.len() {
-            "end"
-        } else {
-            "waypoint"
-        };
-        panel.dot(&mut svg, (points[i][0], points[i][1]), 4.5, class);
-        panel.label(&mut svg, (points[i][0], points[i][1]), (6.0, -6.0), &format!("{} ({})", rank + 1, i + 1));
+        let class = if rank + 1 == order.len() && route == Route::Open { "end" } else { "waypoint" };
+        panel.dot(&mut svg, at(i), 4.5, class);
+        panel.label(&mut svg, at(i), (6.0, -6.0), &format!("{} ({})", rank + 1, i + 1));
     }
+    panel.dot(&mut svg, home, 5.5, "start");
+    panel.label(&mut svg, home, (8.0, -8.0), start.1);
     panel.dot(&mut svg, (base[0], base[1]), 6.0, "base");
     panel.label(&mut svg, (base[0], base[1]), (8.0, 14.0), "base");
     panel.end(&mut svg);
-    svg.legend(
-        LEFT,
-        height - 60.0,
-        &[("start", "first point"), ("end", "last point"), ("route", "visiting order: rank (point number)")][..],
-    );
+    let order_text = match route {
+        Route::Open => "visiting order: rank (point number)",
+        Route::Trips => "trips in order: rank (object number)",
+    };
+    svg.legend(LEFT, height - 60.0, &[("start", start.1), ("waypoint", "point"), ("route", order_text)][..]);
     Ok(svg)
 }
 
@@ -569,8 +594,12 @@ mod tests {
 
     #[test]
     fn tour_rejects_bad_indices() {
-        assert!(tour_top_view("t", [0.0, 0.0], &[[1.0, 0.0]], &[1]).is_err());
-        let svg = tour_top_view("t", [0.0, 0.0], &[[1.0, 0.0], [0.0, 1.0]], &[1, 0]).unwrap().finish();
-        assert!(svg.contains("class=\"route\""));
+        let start = ([0.5, 0.5], "start");
+        assert!(tour_top_view("t", [0.0, 0.0], start, &[[1.0, 0.0]], &[1], Route::Open).is_err());
+        assert!(tour_top_view("t", [f64::NAN, 0.0], start, &[[1.0, 0.0]], &[0], Route::Open).is_err());
+        let open = tour_top_view("t", [0.0, 0.0], start, &[[1.0, 0.0], [0.0, 1.0]], &[1, 0], Route::Open).unwrap();
+        assert_eq!(open.finish().matches("<polyline class=\"route\"").count(), 1);
+        let trips = tour_top_view("t", [0.0, 0.0], start, &[[1.0, 0.0], [0.0, 1.0]], &[1, 0], Route::Trips).unwrap();
+        assert_eq!(trips.finish().matches("<polyline class=\"route\"").count(), 2);
     }
 }
