@@ -1,34 +1,8 @@
 //! End-to-end tests of `reach check`, `reach avoid` and `reach cspace` (seeds 000 and 004).
 
-use std::process::{Command, Stdio};
+mod common;
 
-use serde_json::Value;
-
-struct Run {
-    code: i32,
-    stdout: String,
-    stderr: String,
-}
-
-fn reach(args: &[&str]) -> Run {
-    let out = Command::new(env!("CARGO_BIN_EXE_reach"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
-        .stdin(Stdio::null())
-        .output()
-        .expect("run reach");
-    Run {
-        code: out.status.code().expect("reach was killed by a signal"),
-        stdout: String::from_utf8(out.stdout).expect("stdout is UTF-8"),
-        stderr: String::from_utf8(out.stderr).expect("stderr is UTF-8"),
-    }
-}
-
-fn json(args: &[&str]) -> Value {
-    let run = reach(args);
-    assert_eq!(run.code, 0, "reach {args:?}: {}", run.stderr);
-    serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("reach {args:?}: bad JSON ({e}):\n{}", run.stdout))
-}
+use common::{json, reach};
 
 #[test]
 fn cspace_reference_counts() {
