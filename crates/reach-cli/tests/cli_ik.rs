@@ -7,7 +7,7 @@ mod common;
 
 use serde_json::Value;
 
-use common::{Run, angle_gap, fails, json, nums, ok, reach};
+use common::{Run, angle_gap, fails, json, nums, ok, reach, stdout_json};
 
 /// No solution: exit 3, the report on stdout, one `error: ` line on stderr.
 fn infeasible(args: &[&str]) -> Run {
@@ -221,7 +221,7 @@ fn planar3_free_angle_gives_the_hand_derived_elbows() {
     assert_eq!(other["violations"][0]["value_deg"].as_f64().unwrap().round(), 90.0);
     // φ = −90°: the wrist is at (2, 2), |W| = 2√2 > 2 links: that orientation is not possible.
     let run = infeasible(&["ik", "planar3", "--xyz", "2,1,0", "--free-angle", "-90", "--json"]);
-    let report: Value = serde_json::from_str(&run.stdout).unwrap();
+    let report = stdout_json(&run);
     assert_eq!(report["status"], "orientation_unreachable");
 }
 
@@ -278,7 +278,7 @@ fn planar3_scan_of_an_unreachable_target_exits_3() {
 fn unreachable_target_exits_3_with_a_report_and_one_line() {
     // 3 m from the base is beyond puma560's reach (0.43 + 0.43 m links and offsets).
     let run = infeasible(&["ik", "puma560", "--xyz", "3,0,0", "--rpy", "0,0,0", "--json"]);
-    let report: Value = serde_json::from_str(&run.stdout).unwrap();
+    let report = stdout_json(&run);
     assert_eq!(report["status"], "unreachable");
     assert!(report["chosen"].is_null());
     assert!(report["solutions"].as_array().unwrap().is_empty());
@@ -292,7 +292,7 @@ fn unreachable_target_exits_3_with_a_report_and_one_line() {
 fn all_solutions_outside_limits_exit_3_and_are_listed() {
     // puma560, tool position (0.5, 0, 0): every branch violates a limit.
     let run = infeasible(&["ik", "puma560", "--xyz", "0.5,0,0", "--json"]);
-    let report: Value = serde_json::from_str(&run.stdout).unwrap();
+    let report = stdout_json(&run);
     assert_eq!(report["status"], "outside_limits");
     assert!(report["chosen"].is_null());
     let all = report["solutions"].as_array().unwrap();

@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{json, reach};
+use common::{fails, json, ok, reach};
 
 #[test]
 fn cspace_reference_counts() {
@@ -65,12 +65,8 @@ fn avoid_failures_and_bad_input() {
     let run = reach(&["avoid", "planar3", "--start", "60,-40,-30", "--to", "2.4,0.2", "--obstacle", "2.35,0.3"]);
     assert_eq!(run.code, 3);
     assert!(run.stderr.contains("within the detour radius"), "{}", run.stderr);
-    let run = reach(&["avoid", "planar3", "--start", "60,-40,-30", "--to", "nan,0.2"]);
-    assert_eq!(run.code, 2);
-    assert!(run.stdout.is_empty());
-    let run = reach(&["check", "varan4", "examples/no_such_scene.toml", "0", "0", "0", "0"]);
-    assert_eq!(run.code, 2);
-    assert!(run.stderr.contains("no_such_scene"));
+    fails(&["avoid", "planar3", "--start", "60,-40,-30", "--to", "nan,0.2"], 2, &["--to"]);
+    fails(&["check", "varan4", "examples/no_such_scene.toml", "0", "0", "0", "0"], 2, &["no_such_scene"]);
 }
 
 #[test]
@@ -93,15 +89,12 @@ fn cspace_fit_prints_primitives_and_confusion() {
     let v = json(&["cspace", "varan4", "examples/seed004_free.toml", "--fix", "q1=0", "--json"]);
     assert!(v.get("fit").is_none());
     // Text: the primitives table and the confusion block.
-    let run = reach(&["cspace", "varan4", "examples/seed004_free.toml", "--fix", "q1=0", "--fit"]);
-    assert_eq!(run.code, 0, "{}", run.stderr);
-    assert!(
-        run.stdout.contains("elliptic cylinder (outside)") && run.stdout.contains("false allowed"),
-        "{}",
-        run.stdout
-    );
+    let text = ok(&["cspace", "varan4", "examples/seed004_free.toml", "--fix", "q1=0", "--fit"]);
+    assert!(text.contains("elliptic cylinder (outside)") && text.contains("false allowed"), "{text}");
     // Four swept joints: bad input, one line on stderr.
-    let run = reach(&["cspace", "varan4", "examples/seed004_free.toml", "--step", "60", "--fit"]);
-    assert_eq!(run.code, 2);
-    assert!(run.stderr.contains("exactly three swept joints") && run.stdout.is_empty(), "{}", run.stderr);
+    fails(
+        &["cspace", "varan4", "examples/seed004_free.toml", "--step", "60", "--fit"],
+        2,
+        &["exactly three swept joints"],
+    );
 }
