@@ -3,65 +3,17 @@
 //! arguments, every error path (exit status 2, one line on stderr, nothing on stdout),
 //! robot files written to a temporary directory, and a closed stdout.
 
+mod common;
+
 use std::f64::consts::{FRAC_PI_2, PI};
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::process::Stdio;
 
 use serde_json::Value;
 
+use common::{Run, fails, json, num, nums, ok, reach, reach_command, temp_file};
+
 // ---------------------------------------------------------------------------------------
-// Helpers
-
-/// The result of one run of the binary.
-struct Run {
-    code: i32,
-    stdout: String,
-    stderr: String,
-}
-
-fn from_output(out: Output) -> Run {
-    Run {
-        code: out.status.code().expect("reach was killed by a signal"),
-        stdout: String::from_utf8(out.stdout).expect("stdout is UTF-8"),
-        stderr: String::from_utf8(out.stderr).expect("stderr is UTF-8"),
-    }
-}
-
-fn reach(args: &[&str]) -> Run {
-    let out = Command::new(env!("CARGO_BIN_EXE_reach")).args(args).stdin(Stdio::null()).output().expect("run reach");
-    from_output(out)
-}
-
-/// Runs a command that must succeed quietly; returns stdout.
-fn ok(args: &[&str]) -> String {
-    let run = reach(args);
-    assert_eq!(run.code, 0, "reach {args:?} failed: {}", run.stderr);
-    assert!(run.stderr.is_empty(), "reach {args:?} wrote to stderr: {}", run.stderr);
-    run.stdout
-}
-
-/// Runs a command that must succeed and print JSON.
-fn json(args: &[&str]) -> Value {
-    let text = ok(args);
-    serde_json::from_str(&text).unwrap_or_else(|e| panic!("reach {args:?}: bad JSON ({e}):\n{text}"))
-}
-
-/// Runs a command that must fail with bad input: exit 2, empty stdout, one line on stderr
-/// starting with `error: ` and containing every `needle`. Returns the line.
-fn bad(args: &[&str], needles: &[&str]) -> String {
-    let run = reach(args);
-    assert_eq!(run.code, 2, "reach {args:?}: expected exit 2, got {}; stderr: {}", run.code, run.stderr);
-    assert!(run.stdout.is_empty(), "reach {args:?} printed on stdout: {}", run.stdout);
-    assert_eq!(run.stderr.lines().count(), 1, "reach {args:?}: stderr is not one line:\n{}", run.stderr);
-    let line = run.stderr.trim_end().to_string();
-    assert!(line.starts_with("error: "), "{line}");
-    assert!(!line.contains("panicked") && !line.contains("backtrace"), "{line}");
-    for needle in needles {
-        assert!(line.contains(needle), "reach {args:?}: `{line}` does not mention `{needle}`");
-    }
-    line
-}
+// Helpers (the shared ones are in common/mod.rs)
 
 /// A clap usage error: exit 2, nothing on stdout, an error or the usage on stderr, no panic.
 fn usage_error(args: &[&str]) {
@@ -70,14 +22,6 @@ fn usage_error(args: &[&str]) {
     assert!(run.stdout.is_empty(), "reach {args:?} printed on stdout: {}", run.stdout);
     assert!(run.stderr.starts_with("error: ") || run.stderr.contains("Usage: reach"), "{}", run.stderr);
     assert!(!run.stderr.contains("panicked"), "{}", run.stderr);
-}
-
-fn num(v: &Value) -> f64 {
-    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
-}
-
-fn nums(v: &Value) -> Vec<f64> {
-    v.as_array().unwrap_or_else(|| panic!("not an array: {v}")).iter().map(num).collect()
 }
 
 fn matrix(v: &Value) -> Vec<Vec<f64>> {
@@ -103,39 +47,6 @@ fn assert_matrix(got: &[Vec<f64>], want: [[f64; 4]; 4], tol: f64) {
     for (g, w) in got.iter().zip(want) {
         assert_all_close(g, &w, tol);
     }
-}
-
-/// A file in its own fresh directory under the system temporary directory, removed (with
-/// the directory) when dropped.
-struct TempFile(PathBuf);
-
-impl std::ops::Deref for TempFile {
-    type Target = Path;
-    fn deref(&self) -> &Path {
-        &self.0
-    }
-}
-
-impl Drop for TempFile {
-    fn drop(&mut self) {
-        if let Some(dir) = self.0.parent() {
-            let _ = std::fs::remove_dir_all(dir);
-        }
-    }
-}
-
-/// Writes `contents` to a fresh file `name` in the system temporary directory.
-fn temp_file(name: &str, contents: &str) -> TempFile {
-    static COUNTER: AtomicUsize = AtomicUsize::new(0);
-    let dir = std::env::temp_dir().join(format!(
-        "reach-cli-test-{}-{}",
-        std::process::id(),
-        COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    std::fs::create_dir_all(&dir).expect("create temp dir");
-    let path = dir.join(name);
-    std::fs::write(&path, contents).expect("write temp file");
-    TempFile(path)
 }
 
 /// A two-joint arm in millimetres: a revolute yaw joint with a 500 mm link, then a
@@ -658,21 +569,21 @@ fn demo_prints_fk_of_every_preset_at_home() {
 
 #[test]
 fn wrong_joint_count_is_bad_input() {
-    bad(&["fk", "puma560", "0", "0", "0"], &["puma560", "6 joints", "got 3"]);
-    bad(&["fk", "puma560"], &["6 joints", "got 0"]);
-    bad(&["jacobian", "planar3", "1", "2", "3", "4"], &["3 joints", "got 4"]);
-    bad(&["fk", "ur5", "-90", "-45.5", "0", "0", "0"], &["6 joints", "got 5"]);
+    fails(&["fk", "puma560", "0", "0", "0"], 2, &["puma560", "6 joints", "got 3"]);
+    fails(&["fk", "puma560"], 2, &["6 joints", "got 0"]);
+    fails(&["jacobian", "planar3", "1", "2", "3", "4"], 2, &["3 joints", "got 4"]);
+    fails(&["fk", "ur5", "-90", "-45.5", "0", "0", "0"], 2, &["6 joints", "got 5"]);
 }
 
 #[test]
 fn non_numeric_values_are_bad_input_naming_the_joint() {
-    let line = bad(&["fk", "puma560", "0", "0", "abc", "0", "0", "0"], &["joint 3", "\"abc\""]);
+    let line = fails(&["fk", "puma560", "0", "0", "abc", "0", "0", "0"], 2, &["joint 3", "\"abc\""]);
     assert_eq!(line, r#"error: joint 3: expected a number, got "abc""#);
-    bad(&["fk", "puma560", "0", "-abc", "0", "0", "0", "0"], &["joint 2", "\"-abc\""]);
-    bad(&["fk", "planar3", "1", "2", "3deg"], &["joint 3", "\"3deg\""]);
-    bad(&["fk", "planar3", "1,5", "2", "3"], &["joint 1", "\"1,5\""]);
-    bad(&["jacobian", "planar3", "1", "", "3"], &["joint 2", "expected a number"]);
-    bad(&["jacobian", "planar3", "0x10", "0", "0", "--json"], &["joint 1", "\"0x10\""]);
+    fails(&["fk", "puma560", "0", "-abc", "0", "0", "0", "0"], 2, &["joint 2", "\"-abc\""]);
+    fails(&["fk", "planar3", "1", "2", "3deg"], 2, &["joint 3", "\"3deg\""]);
+    fails(&["fk", "planar3", "1,5", "2", "3"], 2, &["joint 1", "\"1,5\""]);
+    fails(&["jacobian", "planar3", "1", "", "3"], 2, &["joint 2", "expected a number"]);
+    fails(&["jacobian", "planar3", "0x10", "0", "0", "--json"], 2, &["joint 1", "\"0x10\""]);
 }
 
 #[test]
@@ -684,51 +595,51 @@ fn non_finite_values_are_bad_input_naming_the_joint() {
         for command in ["fk", "jacobian"] {
             let mut args = vec![command, "planar3"];
             args.extend(&q);
-            bad(&args, &[&format!("joint {joint}"), "finite", &format!("\"{value}\"")]);
+            fails(&args, 2, &[&format!("joint {joint}"), "finite", &format!("\"{value}\"")]);
         }
     }
-    bad(&["fk", "ur5", "0", "0", "0", "0", "0", "inf", "--rad"], &["joint 6", "finite"]);
+    fails(&["fk", "ur5", "0", "0", "0", "0", "0", "inf", "--rad"], 2, &["joint 6", "finite"]);
 }
 
 #[test]
 fn unknown_presets_and_unreadable_or_malformed_files_are_bad_input() {
-    bad(&["fk", "nosuchbot", "0"], &["nosuchbot", "puma560"]);
-    bad(&["jacobian", "nosuchbot", "0"], &["nosuchbot"]);
-    bad(&["robot", "show", "nosuchbot"], &["unknown robot `nosuchbot`"]);
+    fails(&["fk", "nosuchbot", "0"], 2, &["nosuchbot", "puma560"]);
+    fails(&["jacobian", "nosuchbot", "0"], 2, &["nosuchbot"]);
+    fails(&["robot", "show", "nosuchbot"], 2, &["unknown robot `nosuchbot`"]);
 
     let missing = std::env::temp_dir().join("reach-cli-test-no-such-dir").join("robot.toml");
     let missing = missing.to_str().unwrap();
-    bad(&["fk", missing, "0"], &["cannot read", "robot.toml"]);
-    bad(&["robot", "show", missing], &["cannot read"]);
-    bad(&["robot", "show", std::env::temp_dir().to_str().unwrap()], &["cannot read"]);
+    fails(&["fk", missing, "0"], 2, &["cannot read", "robot.toml"]);
+    fails(&["robot", "show", missing], 2, &["cannot read"]);
+    fails(&["robot", "show", std::env::temp_dir().to_str().unwrap()], 2, &["cannot read"]);
 
     let syntax = temp_file("syntax.toml", "name = \"x\"\nlength_unit = \"m\"\nangle_unit = \n");
-    bad(&["robot", "show", syntax.to_str().unwrap()], &["syntax.toml", "line 3"]);
+    fails(&["robot", "show", syntax.to_str().unwrap()], 2, &["syntax.toml", "line 3"]);
     let unknown_field = temp_file(
         "field.toml",
         "name = \"x\"\nlength_unit = \"m\"\nangle_unit = \"deg\"\n[[joints]]\na = 1\nlenght = 2\n",
     );
-    bad(&["fk", unknown_field.to_str().unwrap(), "0"], &["field.toml", "line 6", "lenght"]);
+    fails(&["fk", unknown_field.to_str().unwrap(), "0"], 2, &["field.toml", "line 6", "lenght"]);
     let bad_unit =
         temp_file("unit.toml", "name = \"x\"\nlength_unit = \"cm\"\nangle_unit = \"deg\"\n[[joints]]\na = 1\n");
-    bad(&["fk", bad_unit.to_str().unwrap(), "0"], &["unit.toml", "line 2"]);
+    fails(&["fk", bad_unit.to_str().unwrap(), "0"], 2, &["unit.toml", "line 2"]);
     let bad_limits = temp_file(
         "limits.toml",
         "name = \"x\"\nlength_unit = \"m\"\nangle_unit = \"deg\"\n[[joints]]\nname = \"j\"\na = 1\nlimits = [10, -10]\n",
     );
-    bad(&["robot", "show", bad_limits.to_str().unwrap(), "--json"], &["joint 1 (j)", "limits"]);
+    fails(&["robot", "show", bad_limits.to_str().unwrap(), "--json"], 2, &["joint 1 (j)", "limits"]);
     let no_joints = temp_file("empty.toml", "name = \"x\"\nlength_unit = \"m\"\nangle_unit = \"deg\"\njoints = []\n");
-    bad(&["robot", "show", no_joints.to_str().unwrap()], &["no joints"]);
+    fails(&["robot", "show", no_joints.to_str().unwrap()], 2, &["no joints"]);
 
     let broken_urdf = temp_file("broken.urdf", "<robot name=\"x\"><link name=\"a\"/><joint name=\"j\"");
-    bad(&["fk", broken_urdf.to_str().unwrap(), "0"], &["broken.urdf", "URDF"]);
+    fails(&["fk", broken_urdf.to_str().unwrap(), "0"], 2, &["broken.urdf", "URDF"]);
     let urdf = temp_file("twolink.urdf", URDF_ROBOT);
     let urdf = urdf.to_str().unwrap();
-    bad(&["fk", urdf, "--tip", "nolink", "0", "0"], &["nolink", "links: base_link"]);
-    bad(&["fk", urdf, "--base", "link2", "--tip", "link1", "0"], &["not below"]);
-    bad(&["fk", urdf, "0", "0", "0"], &["2 joints", "got 3"]);
-    bad(&["fk", "puma560", "--base", "x", "0", "0", "0", "0", "0", "0"], &["--base", "URDF"]);
-    bad(&["robot", "show", "ur5", "--tip", "tool0"], &["--tip", "URDF"]);
+    fails(&["fk", urdf, "--tip", "nolink", "0", "0"], 2, &["nolink", "links: base_link"]);
+    fails(&["fk", urdf, "--base", "link2", "--tip", "link1", "0"], 2, &["not below"]);
+    fails(&["fk", urdf, "0", "0", "0"], 2, &["2 joints", "got 3"]);
+    fails(&["fk", "puma560", "--base", "x", "0", "0", "0", "0", "0", "0"], 2, &["--base", "URDF"]);
+    fails(&["robot", "show", "ur5", "--tip", "tool0"], 2, &["--tip", "URDF"]);
 }
 
 #[test]
@@ -749,13 +660,8 @@ fn a_closed_stdout_is_not_an_error() {
     for args in [&["robots"][..], &["demo"], &["fk", "ur5", "-90", "0", "0", "0", "0", "0", "--json"], &["--help"]] {
         let (reader, writer) = std::io::pipe().expect("pipe");
         drop(reader);
-        let out = Command::new(env!("CARGO_BIN_EXE_reach"))
-            .args(args)
-            .stdout(writer)
-            .stderr(Stdio::piped())
-            .output()
-            .expect("run reach");
-        let run = from_output(out);
+        let out = reach_command(args).stdout(writer).stderr(Stdio::piped()).output().expect("run reach");
+        let run = Run::from_output(out);
         assert_eq!(run.code, 0, "reach {args:?}: {}", run.stderr);
         assert!(!run.stderr.contains("panicked"), "reach {args:?}: {}", run.stderr);
         assert!(run.stderr.is_empty(), "reach {args:?}: {}", run.stderr);

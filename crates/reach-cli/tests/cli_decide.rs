@@ -3,57 +3,11 @@
 //! and `reach tasks` (visiting against brute force, collection and budgets, unreachable
 //! points skipped), and their bad input (exit 2, empty stdout) and exit 3.
 
-use std::path::PathBuf;
-use std::process::{Command, Stdio};
+mod common;
 
 use serde_json::Value;
 
-struct Run {
-    code: i32,
-    stdout: String,
-    stderr: String,
-}
-
-fn reach(args: &[&str]) -> Run {
-    let out = Command::new(env!("CARGO_BIN_EXE_reach")).args(args).stdin(Stdio::null()).output().expect("run reach");
-    Run {
-        code: out.status.code().expect("reach was killed by a signal"),
-        stdout: String::from_utf8(out.stdout).expect("stdout is UTF-8"),
-        stderr: String::from_utf8(out.stderr).expect("stderr is UTF-8"),
-    }
-}
-
-fn ok(args: &[&str]) -> String {
-    let run = reach(args);
-    assert_eq!(run.code, 0, "reach {args:?} failed: {}", run.stderr);
-    run.stdout
-}
-
-fn json(args: &[&str]) -> Value {
-    let text = ok(args);
-    serde_json::from_str(&text).unwrap_or_else(|e| panic!("reach {args:?}: bad JSON ({e}):\n{text}"))
-}
-
-/// Exit `code`, nothing on stdout, one `error: ` line mentioning every needle.
-fn fails(args: &[&str], code: i32, needles: &[&str]) {
-    let run = reach(args);
-    assert_eq!(run.code, code, "reach {args:?}: expected exit {code}, got {}; stderr: {}", run.code, run.stderr);
-    assert!(run.stdout.is_empty(), "reach {args:?}: stdout not empty: {}", run.stdout);
-    assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
-    for n in needles {
-        assert!(run.stderr.contains(n), "reach {args:?}: stderr lacks {n:?}: {}", run.stderr);
-    }
-}
-
-fn nums(v: &Value) -> Vec<f64> {
-    v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
-}
-
-/// Wrapped difference of two angles in degrees, in radians.
-fn gap_rad(a: f64, b: f64) -> f64 {
-    let d = (a - b).to_radians();
-    (d + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI
-}
+use common::{angle_gap, fails, json, nums, ok, reach, temp_file};
 
 const UR5_POSE: &str = "-1,0,0,0.4,0,1,0,-0.2,0,0,-1,0.3,0,0,0,1";
 const UR5_FROM: &str = "0,-90,90,-90,-90,0";
@@ -101,7 +55,7 @@ fn choose_ranks_the_solutions_within_limits_and_explains_the_ranking() {
         previous = score;
         // The `change` value is Σ |qᵢ − fromᵢ| (wrapped, joint weights 1) of that solution.
         let q = nums(&topsis["solutions"][e["solution"].as_u64().unwrap() as usize]["q_deg"]);
-        let change: f64 = q.iter().zip(&from).map(|(a, b)| gap_rad(*a, *b).abs()).sum();
+        let change: f64 = q.iter().zip(&from).map(|(a, b)| angle_gap(*a, *b).to_radians().abs()).sum();
         assert!((nums(&e["values"])[0] - change).abs() < 1e-9, "{e}");
         assert_eq!(nums(&e["normalised"]).len(), 4);
     }
@@ -235,24 +189,10 @@ fn choose_bad_input_exits_2() {
 // ---------------------------------------------------------------------------------------
 // reach tasks
 
-struct TempFile(PathBuf);
-
-impl Drop for TempFile {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_file(&self.0);
-    }
-}
-
-fn temp_file(name: &str, contents: &str) -> TempFile {
-    let path = std::env::temp_dir().join(format!("reach-decide-{}-{name}", std::process::id()));
-    std::fs::write(&path, contents).unwrap();
-    TempFile(path)
-}
-
 const SEED001: [f64; 6] = [1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0, 1.0 / 18.0, 1.0 / 18.0, 1.0 / 18.0];
 
 fn j1_deg(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).zip(SEED001).map(|((x, y), w)| w * gap_rad(*x, *y).abs()).sum()
+    a.iter().zip(b).zip(SEED001).map(|((x, y), w)| w * angle_gap(*x, *y).to_radians().abs()).sum()
 }
 
 fn permutations(items: &mut Vec<usize>, k: usize, visit: &mut dyn FnMut(&[usize])) {
@@ -269,7 +209,7 @@ fn permutations(items: &mut Vec<usize>, k: usize, visit: &mut dyn FnMut(&[usize]
 
 #[test]
 fn visiting_is_optimal_against_brute_force_and_skips_unreachable_points() {
-    let r = json(&["tasks", "ur5", "visiting", "../../examples/tasks_visiting.toml", "--budget", "6", "--json"]);
+    let r = json(&["tasks", "ur5", "visiting", "examples/tasks_visiting.toml", "--budget", "6", "--json"]);
     assert_eq!(r["unreachable"], serde_json::json!([7]));
     assert!(r["points"][6]["reason"].as_str().unwrap().contains("out of reach"));
     let plan = &r["plan"];
@@ -303,9 +243,9 @@ fn visiting_is_optimal_against_brute_force_and_skips_unreachable_points() {
     let count = within["order"].as_array().unwrap().len();
     assert!(count < 8 && count > 0);
     assert!(within["total_duration_s"].as_f64().unwrap() <= 6.0);
-    let larger = json(&["tasks", "ur5", "visiting", "../../examples/tasks_visiting.toml", "--budget", "9", "--json"]);
+    let larger = json(&["tasks", "ur5", "visiting", "examples/tasks_visiting.toml", "--budget", "9", "--json"]);
     assert!(larger["within_budget"]["order"].as_array().unwrap().len() >= count);
-    let text = ok(&["tasks", "ur5", "visiting", "../../examples/tasks_visiting.toml", "--budget", "6"]);
+    let text = ok(&["tasks", "ur5", "visiting", "examples/tasks_visiting.toml", "--budget", "6"]);
     for needle in ["unreachable (skipped)", "point 7", "exact: Held–Karp", "within the budget of 6.000 s"] {
         assert!(text.contains(needle), "{needle}: {text}");
     }
@@ -320,7 +260,7 @@ fn more_than_twelve_targets_use_the_heuristic_and_say_so() {
         })
         .collect();
     let file = temp_file("ring.toml", &format!("orientation = [180, 0, 0]\ntargets = [{}]\n", points.join(", ")));
-    let r = json(&["tasks", "ur5", "visiting", file.0.to_str().unwrap(), "--json"]);
+    let r = json(&["tasks", "ur5", "visiting", file.to_str().unwrap(), "--json"]);
     assert_eq!(r["plan"]["exact"], false);
     assert!(r["plan"]["method"].as_str().unwrap().starts_with("heuristic"));
     assert_eq!(r["plan"]["order"].as_array().unwrap().len(), 14);
@@ -328,7 +268,7 @@ fn more_than_twelve_targets_use_the_heuristic_and_say_so() {
 
 #[test]
 fn collection_trips_and_budget() {
-    let r = json(&["tasks", "ur5", "collection", "../../examples/tasks_collection.toml", "--budget", "8", "--json"]);
+    let r = json(&["tasks", "ur5", "collection", "examples/tasks_collection.toml", "--budget", "8", "--json"]);
     assert_eq!(r["unreachable"], serde_json::json!([5]));
     let node0 = nums(&r["node0_q_deg"]);
     let plan = &r["plan"];
@@ -354,37 +294,37 @@ fn collection_trips_and_budget() {
 fn tasks_bad_input_and_infeasible() {
     let none = temp_file("none.toml", "targets = [[3, 0, 0], [0, 4, 0]]\n");
     fails(
-        &["tasks", "ur5", "visiting", none.0.to_str().unwrap()],
+        &["tasks", "ur5", "visiting", none.to_str().unwrap()],
         2,
         &["no point of `targets` is reachable", "1 (", "2 ("],
     );
     let empty = temp_file("empty.toml", "targets = []\n");
-    fails(&["tasks", "ur5", "visiting", empty.0.to_str().unwrap()], 2, &["`targets` is empty"]);
+    fails(&["tasks", "ur5", "visiting", empty.to_str().unwrap()], 2, &["`targets` is empty"]);
     let far = temp_file("far.toml", "container = [3, 0, 0]\nobjects = [[0.4, 0, 0.1]]\n");
-    fails(&["tasks", "ur5", "collection", far.0.to_str().unwrap()], 3, &["container is unreachable"]);
+    fails(&["tasks", "ur5", "collection", far.to_str().unwrap()], 3, &["container is unreachable"]);
     let weights = temp_file(
         "weights.toml",
         "targets = [[0.4, 0, 0.1]]\n[choose]\nmethod = \"topsis\"\ncriteria = [\"change\", \"limits\"]\nweights = [1.0]\n",
     );
-    fails(&["tasks", "ur5", "visiting", weights.0.to_str().unwrap()], 2, &["[choose] weights", "expected 2 weights"]);
+    fails(&["tasks", "ur5", "visiting", weights.to_str().unwrap()], 2, &["[choose] weights", "expected 2 weights"]);
     let negative = temp_file(
         "negative.toml",
         "targets = [[0.4, 0, 0.1]]\n[choose]\nmethod = \"vikor\"\ncriteria = [\"change\", \"limits\"]\nweights = [1.0, -2.0]\n",
     );
-    fails(&["tasks", "ur5", "visiting", negative.0.to_str().unwrap()], 2, &["[choose] weights value 2", "negative"]);
+    fails(&["tasks", "ur5", "visiting", negative.to_str().unwrap()], 2, &["[choose] weights value 2", "negative"]);
     let unknown =
         temp_file("unknown.toml", "targets = [[0.4, 0, 0.1]]\n[choose]\nmethod = \"topsis\"\ncriteria = [\"luck\"]\n");
-    fails(&["tasks", "ur5", "visiting", unknown.0.to_str().unwrap()], 2, &["unknown criterion `luck`"]);
+    fails(&["tasks", "ur5", "visiting", unknown.to_str().unwrap()], 2, &["unknown criterion `luck`"]);
     let key = temp_file("key.toml", "targets = [[0.4, 0, 0.1]]\nspeed = 3\n");
-    fails(&["tasks", "ur5", "visiting", key.0.to_str().unwrap()], 2, &["speed"]);
+    fails(&["tasks", "ur5", "visiting", key.to_str().unwrap()], 2, &["speed"]);
     let wrong = temp_file("wrong.toml", "targets = [[0.4, 0]]\n");
-    fails(&["tasks", "ur5", "visiting", wrong.0.to_str().unwrap()], 2, &["targets[1]", "got 2"]);
+    fails(&["tasks", "ur5", "visiting", wrong.to_str().unwrap()], 2, &["targets[1]", "got 2"]);
     let kind = temp_file("kind.toml", "targets = [[0.4, 0, 0.1]]\n");
-    fails(&["tasks", "ur5", "collection", kind.0.to_str().unwrap()], 2, &["`targets` belong to visiting"]);
+    fails(&["tasks", "ur5", "collection", kind.to_str().unwrap()], 2, &["`targets` belong to visiting"]);
     let ok_file = temp_file("ok.toml", "targets = [[0.4, 0, 0.1]]\n");
-    fails(&["tasks", "ur5", "visiting", ok_file.0.to_str().unwrap(), "--budget", "-1"], 2, &["--budget"]);
+    fails(&["tasks", "ur5", "visiting", ok_file.to_str().unwrap(), "--budget", "-1"], 2, &["--budget"]);
     // puma560 has no speed limits: a budget needs max_velocity in the file.
-    fails(&["tasks", "puma560", "visiting", ok_file.0.to_str().unwrap(), "--budget", "5"], 2, &["max_velocity"]);
+    fails(&["tasks", "puma560", "visiting", ok_file.to_str().unwrap(), "--budget", "5"], 2, &["max_velocity"]);
     fails(&["tasks", "ur5", "visiting", "/nonexistent/task.toml"], 2, &["/nonexistent/task.toml"]);
 }
 
@@ -402,14 +342,14 @@ fn interval_choices(r: &Value) -> Vec<(String, String)> {
 
 #[test]
 fn plan_choose_ranks_the_configurations_of_each_interval() {
-    let example = std::fs::read_to_string("../../examples/choose_tracking.toml").unwrap();
-    let chosen = json(&["plan", "../../examples/choose_tracking.toml", "--json"]);
+    let example = std::fs::read_to_string(format!("{}/examples/choose_tracking.toml", common::REPO_ROOT)).unwrap();
+    let chosen = json(&["plan", "examples/choose_tracking.toml", "--json"]);
     assert_eq!(interval_choices(&chosen), vec![("shoulder=w config=−β wrist=e5".into(), "criterion".into())]);
     // Without [choose] the default configuration is realised.
     let start = example.find("\n[choose]").unwrap();
     let end = example.find("[[motion]]").unwrap();
     let plain = temp_file("plain.toml", &format!("{}{}", &example[..start], &example[end..]));
-    let r = json(&["plan", plain.0.to_str().unwrap(), "--json"]);
+    let r = json(&["plan", plain.to_str().unwrap(), "--json"]);
     assert_eq!(interval_choices(&r), vec![("shoulder=w config=+β wrist=e5".into(), "default".into())]);
     // Another criterion (J2, less joint motion) chooses the other configuration.
     let j2 = temp_file(
@@ -418,14 +358,14 @@ fn plan_choose_ranks_the_configurations_of_each_interval() {
             .replace("criteria = [\"limits\", \"manipulability\"]", "criteria = [\"j2\"]")
             .replace("weights = [0.5, 0.5]", ""),
     );
-    let r = json(&["plan", j2.0.to_str().unwrap(), "--json"]);
+    let r = json(&["plan", j2.to_str().unwrap(), "--json"]);
     assert_eq!(interval_choices(&r), vec![("shoulder=w config=+β wrist=e5".into(), "criterion".into())]);
     // A requirement no configuration meets (limit margin >= 0.45): the default is realised (K14).
     let strict = temp_file(
         "strict.toml",
         &example.replace("weights = [0.5, 0.5]", "weights = [0.5, 0.5]\nrequire = { limits = 0.45 }"),
     );
-    let r = json(&["plan", strict.0.to_str().unwrap(), "--json"]);
+    let r = json(&["plan", strict.to_str().unwrap(), "--json"]);
     assert_eq!(interval_choices(&r), vec![("shoulder=w config=+β wrist=e5".into(), "criterion_rejected".into())]);
     assert!(r["motions"][0]["events"].as_array().unwrap().iter().any(|e| e["code"] == "K14"));
     // A requirement one configuration meets (limit margin >= 0.2) keeps the ranking's choice.
@@ -433,13 +373,13 @@ fn plan_choose_ranks_the_configurations_of_each_interval() {
         "loose.toml",
         &example.replace("weights = [0.5, 0.5]", "weights = [0.5, 0.5]\nrequire = { limits = 0.2 }"),
     );
-    let r = json(&["plan", loose.0.to_str().unwrap(), "--json"]);
+    let r = json(&["plan", loose.to_str().unwrap(), "--json"]);
     assert_eq!(interval_choices(&r)[0].1, "criterion");
     // Bad [choose]: unknown criterion, weight count, clearance without a scene, requirement
     // on a criterion not listed.
     let not_listed =
         temp_file("req.toml", &example.replace("weights = [0.5, 0.5]", "weights = [0.5, 0.5]\nrequire = { j2 = 1.0 }"));
-    fails(&["plan", not_listed.0.to_str().unwrap()], 2, &["[choose] require", "`j2` is not one of the criteria"]);
+    fails(&["plan", not_listed.to_str().unwrap()], 2, &["[choose] require", "`j2` is not one of the criteria"]);
     for (from, to, needle) in [
         ("[\"limits\", \"manipulability\"]", "[\"limits\", \"luck\"]", "unknown criterion 'luck'"),
         ("weights = [0.5, 0.5]", "weights = [0.5]", "expected 2 weights"),
@@ -448,7 +388,7 @@ fn plan_choose_ranks_the_configurations_of_each_interval() {
         ("method = \"topsis\"", "method = \"electre\"", "unknown `electre`"),
     ] {
         let file = temp_file("bad-choose.toml", &example.replace(from, to));
-        fails(&["plan", file.0.to_str().unwrap()], 2, &["[choose]", needle]);
+        fails(&["plan", file.to_str().unwrap()], 2, &["[choose]", needle]);
     }
 }
 
@@ -484,7 +424,7 @@ fn move_choose_flags_act_as_the_task_files_choose() {
     let chosen = json(&with(&["--choose", "topsis", "--criteria", "limits,manipulability", "--weights", "0.5,0.5"]));
     assert_eq!(choices(&chosen), vec![("shoulder=w config=−β wrist=e5".into(), "criterion".into())]);
     // The same samples as `reach plan` on the task file with that [choose].
-    let plan = json(&["plan", "../../examples/choose_tracking.toml", "--json"]);
+    let plan = json(&["plan", "examples/choose_tracking.toml", "--json"]);
     assert_eq!(chosen["samples"], plan["motions"][0]["samples"]);
     // Without --choose the default configuration; with j2 (less joint motion) the other one.
     let plain = json(&with(&[]));

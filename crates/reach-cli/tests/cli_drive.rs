@@ -2,55 +2,9 @@
 //! data (planar3: 27.78 steps/deg, 500 Hz; seed 000 D8 move φ = (100, 400, 200) in 0.8 s),
 //! and the error paths (exit 2 for bad input, 3 for motor limits).
 
-use std::path::PathBuf;
-use std::process::{Command, Stdio};
-use std::sync::atomic::{AtomicUsize, Ordering};
+mod common;
 
-struct Run {
-    code: i32,
-    stdout: String,
-    stderr: String,
-}
-
-fn reach(args: &[&str]) -> Run {
-    let out = Command::new(env!("CARGO_BIN_EXE_reach")).args(args).stdin(Stdio::null()).output().expect("run reach");
-    Run {
-        code: out.status.code().expect("killed"),
-        stdout: String::from_utf8(out.stdout).unwrap(),
-        stderr: String::from_utf8(out.stderr).unwrap(),
-    }
-}
-
-fn ok(args: &[&str]) -> String {
-    let run = reach(args);
-    assert_eq!(run.code, 0, "reach {args:?}: {}", run.stderr);
-    assert!(run.stderr.is_empty());
-    run.stdout
-}
-
-fn fails(args: &[&str], code: i32, needles: &[&str]) -> String {
-    let run = reach(args);
-    assert_eq!(run.code, code, "reach {args:?}: stderr {}", run.stderr);
-    assert!(run.stdout.is_empty(), "{}", run.stdout);
-    assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
-    for n in needles {
-        assert!(run.stderr.contains(n), "missing {n:?} in {}", run.stderr);
-    }
-    run.stderr
-}
-
-fn temp(name: &str, text: &str) -> PathBuf {
-    static N: AtomicUsize = AtomicUsize::new(0);
-    let dir = std::env::temp_dir().join(format!(
-        "reach-cli-drive-{}-{}",
-        std::process::id(),
-        N.fetch_add(1, Ordering::SeqCst)
-    ));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
-}
+use common::{fails, ok, temp_file};
 
 const D8: [&str; 9] = ["drive", "planar3", "--from", "0", "0", "0", "--to", "3.6", "-14.4"];
 
@@ -99,7 +53,7 @@ fn json_csv_events_and_coils() {
 
 #[test]
 fn gcode_to_a_file_and_comma_lists() {
-    let path = temp("move.gcode", "");
+    let path = temp_file("move.gcode", "");
     let args = [
         "drive",
         "planar3",
@@ -128,15 +82,16 @@ fn gcode_to_a_file_and_comma_lists() {
 #[test]
 fn motion_files() {
     // 2 s linear move of joint 1 by 18° = 500 steps: 250 Hz.
-    let good = temp("m.json", r#"{"samples": [{"t_s": 0, "q_deg": [0, 0, 0]}, {"t_s": 2, "q_deg": [18, 0, 0]}]}"#);
+    let good = temp_file("m.json", r#"{"samples": [{"t_s": 0, "q_deg": [0, 0, 0]}, {"t_s": 2, "q_deg": [18, 0, 0]}]}"#);
     let v: serde_json::Value =
         serde_json::from_str(&ok(&["drive", "planar3", good.to_str().unwrap(), "--format", "json"])).unwrap();
     assert_eq!(v["joints"][0]["end_position"], 500);
     assert!((v["joints"][0]["max_rate_hz"].as_f64().unwrap() - 250.0).abs() < 1e-6);
     // Too fast: 18° in 0.5 s = 1000 Hz → exit 3 naming joint 1 and a 1 s duration.
-    let fast = temp("f.json", r#"{"samples": [{"t_s": 0, "q_deg": [0, 0, 0]}, {"t_s": 0.5, "q_deg": [18, 0, 0]}]}"#);
+    let fast =
+        temp_file("f.json", r#"{"samples": [{"t_s": 0, "q_deg": [0, 0, 0]}, {"t_s": 0.5, "q_deg": [18, 0, 0]}]}"#);
     fails(&["drive", "planar3", fast.to_str().unwrap()], 3, &["joint 1 (O)", "1.0000 s"]);
-    let broken = temp("b.json", r#"{"samples": [{"t_s": 0}]}"#);
+    let broken = temp_file("b.json", r#"{"samples": [{"t_s": 0}]}"#);
     fails(&["drive", "planar3", broken.to_str().unwrap()], 2, &["motion file"]);
 }
 
@@ -144,7 +99,7 @@ fn motion_files() {
 fn task_files() {
     // Two joint-space moves of 2 s each, the second starting where the first ends: one
     // trajectory of 4 s; joint 1 goes 0 → 18° → 0 (500 steps out, 500 back: zero net steps).
-    let task = temp(
+    let task = temp_file(
         "task.toml",
         "robot = \"planar3\"\n[defaults]\nduration = 2.0\ndt = 0.05\n\
          [[motion]]\nfrom = [0, 0, 0]\nto = [18, -9, 0]\n\
@@ -158,7 +113,7 @@ fn task_files() {
     assert_eq!(v["joints"][1]["steps"], 500);
     assert!(v["joints"][0]["max_deviation_steps"].as_f64().unwrap() <= 1.0);
     // A motion that does not start where the previous one ended cannot be driven.
-    let gap = temp(
+    let gap = temp_file(
         "gap.toml",
         "robot = \"planar3\"\n[defaults]\nduration = 2.0\n\
          [[motion]]\nfrom = [0, 0, 0]\nto = [18, 0, 0]\n\
@@ -166,11 +121,11 @@ fn task_files() {
     );
     fails(&["drive", "planar3", gap.to_str().unwrap()], 2, &["motion 2", "joint 1", "cannot jump"]);
     // The task names another robot.
-    let other = temp("other.toml", "robot = \"log-loader\"\n[[motion]]\nfrom = [0, 0, 0]\nto = [9, 0, 0]\n");
+    let other = temp_file("other.toml", "robot = \"log-loader\"\n[[motion]]\nfrom = [0, 0, 0]\nto = [9, 0, 0]\n");
     fails(&["drive", "planar3", other.to_str().unwrap()], 2, &["log-loader", "planar3"]);
     // Too fast for the motors: exit 3 from the schedule check.
     let fast =
-        temp("fast.toml", "robot = \"planar3\"\n[[motion]]\nfrom = [0, 0, 0]\nto = [90, 0, 0]\nduration = 0.5\n");
+        temp_file("fast.toml", "robot = \"planar3\"\n[[motion]]\nfrom = [0, 0, 0]\nto = [90, 0, 0]\nduration = 0.5\n");
     fails(&["drive", "planar3", fast.to_str().unwrap()], 3, &["joint 1"]);
 }
 
@@ -182,7 +137,7 @@ fn bad_input() {
     fails(&["drive", "planar3", "--from", "0,0,0", "--to", "90,0,0", "--duration", "1"], 3, &["too short", "joint 1"]);
     fails(&["drive", "planar3"], 2, &["--from"]);
     // A microstepping drive has no coil table.
-    let robot = temp(
+    let robot = temp_file(
         "m.toml",
         "name = \"m\"\nlength_unit = \"m\"\nangle_unit = \"deg\"\n[[joints]]\nname = \"j\"\na = 1\n\
          drive = { steps_per_rev = 200, microstepping = 16, max_step_rate = 20000, wiring = \"bipolar\" }\n",

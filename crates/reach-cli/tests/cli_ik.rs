@@ -3,48 +3,11 @@
 //! hand-derived planar solutions, negative comma lists, exit status 3 with a report on stdout
 //! and one line on stderr, and bad input (exit 2, empty stdout).
 
-use std::process::{Command, Stdio};
+mod common;
 
 use serde_json::Value;
 
-struct Run {
-    code: i32,
-    stdout: String,
-    stderr: String,
-}
-
-fn reach(args: &[&str]) -> Run {
-    let out = Command::new(env!("CARGO_BIN_EXE_reach")).args(args).stdin(Stdio::null()).output().expect("run reach");
-    Run {
-        code: out.status.code().expect("reach was killed by a signal"),
-        stdout: String::from_utf8(out.stdout).expect("stdout is UTF-8"),
-        stderr: String::from_utf8(out.stderr).expect("stderr is UTF-8"),
-    }
-}
-
-fn ok(args: &[&str]) -> String {
-    let run = reach(args);
-    assert_eq!(run.code, 0, "reach {args:?} failed: {}", run.stderr);
-    assert!(run.stderr.is_empty(), "reach {args:?} wrote to stderr: {}", run.stderr);
-    run.stdout
-}
-
-fn json(args: &[&str]) -> Value {
-    let text = ok(args);
-    serde_json::from_str(&text).unwrap_or_else(|e| panic!("reach {args:?}: bad JSON ({e}):\n{text}"))
-}
-
-/// Bad input: exit 2, nothing on stdout, one `error: ` line mentioning every needle.
-fn bad(args: &[&str], needles: &[&str]) {
-    let run = reach(args);
-    assert_eq!(run.code, 2, "reach {args:?}: expected exit 2, got {}; stderr: {}", run.code, run.stderr);
-    assert!(run.stdout.is_empty(), "reach {args:?} printed on stdout: {}", run.stdout);
-    assert_eq!(run.stderr.lines().count(), 1, "reach {args:?}: stderr is not one line:\n{}", run.stderr);
-    assert!(run.stderr.starts_with("error: "), "{}", run.stderr);
-    for needle in needles {
-        assert!(run.stderr.contains(needle), "reach {args:?}: `{}` does not mention `{needle}`", run.stderr.trim_end());
-    }
-}
+use common::{Run, angle_gap, fails, json, nums, ok, reach, stdout_json};
 
 /// No solution: exit 3, the report on stdout, one `error: ` line on stderr.
 fn infeasible(args: &[&str]) -> Run {
@@ -54,15 +17,6 @@ fn infeasible(args: &[&str]) -> Run {
     assert_eq!(run.stderr.lines().count(), 1, "reach {args:?}: stderr is not one line:\n{}", run.stderr);
     assert!(run.stderr.starts_with("error: "), "{}", run.stderr);
     run
-}
-
-fn nums(v: &Value) -> Vec<f64> {
-    v.as_array().unwrap_or_else(|| panic!("not an array: {v}")).iter().map(|x| x.as_f64().unwrap()).collect()
-}
-
-/// Difference of two angles in degrees, wrapped into [−180, 180).
-fn angle_gap(a: f64, b: f64) -> f64 {
-    (a - b + 540.0).rem_euclid(360.0) - 180.0
 }
 
 fn same_angles(a: &[f64], b: &[f64], tol_deg: f64) -> bool {
@@ -267,7 +221,7 @@ fn planar3_free_angle_gives_the_hand_derived_elbows() {
     assert_eq!(other["violations"][0]["value_deg"].as_f64().unwrap().round(), 90.0);
     // φ = −90°: the wrist is at (2, 2), |W| = 2√2 > 2 links: that orientation is not possible.
     let run = infeasible(&["ik", "planar3", "--xyz", "2,1,0", "--free-angle", "-90", "--json"]);
-    let report: Value = serde_json::from_str(&run.stdout).unwrap();
+    let report = stdout_json(&run);
     assert_eq!(report["status"], "orientation_unreachable");
 }
 
@@ -324,7 +278,7 @@ fn planar3_scan_of_an_unreachable_target_exits_3() {
 fn unreachable_target_exits_3_with_a_report_and_one_line() {
     // 3 m from the base is beyond puma560's reach (0.43 + 0.43 m links and offsets).
     let run = infeasible(&["ik", "puma560", "--xyz", "3,0,0", "--rpy", "0,0,0", "--json"]);
-    let report: Value = serde_json::from_str(&run.stdout).unwrap();
+    let report = stdout_json(&run);
     assert_eq!(report["status"], "unreachable");
     assert!(report["chosen"].is_null());
     assert!(report["solutions"].as_array().unwrap().is_empty());
@@ -338,7 +292,7 @@ fn unreachable_target_exits_3_with_a_report_and_one_line() {
 fn all_solutions_outside_limits_exit_3_and_are_listed() {
     // puma560, tool position (0.5, 0, 0): every branch violates a limit.
     let run = infeasible(&["ik", "puma560", "--xyz", "0.5,0,0", "--json"]);
-    let report: Value = serde_json::from_str(&run.stdout).unwrap();
+    let report = stdout_json(&run);
     assert_eq!(report["status"], "outside_limits");
     assert!(report["chosen"].is_null());
     let all = report["solutions"].as_array().unwrap();
@@ -392,32 +346,33 @@ fn comma_lists_may_start_with_a_minus() {
 #[test]
 fn bad_input_exits_2_with_empty_stdout() {
     let identity = "1,0,0,0.4,0,1,0,0,0,0,1,0.3,0,0,0,1";
-    bad(&["ik", "puma560", "--matrix", "1,0,0,0,0,1,0,0,0,0,1,0,0,0,0"], &["--matrix", "16", "got 15"]);
-    bad(&["ik", "puma560", "--matrix", &format!("{identity},1")], &["--matrix", "got 17"]);
-    bad(&["ik", "puma560", "--matrix", "1,0,0,0,0,1,0,0,0,0,1.1,0,0,0,0,1"], &["--matrix", "orthonormal"]);
-    bad(&["ik", "puma560", "--matrix", "0.7,0.7,0,0,-0.7,0.7,0,0,0,0,1,0,0,0,0,1"], &["orthonormal"]);
-    bad(&["ik", "puma560", "--matrix", "1,0,0,0,0,1,0,0,0,0,-1,0,0,0,0,1"], &["reflection"]);
-    bad(&["ik", "puma560", "--matrix", "1,0,0,0,0,1,0,0,0,0,1,0,0,0,1,1"], &["last row", "0 0 0 1"]);
-    bad(&["ik", "puma560", "--matrix", "1,0,0,NaN,0,1,0,0,0,0,1,0,0,0,0,1"], &["--matrix value 4", "finite"]);
-    bad(&["ik", "puma560", "--xyz", "nan,0,0"], &["--xyz value 1", "finite"]);
-    bad(&["ik", "puma560", "--xyz", "0.4,0,inf", "--rpy", "0,0,0"], &["--xyz value 3"]);
-    bad(&["ik", "puma560", "--xyz", "0.4,0,0.3", "--rpy", "0,NaN,0"], &["--rpy value 2"]);
-    bad(&["ik", "puma560", "--xyz", "0.4,0"], &["--xyz", "3", "got 2"]);
-    bad(&["ik", "puma560", "--xyz", "0.4,x,0"], &["--xyz value 2", "\"x\""]);
-    bad(&["ik", "puma560", "--matrix", identity, "--solver", "foo"], &["unknown solver `foo`", "spherical-wrist"]);
-    bad(&["ik", "puma560", "--matrix", identity, "--solver", "planar"], &["planar", "puma560", "3 joints"]);
-    bad(&["ik", "puma560", "--matrix", identity, "--from", "1,2,3"], &["--from", "6 joints"]);
-    bad(&["ik", "puma560", "--matrix", identity, "--from", "0,0,nan,0,0,0"], &["--from", "joint 3"]);
-    bad(
+    fails(&["ik", "puma560", "--matrix", "1,0,0,0,0,1,0,0,0,0,1,0,0,0,0"], 2, &["--matrix", "16", "got 15"]);
+    fails(&["ik", "puma560", "--matrix", &format!("{identity},1")], 2, &["--matrix", "got 17"]);
+    fails(&["ik", "puma560", "--matrix", "1,0,0,0,0,1,0,0,0,0,1.1,0,0,0,0,1"], 2, &["--matrix", "orthonormal"]);
+    fails(&["ik", "puma560", "--matrix", "0.7,0.7,0,0,-0.7,0.7,0,0,0,0,1,0,0,0,0,1"], 2, &["orthonormal"]);
+    fails(&["ik", "puma560", "--matrix", "1,0,0,0,0,1,0,0,0,0,-1,0,0,0,0,1"], 2, &["reflection"]);
+    fails(&["ik", "puma560", "--matrix", "1,0,0,0,0,1,0,0,0,0,1,0,0,0,1,1"], 2, &["last row", "0 0 0 1"]);
+    fails(&["ik", "puma560", "--matrix", "1,0,0,NaN,0,1,0,0,0,0,1,0,0,0,0,1"], 2, &["--matrix value 4", "finite"]);
+    fails(&["ik", "puma560", "--xyz", "nan,0,0"], 2, &["--xyz value 1", "finite"]);
+    fails(&["ik", "puma560", "--xyz", "0.4,0,inf", "--rpy", "0,0,0"], 2, &["--xyz value 3"]);
+    fails(&["ik", "puma560", "--xyz", "0.4,0,0.3", "--rpy", "0,NaN,0"], 2, &["--rpy value 2"]);
+    fails(&["ik", "puma560", "--xyz", "0.4,0"], 2, &["--xyz", "3", "got 2"]);
+    fails(&["ik", "puma560", "--xyz", "0.4,x,0"], 2, &["--xyz value 2", "\"x\""]);
+    fails(&["ik", "puma560", "--matrix", identity, "--solver", "foo"], 2, &["unknown solver `foo`", "spherical-wrist"]);
+    fails(&["ik", "puma560", "--matrix", identity, "--solver", "planar"], 2, &["planar", "puma560", "3 joints"]);
+    fails(&["ik", "puma560", "--matrix", identity, "--from", "1,2,3"], 2, &["--from", "6 joints"]);
+    fails(&["ik", "puma560", "--matrix", identity, "--from", "0,0,nan,0,0,0"], 2, &["--from", "joint 3"]);
+    fails(
         &["ik", "puma560", "--matrix", identity, "--joint-weights", "1,1,1,1,1,-1"],
+        2,
         &["--joint-weights value 6", "negative"],
     );
-    bad(&["ik", "puma560", "--matrix", identity, "--restarts", "0"], &["--restarts"]);
-    bad(&["ik", "planar3", "--xyz", "2,1,0", "--step", "-1"], &["--step", "positive"]);
-    bad(&["ik", "planar3", "--xyz", "2,1,0", "--free-angle", "inf"], &["--free-angle", "finite"]);
-    bad(&["ik", "planar3", "--xyz", "2,1,0", "--scan", "0"], &["--scan", "positive"]);
-    bad(&["ik", "puma560", "--xyz", "2,1,0", "--scan", "0.1"], &["planar", "puma560"]);
-    bad(&["ik", "nosuchrobot", "--xyz", "0,0,0"], &["unknown robot"]);
+    fails(&["ik", "puma560", "--matrix", identity, "--restarts", "0"], 2, &["--restarts"]);
+    fails(&["ik", "planar3", "--xyz", "2,1,0", "--step", "-1"], 2, &["--step", "positive"]);
+    fails(&["ik", "planar3", "--xyz", "2,1,0", "--free-angle", "inf"], 2, &["--free-angle", "finite"]);
+    fails(&["ik", "planar3", "--xyz", "2,1,0", "--scan", "0"], 2, &["--scan", "positive"]);
+    fails(&["ik", "puma560", "--xyz", "2,1,0", "--scan", "0.1"], 2, &["planar", "puma560"]);
+    fails(&["ik", "nosuchrobot", "--xyz", "0,0,0"], 2, &["unknown robot"]);
     // Usage errors (clap): no target, both targets, --rpy without --xyz, --csv without --scan.
     for args in [
         &["ik", "puma560"][..],

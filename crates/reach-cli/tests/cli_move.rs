@@ -2,49 +2,24 @@
 //! values crates/reach/tests/seed_001_motion.rs pins), seed 003's weld (notes 003 §5.5), the
 //! JSON feeding `reach drive`, and the error paths (exit 2 bad input, 3 infeasible).
 
+mod common;
+
 use std::f64::consts::PI;
 use std::path::PathBuf;
-use std::process::{Command, Stdio};
 
 use serde_json::Value;
 
-struct Run {
-    code: i32,
-    stdout: String,
-    stderr: String,
-}
+use common::{nums, reach};
+// Short names for the shared helpers, as used throughout this file.
+use common::{num as f, stdout_json as json};
 
-fn reach(args: &[&str]) -> Run {
-    let out = Command::new(env!("CARGO_BIN_EXE_reach"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
-        .stdin(Stdio::null())
-        .output()
-        .expect("run reach");
-    Run {
-        code: out.status.code().expect("killed"),
-        stdout: String::from_utf8(out.stdout).unwrap(),
-        stderr: String::from_utf8(out.stderr).unwrap(),
-    }
-}
-
-fn json(run: &Run) -> Value {
-    serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("{e}: {}", run.stdout))
-}
-
+/// Bad input with one needle (see [`common::fails`]).
 fn fails(args: &[&str], code: i32, needle: &str) {
-    let run = reach(args);
-    assert_eq!(run.code, code, "reach {args:?}: {}", run.stderr);
-    assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
-    assert!(run.stderr.contains(needle), "missing {needle:?} in {}", run.stderr);
-}
-
-fn f(v: &Value) -> f64 {
-    v.as_f64().unwrap()
+    common::fails(args, code, &[needle]);
 }
 
 fn q(sample: &Value) -> Vec<f64> {
-    sample["q_deg"].as_array().unwrap().iter().map(f).collect()
+    nums(&sample["q_deg"])
 }
 
 const SPBU6_MOVE: [&str; 10] =

@@ -1,38 +1,13 @@
 //! End-to-end tests of the drawings (`--svg`, `--png`) of `reach move`, `reach plan`,
 //! `reach avoid`, `reach cspace`, `reach path` and `reach tasks`, and of `reach path` itself.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+mod common;
+
+use std::path::Path;
 
 use serde_json::Value;
 
-struct Run {
-    code: i32,
-    stdout: String,
-    stderr: String,
-}
-
-fn reach(args: &[&str]) -> Run {
-    let out = Command::new(env!("CARGO_BIN_EXE_reach"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
-        .stdin(Stdio::null())
-        .output()
-        .expect("run reach");
-    Run {
-        code: out.status.code().expect("reach was killed by a signal"),
-        stdout: String::from_utf8(out.stdout).expect("stdout is UTF-8"),
-        stderr: String::from_utf8(out.stderr).expect("stderr is UTF-8"),
-    }
-}
-
-/// A fresh scratch directory for one test.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("reach-cli-plot-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+use common::{one_error_line, reach, scratch};
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
@@ -64,12 +39,6 @@ fn svg_size(text: &str) -> (f64, f64) {
     let doc = roxmltree::Document::parse(text).unwrap();
     let root = doc.root_element();
     (root.attribute("width").unwrap().parse().unwrap(), root.attribute("height").unwrap().parse().unwrap())
-}
-
-fn one_error_line(run: &Run) {
-    assert!(run.stdout.is_empty(), "stdout not empty: {}", run.stdout);
-    assert_eq!(run.stderr.lines().count(), 1, "stderr: {}", run.stderr);
-    assert!(run.stderr.starts_with("error: "), "stderr: {}", run.stderr);
 }
 
 #[test]

@@ -1,34 +1,8 @@
 //! End-to-end tests of `reach check`, `reach avoid` and `reach cspace` (seeds 000 and 004).
 
-use std::process::{Command, Stdio};
+mod common;
 
-use serde_json::Value;
-
-struct Run {
-    code: i32,
-    stdout: String,
-    stderr: String,
-}
-
-fn reach(args: &[&str]) -> Run {
-    let out = Command::new(env!("CARGO_BIN_EXE_reach"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
-        .stdin(Stdio::null())
-        .output()
-        .expect("run reach");
-    Run {
-        code: out.status.code().expect("reach was killed by a signal"),
-        stdout: String::from_utf8(out.stdout).expect("stdout is UTF-8"),
-        stderr: String::from_utf8(out.stderr).expect("stderr is UTF-8"),
-    }
-}
-
-fn json(args: &[&str]) -> Value {
-    let run = reach(args);
-    assert_eq!(run.code, 0, "reach {args:?}: {}", run.stderr);
-    serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("reach {args:?}: bad JSON ({e}):\n{}", run.stdout))
-}
+use common::{fails, json, ok, reach};
 
 #[test]
 fn cspace_reference_counts() {
@@ -91,12 +65,8 @@ fn avoid_failures_and_bad_input() {
     let run = reach(&["avoid", "planar3", "--start", "60,-40,-30", "--to", "2.4,0.2", "--obstacle", "2.35,0.3"]);
     assert_eq!(run.code, 3);
     assert!(run.stderr.contains("within the detour radius"), "{}", run.stderr);
-    let run = reach(&["avoid", "planar3", "--start", "60,-40,-30", "--to", "nan,0.2"]);
-    assert_eq!(run.code, 2);
-    assert!(run.stdout.is_empty());
-    let run = reach(&["check", "varan4", "examples/no_such_scene.toml", "0", "0", "0", "0"]);
-    assert_eq!(run.code, 2);
-    assert!(run.stderr.contains("no_such_scene"));
+    fails(&["avoid", "planar3", "--start", "60,-40,-30", "--to", "nan,0.2"], 2, &["--to"]);
+    fails(&["check", "varan4", "examples/no_such_scene.toml", "0", "0", "0", "0"], 2, &["no_such_scene"]);
 }
 
 #[test]
@@ -119,15 +89,12 @@ fn cspace_fit_prints_primitives_and_confusion() {
     let v = json(&["cspace", "varan4", "examples/seed004_free.toml", "--fix", "q1=0", "--json"]);
     assert!(v.get("fit").is_none());
     // Text: the primitives table and the confusion block.
-    let run = reach(&["cspace", "varan4", "examples/seed004_free.toml", "--fix", "q1=0", "--fit"]);
-    assert_eq!(run.code, 0, "{}", run.stderr);
-    assert!(
-        run.stdout.contains("elliptic cylinder (outside)") && run.stdout.contains("false allowed"),
-        "{}",
-        run.stdout
-    );
+    let text = ok(&["cspace", "varan4", "examples/seed004_free.toml", "--fix", "q1=0", "--fit"]);
+    assert!(text.contains("elliptic cylinder (outside)") && text.contains("false allowed"), "{text}");
     // Four swept joints: bad input, one line on stderr.
-    let run = reach(&["cspace", "varan4", "examples/seed004_free.toml", "--step", "60", "--fit"]);
-    assert_eq!(run.code, 2);
-    assert!(run.stderr.contains("exactly three swept joints") && run.stdout.is_empty(), "{}", run.stderr);
+    fails(
+        &["cspace", "varan4", "examples/seed004_free.toml", "--step", "60", "--fit"],
+        2,
+        &["exactly three swept joints"],
+    );
 }
