@@ -208,3 +208,47 @@ fn puma560_move_reports_mechanical_energy() {
     let text = reach(&args);
     assert!(text.stdout.contains("energy: ") && text.stdout.contains(" J"), "{}", text.stdout);
 }
+
+/// A long tool-space motion (1889 samples, over the progress-bar threshold of 1000) run with
+/// stdout and stderr piped: no progress bar, nothing on stderr, in `reach move` and in
+/// `reach plan`, in text and JSON mode.
+#[test]
+fn long_tool_motions_show_no_progress_bar_when_not_on_a_terminal() {
+    let weld = [
+        "move",
+        "welder6r",
+        "--from-pose",
+        "0.050,0.740,0.070,0,-41.86854343693031,-50.19442890773481",
+        "--to-pose",
+        "0.500,0.200,0.700,0,-41.86854343693031,-50.19442890773481",
+        "--space",
+        "tool",
+        "--speed",
+        "0.001",
+        "--dt",
+        "0.5",
+    ];
+    let run = reach(&[weld.as_slice(), &["--json"]].concat());
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(json(&run)["samples"].as_array().unwrap().len(), 1889);
+    assert!(run.stderr.is_empty(), "no progress bar when not on a terminal: {}", run.stderr);
+    let run = reach(&weld);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stdout.contains("feasible"), "{}", run.stdout);
+    assert!(run.stderr.is_empty(), "no progress bar when not on a terminal: {}", run.stderr);
+    // The same motion from a task file.
+    let dir = std::env::temp_dir().join(format!("reach-cli-move-{}-progress", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let task = dir.join("weld.toml");
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/seed003_welding.toml"))
+        .unwrap()
+        .replace("dt = 10.0", "dt = 0.5");
+    assert!(text.contains("dt = 0.5"));
+    std::fs::write(&task, text).unwrap();
+    for extra in [&[][..], &["--json"]] {
+        let run = reach(&[&["plan", task.to_str().unwrap()], extra].concat());
+        assert_eq!(run.code, 0, "{}", run.stderr);
+        assert!(run.stderr.is_empty(), "no progress bar when not on a terminal: {}", run.stderr);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

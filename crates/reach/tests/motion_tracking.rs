@@ -8,6 +8,7 @@
 //! of the elbow triangle is β = acos(R/2), the elbow-up solution has q2 = e + β, q3 = −2β and
 //! the elbow-down one q2 = e − β, q3 = 2β. R = 2 is the stretched arm (|Δ| = 1).
 
+use std::cell::RefCell;
 use std::f64::consts::PI;
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
@@ -16,8 +17,8 @@ use reach::ik::{Branch, SingularityKind};
 use reach::model::presets;
 use reach::motion::PathSample;
 use reach::motion::tracking::{
-    ConfigurationTrack, Decision, EventCode, SingularityDetection, SplitKind, TrackedPath, TrackingError,
-    TrackingOptions, TrackingReport, ViolationKind, track,
+    ConfigurationTrack, Decision, EventCode, SingularityDetection, SplitKind, TRACKING_PROGRESS_CHUNK, TrackedPath,
+    TrackingError, TrackingOptions, TrackingReport, ViolationKind, track, track_with_progress,
 };
 
 const YAW_DEG: f64 = 30.0;
@@ -329,4 +330,59 @@ fn the_numeric_solver_follows_a_redundant_arm_continuously() {
         let step = w[0].q.iter().zip(&w[1].q).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
         assert!(step < 0.1, "joint step {step} at s = {}", w[1].s);
     }
+}
+
+/// Tracks `path` with and without the progress hook; checks the calls (one total, reached once
+/// as the last call, `done` increasing, one call per chunk at most) and that the reports agree.
+fn check_progress(robot: &Robot, path: &TrackedPath<'_>, options: &TrackingOptions) -> TrackingReport {
+    let calls = RefCell::new(Vec::<(usize, usize)>::new());
+    let hooked =
+        track_with_progress(robot, path, options, None, &|done, total| calls.borrow_mut().push((done, total))).unwrap();
+    let plain = track(robot, path, options, None).unwrap();
+    assert_eq!(hooked, plain, "the hook changed the report");
+    let calls = calls.into_inner();
+    let n = path.samples().len();
+    let total = 2 * n * hooked.configurations.len();
+    assert!(calls.iter().all(|&(_, t)| t == total), "total is 2·n·m = {total}: {calls:?}");
+    assert_eq!(calls.last(), Some(&(total, total)), "{calls:?}");
+    assert_eq!(calls.iter().filter(|&&(d, _)| d == total).count(), 1, "total reached once: {calls:?}");
+    assert!(calls.windows(2).all(|w| w[0].0 < w[1].0), "monotone: {calls:?}");
+    assert!(
+        calls.windows(2).all(|w| w[1].0 - w[0].0 >= TRACKING_PROGRESS_CHUNK || w[1].0 == total),
+        "chunks: {calls:?}"
+    );
+    // The phases add up: the last report before the total is within a chunk of it.
+    assert!(calls.len() >= 2 && total - calls[calls.len() - 2].0 < TRACKING_PROGRESS_CHUNK, "{calls:?}");
+    // Per chunk, not per sample: several reports on a long path, but far fewer than samples.
+    assert!(calls.len() >= total / TRACKING_PROGRESS_CHUNK / 2, "{} calls for {total} units", calls.len());
+    assert!(calls.len() <= total / TRACKING_PROGRESS_CHUNK + 1, "{} calls for {total} units", calls.len());
+    hooked
+}
+
+#[test]
+fn progress_reaches_the_total_once_and_leaves_the_report_unchanged() {
+    // Three intervals, the middle one out of reach (its samples are counted at once).
+    let robot = loader(180.0);
+    let samples = grid(bulge_pose, 1.0, 2999);
+    let eval = |s: f64| bulge_pose(s);
+    let path = TrackedPath::with_evaluator(&samples, &eval).unwrap();
+    let r = check_progress(&robot, &path, &options(SingularityDetection::Auto));
+    assert_eq!(r.intervals.len(), 3);
+    assert!(!r.intervals[1].reachable);
+    // Two intervals split at a singular position, the configuration switching there.
+    let robot = loader(100.0);
+    let samples = grid(touch_pose, 2.0, 1999);
+    let eval = |s: f64| touch_pose(s);
+    let path = TrackedPath::with_evaluator(&samples, &eval).unwrap();
+    let r = check_progress(&robot, &path, &options(SingularityDetection::Auto));
+    assert_eq!(r.intervals.len(), 2);
+    // Default configurations (every label of the first reachable sample) and a short path:
+    // a single report, the total.
+    let samples = grid(touch_pose, 2.0, 20);
+    let path = TrackedPath::sampled(&samples).unwrap();
+    let calls = RefCell::new(Vec::new());
+    let options = TrackingOptions { position_only: true, ..Default::default() };
+    let r = track_with_progress(&robot, &path, &options, None, &|d, t| calls.borrow_mut().push((d, t))).unwrap();
+    let total = 2 * 21 * r.configurations.len();
+    assert_eq!(calls.into_inner(), [(total, total)]);
 }

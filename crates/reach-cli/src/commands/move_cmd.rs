@@ -13,6 +13,10 @@
 //! `reach::effort::dynamics::trajectory_energy_with_rates`; otherwise `null` with the reason in
 //! `energy_note`), and a feasibility summary.
 //!
+//! Progress: a tool-space motion of at least [`PROGRESS_MIN_SAMPLES`] samples shows a progress
+//! bar of its tracking on stderr (`reach::motion::tracking::track_with_progress`), only when
+//! stdout and stderr are terminals and not with `--json` (`crate::plot::progress`).
+//!
 //! Exit status: 0 feasible; 3 infeasible (a joint outside its limits, an unrealisable
 //! interval) after printing the report, with one line on stderr; 2 for bad input.
 
@@ -26,13 +30,14 @@ use reach::effort::dynamics::trajectory_energy_with_rates;
 use reach::effort::{Differences, SEED001_WEIGHTS, j1, j2};
 use reach::motion::joint_space::EndChoice;
 use reach::motion::sample::PerSampleIk;
-use reach::motion::tracking::{TrackedPath, TrackingOptions, track};
+use reach::motion::tracking::{TrackedPath, TrackingOptions, track_with_progress};
 use reach::motion::{JointMotion, JointRates, Profile, ToolMotion};
 use serde::{Deserialize, Serialize};
 
 use crate::error::{CliError, one_line};
 use crate::numbers::{display_unit, from_si, joints_outside_limits, q_to_display, to_si};
 use crate::output::{fixed, fixeds, rpy_deg, write_json};
+use crate::plot::progress::Progress;
 use crate::robot_arg::{RobotArgs, load_robot};
 use reach::model::UrdfChain;
 
@@ -433,11 +438,21 @@ fn check_positive(name: &str, v: Option<f64>) -> Result<(), CliError> {
     }
 }
 
-/// Computes one motion (no output). Bad input is an error; infeasibility is in the result.
+/// Tool-space motions with at least this many samples show a progress bar while they are
+/// tracked (shorter ones finish before a bar would be read; the default `dt` gives 101).
+pub const PROGRESS_MIN_SAMPLES: usize = 1000;
+
+/// Computes one motion (no output but the progress bar). Bad input is an error; infeasibility
+/// is in the result.
+///
+/// # Arguments
+/// * `progress` — whether a progress bar may be shown (false in JSON mode); it is shown only
+///   for tool-space motions of at least [`PROGRESS_MIN_SAMPLES`] samples and when stdout and
+///   stderr are terminals.
 ///
 /// # Errors
 /// [`CliError::BadInput`] for wrong counts, non-positive durations, unreachable end poses.
-pub fn compute(robot: &Robot, spec: &MoveSpec) -> Result<MoveJson, CliError> {
+pub fn compute(robot: &Robot, spec: &MoveSpec, progress: bool) -> Result<MoveJson, CliError> {
     check_positive("duration", spec.duration)?;
     check_positive("speed", spec.speed)?;
     check_positive("dt", spec.dt)?;
@@ -451,7 +466,7 @@ pub fn compute(robot: &Robot, spec: &MoveSpec) -> Result<MoveJson, CliError> {
     };
     let (times, q, qd, intervals, events) = match spec.space {
         Space::Joint => joint_space(robot, spec)?,
-        Space::Tool => tool_space(robot, spec)?,
+        Space::Tool => tool_space(robot, spec, progress)?,
     };
     let differences = Differences::for_robot(robot);
     let (j1v, j2v) = match (q.first(), q.last()) {
@@ -580,7 +595,7 @@ fn limit_reasons(robot: &Robot, times: &[f64], q: &[Vec<f64>], qd: &[Vec<f64>]) 
     out
 }
 
-fn tool_space(robot: &Robot, spec: &MoveSpec) -> Result<Computed, CliError> {
+fn tool_space(robot: &Robot, spec: &MoveSpec, progress: bool) -> Result<Computed, CliError> {
     let pose_end = |end: &End, which: &str| -> Result<Isometry3<f64>, CliError> {
         match end {
             End::Pose(p) => Ok(pose_of(p)),
@@ -606,7 +621,17 @@ fn tool_space(robot: &Robot, spec: &MoveSpec) -> Result<Computed, CliError> {
     let tracked = TrackedPath::sampled(&path.samples).map_err(motion_error)?;
     let chooser = spec.choose.as_ref().map(|c| c.chooser(robot, spec.weights.as_deref())).transpose()?;
     let criterion = chooser.as_ref().map(|c| c as &dyn reach::motion::tracking::Criterion);
-    let report = track(robot, &tracked, &TrackingOptions::default(), criterion).map_err(motion_error)?;
+    // The bar is made at the first report, which carries the total.
+    let bar: std::cell::OnceCell<Progress> = std::cell::OnceCell::new();
+    let show = progress && path.samples.len() >= PROGRESS_MIN_SAMPLES;
+    let message = if spec.name.is_empty() { "tracking".to_string() } else { format!("tracking {}", spec.name) };
+    let report = track_with_progress(robot, &tracked, &TrackingOptions::default(), criterion, &|done, total| {
+        if show {
+            bar.get_or_init(|| Progress::new(total as u64, &message, false)).set(done as u64);
+        }
+    })
+    .map_err(motion_error)?;
+    drop(bar);
     // Samples: the realised trajectory when every interval is realised; otherwise the per-sample
     // IK nearest to the previous sample with the limits ignored (so that J1/J2 and the curves
     // are still reported next to the reasons), or the realised part when even that fails.
@@ -783,7 +808,7 @@ pub fn run(args: &MoveArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let robot = args.robot.load()?.robot;
     let spec = args.spec()?;
     args.draw.check_files()?;
-    let m = compute(&robot, &spec)?;
+    let m = compute(&robot, &spec, !args.json)?;
     if args.draw.any() {
         args.draw.write(&move_drawing(&robot, &spec, &m))?;
     }
@@ -924,15 +949,23 @@ pub fn load_task(text: &str, origin: &str) -> Result<(Robot, String, Vec<MoveSpe
     Ok((robot, file.description, specs))
 }
 
-/// Computes every motion of a task.
+/// Computes every motion of a task (no progress bar).
 ///
 /// # Errors
 /// As [`compute`]; the message names the motion.
 pub fn plan(robot: &Robot, specs: &[MoveSpec]) -> Result<Vec<MoveJson>, CliError> {
+    plan_with_progress(robot, specs, false)
+}
+
+/// [`plan`] that may show a progress bar for long tool-space motions (see [`compute`]).
+///
+/// # Errors
+/// As [`plan`].
+pub fn plan_with_progress(robot: &Robot, specs: &[MoveSpec], progress: bool) -> Result<Vec<MoveJson>, CliError> {
     specs
         .iter()
         .map(|s| {
-            compute(robot, s)
+            compute(robot, s, progress)
                 .map_err(|e| CliError::bad_input(format!("motion `{}`: {}", s.name, one_line(&e.to_string()))))
         })
         .collect()
@@ -946,7 +979,7 @@ pub fn run_plan(args: &PlanArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let text = std::fs::read_to_string(&args.task)
         .map_err(|e| CliError::bad_input(format!("{}: {e}", args.task.display())))?;
     let (robot, description, specs) = load_task(&text, &args.task.display().to_string())?;
-    let motions = plan(&robot, &specs)?;
+    let motions = plan_with_progress(&robot, &specs, !args.json)?;
     write_plan_drawings(&args.draw, &robot, &specs, &motions)?;
     if args.json {
         write_json(

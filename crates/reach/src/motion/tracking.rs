@@ -67,6 +67,7 @@
 //! messages K1–K14 ([`EventCode`]).
 
 use std::borrow::Cow;
+use std::cell::Cell;
 use std::f64::consts::{PI, TAU};
 use std::fmt;
 
@@ -911,7 +912,37 @@ struct Scan {
     solutions: Vec<IkSolutions>,
 }
 
+/// Counts the work of [`track_with_progress`] and calls its hook once per chunk.
+struct Meter<'a> {
+    hook: &'a dyn Fn(usize, usize),
+    total: usize,
+    done: Cell<usize>,
+    reported: Cell<usize>,
+}
+
+impl Meter<'_> {
+    /// Adds `n` units; reports when a chunk has accumulated (never `total` itself: that is
+    /// [`Meter::finish`]'s).
+    fn advance(&self, n: usize) {
+        let done = (self.done.get() + n).min(self.total);
+        self.done.set(done);
+        if done < self.total && done - self.reported.get() >= TRACKING_PROGRESS_CHUNK {
+            self.reported.set(done);
+            (self.hook)(done, self.total);
+        }
+    }
+
+    /// The single report of `total`.
+    fn finish(&self) {
+        debug_assert_eq!(self.done.get(), self.total, "the phases add up to the total");
+        self.done.set(self.total);
+        self.reported.set(self.total);
+        (self.hook)(self.total, self.total);
+    }
+}
+
 struct Tracker<'a> {
+    meter: Meter<'a>,
     solving: Solving<'a>,
     path: &'a TrackedPath<'a>,
     configurations: Vec<Branch>,
@@ -943,6 +974,67 @@ pub fn track(
     options: &TrackingOptions,
     criterion: Option<&dyn Criterion>,
 ) -> Result<TrackingReport, TrackingError> {
+    track_with_progress(robot, path, options, criterion, &|_, _| {})
+}
+
+/// Units of work ((sample, configuration) visits) between two calls of the progress hook of
+/// [`track_with_progress`] (one chunk).
+pub const TRACKING_PROGRESS_CHUNK: usize = 256;
+
+/// [`track`] that reports its progress: `progress(done, total)` is called after every chunk of
+/// [`TRACKING_PROGRESS_CHUNK`] units of work, with `done` increasing, and exactly once with
+/// `done == total`, as the last call, when the report is complete. The hook does not change
+/// the report.
+///
+/// The work is counted in (sample, configuration) visits: with `n` samples and `m`
+/// configurations, `total = 2·n·m`, two phases of `n·m` each —
+/// 1. the scan of every sample (IK and the singularity measures of every configuration's
+///    solutions: `m` units a sample; the refinement of the split points by bisection is counted
+///    with the scan's last sample);
+/// 2. the tracking of each configuration over every sample, interval by interval (an interval
+///    owns the samples up to its end; the limit checks of a configuration are counted with its
+///    last sample in the interval; an unreachable interval's samples are counted at once).
+///
+/// Choosing the default configurations (before the scan, stopping at the first reachable
+/// sample) is not counted.
+///
+/// # Errors
+/// As [`track`].
+///
+/// # Example
+/// ```
+/// use std::cell::Cell;
+/// use nalgebra::{Isometry3, Translation3};
+/// use reach::motion::PathSample;
+/// use reach::motion::tracking::{TrackedPath, TrackingOptions, track_with_progress};
+/// let robot = reach::model::presets::get("welder6r").unwrap();
+/// let pose0 = robot.fk(&[0.1, 0.2, 0.3, 0.1, 0.5, 0.2]).unwrap();
+/// // A 10 mm line along y, 101 samples.
+/// let samples: Vec<PathSample> = (0..=100)
+///     .map(|k| {
+///         let s = f64::from(k) * 1e-4;
+///         let at = Translation3::new(0.0, s, 0.0) * pose0.translation;
+///         PathSample { s, t: s * 10.0, angle: 0.0, pose: Isometry3::from_parts(at, pose0.rotation) }
+///     })
+///     .collect();
+/// let path = TrackedPath::sampled(&samples).unwrap();
+/// let last = Cell::new((0, 0));
+/// let report = track_with_progress(&robot, &path, &TrackingOptions::default(), None, &|done, total| {
+///     assert!(done >= last.get().0);
+///     last.set((done, total));
+/// })
+/// .unwrap();
+/// // The paper's two configurations: 101 samples scanned for both, then tracked in both.
+/// assert_eq!(last.get(), (2 * 101 * 2, 2 * 101 * 2));
+/// assert!(!report.intervals.is_empty());
+/// ```
+pub fn track_with_progress(
+    robot: &Robot,
+    path: &TrackedPath<'_>,
+    options: &TrackingOptions,
+    criterion: Option<&dyn Criterion>,
+    progress: &dyn Fn(usize, usize),
+) -> Result<TrackingReport, TrackingError> {
     let kind = options.solver.unwrap_or_else(|| SolverKind::detect(robot));
     let solver = kind.build(robot)?;
     let numeric = kind == SolverKind::Numeric;
@@ -959,7 +1051,8 @@ pub fn track(
     };
     if configurations.is_empty() {
         // No reachable sample to read labels from: one "any solution" configuration.
-        return track_with(Tracker::new(solving, path, vec![Branch::default()], closed_form, options), 0, criterion);
+        let tracker = Tracker::new(solving, path, vec![Branch::default()], closed_form, options, progress);
+        return track_with(tracker, 0, criterion);
     }
     if options.default_configuration >= configurations.len() {
         return Err(TrackingError::InvalidOption {
@@ -969,7 +1062,7 @@ pub fn track(
     }
     let closed_form = if options.detection == SingularityDetection::Jacobian { None } else { closed_form };
     track_with(
-        Tracker::new(solving, path, configurations, closed_form, options),
+        Tracker::new(solving, path, configurations, closed_form, options, progress),
         options.default_configuration,
         criterion,
     )
@@ -1011,6 +1104,7 @@ impl<'a> Tracker<'a> {
         configurations: Vec<Branch>,
         closed_form: Option<ParallelAxes>,
         options: &TrackingOptions,
+        progress: &'a dyn Fn(usize, usize),
     ) -> Self {
         let robot = solving.robot;
         let length_scale =
@@ -1036,7 +1130,14 @@ impl<'a> Tracker<'a> {
             None => vec![Measure::Jacobian],
         };
         let tolerance = TRACKING_PARAMETER * (path.end() - path.start()).abs().max(f64::MIN_POSITIVE);
+        let meter = Meter {
+            hook: progress,
+            total: 2 * path.samples().len() * configurations.len(),
+            done: Cell::new(0),
+            reported: Cell::new(0),
+        };
         Tracker {
+            meter,
             solving,
             path,
             configurations,
@@ -1168,6 +1269,7 @@ impl<'a> Tracker<'a> {
             reach.push(self.reachable(&sols));
             values.push(self.measures_at(&p.pose, Some(&sols))?);
             all.push(sols);
+            self.meter.advance(self.configurations.len());
         }
         let mut points = Vec::new();
         for k in 1..samples.len() {
@@ -1238,13 +1340,38 @@ impl<'a> Tracker<'a> {
     }
 
     /// Tracks configuration `c` over `points` (s values of one interval), given the unseeded
-    /// solutions `sols` at those points (shared by the configurations).
+    /// solutions `sols` at those points (shared by the configurations); advances the meter by
+    /// `budget` units, in proportion to the points followed.
     fn track_interval(
         &self,
         c: usize,
         points: &[f64],
         sols: &[Cow<'_, IkSolutions>],
         ends_at_boundary: (bool, bool),
+        budget: usize,
+    ) -> Result<ConfigurationTrack, TrackingError> {
+        let given = Cell::new(0);
+        let followed = Cell::new(0);
+        let give = |target: usize| {
+            self.meter.advance(target - given.get());
+            given.set(target);
+        };
+        let track = self.track_interval_counted(c, points, sols, ends_at_boundary, &|| {
+            followed.set(followed.get() + 1);
+            give(budget * followed.get() / points.len());
+        })?;
+        give(budget);
+        Ok(track)
+    }
+
+    /// [`Tracker::track_interval`]; `tick` is called after each point followed.
+    fn track_interval_counted(
+        &self,
+        c: usize,
+        points: &[f64],
+        sols: &[Cow<'_, IkSolutions>],
+        ends_at_boundary: (bool, bool),
+        tick: &dyn Fn(),
     ) -> Result<ConfigurationTrack, TrackingError> {
         let robot = self.robot();
         let filter = &self.configurations[c];
@@ -1284,6 +1411,7 @@ impl<'a> Tracker<'a> {
                 .or_else(|| pick(self.solving.robot, &sols[k], &lock, &reference));
             let ok = found.is_some();
             q[k] = found;
+            tick();
             Ok(ok)
         };
         for k in k0 + 1..points.len() {
@@ -1567,10 +1695,15 @@ fn track_with(
     }
     let mut intervals = Vec::with_capacity(bounds.len() - 1);
     let count = bounds.len() - 1;
+    // Progress: interval i owns the samples from the previous interval's end up to its end.
+    let mut owned_until = 0;
     for i in 0..count {
         let (a, ka) = bounds[i];
         let (b, kb) = bounds[i + 1];
         let index = i + 1;
+        let until = if index == count { samples.len() } else { samples.partition_point(|p| p.s < b) };
+        let budget = until - owned_until;
+        owned_until = until;
         let mut points = vec![a];
         let interior: Vec<usize> = (0..samples.len())
             .filter(|&k| samples[k].s > a + tracker.tolerance && samples[k].s < b - tracker.tolerance)
@@ -1593,6 +1726,7 @@ fn track_with(
             decision: Decision::NotRealizable,
         };
         if !reachable {
+            tracker.meter.advance(budget * tracker.configurations.len());
             event(
                 &mut events,
                 EventCode::K1,
@@ -1637,7 +1771,7 @@ fn track_with(
                 });
             }
             for (rank, &c) in order.iter().enumerate() {
-                let t = tracker.track_interval(c, &points, &sols, (boundary(ka), boundary(kb)))?;
+                let t = tracker.track_interval(c, &points, &sols, (boundary(ka), boundary(kb)), budget)?;
                 let is_default = rank == 0;
                 let next = order.get(1).map(|&n| name(n));
                 for v in &t.violations {
@@ -1819,6 +1953,7 @@ fn track_with(
         }
     }
     let feasible = intervals.iter().all(|i| i.chosen.is_some());
+    tracker.meter.finish();
     Ok(TrackingReport {
         solver: tracker.solving.solver.name(),
         configurations: tracker.configurations.clone(),
