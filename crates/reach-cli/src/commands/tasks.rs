@@ -10,7 +10,7 @@
 //! point-to-point duration within the joint speed limits with the file's profile. With
 //! `cost = "energy"` the cost of a move is instead its mechanical energy in joules (Newton–Euler
 //! torques with gravity, `∫ Σ|τᵢ·q̇ᵢ| dt` over that synchronised move, 65 samples per leg;
-//! robots with link masses only), asymmetric because of gravity. Visiting is
+//! robots with link masses only); a move and its reverse cost the same. Visiting is
 //! exact (Held–Karp) up to 12 reachable targets, nearest neighbour + 2-opt beyond; collection's
 //! total energy does not depend on the order, so only the budget selects (shortest trips first,
 //! optimal). See `docs/task-format.md`.
@@ -597,12 +597,7 @@ fn write_plan(out: &mut dyn Write, kind: TaskKind, p: &PlanJson, points: &[Point
     t.write(out, "  ")?;
     let total_time = p.total_duration_s.map_or(String::new(), |d| format!(", duration {} s", fixed(d, 3)));
     let total_energy = p.total_energy_j.map_or(String::new(), |e| format!(", energy {} J", fixed(e, 3)));
-    writeln!(
-        out,
-        "  total: {} {leg}(s), J1 {} rad{total_energy}{total_time}",
-        p.legs.len(),
-        fixed(p.total_j1_rad, 4)
-    )?;
+    writeln!(out, "  total: {} {leg}(s), J1 {} rad{total_energy}{total_time}", p.legs.len(), fixed(p.total_j1_rad, 4))?;
     Ok(())
 }
 

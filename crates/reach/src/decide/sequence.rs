@@ -25,8 +25,10 @@
 //! **Costs.** [`config_costs`] gives seed 001's J1 (rad) between chosen configurations;
 //! [`leg_durations`] the synchronised point-to-point duration of every leg within the joint
 //! speed limits (s); [`energy_costs`] the mechanical energy of every such leg (J) for robots
-//! with link masses. Gravity makes the energy matrix asymmetric (lifting the arm costs more
-//! than lowering it), which both solvers handle.
+//! with link masses. That energy counts braking as spent (`∫ Σ|τᵢ·q̇ᵢ| dt`), so a leg and its
+//! reverse cost the same: the reverse of a rest-to-rest move with a symmetric profile is
+//! `q(T − t)`, with the same torques at mirrored instants and negated rates. Gravity decides
+//! how large the energy is, not its direction. Both solvers handle asymmetric matrices anyway.
 
 use serde::Serialize;
 
@@ -560,7 +562,8 @@ pub fn leg_energy(robot: &Robot, q0: &[f64], q1: &[f64], duration: f64, profile:
 
 /// `(n+1)×(n+1)` matrix of leg energies (J, [`leg_energy`]) between configurations, each leg
 /// lasting `durations[i][j]` (e.g. from [`leg_durations`]) with `profile`; `0` on the diagonal,
-/// `+∞` to and from unreachable (`None`) nodes. Asymmetric in general (gravity).
+/// `+∞` to and from unreachable (`None`) nodes. Symmetric up to rounding when the durations are
+/// (module docs).
 ///
 /// # Errors
 /// As [`leg_energy`]; [`DecideError::CostShape`] when `durations` does not match `configs`.
