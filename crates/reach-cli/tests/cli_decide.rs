@@ -502,7 +502,7 @@ fn task_configs(r: &Value) -> Vec<Option<Vec<f64>>> {
 
 /// The leg-energy matrix (J) recomputed by the library from the report's configurations with
 /// the example's speed limits and profile.
-fn puma_energy_matrix(r: &Value) -> Vec<Vec<f64>> {
+fn puma_energy_matrix(r: &Value, kind: reach::decide::sequence::EnergyKind) -> Vec<Vec<f64>> {
     use reach::decide::sequence::{energy_costs, leg_durations};
     use reach::motion::{JointRates, Profile};
     let puma = reach::model::presets::get("puma560").unwrap();
@@ -511,7 +511,7 @@ fn puma_energy_matrix(r: &Value) -> Vec<Vec<f64>> {
             .unwrap();
     let configs = task_configs(r);
     let d = leg_durations(&puma, &configs, &rates, Profile::Cycloidal).unwrap();
-    energy_costs(&puma, &configs, &d, Profile::Cycloidal).unwrap()
+    energy_costs(&puma, &configs, &d, Profile::Cycloidal, kind).unwrap()
 }
 
 #[test]
@@ -519,7 +519,7 @@ fn energy_visiting_on_puma560_is_optimal_against_brute_force_over_the_same_leg_e
     let r = json(&["tasks", "puma560", "visiting", "examples/tasks_visiting_energy.toml", "--json"]);
     assert_eq!(r["cost"], "energy");
     assert_eq!(r["unreachable"], serde_json::json!([4]));
-    let e = puma_energy_matrix(&r);
+    let e = puma_energy_matrix(&r, reach::decide::sequence::EnergyKind::Absolute);
     let plan = &r["plan"];
     assert_eq!(plan["exact"], true);
     let order: Vec<usize> = plan["order"].as_array().unwrap().iter().map(|v| v.as_u64().unwrap() as usize).collect();
@@ -579,7 +579,7 @@ fn energy_collection_sums_both_moves_of_each_trip_and_bad_energy_input_exits_2()
          objects = [[0.57, -0.50, 0.79], [0.69, 0.38, 1.01], [0.76, -0.02, 0.30]]\n",
     );
     let r = json(&["tasks", "puma560", "collection", file.to_str().unwrap(), "--budget", "20", "--json"]);
-    let e = puma_energy_matrix(&r);
+    let e = puma_energy_matrix(&r, reach::decide::sequence::EnergyKind::Absolute);
     for plan in [&r["plan"], &r["within_budget"]] {
         let mut sum = 0.0;
         for leg in plan["legs"].as_array().unwrap() {
@@ -599,4 +599,35 @@ fn energy_collection_sums_both_moves_of_each_trip_and_bad_energy_input_exits_2()
     fails(&["tasks", "puma560", "visiting", slow.to_str().unwrap()], 2, &["`puma560`", "max_velocity"]);
     let unknown = temp_file("energy_unknown.toml", "cost = \"joules\"\ntargets = [[0.57, 0.0, 1.01]]\n");
     fails(&["tasks", "puma560", "visiting", unknown.to_str().unwrap()], 2, &["cost", "joules"]);
+}
+
+#[test]
+fn positive_work_visiting_on_puma560_is_optimal_on_its_asymmetric_matrix() {
+    let text = std::fs::read_to_string(format!("{}/examples/tasks_visiting_energy.toml", common::REPO_ROOT)).unwrap();
+    let file = temp_file("positive_work.toml", &text.replace("cost = \"energy\"", "cost = \"positive_work\""));
+    let r = json(&["tasks", "puma560", "visiting", file.to_str().unwrap(), "--json"]);
+    assert_eq!(r["cost"], "positive_work");
+    let w = puma_energy_matrix(&r, reach::decide::sequence::EnergyKind::PositiveWork);
+    // Points at different heights: the matrix is asymmetric by the potential energy differences.
+    assert!(w[7][3] > w[3][7] + 5.0, "0.30 m → 1.01 m {} J vs back {} J", w[7][3], w[3][7]);
+    let tour = |o: &[usize]| -> f64 {
+        let mut prev = 0;
+        o.iter()
+            .map(|&j| {
+                let c = w[prev][j];
+                prev = j;
+                c
+            })
+            .sum()
+    };
+    let order: Vec<usize> =
+        r["plan"]["order"].as_array().unwrap().iter().map(|v| v.as_u64().unwrap() as usize).collect();
+    let total = num(&r["plan"]["total_energy_j"]);
+    assert!((total - tour(&order)).abs() < 1e-6 * total);
+    let mut items: Vec<usize> = vec![1, 2, 3, 5, 6, 7];
+    let mut best = f64::INFINITY;
+    permutations(&mut items, 0, &mut |p| best = best.min(tour(p)));
+    assert!((total - best).abs() < 1e-6 * best, "plan {total} J, brute force {best} J");
+    let out = ok(&["tasks", "puma560", "visiting", file.to_str().unwrap()]);
+    assert!(out.contains("positive work") && out.contains("leg energy [J]"), "{out}");
 }

@@ -5,8 +5,8 @@
 use proptest::prelude::*;
 use reach::decide::DecideError;
 use reach::decide::sequence::{
-    collection, collection_within_budget, energy_costs, joint_change_costs, leg_durations, leg_energy, visiting,
-    visiting_heuristic, visiting_within_budget,
+    EnergyKind, collection, collection_within_budget, energy_costs, joint_change_costs, leg_durations, leg_energy,
+    visiting, visiting_heuristic, visiting_within_budget,
 };
 use reach::effort::dynamics::{potential_energy, trajectory_energy};
 use reach::ik::{IkOptions, IkTarget, solve};
@@ -262,7 +262,7 @@ fn energy_of_a_leg_equals_its_reverse_and_covers_the_potential_energy_gained() {
     let d = leg_durations(&puma, &configs, &puma_rates(), Profile::Cycloidal).unwrap();
     assert!((d[0][1] - d[1][0]).abs() < 1e-12, "same joint distance, same duration");
     assert!(d[0][2].is_infinite() && d[2][1].is_infinite() && d[2][2].is_infinite());
-    let e = energy_costs(&puma, &configs, &d, Profile::Cycloidal).unwrap();
+    let e = energy_costs(&puma, &configs, &d, Profile::Cycloidal, EnergyKind::Absolute).unwrap();
     let (up, down) = (e[0][1], e[1][0]);
     let gained = potential_energy(&puma, &high).unwrap() - potential_energy(&puma, &low).unwrap();
     assert!(gained > 5.0, "the tool-high configuration is higher: ΔV = {gained} J");
@@ -270,27 +270,48 @@ fn energy_of_a_leg_equals_its_reverse_and_covers_the_potential_energy_gained() {
     assert!(up >= 0.99 * gained, "lifting {up} J < ΔV {gained} J");
     assert!((up - down).abs() < 1e-9 * up, "lifting {up} J vs lowering {down} J");
     // A slower move spends less on accelerating, never less than ΔV.
-    let slow = leg_energy(&puma, &low, &high, 3.0 * d[0][1], Profile::Cycloidal).unwrap();
+    let slow = leg_energy(&puma, &low, &high, 3.0 * d[0][1], Profile::Cycloidal, EnergyKind::Absolute).unwrap();
     assert!(slow < up && slow >= 0.99 * gained, "slow {slow} J, fast {up} J, ΔV {gained} J");
     assert_eq!(e[0][0], 0.0);
     assert!(e[0][2].is_infinite() && e[2][0].is_infinite());
+}
+
+/// Positive work (braking free) is direction-dependent: lifting costs lowering plus the potential
+/// energy gained, and the two add up to the braking-counted energy; the asymmetric matrix goes
+/// through the exact solver, which takes the cheap direction.
+#[test]
+fn positive_work_of_lifting_exceeds_lowering_by_the_potential_energy_gained() {
+    let (puma, high, low) = puma_high_low();
+    let configs = vec![Some(low.clone()), Some(high.clone())];
+    let d = leg_durations(&puma, &configs, &puma_rates(), Profile::Cycloidal).unwrap();
+    let w = energy_costs(&puma, &configs, &d, Profile::Cycloidal, EnergyKind::PositiveWork).unwrap();
+    let e = energy_costs(&puma, &configs, &d, Profile::Cycloidal, EnergyKind::Absolute).unwrap();
+    let (up, down) = (w[0][1], w[1][0]);
+    let gained = potential_energy(&puma, &high).unwrap() - potential_energy(&puma, &low).unwrap();
+    assert!((up - down - gained).abs() < 0.01 * gained, "W⁺ up {up} J, down {down} J, ΔV {gained} J");
+    assert!((up + down - e[0][1]).abs() < 1e-9 * e[0][1], "W⁺ up + down = E: {up} + {down} vs {}", e[0][1]);
+    assert!(down > 0.0, "lowering still accelerates the arm");
+    // Visiting the other node from either end: from `high` (node 0 swapped) is cheaper.
+    let from_high = vec![vec![0.0, w[1][0]], vec![w[0][1], 0.0]];
+    assert!((visiting(&w).unwrap().cost - up).abs() < 1e-12);
+    assert!((visiting(&from_high).unwrap().cost - down).abs() < 1e-12);
 }
 
 #[test]
 fn leg_energy_agrees_with_finely_sampled_finite_differences() {
     let (puma, high, low) = puma_high_low();
     let t = 2.5;
-    let coarse = leg_energy(&puma, &low, &high, t, Profile::Cycloidal).unwrap();
+    let coarse = leg_energy(&puma, &low, &high, t, Profile::Cycloidal, EnergyKind::Absolute).unwrap();
     let motion = JointMotion::for_robot(&puma, &low, &high, 0.0, t, Profile::Cycloidal).unwrap();
     let times: Vec<f64> = (0..=4000).map(|k| t * f64::from(k) / 4000.0).collect();
     let q: Vec<Vec<f64>> = times.iter().map(|&x| motion.position(x)).collect();
     let fine = trajectory_energy(&puma, &times, &q).unwrap();
     assert!((coarse - fine).abs() < 0.01 * fine, "65 samples {coarse} J vs 4001 samples {fine} J");
     // No motion, no energy; bad durations rejected.
-    assert_eq!(leg_energy(&puma, &low, &low, 0.0, Profile::Cycloidal).unwrap(), 0.0);
+    assert_eq!(leg_energy(&puma, &low, &low, 0.0, Profile::Cycloidal, EnergyKind::Absolute).unwrap(), 0.0);
     for bad in [-1.0, f64::NAN, f64::INFINITY] {
         assert!(matches!(
-            leg_energy(&puma, &low, &high, bad, Profile::Cycloidal),
+            leg_energy(&puma, &low, &high, bad, Profile::Cycloidal, EnergyKind::Absolute),
             Err(DecideError::BadVector { what: "leg duration", .. })
         ));
     }
@@ -301,18 +322,18 @@ fn energy_costs_need_link_masses_and_matching_shapes() {
     let ur5 = presets::get("ur5").unwrap();
     assert!(!ur5.has_dynamics(), "this test needs a preset without masses");
     let q = vec![0.0; 6];
-    let e = leg_energy(&ur5, &q, &[0.1; 6], 1.0, Profile::Cycloidal).unwrap_err();
+    let e = leg_energy(&ur5, &q, &[0.1; 6], 1.0, Profile::Cycloidal, EnergyKind::PositiveWork).unwrap_err();
     assert!(e.to_string().contains("ur5") && e.to_string().contains("inertial"), "{e}");
     let (puma, high, low) = puma_high_low();
     let configs = vec![Some(low), Some(high)];
     let wrong = vec![vec![0.0; 3]; 3];
     assert!(matches!(
-        energy_costs(&puma, &configs, &wrong, Profile::Cycloidal),
+        energy_costs(&puma, &configs, &wrong, Profile::Cycloidal, EnergyKind::Absolute),
         Err(DecideError::CostShape { what: "durations", .. })
     ));
     let missing = vec![None, configs[1].clone()];
     assert!(matches!(
-        energy_costs(&puma, &missing, &[vec![0.0; 2], vec![0.0; 2]], Profile::Cycloidal),
+        energy_costs(&puma, &missing, &[vec![0.0; 2], vec![0.0; 2]], Profile::Cycloidal, EnergyKind::Absolute),
         Err(DecideError::BadVector { what: "configurations", .. })
     ));
 }

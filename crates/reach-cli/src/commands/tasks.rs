@@ -10,7 +10,9 @@
 //! point-to-point duration within the joint speed limits with the file's profile. With
 //! `cost = "energy"` the cost of a move is instead its mechanical energy in joules (Newton–Euler
 //! torques with gravity, `∫ Σ|τᵢ·q̇ᵢ| dt` over that synchronised move, 65 samples per leg;
-//! robots with link masses only); a move and its reverse cost the same. Visiting is
+//! robots with link masses only); a move and its reverse cost the same. `cost =
+//! "positive_work"` counts only the drives' positive power (`∫ Σ max(τᵢ·q̇ᵢ, 0) dt`, braking
+//! free), so lifting costs more than lowering. Visiting is
 //! exact (Held–Karp) up to 12 reachable targets, nearest neighbour + 2-opt beyond; collection's
 //! total energy does not depend on the order, so only the budget selects (shortest trips first,
 //! optimal). See `docs/task-format.md`.
@@ -25,8 +27,8 @@ use clap::{Args, ValueEnum};
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion};
 use reach::Robot;
 use reach::decide::sequence::{
-    ENERGY_INTERVALS_PER_LEG, EXACT_MAX_TARGETS, Sequence, collection, collection_within_budget, config_costs,
-    energy_costs, leg_durations, visiting, visiting_within_budget,
+    ENERGY_INTERVALS_PER_LEG, EXACT_MAX_TARGETS, EnergyKind, Sequence, collection, collection_within_budget,
+    config_costs, energy_costs, leg_durations, visiting, visiting_within_budget,
 };
 use reach::effort::SEED001_WEIGHTS;
 use reach::ik::{IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SolverKind};
@@ -60,8 +62,12 @@ pub enum CostKind {
     /// Seed 001's J1 = `Σ wᵢ·|Δqᵢ|` between configurations, rad.
     #[default]
     J1,
-    /// Mechanical energy of the synchronised point-to-point move, J (needs link masses).
+    /// Mechanical energy `∫ Σ|τᵢ·q̇ᵢ| dt` of the synchronised point-to-point move, J (needs
+    /// link masses); braking counted as spent.
     Energy,
+    /// Positive work `∫ Σ max(τᵢ·q̇ᵢ, 0) dt` of that move, J (needs link masses); braking free,
+    /// so lifting costs more than lowering.
+    PositiveWork,
 }
 
 /// Arguments of `reach tasks`.
@@ -147,8 +153,8 @@ pub struct LegJson {
     /// J1 of the leg (visiting: from the previous point; collection: container → object →
     /// container), rad.
     pub j1_rad: f64,
-    /// With `cost = "energy"`: the mechanical energy of the leg (collection: of both moves of
-    /// the trip), J.
+    /// With `cost = "energy"` or `"positive_work"`: that energy of the leg (collection: of both
+    /// moves of the trip), J.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub energy_j: Option<f64>,
     /// Duration of the leg within the speed limits, seconds (`null` without limits).
@@ -164,7 +170,7 @@ pub struct PlanJson {
     pub legs: Vec<LegJson>,
     /// Σ J1, rad.
     pub total_j1_rad: f64,
-    /// With `cost = "energy"`: Σ energy, J (what the plan minimises).
+    /// With `cost = "energy"` or `"positive_work"`: Σ energy, J (what the plan minimises).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub total_energy_j: Option<f64>,
     /// Σ duration, seconds (`null` without limits).
@@ -188,7 +194,7 @@ pub struct TasksJson {
     pub solver: String,
     /// How each point's configuration was chosen.
     pub choice: String,
-    /// What the plan minimises: `j1` (rad) or `energy` (J).
+    /// What the plan minimises: `j1` (rad), `energy` or `positive_work` (J).
     pub cost: CostKind,
     /// Node 0: the start (visiting) or container (collection) configuration, degrees.
     pub node0_q_deg: Vec<f64>,
@@ -368,16 +374,17 @@ pub fn run(args: &TasksArgs, out: &mut dyn Write) -> Result<(), CliError> {
             )));
         }
     }
-    if file.cost == CostKind::Energy {
+    if file.cost != CostKind::J1 {
+        let key = if file.cost == CostKind::Energy { "energy" } else { "positive_work" };
         if !robot.has_dynamics() {
             return Err(CliError::bad_input(format!(
-                "{origin}: `cost = \"energy\"`: robot `{}` has no link masses (`inertial` in the robot description); use `cost = \"j1\"` or a robot with masses",
+                "{origin}: `cost = \"{key}\"`: robot `{}` has no link masses (`inertial` in the robot description); use `cost = \"j1\"` or a robot with masses",
                 robot.name()
             )));
         }
         if rates.is_none() {
             return Err(CliError::bad_input(format!(
-                "{origin}: `cost = \"energy\"`: robot `{}` has no joint speed limits to time the moves; give `max_velocity` [deg/s] in the task file",
+                "{origin}: `cost = \"{key}\"`: robot `{}` has no joint speed limits to time the moves; give `max_velocity` [deg/s] in the task file",
                 robot.name()
             )));
         }
@@ -439,8 +446,13 @@ pub fn run(args: &TasksArgs, out: &mut dyn Write) -> Result<(), CliError> {
         None => None,
         Some(r) => Some(leg_durations(robot, &configs, r, profile).map_err(decide)?),
     };
-    let energy = match (file.cost, &durations) {
-        (CostKind::Energy, Some(d)) => Some(energy_costs(robot, &configs, d, profile).map_err(decide)?),
+    let energy_kind = match file.cost {
+        CostKind::J1 => None,
+        CostKind::Energy => Some(EnergyKind::Absolute),
+        CostKind::PositiveWork => Some(EnergyKind::PositiveWork),
+    };
+    let energy = match (energy_kind, &durations) {
+        (Some(k), Some(d)) => Some(energy_costs(robot, &configs, d, profile, k).map_err(decide)?),
         _ => None,
     };
     let matrices = Matrices { j1: &costs.costs, energy: energy.as_deref(), durations: durations.as_deref() };
@@ -625,6 +637,10 @@ fn write_text(out: &mut dyn Write, robot: &Robot, r: &TasksJson) -> Result<(), C
             }
             CostKind::Energy => format!(
                 "mechanical energy ∫ Σ|τᵢ·q̇ᵢ| dt [J] of each synchronised point-to-point move (Newton–Euler with gravity, {} samples per leg)",
+                ENERGY_INTERVALS_PER_LEG + 1
+            ),
+            CostKind::PositiveWork => format!(
+                "positive work ∫ Σ max(τᵢ·q̇ᵢ, 0) dt [J] of each synchronised point-to-point move, braking free (Newton–Euler with gravity, {} samples per leg)",
                 ENERGY_INTERVALS_PER_LEG + 1
             ),
         },

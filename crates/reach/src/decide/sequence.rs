@@ -28,13 +28,15 @@
 //! with link masses. That energy counts braking as spent (`∫ Σ|τᵢ·q̇ᵢ| dt`), so a leg and its
 //! reverse cost the same: the reverse of a rest-to-rest move with a symmetric profile is
 //! `q(T − t)`, with the same torques at mirrored instants and negated rates. Gravity decides
-//! how large the energy is, not its direction. Both solvers handle asymmetric matrices anyway.
+//! how large the energy is, not its direction. With [`EnergyKind::PositiveWork`] braking is free
+//! (`∫ Σ max(τᵢ·q̇ᵢ, 0) dt`): then a leg costs its reverse plus the potential energy it gains,
+//! and the matrix is asymmetric; both solvers handle asymmetric matrices.
 
 use serde::Serialize;
 
 use super::DecideError;
 use super::motion_criteria::point_to_point_duration;
-use crate::effort::dynamics::mechanical_energy;
+use crate::effort::dynamics::{mechanical_energy, positive_work};
 use crate::ik::IkSolutions;
 use crate::model::{JointKind, Robot};
 use crate::motion::joint_space::joint_difference;
@@ -476,6 +478,18 @@ pub fn config_costs(
     Ok(ConfigCosts { configs, costs })
 }
 
+/// Which mechanical energy [`leg_energy`] integrates.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EnergyKind {
+    /// `∫ Σᵢ |τᵢ·q̇ᵢ| dt` ([`mechanical_energy`]): braking counted as spent; a move and its
+    /// reverse cost the same.
+    Absolute,
+    /// `∫ Σᵢ max(τᵢ·q̇ᵢ, 0) dt` ([`positive_work`]): braking free; lifting costs more than
+    /// lowering by the potential energy gained.
+    PositiveWork,
+}
+
 /// Sample intervals per leg in [`energy_costs`] (so `ENERGY_INTERVALS_PER_LEG + 1` samples,
 /// both ends included).
 pub const ENERGY_INTERVALS_PER_LEG: usize = 64;
@@ -529,15 +543,23 @@ pub fn leg_durations(
 }
 
 /// Mechanical energy (J) of the point-to-point joint move from `q0` to `q1` with `profile`
-/// lasting `duration` seconds ([`JointMotion::for_robot`]): `∫ Σᵢ |τᵢ·q̇ᵢ| dt` with
-/// Newton–Euler torques including gravity ([`mechanical_energy`], braking counted as spent),
+/// lasting `duration` seconds ([`JointMotion::for_robot`]): `∫ Σᵢ |τᵢ·q̇ᵢ| dt`
+/// ([`mechanical_energy`], braking counted as spent) or `∫ Σᵢ max(τᵢ·q̇ᵢ, 0) dt`
+/// ([`positive_work`], braking free) by `kind`, with Newton–Euler torques including gravity,
 /// sampled at [`ENERGY_INTERVALS_PER_LEG`]` + 1` evenly spaced instants with the motion's exact
 /// rates and accelerations, trapezoid rule. A zero duration (no joint moves) costs 0 J.
 ///
 /// # Errors
 /// [`DecideError::Dynamics`] when the robot has no link masses; [`DecideError::BadVector`] for
 /// bad configurations or a negative/non-finite duration.
-pub fn leg_energy(robot: &Robot, q0: &[f64], q1: &[f64], duration: f64, profile: Profile) -> Result<f64, DecideError> {
+pub fn leg_energy(
+    robot: &Robot,
+    q0: &[f64],
+    q1: &[f64],
+    duration: f64,
+    profile: Profile,
+    kind: EnergyKind,
+) -> Result<f64, DecideError> {
     if !robot.has_dynamics() {
         return Err(crate::effort::dynamics::DynamicsError::NoInertialData { robot: robot.name().to_string() }.into());
     }
@@ -557,13 +579,16 @@ pub fn leg_energy(robot: &Robot, q0: &[f64], q1: &[f64], duration: f64, profile:
     let q: Vec<Vec<f64>> = times.iter().map(|&t| motion.position(t)).collect();
     let qd: Vec<Vec<f64>> = times.iter().map(|&t| motion.velocity(t)).collect();
     let qdd: Vec<Vec<f64>> = times.iter().map(|&t| motion.acceleration(t)).collect();
-    Ok(mechanical_energy(robot, &times, &q, &qd, &qdd)?)
+    Ok(match kind {
+        EnergyKind::Absolute => mechanical_energy(robot, &times, &q, &qd, &qdd)?,
+        EnergyKind::PositiveWork => positive_work(robot, &times, &q, &qd, &qdd)?,
+    })
 }
 
 /// `(n+1)×(n+1)` matrix of leg energies (J, [`leg_energy`]) between configurations, each leg
 /// lasting `durations[i][j]` (e.g. from [`leg_durations`]) with `profile`; `0` on the diagonal,
-/// `+∞` to and from unreachable (`None`) nodes. Symmetric up to rounding when the durations are
-/// (module docs).
+/// `+∞` to and from unreachable (`None`) nodes. With [`EnergyKind::Absolute`] symmetric up to
+/// rounding when the durations are; with [`EnergyKind::PositiveWork`] asymmetric (module docs).
 ///
 /// # Errors
 /// As [`leg_energy`]; [`DecideError::CostShape`] when `durations` does not match `configs`.
@@ -572,6 +597,7 @@ pub fn energy_costs(
     configs: &[Option<Vec<f64>>],
     durations: &[Vec<f64>],
     profile: Profile,
+    kind: EnergyKind,
 ) -> Result<Vec<Vec<f64>>, DecideError> {
     check_configs(robot, configs)?;
     check_matrix("durations", durations)?;
@@ -585,7 +611,7 @@ pub fn energy_costs(
     for (i, a) in configs.iter().enumerate() {
         for (j, b) in configs.iter().enumerate() {
             if let (Some(a), Some(b)) = (a, b) {
-                e[i][j] = if i == j { 0.0 } else { leg_energy(robot, a, b, durations[i][j], profile)? };
+                e[i][j] = if i == j { 0.0 } else { leg_energy(robot, a, b, durations[i][j], profile, kind)? };
             }
         }
     }
