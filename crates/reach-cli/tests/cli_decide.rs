@@ -7,7 +7,7 @@ mod common;
 
 use serde_json::Value;
 
-use common::{angle_gap, fails, json, nums, ok, reach, temp_file};
+use common::{angle_gap, fails, json, num, nums, ok, reach, temp_file};
 
 const UR5_POSE: &str = "-1,0,0,0.4,0,1,0,-0.2,0,0,-1,0.3,0,0,0,1";
 const UR5_FROM: &str = "0,-90,90,-90,-90,0";
@@ -487,4 +487,147 @@ fn avoid_choose_plans_both_sides_and_says_when_only_one_is_feasible() {
     let mut bad = args.to_vec();
     bad.extend(["--choose", "topsis", "--printed-waypoints"]);
     assert_eq!(reach(&bad).code, 2);
+}
+
+// reach tasks with cost = "energy"
+
+/// The configurations of a `reach tasks --json` report in radians (node 0 first; `None`:
+/// unreachable). Every joint of the robots used here is revolute.
+fn task_configs(r: &Value) -> Vec<Option<Vec<f64>>> {
+    let rad = |v: &Value| nums(v).into_iter().map(f64::to_radians).collect::<Vec<f64>>();
+    let mut configs = vec![Some(rad(&r["node0_q_deg"]))];
+    configs.extend(r["points"].as_array().unwrap().iter().map(|p| (!p["q_deg"].is_null()).then(|| rad(&p["q_deg"]))));
+    configs
+}
+
+/// The leg-energy matrix (J) recomputed by the library from the report's configurations with
+/// the example's speed limits and profile.
+fn puma_energy_matrix(r: &Value, kind: reach::decide::sequence::EnergyKind) -> Vec<Vec<f64>> {
+    use reach::decide::sequence::{energy_costs, leg_durations};
+    use reach::motion::{JointRates, Profile};
+    let puma = reach::model::presets::get("puma560").unwrap();
+    let rates =
+        JointRates::new([60.0f64, 60.0, 60.0, 120.0, 120.0, 120.0].iter().map(|v| v.to_radians()).collect(), None)
+            .unwrap();
+    let configs = task_configs(r);
+    let d = leg_durations(&puma, &configs, &rates, Profile::Cycloidal).unwrap();
+    energy_costs(&puma, &configs, &d, Profile::Cycloidal, kind).unwrap()
+}
+
+#[test]
+fn energy_visiting_on_puma560_is_optimal_against_brute_force_over_the_same_leg_energies() {
+    let r = json(&["tasks", "puma560", "visiting", "examples/tasks_visiting_energy.toml", "--json"]);
+    assert_eq!(r["cost"], "energy");
+    assert_eq!(r["unreachable"], serde_json::json!([4]));
+    let e = puma_energy_matrix(&r, reach::decide::sequence::EnergyKind::Absolute);
+    let plan = &r["plan"];
+    assert_eq!(plan["exact"], true);
+    let order: Vec<usize> = plan["order"].as_array().unwrap().iter().map(|v| v.as_u64().unwrap() as usize).collect();
+    let tour = |o: &[usize]| -> f64 {
+        let mut prev = 0;
+        o.iter()
+            .map(|&j| {
+                let c = e[prev][j];
+                prev = j;
+                c
+            })
+            .sum()
+    };
+    // Per leg: the library's energy and J1; totals are the sums.
+    let mut prev = 0;
+    let configs = task_configs(&r);
+    for (leg, &j) in plan["legs"].as_array().unwrap().iter().zip(&order) {
+        assert_eq!(leg["point"].as_u64().unwrap() as usize, j);
+        assert!((num(&leg["energy_j"]) - e[prev][j]).abs() < 1e-6 * e[prev][j], "leg to {j}");
+        let (a, b) = (configs[prev].as_ref().unwrap(), configs[j].as_ref().unwrap());
+        let j1 = j1_deg(
+            &a.iter().map(|v| v.to_degrees()).collect::<Vec<_>>(),
+            &b.iter().map(|v| v.to_degrees()).collect::<Vec<_>>(),
+        );
+        assert!((num(&leg["j1_rad"]) - j1).abs() < 1e-9, "J1 of the leg to {j}");
+        prev = j;
+    }
+    let total = num(&plan["total_energy_j"]);
+    assert!((total - tour(&order)).abs() < 1e-6 * total);
+    // Brute force over every order of the six reachable points.
+    let mut items: Vec<usize> = vec![1, 2, 3, 5, 6, 7];
+    let mut best = f64::INFINITY;
+    permutations(&mut items, 0, &mut |p| best = best.min(tour(p)));
+    assert!((total - best).abs() < 1e-6 * best, "plan {total} J, brute force {best} J");
+    // The J1 plan of the same file orders the points differently: less J1, more energy.
+    let text = std::fs::read_to_string(format!("{}/examples/tasks_visiting_energy.toml", common::REPO_ROOT)).unwrap();
+    let j1_file = temp_file("energy_as_j1.toml", &text.replace("cost = \"energy\"", "cost = \"j1\""));
+    let j1 = json(&["tasks", "puma560", "visiting", j1_file.to_str().unwrap(), "--json"]);
+    assert_eq!(j1["cost"], "j1");
+    assert!(j1["plan"]["total_energy_j"].is_null() && j1["plan"]["legs"][0]["energy_j"].is_null());
+    let j1_order: Vec<usize> =
+        j1["plan"]["order"].as_array().unwrap().iter().map(|v| v.as_u64().unwrap() as usize).collect();
+    assert_ne!(j1_order, order);
+    assert!(tour(&j1_order) > total + 1.0, "J1 order {} J vs energy plan {total} J", tour(&j1_order));
+    assert!(num(&j1["plan"]["total_j1_rad"]) < num(&plan["total_j1_rad"]) - 1e-6);
+    // Text: units on every energy figure.
+    let out = ok(&["tasks", "puma560", "visiting", "examples/tasks_visiting_energy.toml"]);
+    assert!(out.contains("leg energy [J]") && out.contains("leg J1 [rad]"), "{out}");
+    assert!(out.contains(&format!("energy {total:.3} J")), "{out}");
+}
+
+#[test]
+fn energy_collection_sums_both_moves_of_each_trip_and_bad_energy_input_exits_2() {
+    let file = temp_file(
+        "energy_collection.toml",
+        "cost = \"energy\"\nmax_velocity = [60, 60, 60, 120, 120, 120]\ncontainer = [0.57, 0.00, 1.01]\n\
+         objects = [[0.57, -0.50, 0.79], [0.69, 0.38, 1.01], [0.76, -0.02, 0.30]]\n",
+    );
+    let r = json(&["tasks", "puma560", "collection", file.to_str().unwrap(), "--budget", "20", "--json"]);
+    let e = puma_energy_matrix(&r, reach::decide::sequence::EnergyKind::Absolute);
+    for plan in [&r["plan"], &r["within_budget"]] {
+        let mut sum = 0.0;
+        for leg in plan["legs"].as_array().unwrap() {
+            let j = leg["point"].as_u64().unwrap() as usize;
+            let trip = e[0][j] + e[j][0];
+            assert!((num(&leg["energy_j"]) - trip).abs() < 1e-6 * trip, "trip {j}");
+            sum += trip;
+        }
+        assert!((num(&plan["total_energy_j"]) - sum).abs() < 1e-6 * sum);
+    }
+    assert_eq!(r["plan"]["legs"].as_array().unwrap().len(), 3);
+    assert!(r["plan"]["method"].as_str().unwrap().contains("increasing energy"));
+    // No masses: names the robot and the key; no speed limits: asks for max_velocity.
+    let ur5 = temp_file("energy_ur5.toml", "cost = \"energy\"\ntargets = [[0.4, -0.2, 0.1]]\n");
+    fails(&["tasks", "ur5", "visiting", ur5.to_str().unwrap()], 2, &["`ur5`", "cost = \"energy\"", "masses"]);
+    let slow = temp_file("energy_no_limits.toml", "cost = \"energy\"\ntargets = [[0.57, 0.0, 1.01]]\n");
+    fails(&["tasks", "puma560", "visiting", slow.to_str().unwrap()], 2, &["`puma560`", "max_velocity"]);
+    let unknown = temp_file("energy_unknown.toml", "cost = \"joules\"\ntargets = [[0.57, 0.0, 1.01]]\n");
+    fails(&["tasks", "puma560", "visiting", unknown.to_str().unwrap()], 2, &["cost", "joules"]);
+}
+
+#[test]
+fn positive_work_visiting_on_puma560_is_optimal_on_its_asymmetric_matrix() {
+    let text = std::fs::read_to_string(format!("{}/examples/tasks_visiting_energy.toml", common::REPO_ROOT)).unwrap();
+    let file = temp_file("positive_work.toml", &text.replace("cost = \"energy\"", "cost = \"positive_work\""));
+    let r = json(&["tasks", "puma560", "visiting", file.to_str().unwrap(), "--json"]);
+    assert_eq!(r["cost"], "positive_work");
+    let w = puma_energy_matrix(&r, reach::decide::sequence::EnergyKind::PositiveWork);
+    // Points at different heights: the matrix is asymmetric by the potential energy differences.
+    assert!(w[7][3] > w[3][7] + 5.0, "0.30 m → 1.01 m {} J vs back {} J", w[7][3], w[3][7]);
+    let tour = |o: &[usize]| -> f64 {
+        let mut prev = 0;
+        o.iter()
+            .map(|&j| {
+                let c = w[prev][j];
+                prev = j;
+                c
+            })
+            .sum()
+    };
+    let order: Vec<usize> =
+        r["plan"]["order"].as_array().unwrap().iter().map(|v| v.as_u64().unwrap() as usize).collect();
+    let total = num(&r["plan"]["total_energy_j"]);
+    assert!((total - tour(&order)).abs() < 1e-6 * total);
+    let mut items: Vec<usize> = vec![1, 2, 3, 5, 6, 7];
+    let mut best = f64::INFINITY;
+    permutations(&mut items, 0, &mut |p| best = best.min(tour(p)));
+    assert!((total - best).abs() < 1e-6 * best, "plan {total} J, brute force {best} J");
+    let out = ok(&["tasks", "puma560", "visiting", file.to_str().unwrap()]);
+    assert!(out.contains("positive work") && out.contains("leg energy [J]"), "{out}");
 }

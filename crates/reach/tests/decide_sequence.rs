@@ -1,12 +1,17 @@
 //! Task sequencing (seed 001 §8 "visiting"/"collection"): exact vs brute force, heuristic gap,
-//! large instances, unreachable targets.
+//! large instances, unreachable targets, the heuristic on asymmetric costs, and mechanical-energy
+//! leg costs (asymmetric because of gravity).
 
 use proptest::prelude::*;
+use reach::decide::DecideError;
 use reach::decide::sequence::{
-    collection, collection_within_budget, joint_change_costs, visiting, visiting_heuristic, visiting_within_budget,
+    EnergyKind, collection, collection_within_budget, energy_costs, joint_change_costs, leg_durations, leg_energy,
+    visiting, visiting_heuristic, visiting_within_budget,
 };
+use reach::effort::dynamics::{potential_energy, trajectory_energy};
 use reach::ik::{IkOptions, IkTarget, solve};
 use reach::model::presets;
+use reach::motion::{JointMotion, JointRates, Profile};
 
 fn path(c: &[Vec<f64>], order: &[usize]) -> f64 {
     let mut prev = 0;
@@ -200,4 +205,135 @@ fn bad_matrices_rejected() {
     let c = vec![vec![0.0, 1.0], vec![1.0, 0.0]];
     assert!(matches!(visiting_within_budget(&c, &c, f64::NAN), Err(DecideError::InvalidBudget(_))));
     assert!(matches!(collection_within_budget(&c, &[vec![0.0]], 1.0), Err(DecideError::CostShape { .. })));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// Random matrices are asymmetric (`c[i][j] != c[j][i]`): the heuristic must still return a
+    /// permutation whose reported cost is the recomputed sum, no better than brute force, and a
+    /// true 2-opt local optimum — no segment reversal, evaluated here by recomputing the whole
+    /// reversed path, lowers the cost (this checks 2-opt's O(1) asymmetric evaluation).
+    #[test]
+    fn heuristic_on_asymmetric_costs_is_a_valid_two_opt_optimum(c in instance()) {
+        let n = c.len() - 1;
+        let s = visiting_heuristic(&c).unwrap();
+        prop_assert!(!s.exact);
+        let mut sorted = s.order.clone();
+        sorted.sort();
+        prop_assert_eq!(sorted, (1..=n).collect::<Vec<_>>());
+        let recomputed = path(&c, &s.order);
+        prop_assert!((s.cost - recomputed).abs() < 1e-12, "reported {} recomputed {}", s.cost, recomputed);
+        prop_assert!((s.legs.iter().sum::<f64>() - recomputed).abs() < 1e-12);
+        let brute = permutations(&(1..=n).collect::<Vec<_>>()).iter().map(|p| path(&c, p)).fold(f64::INFINITY, f64::min);
+        let brute = if n == 0 { 0.0 } else { brute };
+        prop_assert!(s.cost >= brute - 1e-9);
+        for i in 0..n {
+            for j in i + 1..n {
+                let mut r = s.order.clone();
+                r[i..=j].reverse();
+                let reversed = path(&c, &r);
+                prop_assert!(reversed >= s.cost - 1e-9 * (1.0 + s.cost), "reversing {i}..={j}: {reversed} < {}", s.cost);
+            }
+        }
+    }
+}
+
+/// PUMA 560 configurations: tool high (arm stretched up) and tool low (shoulder and elbow bent).
+fn puma_high_low() -> (reach::Robot, Vec<f64>, Vec<f64>) {
+    let puma = presets::get("puma560").unwrap();
+    let high = vec![0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+    let low = vec![0.3, -0.9, 0.6, 0.2, -0.4, 0.1];
+    (puma, high, low)
+}
+
+fn puma_rates() -> JointRates {
+    JointRates::new(vec![1.0, 1.0, 1.0, 2.0, 2.0, 2.0], None).unwrap()
+}
+
+/// Time reversal: the reverse of a rest-to-rest move with a symmetric profile is `q(T − t)`,
+/// with the same torques at mirrored instants and negated rates, so `∫ Σ|τᵢ·q̇ᵢ| dt` is the same
+/// both ways — lifting and lowering cost the same under this functional (braking counted as
+/// spent), while both cover the potential energy gained when lifting.
+#[test]
+fn energy_of_a_leg_equals_its_reverse_and_covers_the_potential_energy_gained() {
+    let (puma, high, low) = puma_high_low();
+    let configs = vec![Some(low.clone()), Some(high.clone()), None];
+    let d = leg_durations(&puma, &configs, &puma_rates(), Profile::Cycloidal).unwrap();
+    assert!((d[0][1] - d[1][0]).abs() < 1e-12, "same joint distance, same duration");
+    assert!(d[0][2].is_infinite() && d[2][1].is_infinite() && d[2][2].is_infinite());
+    let e = energy_costs(&puma, &configs, &d, Profile::Cycloidal, EnergyKind::Absolute).unwrap();
+    let (up, down) = (e[0][1], e[1][0]);
+    let gained = potential_energy(&puma, &high).unwrap() - potential_energy(&puma, &low).unwrap();
+    assert!(gained > 5.0, "the tool-high configuration is higher: ΔV = {gained} J");
+    // Rest to rest: ∫Σ|τq̇| ≥ ∫Στq̇ = ΔV (the trapezoid rule on 65 samples is within 1 %).
+    assert!(up >= 0.99 * gained, "lifting {up} J < ΔV {gained} J");
+    assert!((up - down).abs() < 1e-9 * up, "lifting {up} J vs lowering {down} J");
+    // A slower move spends less on accelerating, never less than ΔV.
+    let slow = leg_energy(&puma, &low, &high, 3.0 * d[0][1], Profile::Cycloidal, EnergyKind::Absolute).unwrap();
+    assert!(slow < up && slow >= 0.99 * gained, "slow {slow} J, fast {up} J, ΔV {gained} J");
+    assert_eq!(e[0][0], 0.0);
+    assert!(e[0][2].is_infinite() && e[2][0].is_infinite());
+}
+
+/// Positive work (braking free) is direction-dependent: lifting costs lowering plus the potential
+/// energy gained, and the two add up to the braking-counted energy; the asymmetric matrix goes
+/// through the exact solver, which takes the cheap direction.
+#[test]
+fn positive_work_of_lifting_exceeds_lowering_by_the_potential_energy_gained() {
+    let (puma, high, low) = puma_high_low();
+    let configs = vec![Some(low.clone()), Some(high.clone())];
+    let d = leg_durations(&puma, &configs, &puma_rates(), Profile::Cycloidal).unwrap();
+    let w = energy_costs(&puma, &configs, &d, Profile::Cycloidal, EnergyKind::PositiveWork).unwrap();
+    let e = energy_costs(&puma, &configs, &d, Profile::Cycloidal, EnergyKind::Absolute).unwrap();
+    let (up, down) = (w[0][1], w[1][0]);
+    let gained = potential_energy(&puma, &high).unwrap() - potential_energy(&puma, &low).unwrap();
+    assert!((up - down - gained).abs() < 0.01 * gained, "W⁺ up {up} J, down {down} J, ΔV {gained} J");
+    assert!((up + down - e[0][1]).abs() < 1e-9 * e[0][1], "W⁺ up + down = E: {up} + {down} vs {}", e[0][1]);
+    assert!(down > 0.0, "lowering still accelerates the arm");
+    // Visiting the other node from either end: from `high` (node 0 swapped) is cheaper.
+    let from_high = vec![vec![0.0, w[1][0]], vec![w[0][1], 0.0]];
+    assert!((visiting(&w).unwrap().cost - up).abs() < 1e-12);
+    assert!((visiting(&from_high).unwrap().cost - down).abs() < 1e-12);
+}
+
+#[test]
+fn leg_energy_agrees_with_finely_sampled_finite_differences() {
+    let (puma, high, low) = puma_high_low();
+    let t = 2.5;
+    let coarse = leg_energy(&puma, &low, &high, t, Profile::Cycloidal, EnergyKind::Absolute).unwrap();
+    let motion = JointMotion::for_robot(&puma, &low, &high, 0.0, t, Profile::Cycloidal).unwrap();
+    let times: Vec<f64> = (0..=4000).map(|k| t * f64::from(k) / 4000.0).collect();
+    let q: Vec<Vec<f64>> = times.iter().map(|&x| motion.position(x)).collect();
+    let fine = trajectory_energy(&puma, &times, &q).unwrap();
+    assert!((coarse - fine).abs() < 0.01 * fine, "65 samples {coarse} J vs 4001 samples {fine} J");
+    // No motion, no energy; bad durations rejected.
+    assert_eq!(leg_energy(&puma, &low, &low, 0.0, Profile::Cycloidal, EnergyKind::Absolute).unwrap(), 0.0);
+    for bad in [-1.0, f64::NAN, f64::INFINITY] {
+        assert!(matches!(
+            leg_energy(&puma, &low, &high, bad, Profile::Cycloidal, EnergyKind::Absolute),
+            Err(DecideError::BadVector { what: "leg duration", .. })
+        ));
+    }
+}
+
+#[test]
+fn energy_costs_need_link_masses_and_matching_shapes() {
+    let ur5 = presets::get("ur5").unwrap();
+    assert!(!ur5.has_dynamics(), "this test needs a preset without masses");
+    let q = vec![0.0; 6];
+    let e = leg_energy(&ur5, &q, &[0.1; 6], 1.0, Profile::Cycloidal, EnergyKind::PositiveWork).unwrap_err();
+    assert!(e.to_string().contains("ur5") && e.to_string().contains("inertial"), "{e}");
+    let (puma, high, low) = puma_high_low();
+    let configs = vec![Some(low), Some(high)];
+    let wrong = vec![vec![0.0; 3]; 3];
+    assert!(matches!(
+        energy_costs(&puma, &configs, &wrong, Profile::Cycloidal, EnergyKind::Absolute),
+        Err(DecideError::CostShape { what: "durations", .. })
+    ));
+    let missing = vec![None, configs[1].clone()];
+    assert!(matches!(
+        energy_costs(&puma, &missing, &[vec![0.0; 2], vec![0.0; 2]], Profile::Cycloidal, EnergyKind::Absolute),
+        Err(DecideError::BadVector { what: "configurations", .. })
+    ));
 }

@@ -7,7 +7,12 @@
 //! start configuration, or the container's configuration) by `Σ wᵢ·|Δqᵢ|`, or the rank-1
 //! solution of the file's `[choose]` ranking (as `reach ik --choose`). The cost of a move is
 //! J1 between configurations (revolute differences wrapped); its duration is the synchronised
-//! point-to-point duration within the joint speed limits with the file's profile. Visiting is
+//! point-to-point duration within the joint speed limits with the file's profile. With
+//! `cost = "energy"` the cost of a move is instead its mechanical energy in joules (Newton–Euler
+//! torques with gravity, `∫ Σ|τᵢ·q̇ᵢ| dt` over that synchronised move, 65 samples per leg;
+//! robots with link masses only); a move and its reverse cost the same. `cost =
+//! "positive_work"` counts only the drives' positive power (`∫ Σ max(τᵢ·q̇ᵢ, 0) dt`, braking
+//! free), so lifting costs more than lowering. Visiting is
 //! exact (Held–Karp) up to 12 reachable targets, nearest neighbour + 2-opt beyond; collection's
 //! total energy does not depend on the order, so only the budget selects (shortest trips first,
 //! optimal). See `docs/task-format.md`.
@@ -21,9 +26,9 @@ use std::path::PathBuf;
 use clap::{Args, ValueEnum};
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion};
 use reach::Robot;
-use reach::decide::motion_criteria::point_to_point_duration;
 use reach::decide::sequence::{
-    EXACT_MAX_TARGETS, Sequence, collection, collection_within_budget, config_costs, visiting, visiting_within_budget,
+    ENERGY_INTERVALS_PER_LEG, EXACT_MAX_TARGETS, EnergyKind, Sequence, collection, collection_within_budget,
+    config_costs, energy_costs, leg_durations, visiting, visiting_within_budget,
 };
 use reach::effort::SEED001_WEIGHTS;
 use reach::ik::{IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SolverKind};
@@ -48,6 +53,21 @@ pub enum TaskKind {
     Collection,
     /// One open tour from the start through every target.
     Visiting,
+}
+
+/// What a plan minimises (task-file key `cost`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CostKind {
+    /// Seed 001's J1 = `Σ wᵢ·|Δqᵢ|` between configurations, rad.
+    #[default]
+    J1,
+    /// Mechanical energy `∫ Σ|τᵢ·q̇ᵢ| dt` of the synchronised point-to-point move, J (needs
+    /// link masses); braking counted as spent.
+    Energy,
+    /// Positive work `∫ Σ max(τᵢ·q̇ᵢ, 0) dt` of that move, J (needs link masses); braking free,
+    /// so lifting costs more than lowering.
+    PositiveWork,
 }
 
 /// Arguments of `reach tasks`.
@@ -95,6 +115,8 @@ struct TasksFile {
     profile: Option<ProfileName>,
     max_velocity: Option<Vec<f64>>,
     budget_s: Option<f64>,
+    #[serde(default)]
+    cost: CostKind,
     choose: Option<ChooseFile>,
 }
 
@@ -131,6 +153,10 @@ pub struct LegJson {
     /// J1 of the leg (visiting: from the previous point; collection: container → object →
     /// container), rad.
     pub j1_rad: f64,
+    /// With `cost = "energy"` or `"positive_work"`: that energy of the leg (collection: of both
+    /// moves of the trip), J.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub energy_j: Option<f64>,
     /// Duration of the leg within the speed limits, seconds (`null` without limits).
     pub duration_s: Option<f64>,
 }
@@ -144,6 +170,9 @@ pub struct PlanJson {
     pub legs: Vec<LegJson>,
     /// Σ J1, rad.
     pub total_j1_rad: f64,
+    /// With `cost = "energy"` or `"positive_work"`: Σ energy, J (what the plan minimises).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub total_energy_j: Option<f64>,
     /// Σ duration, seconds (`null` without limits).
     pub total_duration_s: Option<f64>,
     /// Whether the plan is provably optimal.
@@ -165,6 +194,8 @@ pub struct TasksJson {
     pub solver: String,
     /// How each point's configuration was chosen.
     pub choice: String,
+    /// What the plan minimises: `j1` (rad), `energy` or `positive_work` (J).
+    pub cost: CostKind,
     /// Node 0: the start (visiting) or container (collection) configuration, degrees.
     pub node0_q_deg: Vec<f64>,
     /// Every point.
@@ -343,6 +374,21 @@ pub fn run(args: &TasksArgs, out: &mut dyn Write) -> Result<(), CliError> {
             )));
         }
     }
+    if file.cost != CostKind::J1 {
+        let key = if file.cost == CostKind::Energy { "energy" } else { "positive_work" };
+        if !robot.has_dynamics() {
+            return Err(CliError::bad_input(format!(
+                "{origin}: `cost = \"{key}\"`: robot `{}` has no link masses (`inertial` in the robot description); use `cost = \"j1\"` or a robot with masses",
+                robot.name()
+            )));
+        }
+        if rates.is_none() {
+            return Err(CliError::bad_input(format!(
+                "{origin}: `cost = \"{key}\"`: robot `{}` has no joint speed limits to time the moves; give `max_velocity` [deg/s] in the task file",
+                robot.name()
+            )));
+        }
+    }
     let kind = SolverKind::detect(robot);
     let picker = Picker {
         robot,
@@ -398,26 +444,19 @@ pub fn run(args: &TasksArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let costs = config_costs(robot, configs.clone(), &weights).map_err(decide)?;
     let durations = match &rates {
         None => None,
-        Some(r) => {
-            let mut d = vec![vec![f64::INFINITY; configs.len()]; configs.len()];
-            for (i, a) in configs.iter().enumerate() {
-                for (j, b) in configs.iter().enumerate() {
-                    if let (Some(a), Some(b)) = (a, b) {
-                        let delta: Vec<f64> = robot
-                            .joints()
-                            .iter()
-                            .enumerate()
-                            .map(|(n, jt)| reach::motion::joint_space::joint_difference(jt, a[n], b[n]))
-                            .collect();
-                        d[i][j] =
-                            if i == j { 0.0 } else { point_to_point_duration(&delta, r, profile).map_err(decide)? };
-                    }
-                }
-            }
-            Some(d)
-        }
+        Some(r) => Some(leg_durations(robot, &configs, r, profile).map_err(decide)?),
     };
-    let c = &costs.costs;
+    let energy_kind = match file.cost {
+        CostKind::J1 => None,
+        CostKind::Energy => Some(EnergyKind::Absolute),
+        CostKind::PositiveWork => Some(EnergyKind::PositiveWork),
+    };
+    let energy = match (energy_kind, &durations) {
+        (Some(k), Some(d)) => Some(energy_costs(robot, &configs, d, profile, k).map_err(decide)?),
+        _ => None,
+    };
+    let matrices = Matrices { j1: &costs.costs, energy: energy.as_deref(), durations: durations.as_deref() };
+    let c = energy.as_deref().unwrap_or(&costs.costs);
     let plan = match args.kind {
         TaskKind::Visiting => visiting(c),
         TaskKind::Collection => collection(c),
@@ -446,12 +485,13 @@ pub fn run(args: &TasksArgs, out: &mut dyn Write) -> Result<(), CliError> {
                 ch.criteria.as_ref().map_or("change,limits,manipulability".into(), |c| c.join(","))
             ),
         },
+        cost: file.cost,
         node0_q_deg: q_to_display(robot, &node0).into_iter().map(|v| v + 0.0).collect(),
         points: rows,
         unreachable,
-        plan: plan_json(args.kind, &plan, durations.as_deref(), false),
+        plan: plan_json(args.kind, &plan, &matrices, false),
         budget_s: budget,
-        within_budget: within.as_ref().map(|s| plan_json(args.kind, s, durations.as_deref(), true)),
+        within_budget: within.as_ref().map(|s| plan_json(args.kind, s, &matrices, true)),
     };
     if args.draw.any() {
         args.draw.write(&top_view(robot, args.kind, &report, &node0)?)?;
@@ -476,34 +516,50 @@ fn top_view(robot: &Robot, kind: TaskKind, report: &TasksJson, node0: &[f64]) ->
         TaskKind::Collection => (Route::Trips, "container", "collection"),
     };
     let budget = report.budget_s.map_or(String::new(), |b| format!(", budget {b} s"));
-    let title = format!(
-        "{} — {what}: {} of {} points, J1 {:.4} rad{budget}",
-        robot.name(),
-        order.len(),
-        points.len(),
-        plan.total_j1_rad
-    );
+    let cost = match plan.total_energy_j {
+        Some(e) => format!("energy {e:.2} J"),
+        None => format!("J1 {:.4} rad", plan.total_j1_rad),
+    };
+    let title = format!("{} — {what}: {} of {} points, {cost}{budget}", robot.name(), order.len(), points.len());
     tour_top_view(&title, base, (start, start_label), &points, &order, route)
 }
 
-fn plan_json(kind: TaskKind, s: &Sequence, d: Option<&[Vec<f64>]>, budget: bool) -> PlanJson {
+/// The per-leg matrices of a task: J1 (rad), energy (J, with `cost = "energy"`), durations (s).
+struct Matrices<'a> {
+    j1: &'a [Vec<f64>],
+    energy: Option<&'a [Vec<f64>]>,
+    durations: Option<&'a [Vec<f64>]>,
+}
+
+fn plan_json(kind: TaskKind, s: &Sequence, m: &Matrices<'_>, budget: bool) -> PlanJson {
     let mut prev = 0;
+    // A leg from `prev` to `j` (visiting) or the trip to `j` and back (collection).
+    let leg = |c: &[Vec<f64>], prev: usize, j: usize| match kind {
+        TaskKind::Visiting => c[prev][j],
+        TaskKind::Collection => c[0][j] + c[j][0],
+    };
     let legs: Vec<LegJson> = s
         .order
         .iter()
-        .zip(&s.legs)
-        .map(|(&j, &cost)| {
-            let duration = d.map(|d| match kind {
-                TaskKind::Visiting => d[prev][j],
-                TaskKind::Collection => d[0][j] + d[j][0],
-            });
+        .map(|&j| {
+            let l = LegJson {
+                point: j,
+                j1_rad: leg(m.j1, prev, j),
+                energy_j: m.energy.map(|e| leg(e, prev, j)),
+                duration_s: m.durations.map(|d| leg(d, prev, j)),
+            };
             prev = j;
-            LegJson { point: j, j1_rad: cost, duration_s: duration }
+            l
         })
         .collect();
-    let total_duration_s = d.map(|_| legs.iter().filter_map(|l| l.duration_s).sum());
+    let total_duration_s = m.durations.map(|_| legs.iter().filter_map(|l| l.duration_s).sum());
+    let total_j1_rad = legs.iter().map(|l| l.j1_rad).sum();
+    let total_energy_j = m.energy.map(|_| legs.iter().filter_map(|l| l.energy_j).sum());
+    let cost = if m.energy.is_some() { "energy" } else { "J1" };
     let method = match (kind, budget, s.exact) {
-        (TaskKind::Collection, false, _) => "trips in increasing J1 (total J1 does not depend on the order)".into(),
+        (TaskKind::Collection, false, _) => {
+            format!("trips in increasing {cost} (the total does not depend on the order)")
+        }
         (TaskKind::Collection, true, _) => "shortest trips first (optimal for the count)".into(),
         (TaskKind::Visiting, false, true) => {
             format!("exact: Held–Karp dynamic programming (≤ {EXACT_MAX_TARGETS} targets)")
@@ -520,35 +576,40 @@ fn plan_json(kind: TaskKind, s: &Sequence, d: Option<&[Vec<f64>]>, budget: bool)
             "heuristic: longest prefix within budget of the nearest-neighbour + 2-opt tour on durations (> {EXACT_MAX_TARGETS} targets)"
         ),
     };
-    PlanJson { order: s.order.clone(), total_j1_rad: s.cost, total_duration_s, legs, exact: s.exact, method }
+    PlanJson { order: s.order.clone(), total_j1_rad, total_energy_j, total_duration_s, legs, exact: s.exact, method }
 }
 
 fn write_plan(out: &mut dyn Write, kind: TaskKind, p: &PlanJson, points: &[PointJson]) -> Result<(), CliError> {
     let leg = if kind == TaskKind::Collection { "trip" } else { "leg" };
-    let mut t = Table::new(&[
+    let energy = p.total_energy_j.is_some();
+    let mut columns = vec![
         ("step", Align::Right),
         ("point", Align::Right),
         ("xyz [m]", Align::Left),
         (if kind == TaskKind::Collection { "trip J1 [rad]" } else { "leg J1 [rad]" }, Align::Right),
-        (if kind == TaskKind::Collection { "trip [s]" } else { "leg [s]" }, Align::Right),
-        ("cumulative [s]", Align::Right),
-    ]);
+    ];
+    if energy {
+        columns.push((if kind == TaskKind::Collection { "trip energy [J]" } else { "leg energy [J]" }, Align::Right));
+    }
+    columns.push((if kind == TaskKind::Collection { "trip [s]" } else { "leg [s]" }, Align::Right));
+    columns.push(("cumulative [s]", Align::Right));
+    let mut t = Table::new(&columns);
     let mut cumulative = 0.0;
     for (k, l) in p.legs.iter().enumerate() {
         let point = &points[l.point - 1];
         cumulative += l.duration_s.unwrap_or(0.0);
-        t.row(vec![
-            (k + 1).to_string(),
-            l.point.to_string(),
-            fixeds(&point.xyz_m, 3),
-            fixed(l.j1_rad, 4),
-            l.duration_s.map_or("-".into(), |d| fixed(d, 3)),
-            l.duration_s.map_or("-".into(), |_| fixed(cumulative, 3)),
-        ]);
+        let mut row = vec![(k + 1).to_string(), l.point.to_string(), fixeds(&point.xyz_m, 3), fixed(l.j1_rad, 4)];
+        if energy {
+            row.push(l.energy_j.map_or("-".into(), |e| fixed(e, 3)));
+        }
+        row.push(l.duration_s.map_or("-".into(), |d| fixed(d, 3)));
+        row.push(l.duration_s.map_or("-".into(), |_| fixed(cumulative, 3)));
+        t.row(row);
     }
     t.write(out, "  ")?;
     let total_time = p.total_duration_s.map_or(String::new(), |d| format!(", duration {} s", fixed(d, 3)));
-    writeln!(out, "  total: {} {leg}(s), J1 {} rad{total_time}", p.legs.len(), fixed(p.total_j1_rad, 4))?;
+    let total_energy = p.total_energy_j.map_or(String::new(), |e| format!(", energy {} J", fixed(e, 3)));
+    writeln!(out, "  total: {} {leg}(s), J1 {} rad{total_energy}{total_time}", p.legs.len(), fixed(p.total_j1_rad, 4))?;
     Ok(())
 }
 
@@ -567,7 +628,23 @@ fn write_text(out: &mut dyn Write, robot: &Robot, r: &TasksJson) -> Result<(), C
     head.pair(node, q_text(robot, &shown));
     head.pair("solver", r.solver.clone());
     head.pair("choice", r.choice.clone());
-    head.pair("cost", "J1 = Σ wᵢ·|Δqᵢ| between configurations; durations synchronised within the speed limits");
+    head.pair(
+        "cost",
+        match r.cost {
+            CostKind::J1 => {
+                "J1 = Σ wᵢ·|Δqᵢ| between configurations [rad]; durations synchronised within the speed limits"
+                    .to_string()
+            }
+            CostKind::Energy => format!(
+                "mechanical energy ∫ Σ|τᵢ·q̇ᵢ| dt [J] of each synchronised point-to-point move (Newton–Euler with gravity, {} samples per leg)",
+                ENERGY_INTERVALS_PER_LEG + 1
+            ),
+            CostKind::PositiveWork => format!(
+                "positive work ∫ Σ max(τᵢ·q̇ᵢ, 0) dt [J] of each synchronised point-to-point move, braking free (Newton–Euler with gravity, {} samples per leg)",
+                ENERGY_INTERVALS_PER_LEG + 1
+            ),
+        },
+    );
     let reachable = r.points.len() - r.unreachable.len();
     head.pair("points", format!("{} ({reachable} reachable, {} unreachable)", r.points.len(), r.unreachable.len()));
     head.write(out, "")?;

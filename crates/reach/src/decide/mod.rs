@@ -129,4 +129,8 @@ pub enum DecideError {
     /// A time budget is negative or NaN.
     #[error("time budget {0} s must be finite and >= 0")]
     InvalidBudget(f64),
+    /// A dynamics quantity (mechanical energy of a leg) could not be computed, e.g. the robot
+    /// has no link masses.
+    #[error("dynamics: {0}")]
+    Dynamics(#[from] crate::effort::dynamics::DynamicsError),
 }

@@ -21,12 +21,26 @@
 //! number of objects that fit is obtained by taking trips in increasing duration (exchange
 //! argument: any feasible set of k trips can be replaced by the k shortest), ties broken by
 //! lower energy, then by index.
+//!
+//! **Costs.** [`config_costs`] gives seed 001's J1 (rad) between chosen configurations;
+//! [`leg_durations`] the synchronised point-to-point duration of every leg within the joint
+//! speed limits (s); [`energy_costs`] the mechanical energy of every such leg (J) for robots
+//! with link masses. That energy counts braking as spent (`∫ Σ|τᵢ·q̇ᵢ| dt`), so a leg and its
+//! reverse cost the same: the reverse of a rest-to-rest move with a symmetric profile is
+//! `q(T − t)`, with the same torques at mirrored instants and negated rates. Gravity decides
+//! how large the energy is, not its direction. With [`EnergyKind::PositiveWork`] braking is free
+//! (`∫ Σ max(τᵢ·q̇ᵢ, 0) dt`): then a leg costs its reverse plus the potential energy it gains,
+//! and the matrix is asymmetric; both solvers handle asymmetric matrices.
 
 use serde::Serialize;
 
 use super::DecideError;
+use super::motion_criteria::point_to_point_duration;
+use crate::effort::dynamics::{mechanical_energy, positive_work};
 use crate::ik::IkSolutions;
 use crate::model::{JointKind, Robot};
+use crate::motion::joint_space::joint_difference;
+use crate::motion::{JointMotion, JointRates, Profile};
 
 /// Largest number of reachable targets solved exactly (Held–Karp, `O(2ⁿ n²)`).
 pub const EXACT_MAX_TARGETS: usize = 12;
@@ -436,17 +450,7 @@ pub fn config_costs(
             reason: format!("expected {dof} finite values >= 0, got {weights:?}"),
         });
     }
-    if configs.first().is_none_or(Option::is_none) {
-        return Err(DecideError::BadVector { what: "configurations", reason: "node 0 (start) is missing".into() });
-    }
-    if let Some(k) =
-        configs.iter().position(|c| c.as_ref().is_some_and(|q| q.len() != dof || q.iter().any(|v| !v.is_finite())))
-    {
-        return Err(DecideError::BadVector {
-            what: "configurations",
-            reason: format!("node {k}: expected {dof} finite joint values"),
-        });
-    }
+    check_configs(robot, &configs)?;
     let j1 = |a: &[f64], b: &[f64]| -> f64 {
         robot
             .joints()
@@ -472,4 +476,144 @@ pub fn config_costs(
         })
         .collect();
     Ok(ConfigCosts { configs, costs })
+}
+
+/// Which mechanical energy [`leg_energy`] integrates.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EnergyKind {
+    /// `∫ Σᵢ |τᵢ·q̇ᵢ| dt` ([`mechanical_energy`]): braking counted as spent; a move and its
+    /// reverse cost the same.
+    Absolute,
+    /// `∫ Σᵢ max(τᵢ·q̇ᵢ, 0) dt` ([`positive_work`]): braking free; lifting costs more than
+    /// lowering by the potential energy gained.
+    PositiveWork,
+}
+
+/// Sample intervals per leg in [`energy_costs`] (so `ENERGY_INTERVALS_PER_LEG + 1` samples,
+/// both ends included).
+pub const ENERGY_INTERVALS_PER_LEG: usize = 64;
+
+fn check_configs(robot: &Robot, configs: &[Option<Vec<f64>>]) -> Result<(), DecideError> {
+    let dof = robot.dof();
+    if configs.first().is_none_or(Option::is_none) {
+        return Err(DecideError::BadVector { what: "configurations", reason: "node 0 (start) is missing".into() });
+    }
+    if let Some(k) =
+        configs.iter().position(|c| c.as_ref().is_some_and(|q| q.len() != dof || q.iter().any(|v| !v.is_finite())))
+    {
+        return Err(DecideError::BadVector {
+            what: "configurations",
+            reason: format!("node {k}: expected {dof} finite joint values"),
+        });
+    }
+    Ok(())
+}
+
+/// `(n+1)×(n+1)` matrix of leg durations (s): entry `[i][j]` is the duration of the fastest
+/// synchronised point-to-point joint move from configuration `i` to `j` with `profile` within
+/// `rates` ([`point_to_point_duration`]; joint differences as [`joint_difference`]); `0` on the
+/// diagonal, `+∞` to and from unreachable (`None`) nodes.
+///
+/// # Errors
+/// [`DecideError::BadVector`] for a missing node 0 or a configuration without one finite value
+/// per joint; [`DecideError::Criterion`] when the differences do not fit `rates`.
+pub fn leg_durations(
+    robot: &Robot,
+    configs: &[Option<Vec<f64>>],
+    rates: &JointRates,
+    profile: Profile,
+) -> Result<Vec<Vec<f64>>, DecideError> {
+    check_configs(robot, configs)?;
+    let mut d = vec![vec![f64::INFINITY; configs.len()]; configs.len()];
+    for (i, a) in configs.iter().enumerate() {
+        for (j, b) in configs.iter().enumerate() {
+            if let (Some(a), Some(b)) = (a, b) {
+                d[i][j] = if i == j {
+                    0.0
+                } else {
+                    let delta: Vec<f64> =
+                        robot.joints().iter().enumerate().map(|(n, jt)| joint_difference(jt, a[n], b[n])).collect();
+                    point_to_point_duration(&delta, rates, profile)?
+                };
+            }
+        }
+    }
+    Ok(d)
+}
+
+/// Mechanical energy (J) of the point-to-point joint move from `q0` to `q1` with `profile`
+/// lasting `duration` seconds ([`JointMotion::for_robot`]): `∫ Σᵢ |τᵢ·q̇ᵢ| dt`
+/// ([`mechanical_energy`], braking counted as spent) or `∫ Σᵢ max(τᵢ·q̇ᵢ, 0) dt`
+/// ([`positive_work`], braking free) by `kind`, with Newton–Euler torques including gravity,
+/// sampled at [`ENERGY_INTERVALS_PER_LEG`]` + 1` evenly spaced instants with the motion's exact
+/// rates and accelerations, trapezoid rule. A zero duration (no joint moves) costs 0 J.
+///
+/// # Errors
+/// [`DecideError::Dynamics`] when the robot has no link masses; [`DecideError::BadVector`] for
+/// bad configurations or a negative/non-finite duration.
+pub fn leg_energy(
+    robot: &Robot,
+    q0: &[f64],
+    q1: &[f64],
+    duration: f64,
+    profile: Profile,
+    kind: EnergyKind,
+) -> Result<f64, DecideError> {
+    if !robot.has_dynamics() {
+        return Err(crate::effort::dynamics::DynamicsError::NoInertialData { robot: robot.name().to_string() }.into());
+    }
+    if !duration.is_finite() || duration < 0.0 {
+        return Err(DecideError::BadVector {
+            what: "leg duration",
+            reason: format!("must be a finite number of seconds >= 0, got {duration}"),
+        });
+    }
+    if duration == 0.0 {
+        return Ok(0.0);
+    }
+    let motion = JointMotion::for_robot(robot, q0, q1, 0.0, duration, profile)
+        .map_err(|e| DecideError::BadVector { what: "leg", reason: e.to_string() })?;
+    let n = ENERGY_INTERVALS_PER_LEG;
+    let times: Vec<f64> = (0..=n).map(|k| duration * k as f64 / n as f64).collect();
+    let q: Vec<Vec<f64>> = times.iter().map(|&t| motion.position(t)).collect();
+    let qd: Vec<Vec<f64>> = times.iter().map(|&t| motion.velocity(t)).collect();
+    let qdd: Vec<Vec<f64>> = times.iter().map(|&t| motion.acceleration(t)).collect();
+    Ok(match kind {
+        EnergyKind::Absolute => mechanical_energy(robot, &times, &q, &qd, &qdd)?,
+        EnergyKind::PositiveWork => positive_work(robot, &times, &q, &qd, &qdd)?,
+    })
+}
+
+/// `(n+1)×(n+1)` matrix of leg energies (J, [`leg_energy`]) between configurations, each leg
+/// lasting `durations[i][j]` (e.g. from [`leg_durations`]) with `profile`; `0` on the diagonal,
+/// `+∞` to and from unreachable (`None`) nodes. With [`EnergyKind::Absolute`] symmetric up to
+/// rounding when the durations are; with [`EnergyKind::PositiveWork`] asymmetric (module docs).
+///
+/// # Errors
+/// As [`leg_energy`]; [`DecideError::CostShape`] when `durations` does not match `configs`.
+pub fn energy_costs(
+    robot: &Robot,
+    configs: &[Option<Vec<f64>>],
+    durations: &[Vec<f64>],
+    profile: Profile,
+    kind: EnergyKind,
+) -> Result<Vec<Vec<f64>>, DecideError> {
+    check_configs(robot, configs)?;
+    check_matrix("durations", durations)?;
+    if durations.len() != configs.len() {
+        return Err(DecideError::CostShape {
+            what: "durations",
+            reason: format!("{} nodes, but there are {} configurations", durations.len(), configs.len()),
+        });
+    }
+    let mut e = vec![vec![f64::INFINITY; configs.len()]; configs.len()];
+    for (i, a) in configs.iter().enumerate() {
+        for (j, b) in configs.iter().enumerate() {
+            if let (Some(a), Some(b)) = (a, b) {
+                e[i][j] = if i == j { 0.0 } else { leg_energy(robot, a, b, durations[i][j], profile, kind)? };
+            }
+        }
+    }
+    Ok(e)
 }

@@ -420,6 +420,37 @@ pub fn mechanical_energy<Q: AsRef<[f64]>>(
     qd: &[Q],
     qdd: &[Q],
 ) -> Result<f64, DynamicsError> {
+    integrate_power(robot, times, q, qd, qdd, f64::abs)
+}
+
+/// `W⁺ = ∫ Σᵢ max(τᵢ·q̇ᵢ, 0) dt` (joules): the work the joint drives put in, braking (negative
+/// power) costing nothing, as for drives that dissipate braking energy for free; samples,
+/// torques and rule as [`mechanical_energy`]. Unlike that energy it depends on the direction of
+/// a move: since `|P| = max(P, 0) + max(−P, 0)` and the reverse of a rest-to-rest move negates
+/// every joint power, `W⁺(move) − W⁺(reverse) = ΔV` (the potential energy gained) and
+/// `W⁺(move) + W⁺(reverse) = E(move)`.
+///
+/// # Errors
+/// As [`mechanical_energy`].
+pub fn positive_work<Q: AsRef<[f64]>>(
+    robot: &Robot,
+    times: &[f64],
+    q: &[Q],
+    qd: &[Q],
+    qdd: &[Q],
+) -> Result<f64, DynamicsError> {
+    integrate_power(robot, times, q, qd, qdd, |p| p.max(0.0))
+}
+
+/// `∫ Σᵢ f(τᵢ·q̇ᵢ) dt` by the trapezoid rule over the samples.
+fn integrate_power<Q: AsRef<[f64]>>(
+    robot: &Robot,
+    times: &[f64],
+    q: &[Q],
+    qd: &[Q],
+    qdd: &[Q],
+    joint_power: fn(f64) -> f64,
+) -> Result<f64, DynamicsError> {
     let mut dynamics = Dynamics::new(robot)?;
     check_times(times)?;
     for (field, rows) in [("q", q), ("qd", qd), ("qdd", qdd)] {
@@ -436,7 +467,7 @@ pub fn mechanical_energy<Q: AsRef<[f64]>>(
         check_vector(&format!("qdd[{k}]"), qddk, n)?;
         let g = *robot.gravity();
         dynamics.rnea(qk, qdk, qddk, &g, &mut tau);
-        let power: f64 = tau.iter().zip(qdk).map(|(t, v)| (t * v).abs()).sum();
+        let power: f64 = tau.iter().zip(qdk).map(|(t, v)| joint_power(t * v)).sum();
         if let Some((t0, p0)) = previous {
             energy += 0.5 * (p0 + power) * (t - t0);
         }
