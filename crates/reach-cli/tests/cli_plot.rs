@@ -263,6 +263,14 @@ fn path_bad_input_exits_2_with_one_line() {
 }
 
 #[test]
+fn path_between_one_configuration_and_itself_is_bad_input() {
+    let run = reach(&["path", "planar3", POST, "--from", "60,-40,-30", "--to", "60,-40,-30"]);
+    assert_eq!(run.code, 2, "{}", run.stderr);
+    assert!(run.stderr.contains("same configuration"), "{}", run.stderr);
+    one_error_line(&run);
+}
+
+#[test]
 fn path_to_a_pose_ends_at_the_pose() {
     let run =
         reach(&["path", "ur5", POST, "--from", "0,-90,90,-90,-90,0", "--to-pose", "0.4,-0.2,0.3,180,0,0", "--json"]);

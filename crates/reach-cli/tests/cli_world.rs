@@ -98,3 +98,17 @@ fn cspace_fit_prints_primitives_and_confusion() {
         &["exactly three swept joints"],
     );
 }
+
+#[test]
+fn cspace_fit_without_allowed_nodes_is_infeasible() {
+    // The task zone moved beyond reach: a valid grid with nothing to fit, exit 3 (infeasible).
+    let free = std::fs::read_to_string(format!("{}/examples/seed004_free.toml", common::REPO_ROOT)).unwrap();
+    let far = free.replace("point = [500, 0, 0]", "point = [50000, 0, 0]");
+    assert_ne!(far, free);
+    let file = common::temp_file("seed004_far.toml", &far);
+    fails(
+        &["cspace", "varan4", file.to_str().unwrap(), "--fix", "q1=0", "--step", "30", "--fit"],
+        3,
+        &["--fit", "no allowed node"],
+    );
+}

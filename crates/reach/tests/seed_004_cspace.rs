@@ -151,3 +151,45 @@ fn progress_hook_counts_every_node_once_per_chunk_and_changes_nothing() {
     assert!(calls.windows(2).all(|w| w[0].0 < w[1].0));
     assert_eq!(calls.last().unwrap().0, nodes);
 }
+
+#[test]
+fn axis_index_walks_the_nodes_row_major() {
+    use reach::world::cspace::{CspaceGrid, GridCounts};
+    // One fixed joint and three swept ones of 2, 3 and 2 values: 12 nodes, the first joint
+    // varying slowest. The classes mark the position on the q3 axis.
+    let axes = vec![vec![0.5], vec![1.0, 2.0], vec![3.0, 4.0, 5.0], vec![6.0, 7.0]];
+    let class = [NodeClass::Allowed, NodeClass::OutsideZone, NodeClass::ObstacleCollision];
+    let mut classes = Vec::new();
+    let mut expected = Vec::new();
+    for (a, _) in axes[0].iter().enumerate() {
+        for (b, _) in axes[1].iter().enumerate() {
+            for (c, _) in axes[2].iter().enumerate() {
+                for (d, _) in axes[3].iter().enumerate() {
+                    classes.push(class[c]);
+                    expected.push([a, b, c, d]);
+                }
+            }
+        }
+    }
+    let g = CspaceGrid { axes: axes.clone(), classes, counts: GridCounts::default() };
+    for (i, k) in expected.iter().enumerate() {
+        for (j, &kj) in k.iter().enumerate() {
+            assert_eq!(g.axis_index(i, j), Some(kj), "node {i}, joint {j}");
+        }
+        assert_eq!(g.axis_index(i, 4), None);
+        assert_eq!(g.node(i), (0..4).map(|j| axes[j][k[j]]).collect::<Vec<f64>>(), "node {i}");
+    }
+    let by_q3 = g.counts_by(2);
+    assert_eq!(by_q3.len(), 3);
+    for (c, counts) in by_q3.iter().enumerate() {
+        assert_eq!(counts.nodes, 4, "{by_q3:?}");
+        let own = [counts.allowed, counts.outside_zone, counts.obstacle_collision];
+        assert_eq!(own.iter().sum::<usize>(), 4);
+        assert_eq!(own[c], 4, "{by_q3:?}");
+    }
+    assert!(g.counts_by(4).is_empty());
+    // A grid with an empty axis has no node: no index, and no panic.
+    let empty = CspaceGrid { axes: vec![vec![1.0], vec![]], classes: vec![], counts: GridCounts::default() };
+    assert_eq!(empty.axis_index(0, 1), None);
+    assert!(empty.node(0)[1].is_nan());
+}

@@ -8,10 +8,10 @@
 //! headroom.
 
 use reach::model::presets;
-use reach::world::Scene;
 use reach::world::cspace::{CspaceGrid, GridSpec, NodeClass, classify_grid};
 use reach::world::fit::{Confusion, Fit, FitOptions, confusion, fit_region};
 use reach::world::rfunction::{Primitive, r_and};
+use reach::world::{Scene, WorldError};
 
 fn grid(text: &str, step_deg: f64) -> CspaceGrid {
     let varan = presets::get("varan4").unwrap();
@@ -176,7 +176,9 @@ fn bad_grids_are_rejected() {
     let far = FREE.replace("point = [500, 0, 0]", "point = [5000, 0, 0]");
     let g = grid(&far, 30.0);
     assert_eq!(g.counts.allowed, 0);
-    let e = fit_region(&g, &FitOptions::default()).unwrap_err().to_string();
+    let e = fit_region(&g, &FitOptions::default()).unwrap_err();
+    assert_eq!(e, WorldError::NoAllowedNode);
+    let e = e.to_string();
     assert!(e.contains("no allowed node"), "{e}");
     assert!(fit_region(&grid(FREE, 30.0), &FitOptions { max_planes: 4, ..FitOptions::default() }).is_err());
     // A 5° grid (60 025 nodes) is for validation, not fitting.

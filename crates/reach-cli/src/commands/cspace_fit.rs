@@ -3,6 +3,7 @@
 
 use std::io::Write;
 
+use reach::world::WorldError;
 use reach::world::cspace::CspaceGrid;
 use reach::world::fit::{Confusion, Fit, FitOptions, fit_region};
 use reach::world::rfunction::{Parabola, Primitive};
@@ -42,10 +43,10 @@ struct PrimitiveJson {
 /// [`CliError::NoSolution`] when the grid has no allowed node; [`CliError::BadInput`] when it
 /// does not sweep exactly three joints.
 pub fn fit(grid: &CspaceGrid) -> Result<(Fit, FitJson), CliError> {
-    if grid.counts.allowed == 0 {
-        return Err(CliError::NoSolution("--fit: the grid has no allowed node to fit a region to".into()));
-    }
-    let fit = fit_region(grid, &FitOptions::default()).map_err(|e| CliError::bad_input(format!("--fit: {e}")))?;
+    let fit = fit_region(grid, &FitOptions::default()).map_err(|e| match e {
+        WorldError::NoAllowedNode => CliError::NoSolution(format!("--fit: {e}")),
+        e => CliError::bad_input(format!("--fit: {e}")),
+    })?;
     let labels = fit.joints.map(|j| format!("q{}", j + 1));
     let primitives = fit
         .parts

@@ -249,7 +249,7 @@ pub fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
     };
     let solver = kind.build(robot).map_err(ik_error)?;
     let all = solver.solve(robot, &target, &options).map_err(ik_error)?;
-    let closest = all.closest_to(&from, &weights).and_then(|c| all.solutions.iter().position(|s| std::ptr::eq(s, c)));
+    let closest = all.closest_index(&from, &weights);
     let ranking = match &choice {
         Some(c) if closest.is_some() => Some(c.rank(robot, &all)?),
         _ => None,
@@ -731,7 +731,7 @@ fn demo_case(out: &mut dyn Write, robot: &Robot, what: &str, pose: &Isometry3<f6
         .build(robot)
         .and_then(|s| s.solve(robot, &target, &IkOptions { seed: Some(robot.home()), ..IkOptions::default() }))
         .map_err(|e| CliError::internal(format!("IK of preset `{}`: {}", robot.name(), one_line(&e.to_string()))))?;
-    let chosen = all.closest_to(&robot.home(), &[]).and_then(|c| all.solutions.iter().position(|s| std::ptr::eq(s, c)));
+    let chosen = all.closest_index(&robot.home(), &[]);
     writeln!(out)?;
     writeln!(out, "{} — {what}", robot.name())?;
     writeln!(out, "  target    {}", target_text(&target))?;

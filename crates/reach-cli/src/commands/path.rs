@@ -185,6 +185,10 @@ fn time_and_check(robot: &Robot, scene: &Scene, waypoints: &[Vec<f64>], total: O
     Ok(Timed { durations, times, q, qd, collision_free: free, min_clearance, min_self })
 }
 
+/// Joint-space distance (`path_length` units: rad and m mixed, Euclidean) at or below which
+/// the start and the goal are one configuration and there is nothing to plan.
+const SAME_CONFIGURATION: f64 = 1e-12;
+
 /// Plans, times and re-checks the path and prints the report.
 ///
 /// # Errors
@@ -213,6 +217,14 @@ pub fn run(args: &PathArgs, out: &mut dyn Write) -> Result<(), CliError> {
         },
         _ => return Err(CliError::bad_input("give exactly one of --to and --to-pose")),
     };
+    let same = || CliError::bad_input("--from and --to are the same configuration: nothing to plan");
+    // A joint goal is compared before planning; a pose goal only once IK has chosen its
+    // configuration (below).
+    if let Goal::Joints(q) = &goal
+        && path_length(&[start.clone(), q.clone()]) <= SAME_CONFIGURATION
+    {
+        return Err(same());
+    }
     let total = match &args.duration {
         Some(d) => {
             let v = parse_finite("--duration", d)?;
@@ -256,23 +268,17 @@ pub fn run(args: &PathArgs, out: &mut dyn Write) -> Result<(), CliError> {
     match plan(&robot, &scene, &start, &goal, &options) {
         Ok(p) => {
             let PlanStats { iterations, nodes, checks, raw_waypoints, raw_length, time_s, .. } = p.stats;
-            json.stats = StatsJson {
-                iterations,
-                nodes,
-                checks,
-                raw_waypoints,
-                raw_length,
-                length: Some(path_length(&p.waypoints)),
-                time_s,
-            };
+            let length = path_length(&p.waypoints);
+            json.stats =
+                StatsJson { iterations, nodes, checks, raw_waypoints, raw_length, length: Some(length), time_s };
             json.found = true;
             json.waypoints_deg = p.waypoints.iter().map(|q| q_to_display(&robot, q)).collect();
             json.waypoints_deg[0].clone_from(&from.deg);
             if let (Some(last), Some(g)) = (json.waypoints_deg.last_mut(), typed_goal) {
                 *last = g;
             }
-            if path_length(&p.waypoints) <= 1e-12 {
-                return Err(CliError::bad_input("--from and --to are the same configuration: nothing to plan"));
+            if length <= SAME_CONFIGURATION {
+                return Err(same());
             }
             let timed = time_and_check(&robot, &scene, &p.waypoints, total)?;
             json.duration_s = timed.times.last().copied();

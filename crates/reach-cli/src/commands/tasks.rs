@@ -246,26 +246,32 @@ struct Picker<'a> {
 
 impl Picker<'_> {
     /// The configuration for `target` relative to `from`, with its branch, or why none.
-    fn pick(&self, target: &IkTarget, from: &[f64]) -> Result<Result<(Vec<f64>, String), String>, CliError> {
+    /// `choice` is [`Picker::choice`] of the same `from`.
+    fn pick(
+        &self,
+        target: &IkTarget,
+        from: &[f64],
+        choice: Option<&ChoiceSpec>,
+    ) -> Result<Result<(Vec<f64>, String), String>, CliError> {
         let options = IkOptions { seed: Some(from.to_vec()), ..IkOptions::default() };
         let all: IkSolutions = self
             .solver
             .solve(self.robot, target, &options)
             .map_err(|e| CliError::bad_input(format!("IK: {}", one_line(&e.to_string()))))?;
-        let index = match all.closest_to(from, &self.weights) {
-            None => None,
-            Some(c) => match self.choose {
-                None => all.solutions.iter().position(|s| std::ptr::eq(s, c)),
-                Some(ch) => {
-                    let spec = self.spec(ch, from)?;
-                    spec.rank(self.robot, &all)?.ranked.first().map(|e| e.solution)
-                }
-            },
+        let index = match (all.closest_index(from, &self.weights), choice) {
+            (None, _) => None,
+            (Some(i), None) => Some(i),
+            (Some(_), Some(spec)) => spec.rank(self.robot, &all)?.ranked.first().map(|e| e.solution),
         };
         Ok(match index {
             Some(i) => Ok((all.solutions[i].q.clone(), all.solutions[i].branch.to_string())),
             None => Err(one_line(&all.failure.unwrap_or(IkFailure::OrientationUnreachable).to_string())),
         })
+    }
+
+    /// The `[choose]` ranking relative to `from` (checked), if the file has one.
+    fn choice(&self, from: &[f64]) -> Result<Option<ChoiceSpec>, CliError> {
+        self.choose.map(|ch| self.spec(ch, from)).transpose()
     }
 
     fn spec(&self, ch: &ChooseFile, from: &[f64]) -> Result<ChoiceSpec, CliError> {
@@ -396,9 +402,7 @@ pub fn run(args: &TasksArgs, out: &mut dyn Write) -> Result<(), CliError> {
         weights: weights.clone(),
         choose: file.choose.as_ref(),
     };
-    if let Some(ch) = &file.choose {
-        picker.spec(ch, &start)?; // check the section before solving anything
-    }
+    let start_choice = picker.choice(&start)?; // checks the section before solving anything
     // Node 0.
     let node0 = match args.kind {
         TaskKind::Visiting => start.clone(),
@@ -407,18 +411,22 @@ pub fn run(args: &TasksArgs, out: &mut dyn Write) -> Result<(), CliError> {
                 return Err(CliError::bad_input(format!("{origin}: collection needs `container` = [x, y, z]")));
             };
             let (target, _) = target_of("container", c, file.orientation.as_deref())?;
-            match picker.pick(&target, &start)? {
+            match picker.pick(&target, &start, start_choice.as_ref())? {
                 Ok((q, _)) => q,
                 Err(reason) => return Err(CliError::NoSolution(format!("the container is unreachable: {reason}"))),
             }
         }
+    };
+    let node0_choice = match args.kind {
+        TaskKind::Visiting => start_choice,
+        TaskKind::Collection => picker.choice(&node0)?,
     };
     let mut rows = Vec::with_capacity(points.len());
     let mut configs = vec![Some(node0.clone())];
     for (k, p) in points.iter().enumerate() {
         let (target, mut row) = target_of(&format!("{points_field}[{}]", k + 1), p, file.orientation.as_deref())?;
         row.index = k + 1;
-        match picker.pick(&target, &node0)? {
+        match picker.pick(&target, &node0, node0_choice.as_ref())? {
             Ok((q, branch)) => {
                 row.q_deg = Some(q_to_display(robot, &q).into_iter().map(|v| v + 0.0).collect());
                 row.branch = Some(branch);

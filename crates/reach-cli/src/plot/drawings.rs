@@ -96,6 +96,17 @@ fn range_with_limits(data: &[f64], limits: Option<(f64, f64)>) -> (f64, f64) {
     (lo, hi)
 }
 
+/// The time axis of the joint panels, s: from the first to the last sample time. A motion
+/// without duration (one sample, or all times equal) gets a span of one second (more for a
+/// large start time, so that the end stays distinct from the start in floating point) instead
+/// of an empty range, which would map every mark to NaN.
+fn time_range(times: &[f64]) -> (f64, f64) {
+    let (lo, hi) = padded_range(times.iter().copied());
+    let t0 = times.first().copied().filter(|t| t.is_finite()).unwrap_or(lo);
+    let t1 = times.last().copied().filter(|t| t.is_finite()).unwrap_or(hi);
+    if t1 > t0 { (t0, t1) } else { (t0, t0 + 1.0f64.max(t0.abs() * 0.1)) }
+}
+
 /// Joint curves — one row per joint with a q(t) panel and a q̇(t) panel, the allowed range
 /// (position limits, speed limits) shaded — and the tool path in xy and xz projections with
 /// the obstacles.
@@ -109,9 +120,7 @@ pub fn trajectory(d: &TrajectoryDrawing<'_>) -> Svg {
     let mut svg = Svg::new(WIDTH, height);
     svg.text(WIDTH / 2.0, 26.0, &d.title, "title", Anchor::Middle);
     svg.legend(LEFT, 34.0, &[("limit-band", "allowed range (position and speed limits)")][..]);
-    let (t0, t1) = padded_range(d.times.iter().copied());
-    let t1 = d.times.last().copied().filter(|t| t.is_finite()).map_or(t1, |t| t.max(t0 + 1e-9));
-    let t0 = d.times.first().copied().filter(|t| t.is_finite()).unwrap_or(t0);
+    let (t0, t1) = time_range(&d.times);
     let panel_w = (WIDTH - LEFT - 110.0) / 2.0;
     for (i, j) in d.joints.iter().enumerate() {
         let y = top + i as f64 * row_h + 10.0;
@@ -590,6 +599,51 @@ mod tests {
     fn cell_edges_split_uneven_grids_halfway() {
         assert_eq!(cell_edges(&[0.0, 10.0, 15.0]), vec![-5.0, 5.0, 12.5, 17.5]);
         assert_eq!(cell_edges(&[3.0]), vec![2.5, 3.5]);
+    }
+
+    #[test]
+    fn the_time_axis_runs_from_the_first_to_the_last_sample() {
+        assert_eq!(time_range(&[0.0, 0.2, 0.5]), (0.0, 0.5));
+        assert_eq!(time_range(&[0.0]), (0.0, 1.0));
+        assert_eq!(time_range(&[3.0, 3.0]), (3.0, 4.0));
+        let (t0, t1) = time_range(&[1e20]);
+        assert!(t0 == 1e20 && t1 > t0, "({t0}, {t1})");
+    }
+
+    /// Regression: a one-sample motion used to get the x range (t, t), so every time tick and
+    /// the sample itself mapped to NaN pixels and the panels were drawn without a time axis.
+    #[test]
+    fn a_one_sample_motion_draws_a_time_axis() {
+        let joint = JointSeries {
+            label: "q1".into(),
+            unit: "deg",
+            q: vec![10.0],
+            qd: vec![0.0],
+            limits: Some((-90.0, 90.0)),
+            max_rate: Some(30.0),
+        };
+        let drawing = TrajectoryDrawing {
+            title: "one sample".into(),
+            times: vec![0.0],
+            joints: vec![joint],
+            tool: vec![[0.5, 0.0, 0.3]],
+            tool_waypoints: vec![],
+            obstacles: &[],
+        };
+        let text = trajectory(&drawing).finish();
+        assert!(!text.contains("NaN"), "{text}");
+        // Vertical grid lines (one per time tick) in the two joint panels, which come before
+        // the tool-path panels.
+        let joint_panels = text.split("<g class=\"panel tool-path\"").next().unwrap_or_default();
+        let time_grid = joint_panels
+            .lines()
+            .filter(|l| l.starts_with("<line class=\"grid\""))
+            .filter(|l| {
+                let attr = |name: &str| l.split(&format!(" {name}=\"")).nth(1).and_then(|r| r.split('"').next());
+                attr("x1") == attr("x2")
+            })
+            .count();
+        assert!(time_grid >= 2, "{text}");
     }
 
     #[test]

@@ -525,17 +525,17 @@ pub fn leg_durations(
     profile: Profile,
 ) -> Result<Vec<Vec<f64>>, DecideError> {
     check_configs(robot, configs)?;
+    // The synchronised duration depends only on |Δq|: each pair is timed once and mirrored.
     let mut d = vec![vec![f64::INFINITY; configs.len()]; configs.len()];
     for (i, a) in configs.iter().enumerate() {
-        for (j, b) in configs.iter().enumerate() {
-            if let (Some(a), Some(b)) = (a, b) {
-                d[i][j] = if i == j {
-                    0.0
-                } else {
-                    let delta: Vec<f64> =
-                        robot.joints().iter().enumerate().map(|(n, jt)| joint_difference(jt, a[n], b[n])).collect();
-                    point_to_point_duration(&delta, rates, profile)?
-                };
+        let Some(a) = a else { continue };
+        d[i][i] = 0.0;
+        for (j, b) in configs.iter().enumerate().skip(i + 1) {
+            if let Some(b) = b {
+                let delta: Vec<f64> =
+                    robot.joints().iter().enumerate().map(|(n, jt)| joint_difference(jt, a[n], b[n])).collect();
+                d[i][j] = point_to_point_duration(&delta, rates, profile)?;
+                d[j][i] = d[i][j];
             }
         }
     }

@@ -277,6 +277,14 @@ impl IkSolutions {
         };
         IkSolutions { solver, solutions, failure, differences }
     }
+
+    /// The index in [`IkSolutions::solutions`] of [`IkSolutions::closest_to`]'s choice (same
+    /// rule, same arguments), for callers that keep indices (rankings, reports).
+    #[must_use]
+    pub fn closest_index(&self, from: &[f64], weights: &[f64]) -> Option<usize> {
+        let chosen = self.closest_to(from, weights)?;
+        self.solutions.iter().position(|s| std::ptr::eq(s, chosen))
+    }
 }
 
 /// [`IkFailure::OutsideLimits`] when `solutions` is not empty and every one violates a limit
@@ -509,5 +517,35 @@ mod tests {
         ];
         let all = finish(&robot, &target, candidates, "test", IkFailure::OrientationUnreachable).unwrap();
         assert_eq!(all.solutions.len(), 2, "{all:?}");
+    }
+
+    #[test]
+    fn closest_index_counts_every_solution_and_skips_infeasible_ones() {
+        // The yaw-slide robot with the yaw limited to [−90°, 90°]: "back" (yaw ±π) is outside.
+        let robot = Robot::from_toml_str(
+            "name = \"yaw-slide\"\nlength_unit = \"m\"\nangle_unit = \"deg\"\n\
+             [[joints]]\nname = \"yaw\"\nalpha = -90\nlimits = [-90, 90]\n\
+             [[joints]]\nname = \"slide\"\nkind = \"prismatic\"\nlimits = [-10, 10]\n",
+        )
+        .unwrap();
+        let pi = std::f64::consts::PI;
+        let target = IkTarget::Position(robot.fk(&[0.0, 4.0]).unwrap().translation.vector.into());
+        let candidates = vec![
+            Candidate::new(vec![pi, -4.0], Branch::new([("side", "back")])),
+            Candidate::new(vec![0.0, 4.0], Branch::new([("side", "front")])),
+        ];
+        let all = finish(&robot, &target, candidates, "test", IkFailure::OrientationUnreachable).unwrap();
+        assert_eq!(all.solutions.len(), 2, "{all:?}");
+        let back = all.solutions.iter().position(|s| s.branch.get("side") == Some("back")).unwrap();
+        assert!(!all.solutions[back].within_limits, "{all:?}");
+        // From (π, −4) "back" costs nothing but is outside the limits: "front" is chosen, and its
+        // index counts the infeasible solution too.
+        let front = all.solutions.iter().position(|s| s.branch.get("side") == Some("front")).unwrap();
+        assert_eq!(all.closest_index(&[pi, -4.0], &[]), Some(front));
+        let chosen = all.closest_to(&[pi, -4.0], &[]).unwrap();
+        assert!(std::ptr::eq(&all.solutions[front], chosen));
+        // No feasible solution: no index.
+        let none = all.restricted_to(&Branch::new([("side", "back")]));
+        assert_eq!(none.closest_index(&[0.0, 0.0], &[]), None);
     }
 }

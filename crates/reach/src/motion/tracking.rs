@@ -1705,15 +1705,13 @@ fn track_with(
         let budget = until - owned_until;
         owned_until = until;
         let mut points = vec![a];
-        let interior: Vec<usize> = (0..samples.len())
-            .filter(|&k| samples[k].s > a + tracker.tolerance && samples[k].s < b - tracker.tolerance)
-            .collect();
-        points.extend(interior.iter().map(|&k| samples[k].s));
+        // The samples strictly inside (a, b), a tolerance away from both ends: a range, since
+        // the samples' s increase strictly (validated by TrackedPath).
+        let first = samples.partition_point(|p| p.s <= a + tracker.tolerance);
+        let interior = first..samples.partition_point(|p| p.s < b - tracker.tolerance).max(first);
+        points.extend(samples[interior.clone()].iter().map(|p| p.s));
         points.push(b);
-        let reachable = match interior.first() {
-            Some(&k) => reach[k],
-            None => tracker.reachable_at(0.5 * (a + b))?,
-        };
+        let reachable = if interior.is_empty() { tracker.reachable_at(0.5 * (a + b))? } else { reach[interior.start] };
         let mut report = IntervalReport {
             index,
             s_start: a,
@@ -1764,7 +1762,7 @@ fn track_with(
             let mut sols: Vec<Cow<'_, IkSolutions>> = Vec::with_capacity(points.len());
             for (j, &s) in points.iter().enumerate() {
                 let pose = path.pose_at(s)?;
-                let k = j.checked_sub(1).and_then(|j| interior.get(j)).copied();
+                let k = j.checked_sub(1).map(|j| interior.start + j).filter(|k| interior.contains(k));
                 sols.push(match k {
                     Some(k) if samples[k].pose == pose => Cow::Borrowed(&sample_solutions[k]),
                     _ => Cow::Owned(tracker.solving.solve(&pose, None)?),

@@ -106,24 +106,30 @@ impl CspaceGrid {
     #[must_use]
     pub fn counts_by(&self, joint: usize) -> Vec<GridCounts> {
         let Some(axis) = self.axes.get(joint) else { return Vec::new() };
-        let inner: usize = self.axes[joint + 1..].iter().map(Vec::len).product();
         let mut out = vec![GridCounts::default(); axis.len()];
         for (i, c) in self.classes.iter().enumerate() {
-            out[(i / inner) % axis.len()].add(*c);
+            if let Some(k) = self.axis_index(i, joint) {
+                out[k].add(*c);
+            }
         }
         out
+    }
+
+    /// The position of node `index` on the axis of joint `joint` (0-based both; nodes are
+    /// row-major, the first joint varying slowest): `axes[joint][axis_index(index, joint)]`
+    /// is the node's value of that joint. `None` for a joint without an axis or with no
+    /// values on it (a grid without nodes).
+    #[must_use]
+    pub fn axis_index(&self, index: usize, joint: usize) -> Option<usize> {
+        let axis = self.axes.get(joint).filter(|a| !a.is_empty())?;
+        let inner: usize = self.axes[joint + 1..].iter().map(Vec::len).product();
+        Some((index / inner.max(1)) % axis.len())
     }
 
     /// Joint values of node `index`.
     #[must_use]
     pub fn node(&self, index: usize) -> Vec<f64> {
-        let mut q = vec![0.0; self.axes.len()];
-        let mut rest = index;
-        for (j, axis) in self.axes.iter().enumerate().rev() {
-            q[j] = axis[rest % axis.len()];
-            rest /= axis.len();
-        }
-        q
+        (0..self.axes.len()).map(|j| self.axis_index(index, j).map_or(f64::NAN, |k| self.axes[j][k])).collect()
     }
 }
 

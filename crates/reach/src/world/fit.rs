@@ -154,11 +154,11 @@ fn nodes(grid: &CspaceGrid) -> Result<Nodes, WorldError> {
         let a = &axes[k];
         [a.iter().copied().fold(f64::INFINITY, f64::min), a.iter().copied().fold(f64::NEG_INFINITY, f64::max)]
     });
-    let inner: Vec<usize> = (0..grid.axes.len()).map(|j| grid.axes[j + 1..].iter().map(Vec::len).product()).collect();
     let mut q = Vec::with_capacity(grid.classes.len());
     let mut idx = Vec::with_capacity(grid.classes.len());
     for i in 0..grid.classes.len() {
-        let k = joints.map(|j| (i / inner[j]) % grid.axes[j].len());
+        // The swept joints have axes of at least two values.
+        let k = joints.map(|j| grid.axis_index(i, j).unwrap_or(0));
         idx.push(k);
         q.push([axes[0][k[0]], axes[1][k[1]], axes[2][k[2]]]);
     }
@@ -214,9 +214,10 @@ fn confusion_of(region: &Region, n: &Nodes) -> Confusion {
 /// Fits the paper's region to `grid` (method in the module documentation).
 ///
 /// # Errors
-/// [`WorldError::Input`] when the grid does not sweep exactly three joints or has no allowed
-/// node or more than [`MAX_FIT_NODES`] nodes, `max_planes` exceeds 3 or
-/// `false_allowed_weight` is not finite and positive.
+/// [`WorldError::NoAllowedNode`] when the grid has no allowed node (checked before the grid's
+/// shape and size); [`WorldError::Input`] when the grid does not sweep exactly three joints or
+/// has more than [`MAX_FIT_NODES`] nodes, `max_planes` exceeds 3 or `false_allowed_weight` is
+/// not finite and positive.
 pub fn fit_region(grid: &CspaceGrid, options: &FitOptions) -> Result<Fit, WorldError> {
     if options.max_planes > 3 {
         return Err(WorldError::Input(format!("max_planes is at most 3 (Ω2–Ω4), got {}", options.max_planes)));
@@ -224,6 +225,9 @@ pub fn fit_region(grid: &CspaceGrid, options: &FitOptions) -> Result<Fit, WorldE
     let w = options.false_allowed_weight;
     if !(w.is_finite() && w > 0.0) {
         return Err(WorldError::Input(format!("false_allowed_weight must be finite and positive, got {w}")));
+    }
+    if !grid.classes.contains(&NodeClass::Allowed) {
+        return Err(WorldError::NoAllowedNode);
     }
     if grid.classes.len() > MAX_FIT_NODES {
         return Err(WorldError::Input(format!(
@@ -233,9 +237,6 @@ pub fn fit_region(grid: &CspaceGrid, options: &FitOptions) -> Result<Fit, WorldE
     }
     let n = nodes(grid)?;
     let truth: Vec<bool> = n.class.iter().map(|c| *c == NodeClass::Allowed).collect();
-    if !truth.iter().any(|&t| t) {
-        return Err(WorldError::Input("the grid has no allowed node to fit a region to".into()));
-    }
     let obstacle: Vec<bool> = n.class.iter().map(|c| *c == NodeClass::ObstacleCollision).collect();
     let free: Vec<bool> = truth.iter().zip(&obstacle).map(|(a, o)| *a || *o).collect();
     let weights = (options.false_allowed_weight, 1.0);
@@ -247,14 +248,14 @@ pub fn fit_region(grid: &CspaceGrid, options: &FitOptions) -> Result<Fit, WorldE
     let targets: Vec<bool> = (0..n.q.len()).map(|i| inside[i] && !free[i]).collect();
     let omega1 = fit_cylinder(&n, &targets, &free, &inside, weights);
     if let Some((p, _)) = &omega1 {
-        apply(p, &n, &mut inside);
+        apply(p, &n, &mut inside, |_| ());
     }
     // Obstacle: Ω6 on whole q4 columns, then Ω5 on the rest.
     let targets: Vec<bool> = (0..n.q.len()).map(|i| inside[i] && obstacle[i]).collect();
     let omega6 = fit_parabola(&n, &targets, &truth, &inside, weights);
     let mut inside5 = inside.clone();
     if let Some(p) = &omega6 {
-        apply(p, &n, &mut inside5);
+        apply(p, &n, &mut inside5, |_| ());
     }
     let targets5: Vec<bool> = (0..n.q.len()).map(|i| inside5[i] && obstacle[i]).collect();
     let cyl = fit_cylinder(&n, &targets5, &truth, &inside5, weights);
@@ -283,16 +284,13 @@ pub fn fit_region(grid: &CspaceGrid, options: &FitOptions) -> Result<Fit, WorldE
         .into_iter()
         .map(|(name, primitive, support_points_deg)| {
             let (mut cut_forbidden, mut cut_allowed) = (0, 0);
-            for (i, q) in n.q.iter().enumerate() {
-                if admitted[i] && primitive.value(*q).is_some_and(|x| x < 0.0) {
-                    admitted[i] = false;
-                    if truth[i] {
-                        cut_allowed += 1;
-                    } else {
-                        cut_forbidden += 1;
-                    }
+            apply(&primitive, &n, &mut admitted, |i| {
+                if truth[i] {
+                    cut_allowed += 1;
+                } else {
+                    cut_forbidden += 1;
                 }
-            }
+            });
             FittedPart { name, primitive, support_points_deg, cut_forbidden, cut_allowed }
         })
         .filter(|p| p.cut_forbidden + p.cut_allowed > 0)
@@ -302,10 +300,12 @@ pub fn fit_region(grid: &CspaceGrid, options: &FitOptions) -> Result<Fit, WorldE
     Ok(Fit { region, joints: n.joints, parts, confusion })
 }
 
-fn apply(p: &Primitive, n: &Nodes, inside: &mut [bool]) {
+/// Cuts off the nodes still `inside` that `p` forbids (`p < 0`), calling `on_cut` with each.
+fn apply(p: &Primitive, n: &Nodes, inside: &mut [bool], mut on_cut: impl FnMut(usize)) {
     for (i, q) in n.q.iter().enumerate() {
         if inside[i] && p.value(*q).is_some_and(|x| x < 0.0) {
             inside[i] = false;
+            on_cut(i);
         }
     }
 }
@@ -390,12 +390,12 @@ fn section_centroids(n: &Nodes, targets: &[bool]) -> Vec<(usize, f64, f64, usize
 }
 
 /// Tilt (degrees, `[0, 180)`) of the principal axis of the targets, each centred on
-/// `centre(section)`.
-fn principal_tilt(n: &Nodes, targets: &[bool], centre: impl Fn(f64) -> (f64, f64)) -> f64 {
+/// `centre(node)` (the `(q3, q4)` centre of the node's section).
+fn principal_tilt(n: &Nodes, targets: &[bool], centre: impl Fn(usize) -> (f64, f64)) -> f64 {
     let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
     for (i, q) in n.q.iter().enumerate() {
         if targets[i] {
-            let (c3, c4) = centre(q[0]);
+            let (c3, c4) = centre(i);
             let (x, y) = (q[1] - c3, q[2] - c4);
             sxx += x * x;
             syy += y * y;
@@ -491,7 +491,10 @@ fn fit_cylinder(
     let pts3: Vec<(f64, f64, f64)> = cents.iter().map(|c| (n.axes[0][c.0], c.1, c.3 as f64)).collect();
     let pts4: Vec<(f64, f64, f64)> = cents.iter().map(|c| (n.axes[0][c.0], c.2, c.3 as f64)).collect();
     let (l3, l4) = (polyfit(&pts3, deg)?, polyfit(&pts4, deg)?);
-    let phi = principal_tilt(n, targets, |q2| (l3[1] * q2 + l3[0], l4[1] * q2 + l4[0]));
+    let phi = principal_tilt(n, targets, |i| {
+        let q2 = n.q[i][0];
+        (l3[1] * q2 + l3[0], l4[1] * q2 + l4[0])
+    });
     let nodes: Vec<([f64; 3], bool)> =
         (0..n.q.len()).filter(|&i| inside[i] && (targets[i] || positives[i])).map(|i| (n.q[i], targets[i])).collect();
     // x = [k3, m3, k4, m4, φ]; the semi-axes are optimal for each x.
@@ -576,10 +579,8 @@ fn fit_kinematic(
     for c in &cents {
         centre_of[c.0] = Some((c.1, c.2));
     }
-    let phi = principal_tilt(n, targets, |q2| {
-        let s = n.axes[0].iter().position(|v| *v == q2).and_then(|s| centre_of[s]);
-        s.unwrap_or((0.0, 0.0))
-    });
+    // Every target lies in a section with a centroid.
+    let phi = principal_tilt(n, targets, |i| centre_of[n.idx[i][0]].unwrap_or((0.0, 0.0)));
     let (mut m3, mut m4, mut aa, mut bb) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     // Per section there are few nodes: every semi-axis on a 0.5° grid.
     let section_axes: Vec<f64> = (1..=(2.0 * MAX_SEMI_AXIS) as u32).map(|k| 0.5 * f64::from(k)).collect();

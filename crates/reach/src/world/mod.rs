@@ -70,6 +70,10 @@ pub enum WorldError {
     /// A bad argument to a query (joint vector, grid, detour input).
     #[error("{0}")]
     Input(String),
+    /// A grid without any allowed node: there is no region to fit
+    /// ([`fit::fit_region`]). The input is valid; the answer is empty.
+    #[error("the grid has no allowed node to fit a region to")]
+    NoAllowedNode,
     /// A kinematics error from the robot model.
     #[error(transparent)]
     Kinematics(#[from] crate::kinematics::KinematicsError),
