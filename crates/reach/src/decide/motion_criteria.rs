@@ -136,7 +136,8 @@ impl MotionCriterion {
     /// # Errors
     /// [`DecideError::UnknownCriterion`] for an unknown name; [`DecideError::Criterion`] when
     /// the robot has no speed limits (duration), no scene with obstacles is given
-    /// (clearance) or the robot has no link masses (energy); [`DecideError::BadVector`] for weights that do not fit the robot.
+    /// (clearance), the scene's allowed-collision list names a link the robot does not have
+    /// (clearance, naming the link) or the robot has no link masses (energy); [`DecideError::BadVector`] for weights that do not fit the robot.
     pub fn parse(
         name: &str,
         robot: &Robot,
@@ -171,7 +172,11 @@ impl MotionCriterion {
             "manipulability" => MotionCriterion::MinManipulability,
             "sigma_min" => MotionCriterion::MinSigma,
             "clearance" => match scene {
-                Some(s) if !s.obstacles.is_empty() => MotionCriterion::Clearance { scene: s.clone() },
+                Some(s) if !s.obstacles.is_empty() => {
+                    CollisionChecker::try_new(robot, s)
+                        .map_err(|e| DecideError::Criterion { criterion: "clearance".into(), reason: e.to_string() })?;
+                    MotionCriterion::Clearance { scene: s.clone() }
+                }
                 _ => {
                     return Err(DecideError::Criterion {
                         criterion: "clearance".into(),
