@@ -144,12 +144,8 @@ impl<'r> Dynamics<'r> {
             .zip(robot.inertials())
             .map(|(link, b): (_, &LinkInertial)| {
                 // The description's link frame is (motion frame)·to_frame.
-                let r = link.to_frame.rotation.matrix();
-                Body {
-                    mass: b.mass,
-                    com: link.to_frame.transform_point(&b.com.into()).coords,
-                    inertia: r * b.inertia * r.transpose(),
-                }
+                let moved = b.transformed(&link.to_frame);
+                Body { mass: moved.mass, com: moved.com, inertia: moved.inertia }
             })
             .collect();
         let n = robot.dof();
@@ -359,7 +355,8 @@ fn link_states(robot: &Robot, q: &[f64], qd: &[f64]) -> Result<Vec<LinkState>, D
         .collect();
     let mut out = Vec::with_capacity(n);
     for (i, (frame, b)) in frames.iter().zip(robot.inertials()).enumerate() {
-        let c = frame.transform_point(&b.com.into()).coords;
+        let world = b.transformed(frame);
+        let c = world.com;
         let mut w = Vector3::zeros();
         let mut v = Vector3::zeros();
         for (j, (z, o)) in axes.iter().take(i + 1).enumerate() {
@@ -372,8 +369,7 @@ fn link_states(robot: &Robot, q: &[f64], qd: &[f64]) -> Result<Vec<LinkState>, D
                 v += z.cross(&(c - o)) * rate;
             }
         }
-        let rot = frame.rotation.matrix();
-        out.push(LinkState { com: c, w, v, inertia: rot * b.inertia * rot.transpose(), mass: b.mass });
+        out.push(LinkState { com: c, w, v, inertia: world.inertia, mass: world.mass });
     }
     Ok(out)
 }
