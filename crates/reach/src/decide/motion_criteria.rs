@@ -255,15 +255,11 @@ impl MotionCriterion {
             }
             MotionCriterion::PeakVelocity => Ok(max_abs(&rates()?)),
             MotionCriterion::PeakAcceleration => {
-                let r = rates()?;
-                let mut acc = Vec::with_capacity(r.len().saturating_sub(1));
-                for k in 1..r.len() {
-                    // Step k−1 spans t[k−1]..t[k], step k spans t[k]..t[k+1]: mid-times differ by
-                    // half the sum of the two step durations.
-                    let h = 0.5 * (motion.t[k + 1] - motion.t[k - 1]);
-                    acc.push(r[k].iter().zip(&r[k - 1]).map(|(b, a)| (b - a) / h).collect());
-                }
-                Ok(max_abs(&acc))
+                // Interior samples: the difference of the neighbouring step rates over half the
+                // sum of the two step durations; the end rows copy their neighbours, so they do
+                // not change the peak.
+                let (_, qdd) = effort::dynamics::joint_rates(robot, motion.t, q).map_err(|e| failed(&e))?;
+                Ok(max_abs(&qdd))
             }
             MotionCriterion::LimitMargin => min_over(&IkCriterion::LimitMargin),
             MotionCriterion::MinManipulability => min_over(&IkCriterion::Manipulability),
