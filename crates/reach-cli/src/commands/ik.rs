@@ -388,14 +388,7 @@ fn pose_from_matrix(v: &[f64]) -> Result<Isometry3<f64>, CliError> {
 /// `--joint-weights`: one finite, non-negative weight per joint.
 fn weights_of(robot: &Robot, text: &str) -> Result<Vec<f64>, CliError> {
     let w = number_list("--joint-weights", text, robot.dof(), "one weight per joint")?;
-    if let Some(i) = w.iter().position(|&x| x < 0.0) {
-        return Err(CliError::bad_input(format!(
-            "--joint-weights value {}: must not be negative, got {}",
-            i + 1,
-            num(w[i])
-        )));
-    }
-    Ok(w)
+    reach::effort::joint_weights(robot, Some(&w)).map_err(|e| CliError::bad_input(format!("--joint-weights: {e}")))
 }
 
 /// The solver options from `--from`, `--free-angle`, `--step`, `--restarts`.

@@ -146,18 +146,10 @@ impl MotionCriterion {
     ) -> Result<MotionCriterion, DecideError> {
         let key = name.trim().to_ascii_lowercase().replace('-', "_");
         let joint_weights = || -> Result<Vec<f64>, DecideError> {
-            let w = match weights {
-                Some(w) => w.to_vec(),
-                None if robot.dof() == 6 => effort::SEED001_WEIGHTS.to_vec(),
-                None => vec![1.0; robot.dof()],
-            };
-            if w.len() != robot.dof() || w.iter().any(|x| !x.is_finite() || *x < 0.0) {
-                return Err(DecideError::BadVector {
-                    what: "joint weights",
-                    reason: format!("expected {} finite values >= 0, got {w:?}", robot.dof()),
-                });
-            }
-            Ok(w)
+            effort::joint_weights(robot, weights).map_err(|e| DecideError::BadVector {
+                what: "joint weights",
+                reason: format!("expected {} finite values >= 0: {e}", robot.dof()),
+            })
         };
         Ok(match key.as_str() {
             "j1" => MotionCriterion::J1 { weights: joint_weights()? },

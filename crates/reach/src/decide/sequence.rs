@@ -430,12 +430,10 @@ pub fn config_costs(
     weights: &[f64],
 ) -> Result<ConfigCosts, DecideError> {
     let dof = robot.dof();
-    if weights.len() != dof || weights.iter().any(|x| !x.is_finite() || *x < 0.0) {
-        return Err(DecideError::BadVector {
-            what: "joint weights",
-            reason: format!("expected {dof} finite values >= 0, got {weights:?}"),
-        });
-    }
+    crate::effort::joint_weights(robot, Some(weights)).map_err(|e| DecideError::BadVector {
+        what: "joint weights",
+        reason: format!("expected {dof} finite values >= 0: {e}"),
+    })?;
     if configs.first().is_none_or(Option::is_none) {
         return Err(DecideError::BadVector { what: "configurations", reason: "node 0 (start) is missing".into() });
     }
