@@ -17,7 +17,7 @@ use serde::Serialize;
 
 use super::DecideError;
 use super::ik_criteria::IkCriterion;
-use super::mcdm::{Criterion, DecisionMatrix, Direction, Method, Ranking, rank};
+use super::mcdm::{Criterion, DecisionMatrix, Direction, Method, Ranking, normalise_weights, rank};
 use crate::effort::{self, Differences};
 use crate::model::{JointKind, Robot};
 use crate::motion::sample::JointTrajectory;
@@ -405,18 +405,15 @@ impl<'r> TrackChooser<'r> {
     ///
     /// # Errors
     /// [`DecideError::NoCriteria`], and the weight errors of
-    /// [`DecisionMatrix::normalised_weights`] (checked now, not at the first interval).
+    /// [`normalise_weights`] (checked now, not at the first interval).
     pub fn new(
         robot: &'r Robot,
         criteria: Vec<MotionCriterion>,
         weights: Vec<f64>,
         method: Method,
     ) -> Result<Self, DecideError> {
-        let probe = DecisionMatrix::new(
-            criteria.iter().map(MotionCriterion::describe).collect(),
-            vec![vec![0.0; criteria.len()]],
-        )?;
-        probe.normalised_weights(&weights)?;
+        let names: Vec<String> = criteria.iter().map(|c| c.describe().name).collect();
+        normalise_weights(&names, &weights)?;
         Ok(TrackChooser { robot, criteria, weights, method, requirements: Vec::new() })
     }
 
