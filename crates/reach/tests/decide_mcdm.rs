@@ -2,7 +2,7 @@
 
 use proptest::prelude::*;
 use reach::decide::DecideError;
-use reach::decide::mcdm::{Criterion, DecisionMatrix, Direction, Method, rank};
+use reach::decide::mcdm::{Criterion, DecisionMatrix, Direction, Method, normalise_weights, rank};
 
 use Direction::{LessIsBetter as Less, MoreIsBetter as More};
 
@@ -281,4 +281,22 @@ proptest! {
             prop_assert!(r.ranked[0].pareto_optimal);
         }
     }
+}
+
+#[test]
+fn normalise_weights_checks_without_a_matrix_and_agrees_with_it() {
+    let names = ["a", "b", "c"];
+    let w = normalise_weights(&names, &[1.0, 1.0, 2.0]).unwrap();
+    assert_eq!(w, vec![0.25, 0.25, 0.5]);
+    let m =
+        DecisionMatrix::new(names.iter().map(|n| Criterion::new(*n, "1", Less)).collect(), vec![vec![0.0; 3]]).unwrap();
+    assert_eq!(m.normalised_weights(&[1.0, 1.0, 2.0]).unwrap(), w);
+    assert!(matches!(normalise_weights(&names, &[1.0]), Err(DecideError::WeightCount { expected: 3, found: 1 })));
+    match normalise_weights(&names, &[1.0, -1.0, 1.0]) {
+        Err(DecideError::InvalidWeight { criterion, value }) => assert_eq!((criterion.as_str(), value), ("b", -1.0)),
+        other => panic!("expected an invalid weight, got {other:?}"),
+    }
+    assert!(matches!(normalise_weights(&names, &[1.0, 1.0, f64::NAN]), Err(DecideError::InvalidWeight { .. })));
+    assert!(matches!(normalise_weights(&names, &[0.0; 3]), Err(DecideError::ZeroWeights)));
+    assert!(matches!(normalise_weights::<&str>(&[], &[]), Err(DecideError::NoCriteria)));
 }

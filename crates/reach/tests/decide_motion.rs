@@ -103,6 +103,30 @@ fn clearance_is_the_smallest_over_the_motion() {
 }
 
 #[test]
+fn clearance_rejects_a_bad_allowed_collision_list_at_parse() {
+    // Regression: a bad list used to be kept and surfaced only as an evaluation error, which a
+    // TrackChooser read as "no value" and silently fell back to another choice.
+    let robot = presets::get("puma560").unwrap();
+    let scene = Scene::new()
+        .with_obstacle("ball", Shape::Sphere { center: Vector3::new(0.6, 0.0, 0.4), radius: 0.05 })
+        .unwrap()
+        .with_allowed_self_collision("link1", "no_such_link");
+    match MotionCriterion::parse("clearance", &robot, None, Some(&scene)) {
+        Err(DecideError::Criterion { criterion, reason }) => {
+            assert_eq!(criterion, "clearance");
+            assert!(reason.contains("no_such_link"), "{reason}");
+        }
+        other => panic!("expected a clearance error, got {other:?}"),
+    }
+    // A good list is accepted.
+    let good = Scene::new()
+        .with_obstacle("ball", Shape::Sphere { center: Vector3::new(0.6, 0.0, 0.4), radius: 0.05 })
+        .unwrap()
+        .with_allowed_self_collision("link1", "link3");
+    assert!(MotionCriterion::parse("clearance", &robot, None, Some(&good)).is_ok());
+}
+
+#[test]
 fn bad_motions_and_names_are_rejected() {
     let robot = presets::get("puma560").unwrap();
     let err = MotionCriterion::parse("stiffness", &robot, None, None).unwrap_err();

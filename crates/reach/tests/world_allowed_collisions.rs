@@ -88,3 +88,30 @@ fn survey_finds_the_always_colliding_wrist_pair() {
     assert_eq!(CollisionChecker::try_new(&robot, &listed).unwrap().check(&HOME).unwrap(), Verdict::Free);
     assert!(checker.survey_self_collisions(0, 1).is_err());
 }
+
+#[test]
+fn robots_of_64_or_more_joints_without_a_list_are_checked_without_overflow() {
+    // Regression: the exemption mask was read with `mask >> j`, which overflows (and panics in
+    // debug builds) for link indices of 64 and more.
+    let joints: Vec<_> = (0..70)
+        .map(|k| {
+            let mut j = reach::model::Joint::revolute(0.1, 0.0, 0.0, 0.0);
+            j.name = format!("j{k}");
+            j
+        })
+        .collect();
+    let spec = RobotSpec {
+        links: vec![LinkGeometry { radius: 0.01 }; 70],
+        ..RobotSpec::new("long", reach::model::Convention::Dh, joints)
+    };
+    let robot = Robot::new(spec).unwrap();
+    let q = vec![0.0; 70];
+    // Straight along x: neighbouring links touch only at their shared joint, nothing collides.
+    let scene = Scene::new();
+    let mut checker = CollisionChecker::try_new(&robot, &scene).unwrap();
+    assert_eq!(checker.check(&q).unwrap(), Verdict::Free);
+    // Folded back on itself every joint (θ = π): links far apart in the chain overlap, and the
+    // check reports a self-collision instead of panicking.
+    let folded = vec![std::f64::consts::PI; 70];
+    assert!(matches!(checker.check(&folded).unwrap(), Verdict::SelfCollision { .. }));
+}

@@ -388,14 +388,15 @@ fn pose_from_matrix(v: &[f64]) -> Result<Isometry3<f64>, CliError> {
 /// `--joint-weights`: one finite, non-negative weight per joint.
 fn weights_of(robot: &Robot, text: &str) -> Result<Vec<f64>, CliError> {
     let w = number_list("--joint-weights", text, robot.dof(), "one weight per joint")?;
-    if let Some(i) = w.iter().position(|&x| x < 0.0) {
-        return Err(CliError::bad_input(format!(
-            "--joint-weights value {}: must not be negative, got {}",
-            i + 1,
-            num(w[i])
-        )));
-    }
-    Ok(w)
+    // `number_list` checked the count and finiteness: what is left is a negative weight, whose
+    // field is `weights[i]` (1-based).
+    reach::effort::joint_weights(robot, Some(&w)).map_err(|e| match e {
+        reach::effort::EffortError::InvalidValue { field, value, .. } => {
+            let i = field.strip_prefix("weights[").and_then(|f| f.strip_suffix(']')).unwrap_or(&field);
+            CliError::bad_input(format!("--joint-weights value {i}: must not be negative, got {}", num(value)))
+        }
+        e => CliError::bad_input(format!("--joint-weights: {e}")),
+    })
 }
 
 /// The solver options from `--from`, `--free-angle`, `--step`, `--restarts`.
@@ -834,25 +835,21 @@ impl ChoiceSpec {
                 return Err(CliError::bad_input(format!("{weights_label}: the pareto filter takes no weights")));
             }
             (Some(w), _) => {
-                if w.len() != criteria.len() {
-                    return Err(CliError::bad_input(format!(
-                        "{weights_label}: expected {} weights, one per criterion ({}), got {}",
-                        criteria.len(),
-                        names.join(","),
-                        w.len()
-                    )));
-                }
-                if let Some(i) = w.iter().position(|x| !x.is_finite() || *x < 0.0) {
-                    return Err(CliError::bad_input(format!(
-                        "{weights_label} value {} ({}): must be finite and not negative, got {}",
-                        i + 1,
-                        names[i],
-                        num(w[i])
-                    )));
-                }
-                if w.iter().all(|&x| x == 0.0) {
-                    return Err(CliError::bad_input(format!("{weights_label}: all weights are zero")));
-                }
+                reach::decide::mcdm::normalise_weights(names, w).map_err(|e| match e {
+                    DecideError::WeightCount { expected, found } => CliError::bad_input(format!(
+                        "{weights_label}: expected {expected} weights, one per criterion ({}), got {found}",
+                        names.join(",")
+                    )),
+                    DecideError::InvalidWeight { criterion, value } => {
+                        let i = names.iter().position(|n| *n == criterion).map_or(0, |i| i + 1);
+                        CliError::bad_input(format!(
+                            "{weights_label} value {i} ({criterion}): must be finite and not negative, got {}",
+                            num(value)
+                        ))
+                    }
+                    DecideError::ZeroWeights => CliError::bad_input(format!("{weights_label}: all weights are zero")),
+                    e => CliError::bad_input(format!("{weights_label}: {}", one_line(&e.to_string()))),
+                })?;
                 w.to_vec()
             }
             (None, _) => vec![1.0; criteria.len()],

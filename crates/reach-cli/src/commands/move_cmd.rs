@@ -27,7 +27,7 @@ use clap::{Args, ValueEnum};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 use reach::Robot;
 use reach::effort::dynamics::trajectory_energy_with_rates;
-use reach::effort::{Differences, SEED001_WEIGHTS, j1, j2};
+use reach::effort::{Differences, j1, j2};
 use reach::motion::joint_space::EndChoice;
 use reach::motion::sample::PerSampleIk;
 use reach::motion::tracking::{TrackedPath, TrackingOptions, track_with_progress};
@@ -456,14 +456,8 @@ pub fn compute(robot: &Robot, spec: &MoveSpec, progress: bool) -> Result<MoveJso
     check_positive("duration", spec.duration)?;
     check_positive("speed", spec.speed)?;
     check_positive("dt", spec.dt)?;
-    let weights = match &spec.weights {
-        Some(w) if w.len() != robot.dof() => {
-            return Err(CliError::bad_input(format!("weights: {} values, expected {}", w.len(), robot.dof())));
-        }
-        Some(w) => w.clone(),
-        None if robot.dof() == 6 => SEED001_WEIGHTS.to_vec(),
-        None => vec![1.0; robot.dof()],
-    };
+    let weights = reach::effort::joint_weights(robot, spec.weights.as_deref())
+        .map_err(|e| CliError::bad_input(format!("weights: {e}")))?;
     let (times, q, qd, intervals, events) = match spec.space {
         Space::Joint => joint_space(robot, spec)?,
         Space::Tool => tool_space(robot, spec, progress)?,

@@ -30,7 +30,6 @@ use reach::decide::sequence::{
     ENERGY_INTERVALS_PER_LEG, EXACT_MAX_TARGETS, EnergyKind, Sequence, collection, collection_within_budget,
     config_costs, energy_costs, leg_durations, visiting, visiting_within_budget,
 };
-use reach::effort::SEED001_WEIGHTS;
 use reach::ik::{IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SolverKind};
 use reach::motion::JointRates;
 use serde::{Deserialize, Serialize};
@@ -326,18 +325,8 @@ pub fn run(args: &TasksArgs, out: &mut dyn Write) -> Result<(), CliError> {
             "{origin}: `orientation` needs 3 finite numbers roll,pitch,yaw [deg]"
         )));
     }
-    let weights = match &file.weights {
-        Some(w) => {
-            if w.len() != dof || w.iter().any(|x| !x.is_finite() || *x < 0.0) {
-                return Err(CliError::bad_input(format!(
-                    "{origin}: `weights` needs {dof} finite joint weights >= 0, got {w:?}"
-                )));
-            }
-            w.clone()
-        }
-        None if dof == 6 => SEED001_WEIGHTS.to_vec(),
-        None => vec![1.0; dof],
-    };
+    let weights = reach::effort::joint_weights(robot, file.weights.as_deref())
+        .map_err(|e| CliError::bad_input(format!("{origin}: `weights` needs {dof} finite joint weights >= 0 ({e})")))?;
     let start = match &file.start {
         Some(v) => {
             if v.len() != dof || v.iter().any(|x| !x.is_finite()) {

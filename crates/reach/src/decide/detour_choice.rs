@@ -14,7 +14,7 @@
 use serde::Serialize;
 
 use super::DecideError;
-use super::mcdm::{Criterion, DecisionMatrix, Direction, Method, Ranking, rank};
+use super::mcdm::{Criterion, DecisionMatrix, Direction, Method, Ranking, normalise_weights, rank};
 use crate::ik::planar::PlanarRedundant;
 use crate::world::detour::{DetourOptions, DetourOutcome, DetourPlan, P2, WaypointRule, arm_points, plan_detour};
 
@@ -136,7 +136,8 @@ pub fn choose_detour(
     }
     let describe: Vec<Criterion> = criteria.iter().map(|c| c.describe()).collect();
     // Check the weights before planning.
-    DecisionMatrix::new(describe.clone(), vec![vec![0.0; criteria.len()]])?.normalised_weights(weights)?;
+    let names: Vec<&str> = describe.iter().map(|c| c.name.as_str()).collect();
+    normalise_weights(&names, weights)?;
     let plan = |rule: WaypointRule| {
         plan_detour(arm, start, target, obstacles, &DetourOptions { waypoints: rule, ..*options })
             .map_err(|e| DecideError::Criterion { criterion: "detour".into(), reason: e.to_string() })

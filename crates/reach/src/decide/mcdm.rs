@@ -54,6 +54,33 @@ impl Criterion {
     }
 }
 
+/// Checks one weight per criterion and returns them normalised to sum 1 (the check of
+/// [`DecisionMatrix::normalised_weights`], usable before any candidate exists). `criteria` are
+/// the criterion names, in order; they name the offending weight in the error.
+///
+/// # Errors
+/// [`DecideError::NoCriteria`] for no criteria, [`DecideError::WeightCount`] when the counts
+/// differ, [`DecideError::InvalidWeight`] for a NaN, infinite or negative weight,
+/// [`DecideError::ZeroWeights`] when every weight is zero.
+pub fn normalise_weights<S: AsRef<str>>(criteria: &[S], weights: &[f64]) -> Result<Vec<f64>, DecideError> {
+    if criteria.is_empty() {
+        return Err(DecideError::NoCriteria);
+    }
+    if weights.len() != criteria.len() {
+        return Err(DecideError::WeightCount { expected: criteria.len(), found: weights.len() });
+    }
+    for (j, w) in weights.iter().enumerate() {
+        if !w.is_finite() || *w < 0.0 {
+            return Err(DecideError::InvalidWeight { criterion: criteria[j].as_ref().to_string(), value: *w });
+        }
+    }
+    let sum: f64 = weights.iter().sum();
+    if sum <= 0.0 {
+        return Err(DecideError::ZeroWeights);
+    }
+    Ok(weights.iter().map(|w| w / sum).collect())
+}
+
 /// A validated decision matrix: one row per candidate, one column per criterion, all finite.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct DecisionMatrix {
@@ -124,19 +151,8 @@ impl DecisionMatrix {
     /// # Errors
     /// [`DecideError::WeightCount`], [`DecideError::InvalidWeight`], [`DecideError::ZeroWeights`].
     pub fn normalised_weights(&self, weights: &[f64]) -> Result<Vec<f64>, DecideError> {
-        if weights.len() != self.criteria.len() {
-            return Err(DecideError::WeightCount { expected: self.criteria.len(), found: weights.len() });
-        }
-        for (j, w) in weights.iter().enumerate() {
-            if !w.is_finite() || *w < 0.0 {
-                return Err(DecideError::InvalidWeight { criterion: self.criteria[j].name.clone(), value: *w });
-            }
-        }
-        let sum: f64 = weights.iter().sum();
-        if sum <= 0.0 {
-            return Err(DecideError::ZeroWeights);
-        }
-        Ok(weights.iter().map(|w| w / sum).collect())
+        let names: Vec<&str> = self.criteria.iter().map(|c| c.name.as_str()).collect();
+        normalise_weights(&names, weights)
     }
 
     /// Fails with [`DecideError::ZeroColumn`] naming the first criterion whose value is zero for

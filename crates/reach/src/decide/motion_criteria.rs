@@ -17,7 +17,7 @@ use serde::Serialize;
 
 use super::DecideError;
 use super::ik_criteria::IkCriterion;
-use super::mcdm::{Criterion, DecisionMatrix, Direction, Method, Ranking, rank};
+use super::mcdm::{Criterion, DecisionMatrix, Direction, Method, Ranking, normalise_weights, rank};
 use crate::effort::{self, Differences};
 use crate::model::{JointKind, Robot};
 use crate::motion::sample::JointTrajectory;
@@ -136,7 +136,8 @@ impl MotionCriterion {
     /// # Errors
     /// [`DecideError::UnknownCriterion`] for an unknown name; [`DecideError::Criterion`] when
     /// the robot has no speed limits (duration), no scene with obstacles is given
-    /// (clearance) or the robot has no link masses (energy); [`DecideError::BadVector`] for weights that do not fit the robot.
+    /// (clearance), the scene's allowed-collision list names a link the robot does not have
+    /// (clearance, naming the link) or the robot has no link masses (energy); [`DecideError::BadVector`] for weights that do not fit the robot.
     pub fn parse(
         name: &str,
         robot: &Robot,
@@ -145,18 +146,10 @@ impl MotionCriterion {
     ) -> Result<MotionCriterion, DecideError> {
         let key = name.trim().to_ascii_lowercase().replace('-', "_");
         let joint_weights = || -> Result<Vec<f64>, DecideError> {
-            let w = match weights {
-                Some(w) => w.to_vec(),
-                None if robot.dof() == 6 => effort::SEED001_WEIGHTS.to_vec(),
-                None => vec![1.0; robot.dof()],
-            };
-            if w.len() != robot.dof() || w.iter().any(|x| !x.is_finite() || *x < 0.0) {
-                return Err(DecideError::BadVector {
-                    what: "joint weights",
-                    reason: format!("expected {} finite values >= 0, got {w:?}", robot.dof()),
-                });
-            }
-            Ok(w)
+            effort::joint_weights(robot, weights).map_err(|e| DecideError::BadVector {
+                what: "joint weights",
+                reason: format!("expected {} finite values >= 0: {e}", robot.dof()),
+            })
         };
         Ok(match key.as_str() {
             "j1" => MotionCriterion::J1 { weights: joint_weights()? },
@@ -171,7 +164,11 @@ impl MotionCriterion {
             "manipulability" => MotionCriterion::MinManipulability,
             "sigma_min" => MotionCriterion::MinSigma,
             "clearance" => match scene {
-                Some(s) if !s.obstacles.is_empty() => MotionCriterion::Clearance { scene: s.clone() },
+                Some(s) if !s.obstacles.is_empty() => {
+                    CollisionChecker::try_new(robot, s)
+                        .map_err(|e| DecideError::Criterion { criterion: "clearance".into(), reason: e.to_string() })?;
+                    MotionCriterion::Clearance { scene: s.clone() }
+                }
                 _ => {
                     return Err(DecideError::Criterion {
                         criterion: "clearance".into(),
@@ -250,15 +247,11 @@ impl MotionCriterion {
             }
             MotionCriterion::PeakVelocity => Ok(max_abs(&rates()?)),
             MotionCriterion::PeakAcceleration => {
-                let r = rates()?;
-                let mut acc = Vec::with_capacity(r.len().saturating_sub(1));
-                for k in 1..r.len() {
-                    // Step k−1 spans t[k−1]..t[k], step k spans t[k]..t[k+1]: mid-times differ by
-                    // half the sum of the two step durations.
-                    let h = 0.5 * (motion.t[k + 1] - motion.t[k - 1]);
-                    acc.push(r[k].iter().zip(&r[k - 1]).map(|(b, a)| (b - a) / h).collect());
-                }
-                Ok(max_abs(&acc))
+                // Interior samples: the difference of the neighbouring step rates over half the
+                // sum of the two step durations; the end rows copy their neighbours, so they do
+                // not change the peak.
+                let (_, qdd) = effort::dynamics::joint_rates(robot, motion.t, q).map_err(|e| failed(&e))?;
+                Ok(max_abs(&qdd))
             }
             MotionCriterion::LimitMargin => min_over(&IkCriterion::LimitMargin),
             MotionCriterion::MinManipulability => min_over(&IkCriterion::Manipulability),
@@ -412,18 +405,15 @@ impl<'r> TrackChooser<'r> {
     ///
     /// # Errors
     /// [`DecideError::NoCriteria`], and the weight errors of
-    /// [`DecisionMatrix::normalised_weights`] (checked now, not at the first interval).
+    /// [`normalise_weights`] (checked now, not at the first interval).
     pub fn new(
         robot: &'r Robot,
         criteria: Vec<MotionCriterion>,
         weights: Vec<f64>,
         method: Method,
     ) -> Result<Self, DecideError> {
-        let probe = DecisionMatrix::new(
-            criteria.iter().map(MotionCriterion::describe).collect(),
-            vec![vec![0.0; criteria.len()]],
-        )?;
-        probe.normalised_weights(&weights)?;
+        let names: Vec<String> = criteria.iter().map(|c| c.describe().name).collect();
+        normalise_weights(&names, &weights)?;
         Ok(TrackChooser { robot, criteria, weights, method, requirements: Vec::new() })
     }
 

@@ -444,12 +444,10 @@ pub fn config_costs(
     weights: &[f64],
 ) -> Result<ConfigCosts, DecideError> {
     let dof = robot.dof();
-    if weights.len() != dof || weights.iter().any(|x| !x.is_finite() || *x < 0.0) {
-        return Err(DecideError::BadVector {
-            what: "joint weights",
-            reason: format!("expected {dof} finite values >= 0, got {weights:?}"),
-        });
-    }
+    crate::effort::joint_weights(robot, Some(weights)).map_err(|e| DecideError::BadVector {
+        what: "joint weights",
+        reason: format!("expected {dof} finite values >= 0: {e}"),
+    })?;
     check_configs(robot, &configs)?;
     let j1 = |a: &[f64], b: &[f64]| -> f64 {
         robot

@@ -144,12 +144,8 @@ impl<'r> Dynamics<'r> {
             .zip(robot.inertials())
             .map(|(link, b): (_, &LinkInertial)| {
                 // The description's link frame is (motion frame)·to_frame.
-                let r = link.to_frame.rotation.matrix();
-                Body {
-                    mass: b.mass,
-                    com: link.to_frame.transform_point(&b.com.into()).coords,
-                    inertia: r * b.inertia * r.transpose(),
-                }
+                let moved = b.transformed(&link.to_frame);
+                Body { mass: moved.mass, com: moved.com, inertia: moved.inertia }
             })
             .collect();
         let n = robot.dof();
@@ -298,6 +294,27 @@ fn check_length(field: &str, found: usize, expected: usize) -> Result<(), Dynami
     if found == expected { Ok(()) } else { Err(DynamicsError::Length { field: field.to_string(), expected, found }) }
 }
 
+/// Checks sample `k` of the rows named `name` (`q[k]`, `q[k][i]` in errors); the field name is
+/// formatted only on error.
+fn check_row(name: &str, k: usize, values: &[f64], n: usize) -> Result<(), DynamicsError> {
+    if values.len() != n {
+        return Err(DynamicsError::Length { field: format!("{name}[{k}]"), expected: n, found: values.len() });
+    }
+    match values.iter().position(|v| !v.is_finite()) {
+        Some(i) => Err(DynamicsError::NonFinite { field: format!("{name}[{k}][{i}]"), value: values[i] }),
+        None => Ok(()),
+    }
+}
+
+/// Checks that `found` samples match the `m` times (`{name} samples` in errors).
+fn check_sample_count(name: &str, found: usize, m: usize) -> Result<(), DynamicsError> {
+    if found == m {
+        Ok(())
+    } else {
+        Err(DynamicsError::Length { field: format!("{name} samples"), expected: m, found })
+    }
+}
+
 fn check_vector(field: &str, values: &[f64], n: usize) -> Result<(), DynamicsError> {
     check_length(field, values.len(), n)?;
     match values.iter().position(|v| !v.is_finite()) {
@@ -359,7 +376,8 @@ fn link_states(robot: &Robot, q: &[f64], qd: &[f64]) -> Result<Vec<LinkState>, D
         .collect();
     let mut out = Vec::with_capacity(n);
     for (i, (frame, b)) in frames.iter().zip(robot.inertials()).enumerate() {
-        let c = frame.transform_point(&b.com.into()).coords;
+        let world = b.transformed(frame);
+        let c = world.com;
         let mut w = Vector3::zeros();
         let mut v = Vector3::zeros();
         for (j, (z, o)) in axes.iter().take(i + 1).enumerate() {
@@ -372,8 +390,7 @@ fn link_states(robot: &Robot, q: &[f64], qd: &[f64]) -> Result<Vec<LinkState>, D
                 v += z.cross(&(c - o)) * rate;
             }
         }
-        let rot = frame.rotation.matrix();
-        out.push(LinkState { com: c, w, v, inertia: rot * b.inertia * rot.transpose(), mass: b.mass });
+        out.push(LinkState { com: c, w, v, inertia: world.inertia, mass: world.mass });
     }
     Ok(out)
 }
@@ -454,18 +471,34 @@ fn integrate_power<Q: AsRef<[f64]>>(
     let mut dynamics = Dynamics::new(robot)?;
     check_times(times)?;
     for (field, rows) in [("q", q), ("qd", qd), ("qdd", qdd)] {
-        check_length(&format!("{field} samples"), rows.len(), times.len())?;
+        check_sample_count(field, rows.len(), times.len())?;
     }
     let n = robot.dof();
-    let mut tau = vec![0.0; n];
+    for k in 0..times.len() {
+        check_row("q", k, q[k].as_ref(), n)?;
+        check_row("qd", k, qd[k].as_ref(), n)?;
+        check_row("qdd", k, qdd[k].as_ref(), n)?;
+    }
+    Ok(energy_unchecked(&mut dynamics, times, q, qd, qdd, joint_power))
+}
+
+/// The trapezoid sum `∫ Σᵢ joint_power(τᵢ·q̇ᵢ) dt` of [`mechanical_energy`] (`f64::abs`) or
+/// [`positive_work`] on inputs already checked: as many finite rows of `dof` values as `times`,
+/// times strictly increasing.
+fn energy_unchecked<Q: AsRef<[f64]>, D: AsRef<[f64]>, A: AsRef<[f64]>>(
+    dynamics: &mut Dynamics<'_>,
+    times: &[f64],
+    q: &[Q],
+    qd: &[D],
+    qdd: &[A],
+    joint_power: fn(f64) -> f64,
+) -> f64 {
+    let g = *dynamics.robot.gravity();
+    let mut tau = vec![0.0; dynamics.robot.dof()];
     let mut previous: Option<(f64, f64)> = None;
     let mut energy = 0.0;
     for (k, &t) in times.iter().enumerate() {
         let (qk, qdk, qddk) = (q[k].as_ref(), qd[k].as_ref(), qdd[k].as_ref());
-        check_vector(&format!("q[{k}]"), qk, n)?;
-        check_vector(&format!("qd[{k}]"), qdk, n)?;
-        check_vector(&format!("qdd[{k}]"), qddk, n)?;
-        let g = *robot.gravity();
         dynamics.rnea(qk, qdk, qddk, &g, &mut tau);
         let power: f64 = tau.iter().zip(qdk).map(|(t, v)| joint_power(t * v)).sum();
         if let Some((t0, p0)) = previous {
@@ -473,7 +506,7 @@ fn integrate_power<Q: AsRef<[f64]>>(
         }
         previous = Some((t, power));
     }
-    Ok(energy)
+    energy
 }
 
 fn check_times(times: &[f64]) -> Result<(), DynamicsError> {
@@ -507,10 +540,12 @@ pub fn joint_rates<Q: AsRef<[f64]>>(
     times: &[f64],
     q: &[Q],
 ) -> Result<(Vec<Vec<f64>>, Vec<Vec<f64>>), DynamicsError> {
-    derivatives(times, q, robot.dof(), "q", &Differences::for_robot(robot))
+    derivatives(times, q, robot.dof(), "q", &Differences::for_robot(robot), true)
 }
 
-/// First and second derivatives of sampled vectors (the scheme of [`joint_rates`]).
+/// First and, when `second`, second derivatives of sampled vectors (the scheme of
+/// [`joint_rates`]); without `second` the second vector is empty (the first derivative's end
+/// rows still use the neighbouring second derivatives, computed where needed only).
 #[allow(clippy::type_complexity)]
 fn derivatives<Q: AsRef<[f64]>>(
     times: &[f64],
@@ -518,15 +553,16 @@ fn derivatives<Q: AsRef<[f64]>>(
     n: usize,
     field: &str,
     diffs: &Differences,
+    second: bool,
 ) -> Result<(Vec<Vec<f64>>, Vec<Vec<f64>>), DynamicsError> {
     check_times(times)?;
-    check_length(&format!("{field} samples"), q.len(), times.len())?;
+    check_sample_count(field, q.len(), times.len())?;
     for (k, row) in q.iter().enumerate() {
-        check_vector(&format!("{field}[{k}]"), row.as_ref(), n)?;
+        check_row(field, k, row.as_ref(), n)?;
     }
     let m = times.len();
     let mut qd = vec![vec![0.0; n]; m];
-    let mut qdd = vec![vec![0.0; n]; m];
+    let mut qdd = if second { vec![vec![0.0; n]; m] } else { Vec::new() };
     if m < 2 {
         return Ok((qd, qdd));
     }
@@ -536,20 +572,30 @@ fn derivatives<Q: AsRef<[f64]>>(
         let rate: Vec<f64> = (0..n).map(|i| slope(0, i)).collect();
         return Ok((vec![rate.clone(), rate], qdd));
     }
+    // Second derivative at interior sample k.
+    let accel = |k: usize, i: usize| {
+        let (h1, h2) = (times[k] - times[k - 1], times[k + 1] - times[k]);
+        2.0 * (slope(k, i) - slope(k - 1, i)) / (h1 + h2)
+    };
     for k in 1..m - 1 {
         let (h1, h2) = (times[k] - times[k - 1], times[k + 1] - times[k]);
         for i in 0..n {
             let (s1, s2) = (slope(k - 1, i), slope(k, i));
             qd[k][i] = (h2 * s1 + h1 * s2) / (h1 + h2);
-            qdd[k][i] = 2.0 * (s2 - s1) / (h1 + h2);
+            if second {
+                qdd[k][i] = accel(k, i);
+            }
         }
     }
     let (h0, hn) = (times[1] - times[0], times[m - 1] - times[m - 2]);
     for i in 0..n {
-        qdd[0][i] = qdd[1][i];
-        qdd[m - 1][i] = qdd[m - 2][i];
-        qd[0][i] = slope(0, i) - qdd[0][i] * h0 / 2.0;
-        qd[m - 1][i] = slope(m - 2, i) + qdd[m - 1][i] * hn / 2.0;
+        let (a0, an) = (accel(1, i), accel(m - 2, i));
+        qd[0][i] = slope(0, i) - a0 * h0 / 2.0;
+        qd[m - 1][i] = slope(m - 2, i) + an * hn / 2.0;
+        if second {
+            qdd[0][i] = a0;
+            qdd[m - 1][i] = an;
+        }
     }
     Ok((qd, qdd))
 }
@@ -567,14 +613,16 @@ pub fn trajectory_energy_with_rates<Q: AsRef<[f64]>>(
     q: &[Q],
     qd: &[Q],
 ) -> Result<f64, DynamicsError> {
-    if !robot.has_dynamics() {
-        return Err(DynamicsError::NoInertialData { robot: robot.name().to_string() });
+    let mut dynamics = Dynamics::new(robot)?;
+    let n = robot.dof();
+    // Checks the times and the rates.
+    let (qdd, _) = derivatives(times, qd, n, "qd", &Differences::Literal, false)?;
+    check_sample_count("q", q.len(), times.len())?;
+    for (k, (qk, qddk)) in q.iter().zip(&qdd).enumerate() {
+        check_row("q", k, qk.as_ref(), n)?;
+        check_row("qdd", k, qddk, n)?;
     }
-    let (qdd, _) = derivatives(times, qd, robot.dof(), "qd", &Differences::Literal)?;
-    let qdd: Vec<&[f64]> = qdd.iter().map(Vec::as_slice).collect();
-    let q: Vec<&[f64]> = q.iter().map(AsRef::as_ref).collect();
-    let qd: Vec<&[f64]> = qd.iter().map(AsRef::as_ref).collect();
-    mechanical_energy(robot, times, &q, &qd, &qdd)
+    Ok(energy_unchecked(&mut dynamics, times, q, qd, &qdd, f64::abs))
 }
 
 /// Mechanical energy `∫ Σᵢ |τᵢ·q̇ᵢ| dt` (joules) of a motion given only by sample times (s)
@@ -597,12 +645,13 @@ pub fn trajectory_energy_with_rates<Q: AsRef<[f64]>>(
 /// assert!(e > 0.0);
 /// ```
 pub fn trajectory_energy<Q: AsRef<[f64]>>(robot: &Robot, times: &[f64], q: &[Q]) -> Result<f64, DynamicsError> {
-    if !robot.has_dynamics() {
-        return Err(DynamicsError::NoInertialData { robot: robot.name().to_string() });
-    }
+    let mut dynamics = Dynamics::new(robot)?;
+    // Checks the times and the positions; the derived rates are checked for overflow only.
     let (qd, qdd) = joint_rates(robot, times, q)?;
-    let q: Vec<&[f64]> = q.iter().map(AsRef::as_ref).collect();
-    let qd: Vec<&[f64]> = qd.iter().map(Vec::as_slice).collect();
-    let qdd: Vec<&[f64]> = qdd.iter().map(Vec::as_slice).collect();
-    mechanical_energy(robot, times, &q, &qd, &qdd)
+    let n = robot.dof();
+    for (k, (qdk, qddk)) in qd.iter().zip(&qdd).enumerate() {
+        check_row("qd", k, qdk, n)?;
+        check_row("qdd", k, qddk, n)?;
+    }
+    Ok(energy_unchecked(&mut dynamics, times, q, &qd, &qdd, f64::abs))
 }

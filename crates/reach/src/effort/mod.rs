@@ -118,6 +118,25 @@ fn check_values(field: &str, values: &[f64], n: usize) -> Result<(), EffortError
     Ok(())
 }
 
+/// The joint weights of `robot` for [`j1`]/[`j2`]: `weights` when given, checked, else the
+/// default — seed 001's [`SEED001_WEIGHTS`] for a six-joint robot, 1 for every joint otherwise.
+///
+/// # Errors
+/// [`EffortError::Length`] when `weights` does not have one value per joint;
+/// [`EffortError::InvalidValue`] naming the first weight (`weights[i]`, 1-based) that is NaN,
+/// infinite or negative.
+pub fn joint_weights(robot: &Robot, weights: Option<&[f64]>) -> Result<Vec<f64>, EffortError> {
+    let n = robot.dof();
+    match weights {
+        Some(w) => {
+            check_weights(w, n)?;
+            Ok(w.to_vec())
+        }
+        None if n == 6 => Ok(SEED001_WEIGHTS.to_vec()),
+        None => Ok(vec![1.0; n]),
+    }
+}
+
 fn check_weights(weights: &[f64], n: usize) -> Result<(), EffortError> {
     check_values("weights", weights, n)?;
     for (i, &w) in weights.iter().enumerate() {
@@ -207,4 +226,28 @@ pub fn j2<Q: AsRef<[f64]>>(samples: &[Q], weights: &[f64], differences: &Differe
 /// ```
 pub fn total_change(q0: &[f64], q1: &[f64], differences: &Differences) -> Result<f64, EffortError> {
     j1(q0, q1, &vec![1.0; q0.len()], differences)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::presets;
+
+    #[test]
+    fn joint_weights_default_and_checks() {
+        let six = presets::get("spbu6").unwrap();
+        assert_eq!(joint_weights(&six, None).unwrap(), SEED001_WEIGHTS.to_vec());
+        let given = [1.0, 2.0, 0.0, 0.5, 0.5, 0.5];
+        assert_eq!(joint_weights(&six, Some(&given)).unwrap(), given.to_vec());
+        let other = presets::names().into_iter().map(|n| presets::get(n).unwrap()).find(|r| r.dof() != 6).unwrap();
+        assert_eq!(joint_weights(&other, None).unwrap(), vec![1.0; other.dof()]);
+        assert!(matches!(joint_weights(&six, Some(&[1.0; 5])), Err(EffortError::Length { expected: 6, found: 5, .. })));
+        for (bad, field) in [(-1.0, "weights[2]"), (f64::NAN, "weights[2]"), (f64::INFINITY, "weights[2]")] {
+            let w = [1.0, bad, 1.0, 1.0, 1.0, 1.0];
+            match joint_weights(&six, Some(&w)) {
+                Err(EffortError::InvalidValue { field: f, .. }) => assert_eq!(f, field),
+                other => panic!("expected an invalid weight, got {other:?}"),
+            }
+        }
+    }
 }

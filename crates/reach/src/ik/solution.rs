@@ -7,7 +7,6 @@ use nalgebra::{Isometry3, Point3, Rotation3, Vector3};
 use serde::Serialize;
 
 use crate::angle::fit_into_limits;
-use crate::effort::Differences;
 use crate::model::{JointKind, Robot};
 use crate::tolerance::{IK_DUPLICATE, IK_ORIENTATION, IK_POSITION, LIMIT_SLACK};
 
@@ -225,9 +224,45 @@ pub struct IkSolutions {
     /// Set when no solution is within limits.
     pub failure: Option<IkFailure>,
     /// How joint changes are measured by [`IkSolutions::closest_to`]: the robot's own rule
-    /// ([`Differences::for_robot`]: revolute wrapped, prismatic literal).
+    /// ([`Differences::for_robot`](crate::effort::Differences::for_robot): revolute wrapped,
+    /// prismatic literal).
     #[serde(skip)]
-    differences: Differences,
+    differences: JointWraps,
+}
+
+/// Which joints of the solved robot are revolute (their changes wrap), as in
+/// [`Differences::for_robot`](crate::effort::Differences::for_robot), without allocating for
+/// robots of up to 64 joints: bit `i` of a mask. Robots of more joints (rare) fall back to one
+/// flag per joint in a vector.
+#[derive(Debug, Clone, PartialEq)]
+enum JointWraps {
+    /// Bit `i` set: joint `i` (0-based) is revolute.
+    Mask(u64),
+    /// More than 64 joints: `true` for a revolute joint.
+    Wide(Vec<bool>),
+}
+
+impl JointWraps {
+    fn for_robot(robot: &Robot) -> Self {
+        let revolute = robot.joints().iter().map(|j| j.kind == JointKind::Revolute);
+        if robot.dof() <= 64 {
+            JointWraps::Mask(revolute.enumerate().fold(0, |m, (i, r)| if r { m | (1 << i) } else { m }))
+        } else {
+            JointWraps::Wide(revolute.collect())
+        }
+    }
+
+    /// The change from `a` to `b` of joint `i`: wrapped into (−π, π] for a revolute joint,
+    /// literal otherwise (and for an index beyond the robot's joints).
+    fn diff(&self, i: usize, a: f64, b: f64) -> f64 {
+        let wraps = match self {
+            JointWraps::Mask(m) => {
+                u32::try_from(i).ok().and_then(|s| m.checked_shr(s)).is_some_and(|bits| bits & 1 == 1)
+            }
+            JointWraps::Wide(v) => v.get(i).copied().unwrap_or(false),
+        };
+        if wraps { crate::angle::wrap(b - a) } else { b - a }
+    }
 }
 
 impl IkSolutions {
@@ -245,7 +280,7 @@ impl IkSolutions {
     /// The feasible solution with the smallest weighted joint change from `from`
     /// (`Σ wᵢ |qᵢ − fromᵢ|`, radians and metres; seed 000's and 001's rule). Revolute
     /// differences are wrapped into (−π, π], prismatic ones taken literally
-    /// ([`Differences::for_robot`] of the solved robot).
+    /// ([`Differences::for_robot`](crate::effort::Differences::for_robot) of the solved robot).
     /// `weights` shorter than the joint vector count as 1 for the missing joints.
     #[must_use]
     pub fn closest_to(&self, from: &[f64], weights: &[f64]) -> Option<&IkSolution> {
@@ -455,7 +490,7 @@ pub(crate) fn finish_within(
         });
     }
     let failure = if solutions.is_empty() { Some(if_empty) } else { limits_failure(&solutions) };
-    Ok(IkSolutions { solver, solutions, failure, differences: Differences::for_robot(robot) })
+    Ok(IkSolutions { solver, solutions, failure, differences: JointWraps::for_robot(robot) })
 }
 
 /// The flange pose in the chain's own frame: `base⁻¹ · target · tool⁻¹`.
@@ -467,6 +502,24 @@ pub(crate) fn chain_target(robot: &Robot, target: &Isometry3<f64>) -> Isometry3<
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn joint_wraps_match_the_robot_rule_with_and_without_the_mask() {
+        let robot = yaw_slide();
+        let wraps = JointWraps::for_robot(&robot);
+        assert_eq!(wraps, JointWraps::Mask(0b01));
+        let rule = crate::effort::Differences::for_robot(&robot);
+        for (i, (a, b)) in [(0, (3.0, -3.0)), (1, (3.0, -3.0)), (0, (0.1, 0.4)), (1, (-9.0, 9.0))] {
+            assert_eq!(wraps.diff(i, a, b), rule.diff(i, a, b), "joint {i}");
+        }
+        // Joints beyond the mask are literal, never a shift overflow.
+        assert_eq!(wraps.diff(64, 3.0, -3.0), -6.0);
+        assert_eq!(wraps.diff(200, 3.0, -3.0), -6.0);
+        let wide = JointWraps::Wide(vec![false, true]);
+        assert_eq!(wide.diff(0, 3.0, -3.0), -6.0);
+        assert!((wide.diff(1, 3.0, -3.0) - (2.0 * std::f64::consts::PI - 6.0)).abs() < 1e-12);
+        assert_eq!(wide.diff(2, 3.0, -3.0), -6.0);
+    }
 
     /// Base yaw about z, then a 10 m prismatic slide perpendicular to it (DH α₁ = −90°): the
     /// tool is at `d·(−sin θ, cos θ, 0)`, so `(0, d)` and `(π, −d)` reach the same point.

@@ -1,6 +1,6 @@
 //! Inertial data of the links (mass, centre of mass, inertia tensor) and gravity.
 
-use nalgebra::{Isometry3, Matrix3, SymmetricEigen, Vector3};
+use nalgebra::{AbstractRotation, Isometry, Matrix3, Rotation3, SymmetricEigen, Vector3};
 
 /// Standard gravity, m/s² (the default gravity is this value along −z of the world frame).
 pub const STANDARD_GRAVITY: f64 = 9.80665;
@@ -63,9 +63,14 @@ impl LinkInertial {
 
     /// The same body described in another frame: `pose` places this body's frame in the new
     /// frame (new ← old). The inertia about the centre of mass is rotated, not shifted.
+    /// `pose` may hold its rotation as a unit quaternion ([`nalgebra::Isometry3`]) or as a rotation matrix
+    /// ([`nalgebra::IsometryMatrix3`], the type of the robot's frames).
     #[must_use]
-    pub fn transformed(&self, pose: &Isometry3<f64>) -> Self {
-        let r = pose.rotation.to_rotation_matrix();
+    pub fn transformed<R>(&self, pose: &Isometry<f64, R, 3>) -> Self
+    where
+        R: AbstractRotation<f64, 3> + Copy + Into<Rotation3<f64>>,
+    {
+        let r: Rotation3<f64> = pose.rotation.into();
         LinkInertial {
             mass: self.mass,
             com: pose.transform_point(&self.com.into()).coords,
@@ -145,7 +150,7 @@ impl LinkInertial {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nalgebra::{Translation3, UnitQuaternion};
+    use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 
     #[test]
     fn combining_two_point_masses_gives_the_dumbbell_inertia() {
@@ -169,6 +174,11 @@ mod tests {
         let moved = body.transformed(&pose);
         assert!((moved.com - Vector3::new(0.0, 1.0, 1.0)).norm() < 1e-15);
         assert!((moved.inertia - Matrix3::from_diagonal(&Vector3::new(2.0, 1.0, 3.0))).amax() < 1e-15);
+        // The same pose with a rotation matrix (the robot's frame type) gives the same body.
+        let as_matrix = nalgebra::IsometryMatrix3::from_parts(pose.translation, pose.rotation.to_rotation_matrix());
+        let again = body.transformed(&as_matrix);
+        assert!((again.com - moved.com).norm() < 1e-15);
+        assert!((again.inertia - moved.inertia).amax() < 1e-15);
     }
 
     #[test]

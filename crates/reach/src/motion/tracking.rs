@@ -302,21 +302,33 @@ struct Solving<'a> {
     numeric: bool,
 }
 
+/// True for the numeric solver (the one way tracking tells it from the closed forms).
+fn is_numeric(solver: &dyn IkSolver) -> bool {
+    solver.name() == SolverKind::Numeric.as_str()
+}
+
+/// The IK target of a path pose: the position only, or the whole pose.
+fn ik_target(pose: &Isometry3<f64>, position_only: bool) -> IkTarget {
+    if position_only { IkTarget::Position(Point3::from(pose.translation.vector)) } else { IkTarget::Pose(*pose) }
+}
+
+/// The IK options of one tracking solve: seeded from `seed` when given; a seeded numeric solve
+/// makes one restart only (it follows the seed instead of searching afresh).
+fn seeded_options(numeric: bool, seed: Option<&[f64]>) -> IkOptions {
+    let mut options = IkOptions { seed: seed.map(<[f64]>::to_vec), ..IkOptions::default() };
+    if numeric && seed.is_some() {
+        options.restarts = 1;
+    }
+    options
+}
+
 impl Solving<'_> {
     fn target(&self, pose: &Isometry3<f64>) -> IkTarget {
-        if self.position_only {
-            IkTarget::Position(Point3::from(pose.translation.vector))
-        } else {
-            IkTarget::Pose(*pose)
-        }
+        ik_target(pose, self.position_only)
     }
 
     fn options(&self, seed: Option<&[f64]>) -> IkOptions {
-        let mut options = IkOptions { seed: seed.map(<[f64]>::to_vec), ..IkOptions::default() };
-        if self.numeric && seed.is_some() {
-            options.restarts = 1;
-        }
-        options
+        seeded_options(self.numeric, seed)
     }
 
     fn solve(&self, pose: &Isometry3<f64>, seed: Option<&[f64]>) -> Result<IkSolutions, TrackingError> {
@@ -435,19 +447,13 @@ pub fn track_configuration(
     position_only: bool,
 ) -> Result<BranchTrack, TrackingError> {
     validate_samples(samples)?;
-    let numeric = solver.name() == "numeric";
+    let numeric = is_numeric(solver);
     let mut out = BranchTrack { branch: None, q: Vec::with_capacity(samples.len()) };
     let mut lock: Option<Lock> = None;
     let mut previous: Option<Vec<f64>> = None;
-    let target = |pose: &Isometry3<f64>| {
-        if position_only { IkTarget::Position(Point3::from(pose.translation.vector)) } else { IkTarget::Pose(*pose) }
-    };
-    let mut options = IkOptions::default();
+    let target = |pose: &Isometry3<f64>| ik_target(pose, position_only);
     for p in samples {
-        options.seed.clone_from(&previous);
-        if numeric && previous.is_some() {
-            options.restarts = 1;
-        }
+        let options = seeded_options(numeric, previous.as_deref());
         let q = match (&lock, &previous) {
             (Some(l), Some(prev)) => follow(robot, solver, &target(&p.pose), l, prev, &options)?,
             _ => anchor(&solver.solve(robot, &target(&p.pose), &options)?, filter, numeric).map(|(q, l)| {
@@ -1037,7 +1043,7 @@ pub fn track_with_progress(
 ) -> Result<TrackingReport, TrackingError> {
     let kind = options.solver.unwrap_or_else(|| SolverKind::detect(robot));
     let solver = kind.build(robot)?;
-    let numeric = kind == SolverKind::Numeric;
+    let numeric = is_numeric(solver.as_ref());
     let solving = Solving { robot, solver, position_only: options.position_only, numeric };
     let closed_form = if kind == SolverKind::ParallelAxes && !options.position_only {
         ParallelAxes::from_robot(robot).ok()

@@ -333,7 +333,8 @@ impl<'a> CollisionChecker<'a> {
         let act = &self.active;
         for (x, &i) in act.iter().enumerate() {
             for &j in act.iter().skip(x + 2) {
-                if (self.exempt[i] >> j) & 1 == 1 {
+                // `checked_shr`: robots of 64 or more joints have no list (all masks 0).
+                if self.exempt[i].checked_shr(u32::try_from(j).unwrap_or(u32::MAX)).is_some_and(|m| m & 1 == 1) {
                     continue;
                 }
                 if self.pair_clearance(i, j) <= self.margin {
