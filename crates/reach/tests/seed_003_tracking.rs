@@ -120,6 +120,8 @@ fn plus_beta_is_feasible_and_chosen() {
     let text = k7.to_string();
     assert!(text.starts_with("K7 [s = 0.618"), "{text}");
     assert!(text.contains("θ4 (wrist-pitch)") && text.contains("−β"), "{text}");
+    // The range as operators read it: welder6r's θ4 limits −175° … 150°, in degrees.
+    assert!(text.contains("[-175.00, 150.00] deg"), "{text}");
 }
 
 #[test]

@@ -1658,6 +1658,20 @@ fn joint_symbol(robot: &Robot, j: usize) -> String {
     if name.is_empty() { format!("{sym}{j}") } else { format!("{sym}{j} ({name})") }
 }
 
+/// A violated limit as operators read it: `[lower, upper]` in degrees (deg/s) for a revolute
+/// joint, metres (m/s) for a prismatic one.
+fn limit_range(robot: &Robot, v: &Violation) -> String {
+    let kind = v.joint.map_or(JointKind::Revolute, |j| robot.joints()[j - 1].kind);
+    let rate = v.kind == ViolationKind::Velocity;
+    let (scale, unit) = match (kind, rate) {
+        (JointKind::Revolute, false) => (180.0 / std::f64::consts::PI, "deg"),
+        (JointKind::Revolute, true) => (180.0 / std::f64::consts::PI, "deg/s"),
+        (JointKind::Prismatic, false) => (1.0, "m"),
+        (JointKind::Prismatic, true) => (1.0, "m/s"),
+    };
+    format!("[{:.2}, {:.2}] {unit}", v.lower * scale, v.upper * scale)
+}
+
 fn track_with(
     tracker: Tracker<'_>,
     default: usize,
@@ -1784,9 +1798,8 @@ fn track_with(
                         (ViolationKind::Position, true) => (
                             EventCode::K4,
                             format!(
-                                "angle {joint} not in the interval of possible values [{:.4}, {:.4}] on s ∈ ({:.6}, {:.6}){}",
-                                v.lower,
-                                v.upper,
+                                "angle {joint} not in the interval of possible values {} on s ∈ ({:.6}, {:.6}){}",
+                                limit_range(robot, v),
                                 v.s_start,
                                 v.s_end,
                                 next.as_ref().map(|n| format!("; switching to configuration {n}")).unwrap_or_default()
@@ -1795,9 +1808,8 @@ fn track_with(
                         (ViolationKind::Velocity, true) => (
                             EventCode::K5,
                             format!(
-                                "angular velocity of {joint} not in [{:.4}, {:.4}] on s ∈ ({:.6}, {:.6}){}; configuration {} not realizable",
-                                v.lower,
-                                v.upper,
+                                "angular velocity of {joint} not in {} on s ∈ ({:.6}, {:.6}){}; configuration {} not realizable",
+                                limit_range(robot, v),
                                 v.s_start,
                                 v.s_end,
                                 next.as_ref().map(|n| format!("; switching to configuration {n}")).unwrap_or_default(),
@@ -1807,9 +1819,8 @@ fn track_with(
                         (ViolationKind::Position, false) => (
                             EventCode::K7,
                             format!(
-                                "computed angle {joint} not in the interval of possible values [{:.4}, {:.4}] on s ∈ ({:.6}, {:.6}); configuration {} not realizable",
-                                v.lower,
-                                v.upper,
+                                "computed angle {joint} not in the interval of possible values {} on s ∈ ({:.6}, {:.6}); configuration {} not realizable",
+                                limit_range(robot, v),
                                 v.s_start,
                                 v.s_end,
                                 name(c)
@@ -1818,9 +1829,8 @@ fn track_with(
                         (ViolationKind::Velocity, false) => (
                             EventCode::K12,
                             format!(
-                                "computed angular velocity of {joint} not in [{:.4}, {:.4}] on s ∈ ({:.6}, {:.6}); configuration {} not realizable",
-                                v.lower,
-                                v.upper,
+                                "computed angular velocity of {joint} not in {} on s ∈ ({:.6}, {:.6}); configuration {} not realizable",
+                                limit_range(robot, v),
                                 v.s_start,
                                 v.s_end,
                                 name(c)
