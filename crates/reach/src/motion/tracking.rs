@@ -1487,17 +1487,7 @@ impl<'a> Tracker<'a> {
         for (j, joint) in robot.joints().iter().enumerate() {
             let inside = |v: f64| position_margin(joint, v) >= -LIMIT_SLACK;
             let n = track.q.len();
-            let mut k = 0;
-            while k < n {
-                if inside(track.q[k][j]) {
-                    k += 1;
-                    continue;
-                }
-                let first = k;
-                while k < n && !inside(track.q[k][j]) {
-                    k += 1;
-                }
-                let last = k - 1;
+            for (first, last) in failing_runs(n, |k| inside(track.q[k][j])) {
                 let s_start = if first == 0 {
                     track.s[0]
                 } else {
@@ -1556,17 +1546,7 @@ impl<'a> Tracker<'a> {
         for (j, joint) in robot.joints().iter().enumerate() {
             let Some(vmax) = joint.max_velocity else { continue };
             let ok = |r: f64| r.abs() <= vmax * (1.0 + LIMIT_SLACK);
-            let mut k = 0;
-            while k < steps {
-                if ok(track.step_rates[k][j]) {
-                    k += 1;
-                    continue;
-                }
-                let first = k;
-                while k < steps && !ok(track.step_rates[k][j]) {
-                    k += 1;
-                }
-                let last = k - 1;
+            for (first, last) in failing_runs(steps, |k| ok(track.step_rates[k][j])) {
                 let mid = |i: usize| 0.5 * (track.s[i] + track.s[i + 1]);
                 let inside_rate = |s: f64, reference: &[f64]| -> Result<bool, TrackingError> {
                     Ok(self.rate_at(s, j, lock, reference)?.is_none_or(ok))
@@ -1656,6 +1636,24 @@ fn joint_symbol(robot: &Robot, j: usize) -> String {
     let name = &robot.joints()[j - 1].name;
     let sym = if kind == JointKind::Revolute { "θ" } else { "d" };
     if name.is_empty() { format!("{sym}{j}") } else { format!("{sym}{j} ({name})") }
+}
+
+/// The maximal runs `(first, last)` (inclusive) of indices `0..n` where `ok` is false, in order.
+fn failing_runs(n: usize, ok: impl Fn(usize) -> bool) -> Vec<(usize, usize)> {
+    let mut runs = Vec::new();
+    let mut k = 0;
+    while k < n {
+        if ok(k) {
+            k += 1;
+            continue;
+        }
+        let first = k;
+        while k < n && !ok(k) {
+            k += 1;
+        }
+        runs.push((first, k - 1));
+    }
+    runs
 }
 
 /// A violated limit as operators read it: `[lower, upper]` in degrees (deg/s) for a revolute
