@@ -102,6 +102,13 @@ pub fn one_line(message: &str) -> String {
     message.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
+impl From<reach::Error> for CliError {
+    /// The library's errors are about the user's input (a request field, a file, a joint).
+    fn from(e: reach::Error) -> Self {
+        CliError::BadInput(one_line(&e.to_string()))
+    }
+}
+
 impl From<reach::KinematicsError> for CliError {
     /// Wrong joint vectors are the user's input; anything else is a bug in the caller.
     fn from(e: reach::KinematicsError) -> Self {

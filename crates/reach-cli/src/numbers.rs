@@ -7,19 +7,10 @@
 
 use clap::Args;
 use reach::Robot;
+pub use reach::jobs::input::{AngleUnit, from_si, joints_outside_limits, q_display, to_si};
 use reach::model::JointKind;
 
 use crate::error::CliError;
-
-/// How revolute joint values are written on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum AngleInput {
-    /// Degrees (the default).
-    #[default]
-    Degrees,
-    /// Radians (`--rad`).
-    Radians,
-}
 
 /// Joint-value arguments (flatten into a command): `Q…` and `--rad`.
 ///
@@ -39,8 +30,23 @@ pub struct JointArgs {
 impl JointArgs {
     /// The unit the revolute values are written in.
     #[must_use]
-    pub fn angle_input(&self) -> AngleInput {
-        if self.rad { AngleInput::Radians } else { AngleInput::Degrees }
+    pub fn angle_input(&self) -> AngleUnit {
+        if self.rad { AngleUnit::Rad } else { AngleUnit::Deg }
+    }
+
+    /// The values as typed, in the unit of `--rad`, each checked to be a finite number (the
+    /// count is checked against the robot by the library).
+    ///
+    /// # Errors
+    /// [`CliError::BadInput`] naming the 1-based joint: `joint 3: expected a number, got "abc"`.
+    pub fn joints(&self) -> Result<reach::jobs::Joints, CliError> {
+        let values = self
+            .q
+            .iter()
+            .enumerate()
+            .map(|(i, t)| parse_finite(&format!("joint {}", i + 1), t))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(if self.rad { reach::jobs::Joints::Rad(values) } else { reach::jobs::Joints::Deg(values) })
     }
 
     /// Parses the values for `robot`.
@@ -80,13 +86,44 @@ pub fn parse_finite(label: &str, text: &str) -> Result<f64, CliError> {
     }
 }
 
+/// Parses a list of finite numbers for `option`: separated by commas and/or blanks
+/// (`0,-90,90`, `"0 -90 90"`, `0, -90, 90`), negative values welcome. The one list parser of
+/// the command line.
+///
+/// # Errors
+/// [`CliError::BadInput`]: `--from value 2: expected a number, got "x"`, or an empty list.
+pub fn parse_list(option: &str, text: &str) -> Result<Vec<f64>, CliError> {
+    let values: Vec<f64> = text
+        .split([',', ' ', '\t'])
+        .filter(|s| !s.trim().is_empty())
+        .enumerate()
+        .map(|(i, s)| parse_finite(&format!("{option} value {}", i + 1), s))
+        .collect::<Result<_, _>>()?;
+    if values.is_empty() {
+        return Err(CliError::bad_input(format!("{option}: expected numbers, got {text:?}")));
+    }
+    Ok(values)
+}
+
+/// [`parse_list`] with exactly `count` values; `what` says what they are (`x,y,z in metres`).
+///
+/// # Errors
+/// As [`parse_list`], and [`CliError::BadInput`] for another count.
+pub fn parse_exact(option: &str, text: &str, count: usize, what: &str) -> Result<Vec<f64>, CliError> {
+    let values = parse_list(option, text)?;
+    if values.len() != count {
+        return Err(CliError::bad_input(format!("{option}: expected {count} numbers ({what}), got {}", values.len())));
+    }
+    Ok(values)
+}
+
 /// Parses one value per joint of `robot` and converts it to SI units (revolute: from
-/// degrees unless `unit` is [`AngleInput::Radians`]; prismatic: metres as given).
+/// degrees unless `unit` is [`AngleUnit::Rad`]; prismatic: metres as given).
 ///
 /// # Errors
 /// [`CliError::BadInput`] when the number of values differs from the robot's joint count
 /// (checked first), or a value is not a finite number (naming the 1-based joint).
-pub fn parse_joint_values(robot: &Robot, texts: &[String], unit: AngleInput) -> Result<JointValues, CliError> {
+pub fn parse_joint_values(robot: &Robot, texts: &[String], unit: AngleUnit) -> Result<JointValues, CliError> {
     if texts.len() != robot.dof() {
         return Err(CliError::bad_input(format!(
             "robot `{}` has {} joints, got {} joint value{}",
@@ -102,60 +139,15 @@ pub fn parse_joint_values(robot: &Robot, texts: &[String], unit: AngleInput) -> 
         // Degrees to radians shrinks the value, so a finite input stays finite.
         let si = to_si(joint.kind, typed, unit);
         values.si.push(si);
-        values.deg.push(if unit == AngleInput::Degrees { typed } else { from_si(joint.kind, si, AngleInput::Degrees) });
+        values.deg.push(if unit == AngleUnit::Deg { typed } else { from_si(joint.kind, si, AngleUnit::Deg) });
     }
     Ok(values)
-}
-
-/// Converts a joint value typed by the user to SI units.
-#[must_use]
-pub fn to_si(kind: JointKind, value: f64, unit: AngleInput) -> f64 {
-    match (kind, unit) {
-        (JointKind::Revolute, AngleInput::Degrees) => value.to_radians(),
-        _ => value,
-    }
-}
-
-/// Converts an SI joint value to the user's units (inverse of [`to_si`]).
-#[must_use]
-pub fn from_si(kind: JointKind, value: f64, unit: AngleInput) -> f64 {
-    match (kind, unit) {
-        (JointKind::Revolute, AngleInput::Degrees) => value.to_degrees(),
-        _ => value,
-    }
-}
-
-/// The joint vector in display units: revolute joints in degrees, prismatic in metres.
-#[must_use]
-pub fn q_to_display(robot: &Robot, q: &[f64]) -> Vec<f64> {
-    robot.joints().iter().zip(q).map(|(j, &v)| from_si(j.kind, v, AngleInput::Degrees)).collect()
 }
 
 /// The unit name of a joint's display value: `deg` or `m`.
 #[must_use]
 pub fn display_unit(kind: JointKind) -> &'static str {
-    match kind {
-        JointKind::Revolute => "deg",
-        JointKind::Prismatic => "m",
-    }
-}
-
-/// Slack allowed when checking joint values against limits, rad or m. Converting typed
-/// degrees to radians rounds at the 1e-16 relative level, so a value typed equal to a limit
-/// must not count as outside; 1e-9 rad (or m) is far below any mechanical meaning.
-pub const LIMIT_SLACK: f64 = 1e-9;
-
-/// 1-based numbers of the joints whose value (SI) lies outside their limits.
-#[must_use]
-pub fn joints_outside_limits(robot: &Robot, q: &[f64]) -> Vec<usize> {
-    robot
-        .joints()
-        .iter()
-        .zip(q)
-        .enumerate()
-        .filter(|(_, (j, v))| !j.limits.contains(**v, LIMIT_SLACK))
-        .map(|(i, _)| i + 1)
-        .collect()
+    reach::jobs::input::unit_name(kind, AngleUnit::Deg)
 }
 
 /// A joint vector in display units (see [`JointValues::deg`]) for people: `0 -90 45 [deg]`
@@ -181,8 +173,8 @@ pub fn limits_text(robot: &Robot, q: &[f64]) -> String {
         .iter()
         .map(|&n| {
             let j = &robot.joints()[n - 1];
-            let lo = from_si(j.kind, j.limits.lower, AngleInput::Degrees);
-            let hi = from_si(j.kind, j.limits.upper, AngleInput::Degrees);
+            let lo = from_si(j.kind, j.limits.lower, AngleUnit::Deg);
+            let hi = from_si(j.kind, j.limits.upper, AngleUnit::Deg);
             format!(
                 "joint {n} ({}) outside {} .. {} {}",
                 j.name,

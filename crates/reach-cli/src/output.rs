@@ -11,7 +11,7 @@
 
 use std::io::Write;
 
-use nalgebra::{Isometry3, IsometryMatrix3, UnitQuaternion};
+use nalgebra::Isometry3;
 use reach::model::Limits;
 use serde::Serialize;
 
@@ -26,62 +26,12 @@ pub fn matrix_rows(pose: &Isometry3<f64>) -> Matrix4Rows {
     rows_of(&pose.to_homogeneous())
 }
 
-/// The homogeneous matrix of a pose with a rotation matrix, row-major.
-#[must_use]
-pub fn matrix_rows_m(pose: &IsometryMatrix3<f64>) -> Matrix4Rows {
-    rows_of(&pose.to_homogeneous())
-}
-
 fn rows_of(m: &nalgebra::Matrix4<f64>) -> Matrix4Rows {
     std::array::from_fn(|r| std::array::from_fn(|c| m[(r, c)]))
 }
 
-/// Roll, pitch, yaw in radians with `R = Rz(yaw)·Ry(pitch)·Rx(roll)`.
-#[must_use]
-pub fn rpy_rad(rotation: &UnitQuaternion<f64>) -> [f64; 3] {
-    let (roll, pitch, yaw) = rotation.euler_angles();
-    [roll, pitch, yaw]
-}
-
-/// Roll, pitch, yaw in degrees (see [`rpy_rad`]).
-#[must_use]
-pub fn rpy_deg(rotation: &UnitQuaternion<f64>) -> [f64; 3] {
-    rpy_rad(rotation).map(f64::to_degrees)
-}
-
-/// The quaternion as `[w, x, y, z]` with `w ≥ 0`.
-#[must_use]
-pub fn quat_wxyz(rotation: &UnitQuaternion<f64>) -> [f64; 4] {
-    let q = rotation.quaternion();
-    let s = if q.w < 0.0 { -1.0 } else { 1.0 };
-    [s * q.w, s * q.i, s * q.j, s * q.k]
-}
-
-/// A pose in the JSON output: `{"matrix", "xyz_m", "rpy_deg", "quat_wxyz"}`.
-#[derive(Debug, Clone, Serialize)]
-pub struct PoseJson {
-    /// Homogeneous matrix, row-major.
-    pub matrix: Matrix4Rows,
-    /// Position, metres.
-    pub xyz_m: [f64; 3],
-    /// Roll, pitch, yaw in degrees, `R = Rz(yaw)·Ry(pitch)·Rx(roll)`.
-    pub rpy_deg: [f64; 3],
-    /// Unit quaternion `w, x, y, z` with `w ≥ 0`.
-    pub quat_wxyz: [f64; 4],
-}
-
-impl PoseJson {
-    /// The JSON form of a pose.
-    #[must_use]
-    pub fn of(pose: &Isometry3<f64>) -> Self {
-        PoseJson {
-            matrix: matrix_rows(pose),
-            xyz_m: pose.translation.vector.into(),
-            rpy_deg: rpy_deg(&pose.rotation),
-            quat_wxyz: quat_wxyz(&pose.rotation),
-        }
-    }
-}
+pub use reach::jobs::PoseReport;
+pub use reach::jobs::input::{rpy_deg, rpy_rad};
 
 /// Limits as JSON: `null` when unlimited, else `[lower, upper]` with `null` for an
 /// infinite bound (JSON has no infinity).
@@ -275,18 +225,14 @@ pub fn write_matrix<R: AsRef<[f64]>>(
 ///
 /// # Errors
 /// [`CliError::Output`] when writing fails.
-pub fn write_pose(out: &mut dyn Write, pose: &Isometry3<f64>, indent: &str) -> Result<(), CliError> {
-    let xyz: [f64; 3] = pose.translation.vector.into();
+pub fn write_pose(out: &mut dyn Write, pose: &PoseReport, indent: &str) -> Result<(), CliError> {
     let mut lines = Table::key_value();
-    lines.pair("position [m]", format!("{}   (x y z)", fixeds(&xyz, 6)));
-    lines.pair(
-        "rpy [deg]",
-        format!("{}   (roll pitch yaw: R = Rz(yaw)·Ry(pitch)·Rx(roll))", fixeds(&rpy_deg(&pose.rotation), 4)),
-    );
-    lines.pair("quaternion", format!("{}   (w x y z)", fixeds(&quat_wxyz(&pose.rotation), 6)));
+    lines.pair("position [m]", format!("{}   (x y z)", fixeds(&pose.xyz_m, 6)));
+    lines.pair("rpy [deg]", format!("{}   (roll pitch yaw: R = Rz(yaw)·Ry(pitch)·Rx(roll))", fixeds(&pose.rpy_deg, 4)));
+    lines.pair("quaternion", format!("{}   (w x y z)", fixeds(&pose.quat_wxyz, 6)));
     lines.pair("matrix", "(row-major, world ← tool)");
     lines.write(out, indent)?;
-    write_matrix(out, &matrix_rows(pose), 6, &format!("{indent}  "))
+    write_matrix(out, &pose.matrix, 6, &format!("{indent}  "))
 }
 
 /// Alignment of a table column.
@@ -375,28 +321,6 @@ impl Table {
 mod tests {
     use super::*;
     use std::f64::consts::FRAC_PI_2;
-
-    #[test]
-    fn rpy_follows_fixed_axis_convention() {
-        // R = Rz(yaw)·Ry(pitch)·Rx(roll), built from elementary rotations.
-        let (roll, pitch, yaw) = (0.3, -0.4, 1.1);
-        let r = UnitQuaternion::from_axis_angle(&nalgebra::Vector3::z_axis(), yaw)
-            * UnitQuaternion::from_axis_angle(&nalgebra::Vector3::y_axis(), pitch)
-            * UnitQuaternion::from_axis_angle(&nalgebra::Vector3::x_axis(), roll);
-        let got = rpy_rad(&r);
-        for (g, w) in got.iter().zip([roll, pitch, yaw]) {
-            assert!((g - w).abs() < 1e-12, "{got:?}");
-        }
-    }
-
-    #[test]
-    fn quaternion_has_non_negative_w() {
-        let r = UnitQuaternion::from_axis_angle(&nalgebra::Vector3::z_axis(), 1.5 * std::f64::consts::PI);
-        assert!(quat_wxyz(&r)[0] >= 0.0);
-        let r = UnitQuaternion::from_axis_angle(&nalgebra::Vector3::z_axis(), FRAC_PI_2);
-        let q = quat_wxyz(&r);
-        assert!((q[0] - q[3]).abs() < 1e-15 && q[3] > 0.0);
-    }
 
     #[test]
     fn numbers_print_without_noise_or_negative_zero() {

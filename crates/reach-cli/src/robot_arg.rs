@@ -18,6 +18,7 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use reach::Robot;
+use reach::jobs::RobotInput;
 use reach::model::{FileUnits, UrdfChain, presets};
 
 use crate::error::{CliError, one_line};
@@ -85,6 +86,8 @@ pub struct LoadedRobot {
     pub source: RobotSource,
     /// Units of the TOML description (`None` for URDF, which is always metres and radians).
     pub units: Option<FileUnits>,
+    /// The library's description of the robot, for requests ([`reach::jobs::Job`]).
+    pub input: RobotInput,
 }
 
 impl RobotArgs {
@@ -116,20 +119,25 @@ impl RobotArgs {
     }
 }
 
-/// Loads a preset by name (with its file units).
+/// Resolves a preset name or file path to the library's [`RobotInput`] (a file is read here
+/// and parsed by the library); `chain` selects the chain of a URDF file.
 ///
 /// # Errors
-/// [`CliError::BadInput`] naming the unknown preset and listing the known ones.
-pub fn load_preset(name: &str) -> Result<LoadedRobot, CliError> {
-    let text = presets::source(name).ok_or_else(|| {
-        CliError::bad_input(format!(
-            "unknown robot `{name}`: not a preset (known: {}) and not a robot file",
-            presets::names().join(", ")
-        ))
-    })?;
-    let (robot, units) = Robot::from_toml_str_with_units(text)
-        .map_err(|e| CliError::internal(format!("preset `{name}` does not parse: {}", one_line(&e.to_string()))))?;
-    Ok(LoadedRobot { robot, source: RobotSource::Preset(name.to_string()), units: Some(units) })
+/// [`CliError::BadInput`] for a file that cannot be read.
+pub fn robot_input(arg: &str, chain: &UrdfChain) -> Result<(RobotInput, RobotSource), CliError> {
+    let path = Path::new(arg);
+    if presets::source(arg).is_some() || (!path.exists() && !looks_like_path(arg)) {
+        // An unknown name is reported by the library with the list of presets.
+        return Ok((RobotInput::Preset(arg.to_string()), RobotSource::Preset(arg.to_string())));
+    }
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| CliError::bad_input(format!("cannot read robot file `{arg}`: {}", one_line(&e.to_string()))))?;
+    let format = file_format(path, &text);
+    let input = match format {
+        FileFormat::Toml => RobotInput::Toml { text },
+        FileFormat::Urdf => RobotInput::Urdf { text, base: chain.base.clone(), tip: chain.tip.clone() },
+    };
+    Ok((input, RobotSource::File { path: path.to_path_buf(), format }))
 }
 
 /// Resolves a preset name or file path to a robot; `chain` selects the chain of a URDF file.
@@ -137,28 +145,25 @@ pub fn load_preset(name: &str) -> Result<LoadedRobot, CliError> {
 /// # Errors
 /// [`CliError::BadInput`] for an unknown preset or an unreadable or malformed file.
 pub fn load_robot(arg: &str, chain: &UrdfChain) -> Result<LoadedRobot, CliError> {
-    if presets::source(arg).is_some() {
-        return load_preset(arg);
-    }
-    let path = Path::new(arg);
-    if !path.exists() && !looks_like_path(arg) {
-        return load_preset(arg); // reports the unknown name
-    }
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| CliError::bad_input(format!("cannot read robot file `{arg}`: {}", one_line(&e.to_string()))))?;
-    let format = file_format(path, &text);
-    let source = RobotSource::File { path: path.to_path_buf(), format };
-    let bad = |e: reach::ModelError| CliError::bad_input(format!("{arg}: {}", one_line(&e.to_string())));
-    match format {
-        FileFormat::Toml => {
-            let (robot, units) = Robot::from_toml_str_with_units(&text).map_err(bad)?;
-            Ok(LoadedRobot { robot, source, units: Some(units) })
+    let (input, source) = robot_input(arg, chain)?;
+    let loaded = input.load().map_err(|e| match (&source, &e) {
+        (RobotSource::Preset(_), reach::Error::Model(reach::ModelError::UnknownPreset { name, known })) => {
+            CliError::bad_input(format!("unknown robot `{name}`: not a preset (known: {known}) and not a robot file"))
         }
-        FileFormat::Urdf => {
-            let robot = Robot::from_urdf_str(&text, chain).map_err(bad)?;
-            Ok(LoadedRobot { robot, source, units: None })
+        (RobotSource::Preset(name), _) => {
+            CliError::internal(format!("preset `{name}` does not parse: {}", one_line(&e.to_string())))
         }
-    }
+        (RobotSource::File { .. }, _) => CliError::bad_input(format!("{arg}: {}", one_line(&e.to_string()))),
+    })?;
+    Ok(LoadedRobot { robot: loaded.robot, source, units: loaded.units, input })
+}
+
+/// Loads a preset by name (with its file units).
+///
+/// # Errors
+/// [`CliError::BadInput`] naming the unknown preset and listing the known ones.
+pub fn load_preset(name: &str) -> Result<LoadedRobot, CliError> {
+    load_robot(name, &UrdfChain::default())
 }
 
 /// Whether a robot argument is meant as a path rather than a preset name.

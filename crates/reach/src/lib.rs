@@ -41,6 +41,9 @@
 //! * [`effort`] — J1/J2/S functionals, dynamics and energy.
 //! * [`world`] — scenes, collision, detours, configuration space.
 //! * [`drive`] — stepper sequences, step schedules, G-code.
+//! * [`jobs`] — the application layer: one serde request and one report per workflow, and
+//!   a pure `run`; every front end (CLI, service, Python, viewer) is a thin adapter over it.
+//! * [`Error`] — the one error type, with stable failure codes.
 //! * [`angle`] — wrapping and angle differences.
 //! * [`tolerance`] — the numeric tolerances.
 //!
@@ -61,7 +64,9 @@ pub mod angle;
 pub mod decide;
 pub mod drive;
 pub mod effort;
+mod error;
 pub mod ik;
+pub mod jobs;
 pub mod kinematics;
 pub mod model;
 pub mod motion;
@@ -69,5 +74,6 @@ mod rng;
 pub mod tolerance;
 pub mod world;
 
+pub use error::{Error, Result};
 pub use kinematics::{Jacobian, KinematicsError, Manipulability};
 pub use model::{ModelError, Robot, RobotSpec};

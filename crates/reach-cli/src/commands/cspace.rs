@@ -210,7 +210,7 @@ impl SectionArgs {
             return Ok(());
         }
         let shown =
-            |j: usize, v: f64| crate::numbers::from_si(robot.joints()[j].kind, v, crate::numbers::AngleInput::Degrees);
+            |j: usize, v: f64| crate::numbers::from_si(robot.joints()[j].kind, v, crate::numbers::AngleUnit::Deg);
         let name = |j: usize| format!("q{} [{}]", j + 1, crate::numbers::display_unit(robot.joints()[j].kind));
         let (section, jx, jy) = match swept {
             [a, b, c] => (Some(*a), *b, *c),

@@ -8,7 +8,7 @@ use std::io::Write;
 use clap::Args;
 
 use crate::error::CliError;
-use crate::numbers::{q_text, q_to_display};
+use crate::numbers::{q_display, q_text};
 use crate::output::write_pose;
 use crate::robot_arg::load_preset;
 
@@ -60,8 +60,8 @@ fn fk_at_home(out: &mut dyn Write) -> Result<(), CliError> {
         let pose = robot.fk(&q)?;
         writeln!(out)?;
         writeln!(out, "{name} — {} ({} joints)", robot.description(), robot.dof())?;
-        writeln!(out, "  {:<12}  {}", "home q", q_text(&robot, &q_to_display(&robot, &q)))?;
-        write_pose(out, &pose, "  ")?;
+        writeln!(out, "  {:<12}  {}", "home q", q_text(&robot, &q_display(&robot, &q)))?;
+        write_pose(out, &crate::output::PoseReport::of(&pose), "  ")?;
     }
     Ok(())
 }

@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::commands::move_cmd::{load_task, plan};
 use crate::error::{CliError, one_line};
-use crate::numbers::{AngleInput, display_unit, parse_finite, to_si};
+use crate::numbers::{AngleUnit, display_unit, parse_finite, to_si};
 use crate::output::{Align, Table, fixed, write_json};
 use crate::robot_arg::RobotArgs;
 
@@ -143,7 +143,7 @@ fn drive_error(e: DriveError) -> CliError {
     }
 }
 
-fn parse_q(robot: &Robot, label: &str, texts: &[String], unit: AngleInput) -> Result<Vec<f64>, CliError> {
+fn parse_q(robot: &Robot, label: &str, texts: &[String], unit: AngleUnit) -> Result<Vec<f64>, CliError> {
     if texts.len() != robot.dof() {
         return Err(CliError::bad_input(format!(
             "{label}: robot `{}` has {} joints, got {} values",
@@ -168,7 +168,7 @@ fn sample_si(robot: &Robot, t_s: f64, q_deg: &[f64]) -> JointSample {
         .joints()
         .iter()
         .zip(q_deg)
-        .map(|(j, &v)| to_si(j.kind, v, AngleInput::Degrees))
+        .map(|(j, &v)| to_si(j.kind, v, AngleUnit::Deg))
         .chain(q_deg.iter().skip(robot.dof()).copied())
         .collect();
     JointSample::new(t_s, q)
@@ -253,7 +253,7 @@ pub fn run(args: &DriveArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let loaded = args.robot.load()?;
     let robot = &loaded.robot;
     let axes = axes(robot).map_err(drive_error)?;
-    let unit = if args.rad { AngleInput::Radians } else { AngleInput::Degrees };
+    let unit = if args.rad { AngleUnit::Rad } else { AngleUnit::Deg };
     let mut target_error = None;
     let (kind, schedule, plan, waypoints): (&str, StepSchedule, Vec<JointSample>, Vec<f64>) =
         match (&args.motion, args.from.is_empty()) {

@@ -25,7 +25,7 @@ use reach::tolerance::{IK_POSITION, ROTATION_ORTHONORMALITY};
 use serde::Serialize;
 
 use crate::error::{CliError, one_line};
-use crate::numbers::{AngleInput, display_unit, from_si, parse_finite, parse_joint_values, q_text, q_to_display};
+use crate::numbers::{AngleUnit, display_unit, from_si, parse_finite, parse_joint_values, q_display, q_text};
 use crate::output::{Align, Table, fixed, fixeds, num, nums, write_json};
 use crate::robot_arg::{RobotArgs, load_preset};
 
@@ -227,7 +227,7 @@ pub fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let robot = &loaded.robot;
     let from = match &args.from {
         Some(text) => {
-            parse_joint_values(robot, &split(text), AngleInput::Degrees)
+            parse_joint_values(robot, &split(text), AngleUnit::Deg)
                 .map_err(|e| CliError::bad_input(format!("--from: {e}")))?
                 .si
         }
@@ -276,7 +276,7 @@ pub fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
         head.pair("solver", format!("{} ({})", all.solver, if named { "--solver" } else { "auto-detected" }));
         head.pair("target", target_text(&target));
         let from_note = if args.from.is_some() { "--from" } else { "home" };
-        head.pair("from", format!("{} ({from_note})", q_text(robot, &q_to_display(robot, &from))));
+        head.pair("from", format!("{} ({from_note})", q_text(robot, &q_display(robot, &from))));
         if args.joint_weights.is_some() {
             head.pair("joint weights", nums(&weights));
         }
@@ -441,11 +441,11 @@ fn status_of(failure: Option<&IkFailure>) -> String {
 }
 
 fn solution_json(robot: &Robot, s: &IkSolution) -> SolutionJson {
-    let display = |joint: usize, v: f64| from_si(robot.joints()[joint - 1].kind, v, AngleInput::Degrees);
+    let display = |joint: usize, v: f64| from_si(robot.joints()[joint - 1].kind, v, AngleUnit::Deg);
     let bound = |joint: usize, v: f64| v.is_finite().then(|| display(joint, v));
     SolutionJson {
         // `+ 0.0` turns −0 into 0.
-        q_deg: q_to_display(robot, &s.q).into_iter().map(|v| v + 0.0).collect(),
+        q_deg: q_display(robot, &s.q).into_iter().map(|v| v + 0.0).collect(),
         branch: s.branch.to_string(),
         position_error_m: s.position_error,
         orientation_error_rad: s.orientation_error,
@@ -486,13 +486,13 @@ fn limits_cell(robot: &Robot, s: &IkSolution) -> String {
         .iter()
         .map(|v| {
             let kind = robot.joints()[v.joint - 1].kind;
-            let d = |x: f64| num(from_si(kind, x, AngleInput::Degrees));
+            let d = |x: f64| num(from_si(kind, x, AngleUnit::Deg));
             let digits = if kind == JointKind::Revolute { 2 } else { 4 };
             format!(
                 "joint {} ({}) {} outside {} .. {} {}",
                 v.joint,
                 v.name,
-                fixed(from_si(kind, v.value, AngleInput::Degrees), digits),
+                fixed(from_si(kind, v.value, AngleUnit::Deg), digits),
                 d(v.lower),
                 d(v.upper),
                 display_unit(kind)
@@ -526,7 +526,7 @@ fn write_chosen(out: &mut dyn Write, robot: &Robot, s: &IkSolution, why: &str) -
     writeln!(out, "chosen ({why}):")?;
     let mut t = Table::key_value();
     t.pair("branch", s.branch.to_string());
-    let q = q_to_display(robot, &s.q);
+    let q = q_display(robot, &s.q);
     t.pair("q", q_text(robot, &q.iter().map(|v| (v * 1e6).round() / 1e6).collect::<Vec<_>>()));
     t.pair("error", format!("position {:.1e} m, orientation {:.1e} rad", s.position_error, s.orientation_error));
     t.pair("limits", limits_cell(robot, s));
@@ -557,7 +557,7 @@ fn write_solution_table(
     ]);
     for (i, s) in all.solutions.iter().enumerate() {
         let mark = if chosen == Some(i) { "*" } else { "" };
-        let q: Vec<String> = q_to_display(robot, &s.q).iter().map(|&v| format!("{:>9}", fixed(v, 4))).collect();
+        let q: Vec<String> = q_display(robot, &s.q).iter().map(|&v| format!("{:>9}", fixed(v, 4))).collect();
         t.row(vec![
             format!("{mark}{}", i + 1),
             s.branch.to_string(),
@@ -637,7 +637,7 @@ fn run_scan(args: &IkArgs, robot: &Robot, from: &[f64], step: &str, out: &mut dy
             format!(
                 "alpha beta gamma = {} [deg] ({from_note} q = {})",
                 fixeds(&[start.alpha, start.beta, start.gamma].map(f64::to_degrees), 6),
-                q_text(robot, &q_to_display(robot, from))
+                q_text(robot, &q_display(robot, from))
             ),
         );
         let status = match &scan.failure {

@@ -1,19 +1,15 @@
-//! `reach jacobian` — the geometric Jacobian and manipulability measures.
+//! `reach jacobian` — the geometric Jacobian and manipulability measures
+//! (`reach::jobs::kinematics::jacobian`; `--json` prints its report).
 
 use std::io::Write;
 
 use clap::Args;
-use reach::kinematics::JacobianAxes;
-use reach::{Jacobian, Manipulability};
-use serde::Serialize;
+use reach::jobs::{JacobianReport, JacobianRequest};
 
 use crate::error::CliError;
 use crate::numbers::{JointArgs, limits_text, q_text};
 use crate::output::{Align, Table, fixed, fixeds, write_json};
 use crate::robot_arg::RobotArgs;
-
-/// Row labels of the Jacobian.
-pub const ROWS: [&str; 6] = ["vx", "vy", "vz", "wx", "wy", "wz"];
 
 /// Arguments of `reach jacobian`.
 #[derive(Debug, Clone, Args)]
@@ -26,39 +22,9 @@ pub struct JacobianArgs {
     #[command(flatten)]
     pub joints: JointArgs,
 
-    /// Print JSON: {"robot", "q_deg", "q_si", "rows", "jacobian", "manipulability",
-    /// "sigma_min", "sigma_max", "condition", "rank", "max_rank", "singular_values"}.
+    /// Print the report as JSON (docs/schemas/jacobian.report.schema.json).
     #[arg(long)]
     pub json: bool,
-}
-
-/// The JSON output of `reach jacobian`.
-#[derive(Debug, Clone, Serialize)]
-pub struct JacobianJson {
-    /// Robot name.
-    pub robot: String,
-    /// Joint values: revolute joints in degrees, prismatic joints in metres.
-    pub q_deg: Vec<f64>,
-    /// Joint values in SI: radians, metres.
-    pub q_si: Vec<f64>,
-    /// Row labels, `vx vy vz wx wy wz`.
-    pub rows: [&'static str; 6],
-    /// The 6×n geometric Jacobian, row-major (world frame, tool point, SI units).
-    pub jacobian: Vec<Vec<f64>>,
-    /// Yoshikawa's measure, the product of the singular values.
-    pub manipulability: f64,
-    /// Smallest singular value.
-    pub sigma_min: f64,
-    /// Largest singular value.
-    pub sigma_max: f64,
-    /// `sigma_max / sigma_min`, `null` at a singularity (infinite).
-    pub condition: Option<f64>,
-    /// Numerical rank.
-    pub rank: usize,
-    /// Largest possible rank, `min(6, n)`.
-    pub max_rank: usize,
-    /// Singular values, largest first.
-    pub singular_values: Vec<f64>,
 }
 
 /// Computes and prints the Jacobian and its measures.
@@ -68,34 +34,18 @@ pub struct JacobianJson {
 pub fn run(args: &JacobianArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let loaded = args.robot.load()?;
     let robot = &loaded.robot;
-    let values = args.joints.resolve(robot)?;
-    let q = &values.si;
-    let jac = robot.jacobian(q)?;
-    let m = Manipulability::of(&jac, JacobianAxes::All);
-    let max_rank = robot.dof().min(6);
+    let report = reach::jobs::kinematics::jacobian(robot, &JacobianRequest { q: args.joints.joints()? })?;
     if args.json {
-        return write_json(
-            out,
-            &JacobianJson {
-                robot: robot.name().to_string(),
-                q_deg: values.deg.clone(),
-                q_si: q.clone(),
-                rows: ROWS,
-                jacobian: rows_of(&jac),
-                manipulability: m.yoshikawa,
-                sigma_min: m.sigma_min,
-                sigma_max: m.sigma_max,
-                condition: m.condition.is_finite().then_some(m.condition),
-                rank: m.rank,
-                max_rank,
-                singular_values: m.singular_values.clone(),
-            },
-        );
+        return write_json(out, &report);
     }
+    write_text(robot, &report, out)
+}
+
+fn write_text(robot: &reach::Robot, r: &JacobianReport, out: &mut dyn Write) -> Result<(), CliError> {
     let mut head = Table::key_value();
     head.pair("robot", format!("{} ({} joints, {})", robot.name(), robot.dof(), robot.convention().as_str()));
-    head.pair("q", q_text(robot, &values.deg));
-    head.pair("limits", limits_text(robot, q));
+    head.pair("q", q_text(robot, &r.q_deg));
+    head.pair("limits", limits_text(robot, &r.q_si));
     head.write(out, "")?;
     writeln!(
         out,
@@ -106,29 +56,20 @@ pub fn run(args: &JacobianArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let mut columns = vec![("", Align::Left)];
     columns.extend(headers.iter().map(|h| (h.as_str(), Align::Right)));
     let mut table = Table::new(&columns);
-    for (label, row) in ROWS.iter().zip(rows_of(&jac)) {
-        let mut cells = vec![(*label).to_string()];
+    for (label, row) in r.rows.iter().zip(&r.jacobian) {
+        let mut cells = vec![label.clone()];
         cells.extend(row.iter().map(|&v| fixed(v, 6)));
         table.row(cells);
     }
     table.write(out, "  ")?;
     let mut measures = Table::key_value();
-    measures.pair("manipulability", format!("{} (Yoshikawa, product of the singular values)", fixed(m.yoshikawa, 6)));
-    measures.pair("sigma_min", fixed(m.sigma_min, 6));
-    measures.pair("sigma_max", fixed(m.sigma_max, 6));
-    let condition = if m.condition.is_finite() { fixed(m.condition, 3) } else { "infinite (singular)".to_string() };
-    measures.pair("condition", condition);
-    let rank = if m.rank < max_rank {
-        format!("{} of {max_rank} (singular)", m.rank)
-    } else {
-        format!("{} of {max_rank}", m.rank)
-    };
-    measures.pair("rank", rank);
-    measures.pair("singular values", fixeds(&m.singular_values, 6));
+    measures
+        .pair("manipulability", format!("{} (Yoshikawa, product of the singular values)", fixed(r.manipulability, 6)));
+    measures.pair("sigma_min", fixed(r.sigma_min, 6));
+    measures.pair("sigma_max", fixed(r.sigma_max, 6));
+    measures.pair("condition", r.condition.map_or_else(|| "infinite (singular)".to_string(), |c| fixed(c, 3)));
+    let singular = if r.rank < r.max_rank { " (singular)" } else { "" };
+    measures.pair("rank", format!("{} of {}{singular}", r.rank, r.max_rank));
+    measures.pair("singular values", fixeds(&r.singular_values, 6));
     measures.write(out, "")
-}
-
-/// The matrix as rows of columns.
-fn rows_of(jac: &Jacobian) -> Vec<Vec<f64>> {
-    (0..jac.nrows()).map(|r| (0..jac.ncols()).map(|c| jac[(r, c)]).collect()).collect()
 }

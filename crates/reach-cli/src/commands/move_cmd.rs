@@ -35,7 +35,7 @@ use reach::motion::{JointMotion, JointRates, Profile, ToolMotion};
 use serde::{Deserialize, Serialize};
 
 use crate::error::{CliError, one_line};
-use crate::numbers::{display_unit, from_si, joints_outside_limits, q_to_display, to_si};
+use crate::numbers::{display_unit, from_si, joints_outside_limits, q_display, to_si};
 use crate::output::{fixed, fixeds, rpy_deg, write_json};
 use crate::plot::progress::Progress;
 use crate::robot_arg::{RobotArgs, load_robot};
@@ -415,7 +415,7 @@ fn joints_si(robot: &Robot, option: &str, values: &[f64]) -> Result<Vec<f64>, Cl
             robot.name()
         )));
     }
-    Ok(robot.joints().iter().zip(values).map(|(j, v)| to_si(j.kind, *v, crate::numbers::AngleInput::Degrees)).collect())
+    Ok(robot.joints().iter().zip(values).map(|(j, v)| to_si(j.kind, *v, crate::numbers::AngleUnit::Deg)).collect())
 }
 
 fn motion_error(e: impl std::fmt::Display) -> CliError {
@@ -480,8 +480,8 @@ pub fn compute(robot: &Robot, spec: &MoveSpec, progress: bool) -> Result<MoveJso
         let v = pose.translation.vector;
         samples.push(SampleJson {
             t_s: *t,
-            q_deg: q_to_display(robot, qk),
-            qd_deg_s: q_to_display(robot, qdk),
+            q_deg: q_display(robot, qk),
+            qd_deg_s: q_display(robot, qdk),
             xyz_m: [v.x, v.y, v.z],
             rpy_deg: rpy_deg(&pose.rotation),
         });
@@ -551,7 +551,7 @@ fn limit_reasons(robot: &Robot, times: &[f64], q: &[Vec<f64>], qd: &[Vec<f64>]) 
     let mut out = Vec::new();
     for (i, joint) in robot.joints().iter().enumerate() {
         let unit = display_unit(joint.kind);
-        let shown = |v: f64| from_si(joint.kind, v, crate::numbers::AngleInput::Degrees);
+        let shown = |v: f64| from_si(joint.kind, v, crate::numbers::AngleUnit::Deg);
         let position = |k: usize| !joints_outside_limits(robot, &q[k]).contains(&(i + 1));
         let speed = |k: usize| joint.max_velocity.is_none_or(|m| qd[k][i].abs() <= m * (1.0 + 1e-9));
         for (what, ok, text) in [
@@ -654,7 +654,7 @@ fn tool_space(robot: &Robot, spec: &MoveSpec, progress: bool) -> Result<Computed
                     let joint = v.joint.map_or_else(|| "branch lost".to_string(), |j| format!("joint {j} ({})", v.name));
                     let unit = v.joint.map_or("", |j| display_unit(robot.joints()[j - 1].kind));
                     let shown = |x: f64| {
-                        v.joint.map_or(x, |j| from_si(robot.joints()[j - 1].kind, x, crate::numbers::AngleInput::Degrees))
+                        v.joint.map_or(x, |j| from_si(robot.joints()[j - 1].kind, x, crate::numbers::AngleUnit::Deg))
                     };
                     reasons.push(format!(
                         "configuration {} ({}): {joint} {} limit {} .. {} {unit} broken (worst {}) from t = {} s to t = {} s",

@@ -22,7 +22,7 @@ use serde::Serialize;
 use crate::commands::check::load_scene;
 use crate::commands::move_cmd::{End, pose_end, pose_of};
 use crate::error::{CliError, one_line};
-use crate::numbers::{AngleInput, parse_finite, parse_joint_values, q_to_display};
+use crate::numbers::{AngleUnit, parse_finite, parse_joint_values, q_display};
 use crate::output::{Table, fixed, fixeds, write_json};
 use crate::robot_arg::RobotArgs;
 
@@ -199,14 +199,14 @@ pub fn run(args: &PathArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let robot = args.robot.load()?.robot;
     let scene = load_scene(&args.scene)?;
     let split = |t: &str| t.split(',').map(str::to_string).collect::<Vec<_>>();
-    let from = parse_joint_values(&robot, &split(&args.from), AngleInput::Degrees)
+    let from = parse_joint_values(&robot, &split(&args.from), AngleUnit::Deg)
         .map_err(|e| CliError::bad_input(format!("--from: {e}")))?;
     let start = from.si.clone();
     // The ends as typed (no round trip through radians in the report).
     let mut typed_goal = None;
     let goal = match (&args.to, &args.to_pose) {
         (Some(t), None) => {
-            let to = parse_joint_values(&robot, &split(t), AngleInput::Degrees)
+            let to = parse_joint_values(&robot, &split(t), AngleUnit::Deg)
                 .map_err(|e| CliError::bad_input(format!("--to: {e}")))?;
             typed_goal = Some(to.deg);
             Goal::Joints(to.si)
@@ -272,7 +272,7 @@ pub fn run(args: &PathArgs, out: &mut dyn Write) -> Result<(), CliError> {
             json.stats =
                 StatsJson { iterations, nodes, checks, raw_waypoints, raw_length, length: Some(length), time_s };
             json.found = true;
-            json.waypoints_deg = p.waypoints.iter().map(|q| q_to_display(&robot, q)).collect();
+            json.waypoints_deg = p.waypoints.iter().map(|q| q_display(&robot, q)).collect();
             json.waypoints_deg[0].clone_from(&from.deg);
             if let (Some(last), Some(g)) = (json.waypoints_deg.last_mut(), typed_goal) {
                 *last = g;

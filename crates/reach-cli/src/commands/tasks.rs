@@ -37,7 +37,7 @@ use serde::{Deserialize, Serialize};
 use super::ik::ChoiceSpec;
 use super::move_cmd::{ProfileName, profile_of};
 use crate::error::{CliError, one_line};
-use crate::numbers::{parse_finite, q_text, q_to_display, to_si};
+use crate::numbers::{parse_finite, q_display, q_text, to_si};
 use crate::output::{Align, Table, fixed, fixeds, write_json};
 use crate::plot::drawings::{Route, tour_top_view};
 use crate::plot::{DrawArgs, Svg};
@@ -332,7 +332,7 @@ pub fn run(args: &TasksArgs, out: &mut dyn Write) -> Result<(), CliError> {
             if v.len() != dof || v.iter().any(|x| !x.is_finite()) {
                 return Err(CliError::bad_input(format!("{origin}: `start` needs {dof} finite joint values [deg]")));
             }
-            robot.joints().iter().zip(v).map(|(j, &x)| to_si(j.kind, x, crate::numbers::AngleInput::Degrees)).collect()
+            robot.joints().iter().zip(v).map(|(j, &x)| to_si(j.kind, x, crate::numbers::AngleUnit::Deg)).collect()
         }
         None => robot.home(),
     };
@@ -345,7 +345,7 @@ pub fn run(args: &TasksArgs, out: &mut dyn Write) -> Result<(), CliError> {
                 .joints()
                 .iter()
                 .zip(v)
-                .map(|(j, &x)| to_si(j.kind, x, crate::numbers::AngleInput::Degrees))
+                .map(|(j, &x)| to_si(j.kind, x, crate::numbers::AngleUnit::Deg))
                 .collect::<Vec<f64>>();
             Some(JointRates::new(si, None).map_err(|e| CliError::bad_input(format!("{origin}: max_velocity: {e}")))?)
         }
@@ -417,7 +417,7 @@ pub fn run(args: &TasksArgs, out: &mut dyn Write) -> Result<(), CliError> {
         row.index = k + 1;
         match picker.pick(&target, &node0, node0_choice.as_ref())? {
             Ok((q, branch)) => {
-                row.q_deg = Some(q_to_display(robot, &q).into_iter().map(|v| v + 0.0).collect());
+                row.q_deg = Some(q_display(robot, &q).into_iter().map(|v| v + 0.0).collect());
                 row.branch = Some(branch);
                 configs.push(Some(q));
             }
@@ -483,7 +483,7 @@ pub fn run(args: &TasksArgs, out: &mut dyn Write) -> Result<(), CliError> {
             ),
         },
         cost: file.cost,
-        node0_q_deg: q_to_display(robot, &node0).into_iter().map(|v| v + 0.0).collect(),
+        node0_q_deg: q_display(robot, &node0).into_iter().map(|v| v + 0.0).collect(),
         points: rows,
         unreachable,
         plan: plan_json(args.kind, &plan, &matrices, false),

@@ -13,7 +13,7 @@ use reach::world::detour::{DetourOutcome, DetourPlan, P2, arm_points};
 
 use super::svg::{Anchor, Panel, Svg, padded_range};
 use crate::error::CliError;
-use crate::numbers::{display_unit, q_to_display};
+use crate::numbers::{display_unit, q_display};
 
 /// Drawing width, pixels.
 const WIDTH: f64 = 1000.0;
@@ -571,8 +571,8 @@ pub fn title(robot: &Robot, what: &str) -> String {
 /// Joint series from SI samples (positions and rates in rad, m), for callers holding SI data.
 #[must_use]
 pub fn joint_series_si(robot: &Robot, q_si: &[Vec<f64>], qd_si: &[Vec<f64>]) -> Vec<JointSeries> {
-    let q: Vec<Vec<f64>> = q_si.iter().map(|q| q_to_display(robot, q)).collect();
-    let qd: Vec<Vec<f64>> = qd_si.iter().map(|q| q_to_display(robot, q)).collect();
+    let q: Vec<Vec<f64>> = q_si.iter().map(|q| q_display(robot, q)).collect();
+    let qd: Vec<Vec<f64>> = qd_si.iter().map(|q| q_display(robot, q)).collect();
     joint_series(robot, &q, &qd)
 }
 

@@ -39,7 +39,6 @@ use super::motion_criteria::point_to_point_duration;
 use crate::effort::dynamics::{mechanical_energy, positive_work};
 use crate::ik::IkSolutions;
 use crate::model::{JointKind, Robot};
-use crate::motion::joint_space::joint_difference;
 use crate::motion::{JointMotion, JointRates, Profile};
 
 /// Largest number of reachable targets solved exactly (Held–Karp, `O(2ⁿ n²)`).
@@ -510,7 +509,7 @@ fn check_configs(robot: &Robot, configs: &[Option<Vec<f64>>]) -> Result<(), Deci
 
 /// `(n+1)×(n+1)` matrix of leg durations (s): entry `[i][j]` is the duration of the fastest
 /// synchronised point-to-point joint move from configuration `i` to `j` with `profile` within
-/// `rates` ([`point_to_point_duration`]; joint differences as [`joint_difference`]); `0` on the
+/// `rates` ([`point_to_point_duration`]; joint differences as [`Joint::difference`](crate::model::Joint::difference)); `0` on the
 /// diagonal, `+∞` to and from unreachable (`None`) nodes.
 ///
 /// # Errors
@@ -531,7 +530,7 @@ pub fn leg_durations(
         for (j, b) in configs.iter().enumerate().skip(i + 1) {
             if let Some(b) = b {
                 let delta: Vec<f64> =
-                    robot.joints().iter().enumerate().map(|(n, jt)| joint_difference(jt, a[n], b[n])).collect();
+                    robot.joints().iter().enumerate().map(|(n, jt)| jt.difference(a[n], b[n])).collect();
                 d[i][j] = point_to_point_duration(&delta, rates, profile)?;
                 d[j][i] = d[i][j];
             }

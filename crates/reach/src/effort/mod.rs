@@ -22,17 +22,18 @@
 //!
 //! [`Differences`] says how a joint difference is taken: literally, or as the shortest signed
 //! angle `wrap(b − a)` ("wrap-safe": an IK that reports −179° after +179° has moved 2°, not
-//! 358°). [`Differences::for_robot`] wraps revolute joints and not prismatic ones — the right
-//! choice for [`j2`] over densely sampled IK output; for [`j1`] of a motion planned with
-//! [`JointMotion`](crate::motion::JointMotion), use its `delta()` (the difference it actually
-//! travels) with [`j1_of_delta`].
+//! 358°). [`Differences::for_robot`] is the crate's one rule,
+//! [`Joint::difference`](crate::model::Joint::difference): the distance a joint travels —
+//! wrapped for a revolute joint without limits, literal for every bounded or prismatic joint —
+//! the same difference a [`JointMotion`](crate::motion::JointMotion) interpolates, times and
+//! costs, so J1 of a monotone move equals its J2.
 
 pub mod dynamics;
 
 use serde::Serialize;
 use thiserror::Error;
 
-use crate::model::{JointKind, Robot};
+use crate::model::Robot;
 
 /// Seed 001's joint weights `ω = (1/3, 1/3, 1/6, 1/18, 1/18, 1/18)` (notes 001 §3.8, §7).
 pub const SEED001_WEIGHTS: [f64; 6] = [1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0, 1.0 / 18.0, 1.0 / 18.0, 1.0 / 18.0];
@@ -78,10 +79,11 @@ pub enum Differences {
 }
 
 impl Differences {
-    /// Wrapped for revolute joints, literal for prismatic ones.
+    /// The robot's own rule, [`Joint::difference`](crate::model::Joint::difference): wrapped for
+    /// revolute joints without limits, literal for every other joint.
     #[must_use]
     pub fn for_robot(robot: &Robot) -> Self {
-        Differences::PerJoint(robot.joints().iter().map(|j| j.kind == JointKind::Revolute).collect())
+        Differences::PerJoint(robot.joints().iter().map(crate::model::Joint::wraps).collect())
     }
 
     /// The difference from `a` to `b` for joint `i` (0-based).

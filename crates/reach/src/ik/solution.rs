@@ -230,13 +230,12 @@ pub struct IkSolutions {
     differences: JointWraps,
 }
 
-/// Which joints of the solved robot are revolute (their changes wrap), as in
-/// [`Differences::for_robot`](crate::effort::Differences::for_robot), without allocating for
-/// robots of up to 64 joints: bit `i` of a mask. Robots of more joints (rare) fall back to one
-/// flag per joint in a vector.
+/// Which joints of the solved robot wrap ([`Joint::wraps`](crate::model::Joint::wraps), the
+/// crate's one joint-difference rule), without allocating for robots of up to 64 joints: bit
+/// `i` of a mask. Robots of more joints (rare) fall back to one flag per joint in a vector.
 #[derive(Debug, Clone, PartialEq)]
 enum JointWraps {
-    /// Bit `i` set: joint `i` (0-based) is revolute.
+    /// Bit `i` set: joint `i` (0-based) wraps.
     Mask(u64),
     /// More than 64 joints: `true` for a revolute joint.
     Wide(Vec<bool>),
@@ -244,16 +243,16 @@ enum JointWraps {
 
 impl JointWraps {
     fn for_robot(robot: &Robot) -> Self {
-        let revolute = robot.joints().iter().map(|j| j.kind == JointKind::Revolute);
+        let wraps = robot.joints().iter().map(crate::model::Joint::wraps);
         if robot.dof() <= 64 {
-            JointWraps::Mask(revolute.enumerate().fold(0, |m, (i, r)| if r { m | (1 << i) } else { m }))
+            JointWraps::Mask(wraps.enumerate().fold(0, |m, (i, r)| if r { m | (1 << i) } else { m }))
         } else {
-            JointWraps::Wide(revolute.collect())
+            JointWraps::Wide(wraps.collect())
         }
     }
 
-    /// The change from `a` to `b` of joint `i`: wrapped into (−π, π] for a revolute joint,
-    /// literal otherwise (and for an index beyond the robot's joints).
+    /// The change from `a` to `b` of joint `i`, as [`Joint::difference`](crate::model::Joint::difference)
+    /// (literal for an index beyond the robot's joints).
     fn diff(&self, i: usize, a: f64, b: f64) -> f64 {
         let wraps = match self {
             JointWraps::Mask(m) => {
@@ -278,9 +277,9 @@ impl IkSolutions {
     }
 
     /// The feasible solution with the smallest weighted joint change from `from`
-    /// (`Σ wᵢ |qᵢ − fromᵢ|`, radians and metres; seed 000's and 001's rule). Revolute
-    /// differences are wrapped into (−π, π], prismatic ones taken literally
-    /// ([`Differences::for_robot`](crate::effort::Differences::for_robot) of the solved robot).
+    /// (`Σ wᵢ |Δqᵢ|`, radians and metres; seed 000's and 001's rule), each `Δqᵢ` the distance
+    /// joint `i` travels ([`Joint::difference`](crate::model::Joint::difference) of the solved
+    /// robot).
     /// `weights` shorter than the joint vector count as 1 for the missing joints.
     #[must_use]
     pub fn closest_to(&self, from: &[f64], weights: &[f64]) -> Option<&IkSolution> {

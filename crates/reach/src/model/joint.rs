@@ -162,6 +162,41 @@ pub struct Joint {
 }
 
 impl Joint {
+    /// Whether differences of this joint wrap: a **revolute joint without limits**
+    /// (continuous, both bounds infinite) may turn either way, so it takes the shortest signed
+    /// difference. See [`Joint::difference`].
+    #[must_use]
+    #[inline]
+    pub fn wraps(&self) -> bool {
+        self.kind == JointKind::Revolute && !self.limits.lower.is_finite() && !self.limits.upper.is_finite()
+    }
+
+    /// The difference this joint travels from `from` to `to` — **the** joint-difference rule of
+    /// the crate, used by joint-space motion, J1/J2, durations, rates, energy, IK choice,
+    /// tracking and sequencing alike:
+    ///
+    /// * a revolute joint without limits ([`Joint::wraps`]) takes the shortest signed
+    ///   difference `wrap(to − from) ∈ (−π, π]`: it may turn either way, the short way is the
+    ///   cheaper one, and a joint-space motion travels exactly that;
+    /// * every other joint — prismatic, or revolute with any finite bound, however wide
+    ///   (±360° included) — takes the literal difference `to − from`: a bounded joint cannot
+    ///   take the short way round through its limit, and a joint-space motion interpolates the
+    ///   literal values, so that is what it travels (UR5 from 170° to −170° turns 340°).
+    ///
+    /// # Example
+    /// ```
+    /// use reach::model::Joint;
+    /// let continuous = Joint::revolute(0.0, 0.0, 0.0, 0.0);
+    /// let limited = Joint::revolute(0.0, 0.0, 0.0, 0.0).with_limits(0.0, 6.3);
+    /// assert!((continuous.difference(6.0, 0.2) - (0.2 - 6.0 + std::f64::consts::TAU)).abs() < 1e-12);
+    /// assert!((limited.difference(6.0, 0.2) + 5.8).abs() < 1e-12);
+    /// ```
+    #[must_use]
+    #[inline]
+    pub fn difference(&self, from: f64, to: f64) -> f64 {
+        if self.wraps() { crate::angle::shortest_difference(from, to) } else { to - from }
+    }
+
     /// A revolute standard/modified DH joint with no limits; adjust the fields as needed.
     #[must_use]
     pub fn revolute(a: f64, alpha: f64, d: f64, theta_offset: f64) -> Self {

@@ -247,6 +247,15 @@ impl Robot {
         Robot::new(spec)
     }
 
+    /// The distance joint `i` (0-based) travels from `from` to `to`: the crate's one
+    /// joint-difference rule, [`Joint::difference`] (wrapped for a revolute joint without
+    /// limits, literal otherwise). An index beyond the joints takes the literal difference.
+    #[must_use]
+    #[inline]
+    pub fn joint_difference(&self, i: usize, from: f64, to: f64) -> f64 {
+        self.spec.joints.get(i).map_or(to - from, |j| j.difference(from, to))
+    }
+
     /// The home (rest) configuration: each joint's `home` value.
     #[must_use]
     pub fn home(&self) -> Vec<f64> {

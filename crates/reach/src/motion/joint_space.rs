@@ -3,13 +3,12 @@
 //!
 //! # The joint difference `Δq`
 //!
-//! * A **revolute joint without limits** (continuous, both bounds infinite) takes the shortest
-//!   signed difference, `wrap(q1 − q0) ∈ (−π, π]`: it may turn either way, and the short way
-//!   is the cheaper one.
-//! * **Every other joint** takes the literal difference `q1 − q0`, so that a joint whose range
-//!   does not contain the short way round (e.g. seed 001's q1 ∈ [0°, 360°] going from 350° to
-//!   10°) stays inside its limits: a motion between two configurations within limits is within
-//!   limits at every instant, since each joint moves monotonically between its end values.
+//! `Δqᵢ` is the crate's one joint-difference rule, [`Joint::difference`](crate::model::Joint::difference):
+//! the shortest signed angle for a revolute joint without limits, the literal difference for
+//! every other joint — so that a joint whose range does not contain the short way round (e.g.
+//! seed 001's q1 ∈ [0°, 360°] going from 350° to 10°) stays inside its limits: a motion between
+//! two configurations within limits is within limits at every instant, since each joint moves
+//! monotonically between its end values.
 //!
 //! [`JointMotion::new`] (no robot) always uses the literal difference.
 //!
@@ -27,29 +26,8 @@ use super::sample::{JointSample, JointTrajectory, sample_times};
 use super::timing::{JointRates, Timing};
 use super::{MotionError, Profile, check_number, check_vector};
 use crate::ik::{self, IkFailure, IkOptions, IkTarget};
-use crate::model::{Joint, JointKind, Robot};
+use crate::model::Robot;
 use crate::tolerance::LIMIT_SLACK;
-
-/// The difference a joint travels from `from` to `to` (see the module docs): the shortest
-/// signed angle for an unlimited revolute joint, the literal difference otherwise.
-///
-/// # Example
-/// ```
-/// use reach::model::Joint;
-/// use reach::motion::joint_space::joint_difference;
-/// let continuous = Joint::revolute(0.0, 0.0, 0.0, 0.0);
-/// let limited = Joint::revolute(0.0, 0.0, 0.0, 0.0).with_limits(0.0, 6.3);
-/// assert!((joint_difference(&continuous, 6.0, 0.2) - (0.2 - 6.0 + std::f64::consts::TAU)).abs() < 1e-12);
-/// assert!((joint_difference(&limited, 6.0, 0.2) + 5.8).abs() < 1e-12);
-/// ```
-#[must_use]
-pub fn joint_difference(joint: &Joint, from: f64, to: f64) -> f64 {
-    if joint.kind == JointKind::Revolute && !joint.limits.lower.is_finite() && !joint.limits.upper.is_finite() {
-        crate::angle::shortest_difference(from, to)
-    } else {
-        to - from
-    }
-}
 
 /// A point-to-point joint motion `q(t) = q0 + λ((t − t0)/T)·Δq`.
 ///
@@ -125,8 +103,7 @@ impl JointMotion {
         check_vector("q0", q0, robot.dof())?;
         check_vector("q1", q1, robot.dof())?;
         check_time(t0, duration)?;
-        let delta =
-            robot.joints().iter().zip(q0.iter().zip(q1)).map(|(j, (a, b))| joint_difference(j, *a, *b)).collect();
+        let delta = robot.joints().iter().zip(q0.iter().zip(q1)).map(|(j, (a, b))| j.difference(*a, *b)).collect();
         let inside = |q: &[f64]| robot.first_joint_outside_limits(q, LIMIT_SLACK).is_none();
         Ok(JointMotion {
             q0: q0.to_vec(),

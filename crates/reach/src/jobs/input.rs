@@ -1,0 +1,507 @@
+//! What every request shares: the robot, joint vectors in the user's units, poses, and the
+//! conversions between the user's units and SI.
+//!
+//! # Units in requests and reports
+//!
+//! * Joint vectors are typed by unit: `{"deg": [0, -90, 90]}` or `{"rad": [0, -1.57, 1.57]}`
+//!   ([`Joints`]); revolute joints take the named unit, **prismatic joints always metres**.
+//!   Messages about a request quote joint values in the unit it was typed in ([`AngleUnit`]).
+//! * Reports give joint values in display units under names that carry them: `q_deg`
+//!   (revolute degrees, prismatic metres), and SI under `q_si` where both are useful.
+//! * Poses ([`Pose`]): `xyz_m` with one of `rpy_deg`, `rpy_rad`, `quat_wxyz`, or a row-major
+//!   4×4 `matrix` alone; `xyz_m` alone is a position-only target.
+
+use nalgebra::{Isometry3, Matrix3, Matrix4, Point3, Rotation3, Translation3, UnitQuaternion};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::ik::IkTarget;
+use crate::model::{FileUnits, JointKind, Robot, UrdfChain, presets};
+use crate::tolerance::{LIMIT_SLACK, ROTATION_ORTHONORMALITY};
+
+/// Where a request's robot comes from: a preset name, or the text of a description file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum RobotInput {
+    /// A preset by name (`reach robots` lists them).
+    Preset(String),
+    /// The text of a TOML robot description (docs/robot-format.md).
+    Toml {
+        /// The file's text.
+        text: String,
+    },
+    /// The text of a URDF document and the chain to take from its tree.
+    Urdf {
+        /// The document's text.
+        text: String,
+        /// The link the chain starts at (default: the tree's root).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        base: Option<String>,
+        /// The link the chain ends at (default: the only leaf below the base).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        tip: Option<String>,
+    },
+}
+
+/// A robot with the units its description was written in.
+#[derive(Debug, Clone)]
+pub struct LoadedRobot {
+    /// The validated model (SI units, radians).
+    pub robot: Robot,
+    /// Units of the TOML description (`None` for URDF: always metres and radians).
+    pub units: Option<FileUnits>,
+}
+
+impl RobotInput {
+    /// Parses the robot.
+    ///
+    /// # Errors
+    /// [`Error::Model`]: an unknown preset (naming the known ones), a malformed description.
+    pub fn load(&self) -> Result<LoadedRobot> {
+        match self {
+            RobotInput::Preset(name) => {
+                let text = presets::source(name).ok_or_else(|| crate::model::ModelError::UnknownPreset {
+                    name: name.clone(),
+                    known: presets::names().join(", "),
+                })?;
+                let (robot, units) = Robot::from_toml_str_with_units(text)?;
+                Ok(LoadedRobot { robot, units: Some(units) })
+            }
+            RobotInput::Toml { text } => {
+                let (robot, units) = Robot::from_toml_str_with_units(text)?;
+                Ok(LoadedRobot { robot, units: Some(units) })
+            }
+            RobotInput::Urdf { text, base, tip } => {
+                let robot = Robot::from_urdf_str(text, &UrdfChain { base: base.clone(), tip: tip.clone() })?;
+                Ok(LoadedRobot { robot, units: None })
+            }
+        }
+    }
+}
+
+/// The unit revolute joint values (and angle messages) are written in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum AngleUnit {
+    /// Degrees (the default of the command line).
+    #[default]
+    Deg,
+    /// Radians.
+    Rad,
+}
+
+impl AngleUnit {
+    /// A revolute value typed in this unit, in radians.
+    #[must_use]
+    pub fn to_rad(self, value: f64) -> f64 {
+        match self {
+            AngleUnit::Deg => value.to_radians(),
+            AngleUnit::Rad => value,
+        }
+    }
+
+    /// A value in radians, in this unit.
+    #[must_use]
+    pub fn from_rad(self, value: f64) -> f64 {
+        match self {
+            AngleUnit::Deg => value.to_degrees(),
+            AngleUnit::Rad => value,
+        }
+    }
+
+    /// `deg` or `rad`.
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            AngleUnit::Deg => "deg",
+            AngleUnit::Rad => "rad",
+        }
+    }
+}
+
+/// Joint values as typed: revolute joints in degrees or radians, prismatic joints in metres.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Joints {
+    /// Revolute joints in degrees, prismatic in metres.
+    Deg(Vec<f64>),
+    /// Revolute joints in radians, prismatic in metres.
+    Rad(Vec<f64>),
+}
+
+impl Joints {
+    /// The unit the revolute values are typed in.
+    #[must_use]
+    pub fn unit(&self) -> AngleUnit {
+        match self {
+            Joints::Deg(_) => AngleUnit::Deg,
+            Joints::Rad(_) => AngleUnit::Rad,
+        }
+    }
+
+    /// The values as typed.
+    #[must_use]
+    pub fn values(&self) -> &[f64] {
+        match self {
+            Joints::Deg(v) | Joints::Rad(v) => v,
+        }
+    }
+
+    /// The values in SI (radians, metres) for `robot`, checked: one finite value per joint.
+    ///
+    /// # Errors
+    /// [`Error::Request`] naming `field` (and the 1-based joint for a non-finite value).
+    pub fn si(&self, robot: &Robot, field: &str) -> Result<Vec<f64>> {
+        let values = self.values();
+        if values.len() != robot.dof() {
+            return Err(Error::request(
+                field,
+                format!(
+                    "robot `{}` has {} joints, got {} joint value{}",
+                    robot.name(),
+                    robot.dof(),
+                    values.len(),
+                    if values.len() == 1 { "" } else { "s" }
+                ),
+            ));
+        }
+        let unit = self.unit();
+        robot
+            .joints()
+            .iter()
+            .zip(values)
+            .enumerate()
+            .map(|(i, (j, &v))| {
+                if v.is_finite() {
+                    Ok(to_si(j.kind, v, unit))
+                } else {
+                    Err(Error::request(
+                        format!("{field}: joint {}", i + 1),
+                        format!("expected a finite number, got {v}"),
+                    ))
+                }
+            })
+            .collect()
+    }
+
+    /// The values in display units (revolute degrees, prismatic metres); degrees are kept
+    /// exactly as typed (no round trip through radians).
+    #[must_use]
+    pub fn display(&self, robot: &Robot) -> Vec<f64> {
+        match self {
+            Joints::Deg(v) => v.clone(),
+            Joints::Rad(v) => q_display(robot, v),
+        }
+    }
+}
+
+/// A joint value typed in `unit`, in SI (revolute radians, prismatic metres as given).
+#[must_use]
+pub fn to_si(kind: JointKind, value: f64, unit: AngleUnit) -> f64 {
+    match kind {
+        JointKind::Revolute => unit.to_rad(value),
+        JointKind::Prismatic => value,
+    }
+}
+
+/// An SI joint value in `unit` (inverse of [`to_si`]).
+#[must_use]
+pub fn from_si(kind: JointKind, value: f64, unit: AngleUnit) -> f64 {
+    match kind {
+        JointKind::Revolute => unit.from_rad(value),
+        JointKind::Prismatic => value,
+    }
+}
+
+/// The joint vector (SI) in display units: revolute joints in degrees, prismatic in metres —
+/// what report fields named `q_deg` hold.
+#[must_use]
+pub fn q_display(robot: &Robot, q: &[f64]) -> Vec<f64> {
+    robot.joints().iter().zip(q).map(|(j, &v)| from_si(j.kind, v, AngleUnit::Deg)).collect()
+}
+
+/// The unit name of a joint value in `unit`: `deg`/`rad` for revolute joints, `m` for
+/// prismatic ones.
+#[must_use]
+pub fn unit_name(kind: JointKind, unit: AngleUnit) -> &'static str {
+    match kind {
+        JointKind::Revolute => unit.as_str(),
+        JointKind::Prismatic => "m",
+    }
+}
+
+/// 1-based numbers of the joints whose value (SI) lies outside their limits (with the crate's
+/// [`LIMIT_SLACK`]).
+#[must_use]
+pub fn joints_outside_limits(robot: &Robot, q: &[f64]) -> Vec<usize> {
+    robot
+        .joints()
+        .iter()
+        .zip(q)
+        .enumerate()
+        .filter(|(_, (j, v))| !j.limits.contains(**v, LIMIT_SLACK))
+        .map(|(i, _)| i + 1)
+        .collect()
+}
+
+/// A pose as typed: position in metres with one orientation, or a homogeneous matrix.
+///
+/// Exactly one of: `matrix`; or `xyz_m` with at most one of `rpy_deg`, `rpy_rad`, `quat_wxyz`
+/// (none: a position-only target, for IK of arms that cannot set orientation). Roll, pitch,
+/// yaw are about fixed axes, `R = Rz(yaw)·Ry(pitch)·Rx(roll)`; quaternions `w, x, y, z`.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Pose {
+    /// Position, metres.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub xyz_m: Option<[f64; 3]>,
+    /// Roll, pitch, yaw in degrees.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rpy_deg: Option<[f64; 3]>,
+    /// Roll, pitch, yaw in radians.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rpy_rad: Option<[f64; 3]>,
+    /// Unit quaternion `w, x, y, z` (normalised here; must not be zero).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub quat_wxyz: Option<[f64; 4]>,
+    /// Homogeneous 4×4 matrix, row-major: last row `0 0 0 1`, rotation orthonormal.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub matrix: Option<[[f64; 4]; 4]>,
+}
+
+impl Pose {
+    /// A pose from a position and roll, pitch, yaw in degrees.
+    #[must_use]
+    pub fn xyz_rpy_deg(xyz_m: [f64; 3], rpy_deg: [f64; 3]) -> Self {
+        Pose { xyz_m: Some(xyz_m), rpy_deg: Some(rpy_deg), ..Pose::default() }
+    }
+
+    /// The IK target: a full pose, or a position when no orientation is given.
+    ///
+    /// # Errors
+    /// [`Error::Request`] naming `field` (`field.matrix`, `field.quat_wxyz`, …): non-finite
+    /// numbers, no or contradicting parts, a matrix whose last row is not `0 0 0 1`, whose
+    /// rotation is not orthonormal (`max |RᵀR − I| > ROTATION_ORTHONORMALITY`) or is a
+    /// reflection, a zero quaternion.
+    pub fn target(&self, field: &str) -> Result<IkTarget> {
+        let sub = |name: &str| format!("{field}.{name}");
+        let finite = |name: &str, values: &[f64]| -> Result<()> {
+            match values.iter().position(|v| !v.is_finite()) {
+                Some(i) => Err(Error::request(
+                    format!("{}[{}]", sub(name), i + 1),
+                    format!("expected a finite number, got {}", values[i]),
+                )),
+                None => Ok(()),
+            }
+        };
+        let orientations = [self.rpy_deg.is_some(), self.rpy_rad.is_some(), self.quat_wxyz.is_some()];
+        let count = orientations.iter().filter(|&&b| b).count();
+        if let Some(m) = &self.matrix {
+            if self.xyz_m.is_some() || count > 0 {
+                return Err(Error::request(field, "give either `matrix` or `xyz_m` with an orientation, not both"));
+            }
+            let flat: Vec<f64> = m.iter().flatten().copied().collect();
+            finite("matrix", &flat)?;
+            return Ok(IkTarget::Pose(pose_from_matrix(&sub("matrix"), &Matrix4::from_row_slice(&flat))?));
+        }
+        let Some(xyz) = self.xyz_m else {
+            return Err(Error::request(field, "give `xyz_m` (with an orientation) or `matrix`"));
+        };
+        finite("xyz_m", &xyz)?;
+        if count > 1 {
+            return Err(Error::request(field, "give at most one of `rpy_deg`, `rpy_rad`, `quat_wxyz`"));
+        }
+        let point = Point3::from(xyz);
+        let rotation = if let Some(a) = self.rpy_deg {
+            finite("rpy_deg", &a)?;
+            UnitQuaternion::from_euler_angles(a[0].to_radians(), a[1].to_radians(), a[2].to_radians())
+        } else if let Some(a) = self.rpy_rad {
+            finite("rpy_rad", &a)?;
+            UnitQuaternion::from_euler_angles(a[0], a[1], a[2])
+        } else if let Some(q) = self.quat_wxyz {
+            finite("quat_wxyz", &q)?;
+            let quaternion = nalgebra::Quaternion::new(q[0], q[1], q[2], q[3]);
+            if quaternion.norm() < 1e-9 {
+                return Err(Error::request(sub("quat_wxyz"), "a zero quaternion is not a rotation"));
+            }
+            UnitQuaternion::from_quaternion(quaternion)
+        } else {
+            return Ok(IkTarget::Position(point));
+        };
+        Ok(IkTarget::Pose(Isometry3::from_parts(Translation3::from(point.coords), rotation)))
+    }
+
+    /// The full pose.
+    ///
+    /// # Errors
+    /// As [`Pose::target`], and [`Error::Request`] when no orientation is given.
+    pub fn isometry(&self, field: &str) -> Result<Isometry3<f64>> {
+        match self.target(field)? {
+            IkTarget::Pose(p) => Ok(p),
+            IkTarget::Position(_) => {
+                Err(Error::request(field, "needs an orientation: `rpy_deg`, `rpy_rad` or `quat_wxyz` (or a `matrix`)"))
+            }
+        }
+    }
+}
+
+/// A pose from a homogeneous matrix: the last row must be exactly `0 0 0 1` and the rotation
+/// part orthonormal (`max |RᵀR − I| ≤ ROTATION_ORTHONORMALITY`) with determinant +1.
+fn pose_from_matrix(field: &str, m: &Matrix4<f64>) -> Result<Isometry3<f64>> {
+    let last = [m[(3, 0)], m[(3, 1)], m[(3, 2)], m[(3, 3)]];
+    if last != [0.0, 0.0, 0.0, 1.0] {
+        return Err(Error::request(field, format!("the last row must be 0 0 0 1, got {last:?}")));
+    }
+    let r: Matrix3<f64> = m.fixed_view::<3, 3>(0, 0).into_owned();
+    let deviation = (r.transpose() * r - Matrix3::identity()).abs().max();
+    if deviation > ROTATION_ORTHONORMALITY {
+        return Err(Error::request(
+            field,
+            format!(
+                "the rotation part (rows and columns 1-3) is not orthonormal: max |RᵀR − I| = {deviation:.3e}, \
+                 more than {ROTATION_ORTHONORMALITY:e}"
+            ),
+        ));
+    }
+    if r.determinant() < 0.0 {
+        return Err(Error::request(field, "the rotation part is a reflection (determinant −1), not a rotation"));
+    }
+    let translation = Translation3::new(m[(0, 3)], m[(1, 3)], m[(2, 3)]);
+    // Closed form (Shepperd): `UnitQuaternion::from_matrix`'s iteration starts at the identity
+    // and stalls on half-turns (diag(−1, 1, −1) came back as a 0.0155° roll).
+    let rotation = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(r));
+    Ok(Isometry3::from_parts(translation, rotation))
+}
+
+/// A pose in a report: `{"matrix", "xyz_m", "rpy_deg", "quat_wxyz"}`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct PoseReport {
+    /// Homogeneous matrix, row-major.
+    pub matrix: [[f64; 4]; 4],
+    /// Position, metres.
+    pub xyz_m: [f64; 3],
+    /// Roll, pitch, yaw in degrees, `R = Rz(yaw)·Ry(pitch)·Rx(roll)`.
+    pub rpy_deg: [f64; 3],
+    /// Unit quaternion `w, x, y, z` with `w ≥ 0`.
+    pub quat_wxyz: [f64; 4],
+}
+
+impl PoseReport {
+    /// The report form of a pose.
+    #[must_use]
+    pub fn of(pose: &Isometry3<f64>) -> Self {
+        let m = pose.to_homogeneous();
+        PoseReport {
+            matrix: std::array::from_fn(|r| std::array::from_fn(|c| m[(r, c)])),
+            xyz_m: pose.translation.vector.into(),
+            rpy_deg: rpy_deg(&pose.rotation),
+            quat_wxyz: quat_wxyz(&pose.rotation),
+        }
+    }
+}
+
+/// Roll, pitch, yaw in radians with `R = Rz(yaw)·Ry(pitch)·Rx(roll)`.
+#[must_use]
+pub fn rpy_rad(rotation: &UnitQuaternion<f64>) -> [f64; 3] {
+    let (roll, pitch, yaw) = rotation.euler_angles();
+    [roll, pitch, yaw]
+}
+
+/// Roll, pitch, yaw in degrees (see [`rpy_rad`]).
+#[must_use]
+pub fn rpy_deg(rotation: &UnitQuaternion<f64>) -> [f64; 3] {
+    rpy_rad(rotation).map(f64::to_degrees)
+}
+
+/// The quaternion as `[w, x, y, z]` with `w ≥ 0`.
+#[must_use]
+pub fn quat_wxyz(rotation: &UnitQuaternion<f64>) -> [f64; 4] {
+    let q = rotation.quaternion();
+    let s = if q.w < 0.0 { -1.0 } else { 1.0 };
+    [s * q.w, s * q.i, s * q.j, s * q.k]
+}
+
+/// A positive finite number from an optional request field.
+///
+/// # Errors
+/// [`Error::Request`] naming `field` when the value is not finite or not `> 0`.
+pub fn positive(field: &str, value: Option<f64>) -> Result<Option<f64>> {
+    match value {
+        Some(v) if !v.is_finite() => Err(Error::request(field, format!("expected a finite number, got {v}"))),
+        Some(v) if v <= 0.0 => Err(Error::request(field, format!("must be > 0, got {v}"))),
+        other => Ok(other),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rpy_follows_fixed_axis_convention() {
+        // R = Rz(yaw)·Ry(pitch)·Rx(roll), built from elementary rotations.
+        let (roll, pitch, yaw) = (0.3, -0.4, 1.1);
+        let r = UnitQuaternion::from_axis_angle(&nalgebra::Vector3::z_axis(), yaw)
+            * UnitQuaternion::from_axis_angle(&nalgebra::Vector3::y_axis(), pitch)
+            * UnitQuaternion::from_axis_angle(&nalgebra::Vector3::x_axis(), roll);
+        let got = rpy_rad(&r);
+        for (g, w) in got.iter().zip([roll, pitch, yaw]) {
+            assert!((g - w).abs() < 1e-12, "{got:?}");
+        }
+    }
+
+    #[test]
+    fn quaternion_has_non_negative_w() {
+        let r = UnitQuaternion::from_axis_angle(&nalgebra::Vector3::z_axis(), 1.5 * std::f64::consts::PI);
+        assert!(quat_wxyz(&r)[0] >= 0.0);
+        let r = UnitQuaternion::from_axis_angle(&nalgebra::Vector3::z_axis(), std::f64::consts::FRAC_PI_2);
+        let q = quat_wxyz(&r);
+        assert!((q[0] - q[3]).abs() < 1e-15 && q[3] > 0.0);
+    }
+
+    #[test]
+    fn half_turn_matrix_is_read_exactly() {
+        let pose = Pose {
+            matrix: Some([[-1.0, 0.0, 0.0, 0.4], [0.0, 1.0, 0.0, -0.2], [0.0, 0.0, -1.0, 0.3], [0.0, 0.0, 0.0, 1.0]]),
+            ..Pose::default()
+        };
+        let p = pose.isometry("to").unwrap();
+        let (r, _, y) = p.rotation.euler_angles();
+        assert!(p.rotation.angle() > 3.14, "{r} {y}");
+    }
+
+    #[test]
+    fn contradicting_or_missing_parts_name_the_field() {
+        let both = Pose { rpy_deg: Some([0.0; 3]), rpy_rad: Some([0.0; 3]), ..Pose::xyz_rpy_deg([0.0; 3], [0.0; 3]) };
+        assert!(both.target("to").unwrap_err().to_string().starts_with("to: give at most one"));
+        let nan = Pose::xyz_rpy_deg([0.0, f64::NAN, 0.0], [0.0; 3]);
+        assert_eq!(nan.target("to").unwrap_err().to_string(), "to.xyz_m[2]: expected a finite number, got NaN");
+        assert!(Pose::default().target("to").is_err());
+        let position = Pose { xyz_m: Some([1.0, 2.0, 3.0]), ..Pose::default() };
+        assert!(matches!(position.target("to").unwrap(), IkTarget::Position(_)));
+        assert!(position.isometry("to").is_err());
+    }
+
+    #[test]
+    fn joints_convert_by_their_unit_and_name_the_joint() {
+        let robot = presets::get("ur5").unwrap();
+        let deg = Joints::Deg(vec![90.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+        assert!((deg.si(&robot, "q").unwrap()[0] - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+        let rad = Joints::Rad(vec![std::f64::consts::FRAC_PI_2, 0.0, 0.0, 0.0, 0.0, 0.0]);
+        assert!((rad.display(&robot)[0] - 90.0).abs() < 1e-12);
+        let short = Joints::Deg(vec![0.0; 5]);
+        assert_eq!(short.si(&robot, "q").unwrap_err().to_string(), "q: robot `ur5` has 6 joints, got 5 joint values");
+        let inf = Joints::Deg(vec![0.0, f64::INFINITY, 0.0, 0.0, 0.0, 0.0]);
+        assert_eq!(inf.si(&robot, "q").unwrap_err().to_string(), "q: joint 2: expected a finite number, got inf");
+    }
+
+    #[test]
+    fn robots_load_from_presets_and_text() {
+        assert_eq!(RobotInput::Preset("puma560".into()).load().unwrap().robot.dof(), 6);
+        let e = RobotInput::Preset("nope".into()).load().unwrap_err();
+        assert_eq!(e.code(), "model");
+        let text = presets::source("planar3").unwrap().to_string();
+        assert_eq!(RobotInput::Toml { text }.load().unwrap().robot.dof(), 3);
+    }
+}

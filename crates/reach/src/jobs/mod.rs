@@ -1,0 +1,140 @@
+//! The application layer: one request and one report per workflow, and a pure `run`.
+//!
+//! Every front end — the `reach` command line, the control service, the Python package, the
+//! viewer — runs a workflow by building its request, calling the library, and rendering the
+//! report; none of them computes anything of its own. A command's `--json` output *is* its
+//! report serialised, and the same request gives the same report from every front end.
+//!
+//! * [`Request`] (internally tagged by `"kind"`: `{"kind": "fk", "q": {"deg": [...]}}`) and
+//!   [`Report`] list every workflow; [`Job`] pairs a request with its robot ([`RobotInput`]:
+//!   a preset, or the text of a TOML/URDF description — files are read by the front ends,
+//!   parsed here).
+//! * [`run`] runs a request on a loaded robot; [`Job::run`] loads the robot first.
+//! * Units: see [`input`]. Requests carry joint values in the unit they were typed in;
+//!   reports carry `q_deg` (revolute degrees, prismatic metres) and SI where both are useful;
+//!   messages quote values in the units of the request.
+//! * Every request and report type derives [`schemars::JsonSchema`]; [`schemas`] lists them,
+//!   and the generated JSON Schemas are kept in `docs/schemas/` (a test checks they are
+//!   current).
+
+pub mod input;
+pub mod kinematics;
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+pub use input::{AngleUnit, Joints, LoadedRobot, Pose, PoseReport, RobotInput};
+pub use kinematics::{FkReport, FkRequest, JacobianReport, JacobianRequest};
+
+use crate::Robot;
+use crate::error::Result;
+
+/// A workflow's request (the robot is given beside it, see [`Job`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Request {
+    /// Forward kinematics.
+    Fk(FkRequest),
+    /// The Jacobian and its measures.
+    Jacobian(JacobianRequest),
+}
+
+/// A workflow's report, tagged by `"kind"` like its request.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Report {
+    /// Forward kinematics.
+    Fk(FkReport),
+    /// The Jacobian and its measures.
+    Jacobian(JacobianReport),
+}
+
+/// A request together with its robot.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Job {
+    /// The robot.
+    pub robot: RobotInput,
+    /// The workflow and its parameters.
+    pub request: Request,
+}
+
+impl Job {
+    /// Loads the robot and runs the request.
+    ///
+    /// # Errors
+    /// As [`RobotInput::load`] and [`run`].
+    pub fn run(&self) -> Result<Report> {
+        run(&self.robot.load()?.robot, &self.request)
+    }
+}
+
+/// Runs one request on `robot`. Pure: no file, terminal or network I/O.
+///
+/// # Errors
+/// [`crate::Error`] for bad input, naming the request field. "No solution" and "infeasible"
+/// are not errors: they are in the report.
+pub fn run(robot: &Robot, request: &Request) -> Result<Report> {
+    Ok(match request {
+        Request::Fk(r) => Report::Fk(kinematics::fk(robot, r)?),
+        Request::Jacobian(r) => Report::Jacobian(kinematics::jacobian(robot, r)?),
+    })
+}
+
+/// The JSON Schema of every request and report, by file name (`fk.request`, `fk.report`, …,
+/// and `job` for [`Job`]), as kept in `docs/schemas/<name>.schema.json`.
+#[must_use]
+pub fn schemas() -> Vec<(&'static str, serde_json::Value)> {
+    fn of<T: JsonSchema>() -> serde_json::Value {
+        schemars::schema_for!(T).to_value()
+    }
+    vec![
+        ("job", of::<Job>()),
+        ("fk.request", of::<FkRequest>()),
+        ("fk.report", of::<FkReport>()),
+        ("jacobian.request", of::<JacobianRequest>()),
+        ("jacobian.report", of::<JacobianReport>()),
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `docs/schemas/` holds exactly the generated schemas. `REACH_BLESS_SCHEMAS=1 cargo test -p
+    /// reach schemas_in_docs_are_current` rewrites them after a change to a request or report.
+    #[test]
+    fn schemas_in_docs_are_current() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/schemas");
+        let bless = std::env::var_os("REACH_BLESS_SCHEMAS").is_some();
+        let mut stale = Vec::new();
+        for (name, schema) in schemas() {
+            let path = dir.join(format!("{name}.schema.json"));
+            let text = serde_json::to_string_pretty(&schema).unwrap() + "\n";
+            if bless {
+                std::fs::create_dir_all(&dir).unwrap();
+                std::fs::write(&path, &text).unwrap();
+            } else if std::fs::read_to_string(&path).ok().as_deref() != Some(text.as_str()) {
+                stale.push(name);
+            }
+        }
+        assert!(
+            stale.is_empty(),
+            "stale schemas in docs/schemas: {stale:?}; run REACH_BLESS_SCHEMAS=1 cargo test -p reach schemas_in_docs_are_current"
+        );
+    }
+
+    #[test]
+    fn a_job_round_trips_through_json() {
+        let job: Job = serde_json::from_str(
+            r#"{"robot": {"preset": "ur5"}, "request": {"kind": "fk", "q": {"deg": [0, -90, 90, 0, 90, 0]}}}"#,
+        )
+        .unwrap();
+        let Report::Fk(report) = job.run().unwrap() else { panic!("not an fk report") };
+        assert_eq!(report.q_deg, vec![0.0, -90.0, 90.0, 0.0, 90.0, 0.0]);
+        let unknown = serde_json::from_str::<Job>(
+            r#"{"robot": {"preset": "ur5"}, "request": {"kind": "fk", "q": {"deg": [0]}, "extra": 1}}"#,
+        );
+        assert!(unknown.is_err(), "unknown fields are rejected");
+    }
+}
