@@ -179,3 +179,32 @@ impl AsRef<Path> for TempFile {
         &self.path
     }
 }
+
+/// Checks a command's `--json` output against the library: it must equal the library's report
+/// for the same job (`reach::jobs::Job::run`, serialised), and validate against the JSON Schema
+/// `docs/schemas/<schema>.schema.json`. Returns the output.
+#[allow(dead_code, reason = "not every test module checks reports")]
+pub fn assert_report(args: &[&str], job: &reach::jobs::Job, schema: &str) -> Value {
+    let output = json(args);
+    let report = job.run().unwrap_or_else(|e| panic!("the library fails the same job: {e}"));
+    let mut expected = serde_json::to_value(&report).unwrap();
+    // The CLI prints the workflow's report itself, without the `kind` tag of `jobs::Report`.
+    if let Value::Object(map) = &mut expected {
+        map.remove("kind");
+    }
+    assert_eq!(output, expected, "`reach {}` --json differs from the library report", args.join(" "));
+    assert_valid(schema, &output);
+    output
+}
+
+/// Validates `value` against `docs/schemas/<schema>.schema.json`, listing every violation.
+#[allow(dead_code, reason = "not every test module checks reports")]
+pub fn assert_valid(schema: &str, value: &Value) {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("../../docs/schemas/{schema}.schema.json"));
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let schema_value: Value = serde_json::from_str(&text).unwrap();
+    let validator = jsonschema::validator_for(&schema_value).unwrap_or_else(|e| panic!("{schema}: bad schema: {e}"));
+    let errors: Vec<String> = validator.iter_errors(value).map(|e| format!("{} at {}", e, e.instance_path())).collect();
+    assert!(errors.is_empty(), "output does not match {schema}: {errors:#?}");
+}
