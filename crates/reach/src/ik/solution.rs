@@ -504,7 +504,15 @@ mod tests {
 
     #[test]
     fn joint_wraps_match_the_robot_rule_with_and_without_the_mask() {
-        let robot = yaw_slide();
+        // A bounded yaw takes literal differences (the one rule, `Joint::difference`)…
+        assert_eq!(JointWraps::for_robot(&yaw_slide()), JointWraps::Mask(0));
+        // …a continuous one wraps.
+        let robot = Robot::from_toml_str(
+            "name = \"yaw-slide\"\nlength_unit = \"m\"\nangle_unit = \"deg\"\n\
+             [[joints]]\nname = \"yaw\"\nalpha = -90\n\
+             [[joints]]\nname = \"slide\"\nkind = \"prismatic\"\nlimits = [-10, 10]\n",
+        )
+        .unwrap();
         let wraps = JointWraps::for_robot(&robot);
         assert_eq!(wraps, JointWraps::Mask(0b01));
         let rule = crate::effort::Differences::for_robot(&robot);
