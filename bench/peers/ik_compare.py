@@ -8,7 +8,7 @@ home configuration, full 6-D pose. A solve succeeds when the returned configurat
 the joint limits and its pose, recomputed by forward kinematics, is within 1e-6 m and 1e-6 rad
 of the target. Times are wall-clock per call (median, 95th percentile), in microseconds.
 
-Robots are built from reach's own preset files (robots/*.toml: standard or modified DH,
+Robots are built from reach's own preset files (crates/reach/robots/*.toml: standard or modified DH,
 lengths, twists, offsets, limits, home, tool), so both libraries solve the same chains.
 
 Peers:
@@ -57,8 +57,8 @@ class SplitMix64:
 
 
 def load_preset(name):
-    """An rtb DHRobot from robots/<name>.toml, plus the limits and home in SI units / radians."""
-    with open(os.path.join(REPO, "robots", f"{name}.toml"), "rb") as f:
+    """An rtb DHRobot from crates/reach/robots/<name>.toml, plus the limits and home in SI units / radians."""
+    with open(os.path.join(REPO, "crates", "reach", "robots", f"{name}.toml"), "rb") as f:
         spec = tomllib.load(f)
     ls = {"m": 1.0, "mm": 1e-3}[spec.get("length_unit", "m")]
     an = {"rad": 1.0, "deg": math.pi / 180.0}[spec.get("angle_unit", "rad")]

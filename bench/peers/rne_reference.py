@@ -9,7 +9,7 @@ Prints (or writes with --out) a JSON fixture of `rne(q, qd, qdd)` of the toolbox
 Only the rigid-body model is compared: friction (viscous B and Coulomb Tc) is removed with
 `nofriction(coulomb=True, viscous=True)` and the motor inertia Jm is set to 0, so the gear
 ratios G no longer enter. Gravity is passed explicitly as [0, 0, -9.80665] m/s^2 (the toolbox's
-default is -9.81). The toolbox's table equals reach's robots/puma560.toml (d1 = 0.6718 m, no
+default is -9.81). The toolbox's table equals reach's crates/reach/robots/puma560.toml (d1 = 0.6718 m, no
 offsets); its link dynamic parameters (m, r, I) are the ones copied into that file.
 
 Usage:

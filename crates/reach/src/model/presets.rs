@@ -15,14 +15,14 @@ use super::{ModelError, Robot};
 
 /// `(name, TOML source)` of every preset, in display order.
 pub const PRESETS: &[(&str, &str)] = &[
-    ("planar3", include_str!("../../../../robots/planar3.toml")),
-    ("log-loader", include_str!("../../../../robots/log-loader.toml")),
-    ("spbu6", include_str!("../../../../robots/spbu6.toml")),
-    ("puma560", include_str!("../../../../robots/puma560.toml")),
-    ("welder6r", include_str!("../../../../robots/welder6r.toml")),
-    ("varan4", include_str!("../../../../robots/varan4.toml")),
-    ("ur5", include_str!("../../../../robots/ur5.toml")),
-    ("panda", include_str!("../../../../robots/panda.toml")),
+    ("planar3", include_str!("../../robots/planar3.toml")),
+    ("log-loader", include_str!("../../robots/log-loader.toml")),
+    ("spbu6", include_str!("../../robots/spbu6.toml")),
+    ("puma560", include_str!("../../robots/puma560.toml")),
+    ("welder6r", include_str!("../../robots/welder6r.toml")),
+    ("varan4", include_str!("../../robots/varan4.toml")),
+    ("ur5", include_str!("../../robots/ur5.toml")),
+    ("panda", include_str!("../../robots/panda.toml")),
 ];
 
 /// Names of all presets.
