@@ -50,7 +50,7 @@ use nalgebra::{DMatrix, Matrix3, Vector3};
 use thiserror::Error;
 
 use super::Differences;
-use crate::kinematics::chain::apply_motion;
+use crate::model::chain::apply_motion;
 use crate::model::{JointKind, LinkInertial, Robot};
 
 /// Why a dynamics quantity could not be computed.

@@ -40,7 +40,7 @@ use super::{
     Branch, Candidate, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, finish,
 };
 use crate::kinematics::KinematicsError;
-use crate::kinematics::chain::ChainLink;
+use crate::model::chain::ChainLink;
 use crate::model::seed000::PlanarPaperAngles;
 use crate::model::{Limits, Robot};
 use crate::tolerance::{

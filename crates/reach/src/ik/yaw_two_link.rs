@@ -39,8 +39,8 @@ use super::planar::{PlanarChain, TwoLink, check_options, elbow_label, two_link};
 use super::{
     Branch, Candidate, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, finish,
 };
-use crate::kinematics::chain::ChainLink;
 use crate::model::Robot;
+use crate::model::chain::ChainLink;
 use crate::tolerance::{BOUNDARY, IK_AXIS_DISTANCE, STRUCTURE_ANGLE, STRUCTURE_LENGTH};
 
 const NAME: &str = "yaw-two-link";

@@ -1,8 +1,8 @@
 use nalgebra::{Isometry3, IsometryMatrix3, UnitQuaternion};
 
-use super::chain::apply_motion;
 use super::{KinematicsError, check_q};
 use crate::model::Robot;
+use crate::model::chain::apply_motion;
 
 impl Robot {
     /// Tool pose in the world frame for joint values `q` (radians / metres).

@@ -1,8 +1,8 @@
 use nalgebra::{Matrix6xX, Vector3};
 
-use super::chain::apply_motion;
 use super::{KinematicsError, check_q};
 use crate::model::Robot;
+use crate::model::chain::apply_motion;
 
 /// The 6×n geometric Jacobian: rows `vx vy vz ωx ωy ωz` in the world frame, one column per joint.
 pub type Jacobian = Matrix6xX<f64>;

@@ -16,7 +16,6 @@
 //! The joint vector is checked on every call (length and finiteness); the checks are cheap
 //! and keep NaN from spreading silently.
 
-pub(crate) mod chain;
 mod forward;
 mod jacobian;
 mod manipulability;

@@ -14,6 +14,7 @@ mod robot;
 mod toml_format;
 mod urdf;
 
+pub(crate) mod chain;
 pub mod presets;
 pub mod seed000;
 

@@ -1,10 +1,10 @@
 use nalgebra::{Isometry3, Vector3};
 
+use super::chain::Chain;
 use super::{
     Convention, Joint, JointDrive, JointGeometry, JointKind, LinkGeometry, LinkInertial, ModelError, STANDARD_GRAVITY,
     StepMode,
 };
-use crate::kinematics::chain::Chain;
 
 /// Plain-data description of a robot, SI units and radians, before validation.
 #[derive(Debug, Clone, PartialEq)]

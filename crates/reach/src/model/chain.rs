@@ -23,7 +23,7 @@
 
 use nalgebra::{Isometry3, IsometryMatrix3, Matrix3, Rotation3, Translation3, Unit, Vector3};
 
-use crate::model::{Convention, JointGeometry, JointKind, RobotSpec};
+use super::{Convention, JointGeometry, JointKind, RobotSpec};
 
 /// One joint of the compiled chain.
 #[derive(Debug, Clone)]
