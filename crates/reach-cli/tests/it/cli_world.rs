@@ -1,8 +1,8 @@
 //! End-to-end tests of `reach check`, `reach avoid` and `reach cspace` (seeds 000 and 004).
 
-mod common;
+use crate::common;
 
-use common::{fails, json, ok, reach};
+use crate::common::{fails, json, ok, reach};
 
 #[test]
 fn cspace_reference_counts() {

@@ -9,9 +9,7 @@
 //! a = (0, 400, 300, 0, 0, 50) mm, d = (0, 0, 0, 0, 200, 250) mm — Table 1 with α3 = 180°
 //! instead of the printed 0° — which is what `robots/welder6r.toml` holds.
 
-mod common;
-
-use common::{WELD_M_MM as M_MM, WELD_P_MM as P_MM};
+use crate::common::{WELD_M_MM as M_MM, WELD_P_MM as P_MM};
 use nalgebra::Vector3;
 use reach::Robot;
 use reach::model::presets;

@@ -7,7 +7,7 @@
 //! Nothing here calls the library's kinematics except `fd_jacobian`, which differentiates
 //! the library's own `fk_matrix` (the Jacobian is then checked against it).
 
-// Each test binary uses a different subset of these helpers.
+// Each test module uses a different subset of these helpers.
 #![allow(dead_code)]
 
 use nalgebra::{Isometry3, Matrix3, Matrix4, Rotation3, Translation3, UnitQuaternion, Vector3};

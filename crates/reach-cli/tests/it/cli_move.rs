@@ -1,17 +1,17 @@
 //! End-to-end tests of `reach move` and `reach plan`: seed 001's J values (notes 001 §5–6, the
-//! values crates/reach/tests/seed_001_motion.rs pins), seed 003's weld (notes 003 §5.5), the
+//! values crates/reach/tests/it/seed_001_motion.rs pins), seed 003's weld (notes 003 §5.5), the
 //! JSON feeding `reach drive`, and the error paths (exit 2 bad input, 3 infeasible).
 
-mod common;
+use crate::common;
 
 use std::f64::consts::PI;
 use std::path::PathBuf;
 
 use serde_json::Value;
 
-use common::{nums, reach};
+use crate::common::{nums, reach};
 // Short names for the shared helpers, as used throughout this file.
-use common::{num as f, stdout_json as json};
+use crate::common::{num as f, stdout_json as json};
 
 /// Bad input with one needle (see [`common::fails`]).
 fn fails(args: &[&str], code: i32, needle: &str) {

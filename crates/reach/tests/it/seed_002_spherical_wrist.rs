@@ -6,12 +6,12 @@
 //! reference table of §2.3 (the paper's structure, d2 = d3 = 0). Every solution is checked with
 //! an independent forward kinematics (`common::dh_product`).
 
-mod common;
+use crate::common;
 
 use std::collections::HashSet;
 use std::f64::consts::{FRAC_PI_2, PI};
 
-use common::{find_solution as find, pose_from_rows as pose, seed002_reference as reference};
+use crate::common::{find_solution as find, pose_from_rows as pose, seed002_reference as reference};
 use nalgebra::{Isometry3, Vector3};
 use proptest::prelude::*;
 use reach::Robot;

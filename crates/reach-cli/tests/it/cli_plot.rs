@@ -1,13 +1,11 @@
 //! End-to-end tests of the drawings (`--svg`, `--png`) of `reach move`, `reach plan`,
 //! `reach avoid`, `reach cspace`, `reach path` and `reach tasks`, and of `reach path` itself.
 
-mod common;
-
 use std::path::Path;
 
 use serde_json::Value;
 
-use common::{one_error_line, reach, scratch};
+use crate::common::{one_error_line, reach, scratch};
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()

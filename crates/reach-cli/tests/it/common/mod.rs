@@ -5,7 +5,7 @@
 //!
 //! Nothing here knows about a particular command; helpers used by one test file stay in it.
 
-// Each test binary uses a different subset of these helpers.
+// Each test module uses a different subset of these helpers.
 #![allow(dead_code)]
 
 use std::ops::Deref;

@@ -4,11 +4,11 @@
 //! Every solution is checked with an independent forward kinematics (`common::dh_product`,
 //! a plain product of the DH matrices), not only by the solver's own FK check.
 
-mod common;
+use crate::common;
 
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI, TAU};
 
-use common::{SPBU6_T0 as T0, SPBU6_T1 as T1, find_solution as find, pose_from_rows as pose};
+use crate::common::{SPBU6_T0 as T0, SPBU6_T1 as T1, find_solution as find, pose_from_rows as pose};
 use nalgebra::{Isometry3, Matrix3, Matrix4, Rotation3, UnitQuaternion, Vector3};
 use proptest::prelude::*;
 use reach::Robot;

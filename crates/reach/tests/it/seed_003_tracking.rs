@@ -12,12 +12,10 @@
 //! reconstruction [C], which reproduces the paper's qualitative claims: "+β" feasible, "−β"
 //! infeasible because θ4 leaves its range near the end, and no θ̇4 spike at the jump.
 
-mod common;
-
 use std::f64::consts::TAU;
 use std::sync::OnceLock;
 
-use common::weld_pose;
+use crate::common::weld_pose;
 use reach::Robot;
 use reach::ik::parallel_axes::ParallelAxes;
 use reach::ik::{Branch, SolverKind};

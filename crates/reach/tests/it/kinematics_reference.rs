@@ -106,24 +106,24 @@ fn check_reference(text: &str, expected_dof: usize) {
 
 #[test]
 fn puma560_matches_robotics_toolbox() {
-    check_reference(include_str!("data/reference/puma560.json"), 6);
+    check_reference(include_str!("../data/reference/puma560.json"), 6);
 }
 
 #[test]
 fn ur5_matches_robotics_toolbox() {
-    check_reference(include_str!("data/reference/ur5.json"), 6);
+    check_reference(include_str!("../data/reference/ur5.json"), 6);
 }
 
 #[test]
 fn panda_modified_dh_matches_robotics_toolbox() {
-    check_reference(include_str!("data/reference/panda_mdh.json"), 7);
+    check_reference(include_str!("../data/reference/panda_mdh.json"), 7);
 }
 
 /// The reference Panda table is the one of our `panda` preset (same MDH rows, same hand):
 /// the preset must then give the same poses.
 #[test]
 fn panda_preset_matches_the_reference_table() {
-    let doc: Value = serde_json::from_str(include_str!("data/reference/panda_mdh.json")).unwrap();
+    let doc: Value = serde_json::from_str(include_str!("../data/reference/panda_mdh.json")).unwrap();
     let preset = reach::model::presets::get("panda").unwrap();
     for case in doc["cases"].as_array().unwrap().iter().take(20) {
         let q: Vec<f64> = case["q_rad"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();

@@ -15,11 +15,9 @@
 //! the nearest solution with the locked label, else (branches merged at a singular sample)
 //! the nearest solution flagged singular — on paths through an elbow singularity.
 
-mod common;
-
 use std::f64::consts::{FRAC_PI_2, PI};
 
-use common::{Rng, seed002_reference};
+use crate::common::{Rng, seed002_reference};
 use nalgebra::{Isometry3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use reach::Robot;
 use reach::angle::{nearest_equivalent, wrap};

@@ -3,11 +3,9 @@
 //! hand-derived planar solutions, negative comma lists, exit status 3 with a report on stdout
 //! and one line on stderr, and bad input (exit 2, empty stdout).
 
-mod common;
-
 use serde_json::Value;
 
-use common::{Run, angle_gap, fails, json, nums, ok, reach, stdout_json};
+use crate::common::{Run, angle_gap, fails, json, nums, ok, reach, stdout_json};
 
 /// No solution: exit 3, the report on stdout, one `error: ` line on stderr.
 fn infeasible(args: &[&str]) -> Run {

@@ -2,12 +2,12 @@
 //! against values derived by hand, against an independent plain product of 4×4 DH matrices
 //! (`common::dh_frames`), and against finite differences of FK.
 
-mod common;
+use crate::common;
 
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
+use crate::common::{Rng, all_presets, dh_frames, dh_product, fd_jacobian, max_abs_diff, rx, tr};
 use approx::assert_relative_eq;
-use common::{Rng, all_presets, dh_frames, dh_product, fd_jacobian, max_abs_diff, rx, tr};
 use nalgebra::{Matrix3, Matrix4, Vector3};
 use reach::Robot;
 use reach::model::presets;

@@ -19,9 +19,9 @@ fn grid(text: &str, step_deg: f64) -> CspaceGrid {
     classify_grid(&varan, &scene, &GridSpec::new(4, step_deg.to_radians()).fix(0, 0.0)).unwrap()
 }
 
-const FREE: &str = include_str!("../../../examples/seed004_free.toml");
-const CEILING: &str = include_str!("../../../examples/seed004_ceiling.toml");
-const TWO_PLANES: &str = include_str!("../../../examples/seed004_two_planes.toml");
+const FREE: &str = include_str!("../../../../examples/seed004_free.toml");
+const CEILING: &str = include_str!("../../../../examples/seed004_ceiling.toml");
+const TWO_PLANES: &str = include_str!("../../../../examples/seed004_two_planes.toml");
 
 fn names(fit: &Fit) -> Vec<&str> {
     fit.parts.iter().map(|p| p.name.as_str()).collect()

@@ -249,7 +249,7 @@ fn flipped_joint_round_trip() {
 
 #[test]
 fn urdf_chain_round_trip() {
-    let robot = Robot::from_urdf_str(include_str!("data/three_link.urdf"), &UrdfChain::default()).unwrap();
+    let robot = Robot::from_urdf_str(include_str!("../data/three_link.urdf"), &UrdfChain::default()).unwrap();
     // Three joints (revolute, revolute, prismatic): position-only targets are exactly reachable.
     assert!(success_rate(&robot, 50, true, 19) >= 0.95);
 }

@@ -17,7 +17,7 @@ fn vector(v: &Value) -> Vec<f64> {
 }
 
 fn fixture() -> Value {
-    let text = include_str!("data/reference/puma560_rne.json");
+    let text = include_str!("../data/reference/puma560_rne.json");
     serde_json::from_str(text).expect("valid JSON fixture")
 }
 

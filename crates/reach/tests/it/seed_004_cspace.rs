@@ -27,7 +27,7 @@ fn scene(text: &str) -> Scene {
 
 #[test]
 fn no_obstacle_1041() {
-    let g = grid(&scene(include_str!("../../../examples/seed004_free.toml")));
+    let g = grid(&scene(include_str!("../../../../examples/seed004_free.toml")));
     assert_eq!(g.counts.nodes, 2601);
     assert_eq!(g.counts.allowed, 1041);
     assert_eq!(layers(&g), [121, 142, 154, 160, 152, 132, 98, 58, 24]);
@@ -42,7 +42,7 @@ fn no_obstacle_1041() {
 fn theta_boundary_nodes_are_excluded() {
     // Notes 004 §4 A step 4: (0, 0, 0) has z_o4 = 0 exactly, (30, −120, 120) has z_o4 = 0
     // analytically (−1.4e−13 mm in floating point): both are outside the strict zone θ.
-    let g = grid(&scene(include_str!("../../../examples/seed004_free.toml")));
+    let g = grid(&scene(include_str!("../../../../examples/seed004_free.toml")));
     let index = |q2: f64, q3: f64, q4: f64| {
         let i = |v: f64, lo: f64| ((v - lo) / 15.0).round() as usize;
         (i(q2, 0.0) * 17 + i(q3, -120.0)) * 17 + i(q4, -120.0)
@@ -57,7 +57,7 @@ fn theta_boundary_nodes_are_excluded() {
 
 #[test]
 fn ceiling_1200_gives_635_closed_and_636_open() {
-    let mut s = scene(include_str!("../../../examples/seed004_ceiling.toml"));
+    let mut s = scene(include_str!("../../../../examples/seed004_ceiling.toml"));
     let g = grid(&s);
     assert_eq!(g.counts.allowed, 635);
     assert_eq!(layers(&g), [120, 111, 103, 83, 72, 61, 43, 26, 16]);
@@ -71,7 +71,7 @@ fn ceiling_1200_gives_635_closed_and_636_open() {
 #[test]
 fn ceiling_800_touching_layer() {
     // Notes 004 §5.4: z ≥ 800 gives 257 (closed) / 264 (open); the q2 = 30 layer is 44 / 51.
-    let text = include_str!("../../../examples/seed004_ceiling.toml").replace("[0, 0, 1200]", "[0, 0, 800]");
+    let text = include_str!("../../../../examples/seed004_ceiling.toml").replace("[0, 0, 1200]", "[0, 0, 800]");
     let mut s = scene(&text);
     let g = grid(&s);
     assert_eq!(g.counts.allowed, 257);
@@ -84,7 +84,7 @@ fn ceiling_800_touching_layer() {
 
 #[test]
 fn two_planes_769_and_the_other_reading_782() {
-    let s = scene(include_str!("../../../examples/seed004_two_planes.toml"));
+    let s = scene(include_str!("../../../../examples/seed004_two_planes.toml"));
     let g = grid(&s);
     assert_eq!(g.counts.allowed, 769);
     assert_eq!(layers(&g), [120, 121, 113, 95, 86, 82, 75, 53, 24]);
@@ -92,7 +92,7 @@ fn two_planes_769_and_the_other_reading_782() {
     open.touching = Touching::Open;
     assert_eq!(grid(&open).counts.allowed, 773);
     // The other side of Δ: the quadrant {z ≥ 1200, x ≤ 800} → 782 (notes 004 §5.4).
-    let text = include_str!("../../../examples/seed004_two_planes.toml")
+    let text = include_str!("../../../../examples/seed004_two_planes.toml")
         .replace("min = [800, -10000, 1200]", "min = [-10000, -10000, 1200]")
         .replace("max = [10000, 10000, 10000]", "max = [800, 10000, 10000]");
     let g = grid(&scene(&text));
@@ -105,7 +105,7 @@ fn rectangle_fig_2c_reading() {
     // Notes 004 §5.4: the rectangle [500, 900] × [800, 850] mm gives 790 (closed) / 791 (open)
     // with 102 nodes in the q2 = 60 layer. Written as a planar shape would have no
     // thickness; the zone is a solid 2-D rectangle, so it is an (x, z) box thick in y.
-    let text = include_str!("../../../examples/seed004_two_planes.toml")
+    let text = include_str!("../../../../examples/seed004_two_planes.toml")
         .replace("min = [800, -10000, 1200]", "min = [500, -1000, 800]")
         .replace("max = [10000, 10000, 10000]", "max = [900, 1000, 850]");
     let mut s = scene(&text);
@@ -120,7 +120,7 @@ fn rectangle_fig_2c_reading() {
 fn union_reading_of_theta_is_not_what_the_counts_use() {
     // Notes 004 D3: as a union, {x > 500} ∪ {z > 0} would admit 2523 nodes. With one zone
     // entry only (z > 0) the count must be at least the intersection's 1041 and at most 2523.
-    let text = include_str!("../../../examples/seed004_free.toml");
+    let text = include_str!("../../../../examples/seed004_free.toml");
     let only_z = &text[..text.find("[[tool_zone]]\nname = \"x > 500\"").unwrap()].to_string();
     let z_part = &text[text.find("[[tool_zone]]\nname = \"z > 0\"").unwrap()..];
     let g = grid(&scene(&format!("{only_z}{z_part}")));
@@ -132,7 +132,7 @@ fn progress_hook_counts_every_node_once_per_chunk_and_changes_nothing() {
     use reach::world::cspace::{PROGRESS_CHUNK, classify_grid, classify_grid_with_progress};
     use std::sync::Mutex;
     let varan = reach::model::presets::get("varan4").unwrap();
-    let scene = reach::world::Scene::from_toml_str(include_str!("../../../examples/seed004_ceiling.toml")).unwrap();
+    let scene = reach::world::Scene::from_toml_str(include_str!("../../../../examples/seed004_ceiling.toml")).unwrap();
     let spec = reach::world::cspace::GridSpec::new(4, 3f64.to_radians()).fix(0, 0.0);
     let calls = Mutex::new(Vec::new());
     let with = classify_grid_with_progress(&varan, &scene, &spec, &|done, total| {

@@ -3,11 +3,11 @@
 //! and `reach tasks` (visiting against brute force, collection and budgets, unreachable
 //! points skipped), and their bad input (exit 2, empty stdout) and exit 3.
 
-mod common;
+use crate::common;
 
 use serde_json::Value;
 
-use common::{angle_gap, fails, json, num, nums, ok, reach, temp_file};
+use crate::common::{angle_gap, fails, json, num, nums, ok, reach, temp_file};
 
 const UR5_POSE: &str = "-1,0,0,0.4,0,1,0,-0.2,0,0,-1,0.3,0,0,0,1";
 const UR5_FROM: &str = "0,-90,90,-90,-90,0";

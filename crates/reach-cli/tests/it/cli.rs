@@ -3,14 +3,12 @@
 //! arguments, every error path (exit status 2, one line on stderr, nothing on stdout),
 //! robot files written to a temporary directory, and a closed stdout.
 
-mod common;
-
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::process::Stdio;
 
 use serde_json::Value;
 
-use common::{Run, fails, json, num, nums, ok, reach, reach_command, temp_file};
+use crate::common::{Run, fails, json, num, nums, ok, reach, reach_command, temp_file};
 
 // ---------------------------------------------------------------------------------------
 // Helpers (the shared ones are in common/mod.rs)

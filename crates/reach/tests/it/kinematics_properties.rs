@@ -2,9 +2,7 @@
 //! the Jacobian matches finite differences of FK, the FK rotation is a proper rotation,
 //! `fk` and `fk_matrix` agree, and `jacobian_into` equals `jacobian`.
 
-mod common;
-
-use common::{fd_jacobian, max_abs_diff};
+use crate::common::{fd_jacobian, max_abs_diff};
 use nalgebra::{IsometryMatrix3, Matrix3};
 use proptest::prelude::*;
 use reach::model::presets;

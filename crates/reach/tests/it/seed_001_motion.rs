@@ -41,11 +41,9 @@
 // The notes' tables print π/4, π/2 and π rounded to 4 decimals; they are data, not constants.
 #![allow(clippy::approx_constant)]
 
-mod common;
-
 use std::f64::consts::{FRAC_PI_2, PI};
 
-use common::{SPBU6_T0 as T0, SPBU6_T1 as T1, pose_from_rows as pose};
+use crate::common::{SPBU6_T0 as T0, SPBU6_T1 as T1, pose_from_rows as pose};
 use nalgebra::{Isometry3, Matrix3, Matrix4, Vector3};
 use reach::Robot;
 use reach::angle::wrap;

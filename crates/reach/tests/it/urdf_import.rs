@@ -1,15 +1,13 @@
 //! URDF import: `tests/data/three_link.urdf` against the same chain written by hand as a plain
 //! product of transforms, and the import's error paths.
 
-mod common;
-
+use crate::common::{Rng, fd_jacobian, max_abs_diff, rot_axis, tr, xyz_rpy};
 use approx::assert_relative_eq;
-use common::{Rng, fd_jacobian, max_abs_diff, rot_axis, tr, xyz_rpy};
 use nalgebra::{Matrix4, Vector3};
 use reach::model::{Convention, JointKind, UrdfChain};
 use reach::{ModelError, Robot};
 
-const THREE_LINK: &str = include_str!("data/three_link.urdf");
+const THREE_LINK: &str = include_str!("../data/three_link.urdf");
 
 /// The fixture by hand: each joint is `origin(xyz, rpy) · motion(axis, q)`, the fixed joint
 /// `mid` is a plain origin between j2 and j3, and the fixed `tool` joint ends the chain.

@@ -2,9 +2,7 @@
 //! data (planar3: 27.78 steps/deg, 500 Hz; seed 000 D8 move φ = (100, 400, 200) in 0.8 s),
 //! and the error paths (exit 2 for bad input, 3 for motor limits).
 
-mod common;
-
-use common::{fails, ok, temp_file};
+use crate::common::{fails, ok, temp_file};
 
 const D8: [&str; 9] = ["drive", "planar3", "--from", "0", "0", "0", "--to", "3.6", "-14.4"];
 

@@ -12,11 +12,11 @@
 //! n = (M − P)/|MP| (tool x axis), e6 = (y1 − y2, x2 − x1, 0)/|M1P1| (tool y axis),
 //! l = n × e6 (tool z axis; the printed `l_x = n_z e_6y` lacks its minus, notes 003 §6.4).
 
-mod common;
+use crate::common;
 
 use std::f64::consts::{PI, TAU};
 
-use common::{WELD_M_MM as M_MM, WELD_P_MM as P_MM};
+use crate::common::{WELD_M_MM as M_MM, WELD_P_MM as P_MM};
 use nalgebra::{Isometry3, Matrix3, Matrix4, Rotation3, Translation3, UnitQuaternion, Vector3};
 use proptest::prelude::*;
 use reach::Robot;
@@ -594,7 +594,7 @@ fn detected_for_the_family_and_rejects_bad_input() {
 fn ur5_reference_poses_give_back_their_joint_vectors() {
     // tests/data/reference/ur5.json: 100 (q, T) pairs computed by the Robotics Toolbox for
     // Python from its own UR5 table (d1 = 0.089459). T is the target; q must be a solution.
-    let doc: serde_json::Value = serde_json::from_str(include_str!("data/reference/ur5.json")).unwrap();
+    let doc: serde_json::Value = serde_json::from_str(include_str!("../data/reference/ur5.json")).unwrap();
     let joints: Vec<Joint> = doc["joints"]
         .as_array()
         .unwrap()

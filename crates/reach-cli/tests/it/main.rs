@@ -1,0 +1,12 @@
+//! The integration tests of `reach-cli`, compiled as one test binary (`it`): one
+//! module per area, the shared helpers in `common`.
+
+mod common;
+
+mod cli;
+mod cli_decide;
+mod cli_drive;
+mod cli_ik;
+mod cli_move;
+mod cli_plot;
+mod cli_world;
