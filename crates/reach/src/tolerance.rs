@@ -131,5 +131,5 @@ pub const DRIVE_LIMIT_SLACK: f64 = 1e-9;
 /// limit. Steps are discrete, so the acceleration measured from three consecutive step times
 /// (rate change between intervals over their mean length) can exceed the continuous ramp's by
 /// up to ~0.6 % at the second step of a ramp from rest; planning 2 % below the limit keeps
-/// the measured value under it (checked in `tests/drive_schedule.rs`).
+/// the measured value under it (checked in `tests/it/drive_schedule.rs`).
 pub const DRIVE_RAMP_MARGIN: f64 = 0.02;
