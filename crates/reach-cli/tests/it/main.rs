@@ -10,3 +10,4 @@ mod cli_ik;
 mod cli_move;
 mod cli_plot;
 mod cli_world;
+mod readme_tour;

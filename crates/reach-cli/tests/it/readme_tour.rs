@@ -1,0 +1,75 @@
+//! The README's tour runs as written: every `reach …` line of its first `sh` block under
+//! "## Tour" succeeds (files it writes go to a scratch directory), and the key numbers the
+//! README and the seeds quote are unchanged — IK branch counts, seed 004's allowed nodes, seed
+//! 003's infeasible interval, seed 001's J1 = 7π/36.
+
+use crate::common::{REPO_ROOT, json, num, reach, scratch};
+
+/// The tour's command lines: continuation lines joined, comments and the leading `reach`
+/// removed, a `> file` redirection dropped.
+fn tour_commands() -> Vec<Vec<String>> {
+    let readme = std::fs::read_to_string(format!("{REPO_ROOT}/README.md")).expect("README.md");
+    let tour = readme.split("\n## Tour").nth(1).expect("a `## Tour` section");
+    let block = tour.split("```sh").nth(1).and_then(|b| b.split("```").next()).expect("an sh block in the tour");
+    let mut commands = Vec::new();
+    let mut pending = String::new();
+    for line in block.lines() {
+        let code = line.split(" #").next().unwrap_or("").trim_end();
+        if let Some(head) = code.strip_suffix('\\') {
+            pending.push_str(head);
+            pending.push(' ');
+            continue;
+        }
+        pending.push_str(code);
+        let full = std::mem::take(&mut pending);
+        let full = full.split(" > ").next().unwrap_or("").trim().to_string();
+        if let Some(rest) = full.strip_prefix("reach ") {
+            commands.push(rest.split_whitespace().map(str::to_string).collect());
+        }
+    }
+    commands
+}
+
+/// Options whose value is a file or directory the command writes.
+const OUTPUT_OPTIONS: [&str; 4] = ["--svg", "--png", "-o", "--csv"];
+
+#[test]
+fn every_tour_command_succeeds() {
+    let commands = tour_commands();
+    assert!(commands.len() >= 25, "the tour has {} commands", commands.len());
+    let dir = scratch("tour");
+    for (k, args) in commands.iter().enumerate() {
+        let mut args = args.clone();
+        for i in 1..args.len() {
+            if OUTPUT_OPTIONS.contains(&args[i - 1].as_str()) {
+                args[i] = dir.join(format!("{k}-{}", args[i].replace('/', "_"))).display().to_string();
+            }
+        }
+        let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+        let run = reach(&refs);
+        assert_eq!(run.code, 0, "`reach {}` failed: {}", args.join(" "), run.stderr);
+        assert!(!run.stdout.is_empty() || args.iter().any(|a| a == "-o"), "`reach {}` printed nothing", args.join(" "));
+    }
+}
+
+#[test]
+fn tour_key_numbers_are_unchanged() {
+    // IK: the Puma 560 pose has eight branches; the UR5 pose of the ranking table too.
+    let puma = json(&["ik", "puma560", "--xyz", "0.5,-0.2,0.3", "--rpy", "180,0,0", "--all", "--json"]);
+    assert_eq!(puma["solutions"].as_array().map(Vec::len), Some(8), "{puma}");
+    // Seed 004: 635 allowed nodes at 15° with q1 fixed (README tour).
+    let cspace = json(&["cspace", "varan4", "examples/seed004_ceiling.toml", "--step", "15", "--fix", "q1=0", "--json"]);
+    assert_eq!(cspace["counts"]["allowed"].as_u64(), Some(635), "{}", cspace["counts"]);
+    // Seed 003: the −β configuration breaks θ4 on s ∈ (618.10, 882.21) mm.
+    let plan = json(&["plan", "examples/seed003_welding.toml", "--json"]);
+    let text = plan.to_string();
+    assert!(text.contains("618.1") && text.contains("882.2"), "the seed-003 interval moved: {text:.2000}");
+    // Seed 001: the joint-space motion costs J1 = 7π/36.
+    let seed001 = json(&["plan", "examples/seed001_tool_vs_joint.toml", "--json"]);
+    let j1 = seed001["motions"]
+        .as_array()
+        .and_then(|m| m.iter().find(|m| m["space"] == "joint"))
+        .map(|m| num(&m["effort"]["j1"]))
+        .expect("a joint-space motion in the seed 001 task");
+    assert!((j1 - 7.0 * std::f64::consts::PI / 36.0).abs() < 1e-9, "J1 = {j1}");
+}
