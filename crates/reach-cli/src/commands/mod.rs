@@ -12,6 +12,7 @@ pub mod fk;
 pub mod ik;
 pub mod jacobian;
 pub mod move_cmd;
+pub mod move_render;
 pub mod path;
 pub mod robot_show;
 pub mod robots;
