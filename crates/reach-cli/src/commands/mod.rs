@@ -14,6 +14,7 @@ pub mod jacobian;
 pub mod move_cmd;
 pub mod move_render;
 pub mod path;
+pub mod plan;
 pub mod robot_show;
 pub mod robots;
 pub mod tasks;

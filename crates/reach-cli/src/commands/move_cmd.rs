@@ -1,8 +1,7 @@
 //! `reach move` — one motion between two joint vectors or two tool poses, in joint space or in
-//! tool space; and `reach plan` — every motion of a task file (docs/task-format.md). Both are
-//! thin: argv → [`MoveRequest`] / [`PlanRequest`] → `reach::jobs::motion` → render
-//! (`move_render.rs`: text, CSV, drawings). `--json` prints the report
-//! (docs/schemas/move.report.schema.json, plan.report.schema.json).
+//! tool space (`reach plan`, in `plan.rs`, computes every motion of a task file). Thin: argv →
+//! [`MoveRequest`] → `reach::jobs::motion::move_motion` → render (`move_render.rs`: text, CSV,
+//! drawings). `--json` prints the report (docs/schemas/move.report.schema.json).
 //!
 //! Units on the command line: joint values in degrees (prismatic in metres), poses
 //! `x,y,z,roll,pitch,yaw` in metres and degrees with `R = Rz(yaw)·Ry(pitch)·Rx(roll)`.
@@ -18,18 +17,16 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use reach::Robot;
-use reach::jobs::motion::{ChoiceSpec, End, MoveRequest, PlanReport, PlanRequest, Task};
+use reach::jobs::motion::{ChoiceSpec, End, MoveRequest};
 use reach::jobs::{Joints, Pose};
-use reach::model::UrdfChain;
 use reach::motion::Profile;
 
-use crate::commands::move_render::{infeasible, move_drawing, write_comparison, write_csv, write_plan, write_report};
+use crate::commands::move_render::{infeasible, move_drawing, write_csv, write_report};
 use crate::error::CliError;
 use crate::numbers::{parse_exact, parse_finite, parse_list};
 use crate::output::write_json;
 use crate::plot::progress::Progress;
-use crate::robot_arg::{RobotArgs, load_robot};
+use crate::robot_arg::RobotArgs;
 
 pub use reach::jobs::motion::ProfileName;
 
@@ -217,13 +214,16 @@ pub const PROGRESS_MIN_SAMPLES: usize = 1000;
 
 /// A progress hook for the library: one bar per tracked motion of at least
 /// [`PROGRESS_MIN_SAMPLES`] samples, made at its first report (which carries the total).
-struct Bars {
-    json: bool,
-    current: Option<(String, Progress)>,
+pub(crate) struct Bars {
+    /// JSON mode: no bars.
+    pub(crate) json: bool,
+    /// The bar shown and the motion it is for.
+    pub(crate) current: Option<(String, Progress)>,
 }
 
 impl Bars {
-    fn report(&mut self, name: &str, done: usize, total: usize) {
+    /// Reports `done` of `total` samples of the motion `name`.
+    pub(crate) fn report(&mut self, name: &str, done: usize, total: usize) {
         if self.json || total < PROGRESS_MIN_SAMPLES {
             return;
         }
@@ -267,73 +267,6 @@ pub fn run(args: &MoveArgs, out: &mut dyn Write) -> Result<(), CliError> {
     } else {
         out.flush()?;
         Err(infeasible(&m))
-    }
-}
-
-/// Arguments of `reach plan`.
-#[derive(Debug, Clone, Args)]
-pub struct PlanArgs {
-    /// Task file (TOML, docs/task-format.md).
-    #[arg(value_name = "TASK")]
-    pub task: PathBuf,
-
-    /// Print the report as JSON (docs/schemas/plan.report.schema.json): robot, description,
-    /// motions (each as `reach move --json`).
-    #[arg(long)]
-    pub json: bool,
-
-    /// Drawings: --svg DIR, --png DIR (one file per motion), --png-width PX.
-    #[command(flatten)]
-    pub draw: crate::plot::DrawArgs,
-}
-
-/// Parses a task file's text, loads the robot its `robot` key names and plans every motion
-/// (with progress bars unless `json`).
-///
-/// # Errors
-/// [`CliError::BadInput`] for a malformed file (prefixed with `origin`), an unknown robot, a
-/// bad motion.
-pub fn plan_task(text: &str, origin: &str, json: bool) -> Result<(Robot, Task, PlanReport), CliError> {
-    let prefixed =
-        |e: reach::Error| CliError::bad_input(format!("{origin}: {}", crate::error::one_line(&e.to_string())));
-    let task = Task::parse(text).map_err(prefixed)?;
-    let robot = load_robot(&task.robot, &UrdfChain { base: None, tip: None })?.robot;
-    let mut bars = Bars { json, current: None };
-    let report = reach::jobs::motion::plan_with_progress(
-        &robot,
-        &PlanRequest { task: text.to_string() },
-        &mut |name, done, total| bars.report(name, done, total),
-    )
-    .map_err(prefixed)?;
-    Ok((robot, task, report))
-}
-
-/// Runs `reach plan`.
-///
-/// # Errors
-/// See the module docs.
-pub fn run_plan(args: &PlanArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let text = std::fs::read_to_string(&args.task)
-        .map_err(|e| CliError::bad_input(format!("{}: {e}", args.task.display())))?;
-    let (robot, task, report) = plan_task(&text, &args.task.display().to_string(), args.json)?;
-    write_plan(&args.draw, &robot, &task.motions, &report.motions)?;
-    if args.json {
-        write_json(out, &report)?;
-    } else {
-        if !report.description.is_empty() {
-            writeln!(out, "{}", report.description)?;
-        }
-        for m in &report.motions {
-            write_report(out, m, m.samples.len().div_ceil(10))?;
-        }
-        write_comparison(out, &report.motions)?;
-    }
-    match report.motions.iter().find(|m| !m.feasible) {
-        Some(m) => {
-            out.flush()?;
-            Err(infeasible(m))
-        }
-        None => Ok(()),
     }
 }
 

@@ -7,7 +7,7 @@ use std::path::Path;
 use reach::Robot;
 use reach::jobs::motion::{IntervalDecision, MoveReport, MoveRequest, ProfileName, Space};
 
-use crate::commands::move_cmd::plan_task;
+use crate::commands::plan::plan_task;
 use crate::error::CliError;
 use crate::output::{fixed, fixeds};
 
