@@ -270,7 +270,7 @@ pub enum Command {
     #[command(after_help = "Examples:\n  \
             reach plan examples/seed001_tool_vs_joint.toml\n  \
             reach plan examples/seed003_welding.toml --json")]
-    Plan(crate::commands::move_cmd::PlanArgs),
+    Plan(crate::commands::plan::PlanArgs),
 
     /// Seed 001's planning tasks: order pick-and-place trips (collection) or target points
     /// (visiting) by least energy J1, and the most that fit a time budget.

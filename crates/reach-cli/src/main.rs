@@ -56,7 +56,7 @@ fn run(command: &Command, out: &mut dyn Write) -> Result<(), CliError> {
         Command::Avoid(args) => commands::avoid::run(args, out),
         Command::Cspace(args) => commands::cspace::run(args, out),
         Command::Move(args) => commands::move_cmd::run(args, out),
-        Command::Plan(args) => commands::move_cmd::run_plan(args, out),
+        Command::Plan(args) => commands::plan::run_plan(args, out),
         Command::Tasks(args) => commands::tasks::run(args, out),
         Command::Path(args) => commands::path::run(args, out),
     }

@@ -30,9 +30,12 @@ pub const SECTIONS: &[Section] = &[
     Section { title: "Inverse kinematics: every solution, with branch labels", run: crate::commands::ik::demo },
     Section {
         title: "Seed 001: joint-space vs tool-space motion (J1, J2)",
-        run: crate::commands::move_cmd::demo_seed001,
+        run: crate::commands::move_render::demo_seed001,
     },
-    Section { title: "Seed 003: tracking a weld in both configurations", run: crate::commands::move_cmd::demo_seed003 },
+    Section {
+        title: "Seed 003: tracking a weld in both configurations",
+        run: crate::commands::move_render::demo_seed003,
+    },
 ];
 
 /// Runs every section.

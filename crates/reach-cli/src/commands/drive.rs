@@ -15,11 +15,11 @@ use reach::drive::{
 use reach::model::JointKind;
 use serde::{Deserialize, Serialize};
 
-use crate::commands::move_cmd::{load_task, plan};
 use crate::error::{CliError, one_line};
 use crate::numbers::{AngleUnit, display_unit, parse_finite, to_si};
 use crate::output::{Align, Table, fixed, write_json};
 use crate::robot_arg::RobotArgs;
+use reach::jobs::motion::{PlanRequest, Task};
 
 /// Output formats of `reach drive`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -197,7 +197,10 @@ const JOIN_TOLERANCE: f64 = 1e-6;
 /// [`CliError::BadInput`] when the task names another robot or a motion does not start where
 /// the previous one ended; [`CliError::NoSolution`] for an infeasible motion.
 fn task_samples(robot: &Robot, text: &str, path: &Path) -> Result<Vec<JointSample>, CliError> {
-    let (task_robot, _, specs) = load_task(text, &path.display().to_string())?;
+    let task = Task::parse(text)
+        .map_err(|e| CliError::bad_input(format!("{}: {}", path.display(), one_line(&e.to_string()))))?;
+    let task_robot =
+        crate::robot_arg::load_robot(&task.robot, &reach::model::UrdfChain { base: None, tip: None })?.robot;
     if task_robot.name() != robot.name() || task_robot.dof() != robot.dof() {
         return Err(CliError::bad_input(format!(
             "task file `{}` is for robot `{}`, not `{}`",
@@ -206,9 +209,10 @@ fn task_samples(robot: &Robot, text: &str, path: &Path) -> Result<Vec<JointSampl
             robot.name()
         )));
     }
-    let motions = plan(robot, &specs)?;
+    let report = reach::jobs::motion::plan(robot, &PlanRequest { task: text.to_string() })?;
+    let motions = &report.motions;
     let mut samples: Vec<JointSample> = Vec::new();
-    for m in &motions {
+    for m in motions {
         if !m.feasible {
             return Err(CliError::NoSolution(format!(
                 "motion `{}` is infeasible: {}",

@@ -20,7 +20,7 @@ use reach::world::{CollisionChecker, Scene};
 use serde::Serialize;
 
 use crate::commands::check::load_scene;
-use crate::commands::move_cmd::{End, pose_end, pose_of};
+use crate::commands::move_cmd::pose_arg;
 use crate::error::{CliError, one_line};
 use crate::numbers::{AngleUnit, parse_finite, parse_joint_values, q_display};
 use crate::output::{Table, fixed, fixeds, write_json};
@@ -211,10 +211,7 @@ pub fn run(args: &PathArgs, out: &mut dyn Write) -> Result<(), CliError> {
             typed_goal = Some(to.deg);
             Goal::Joints(to.si)
         }
-        (None, Some(p)) => match pose_end("--to-pose", p)? {
-            End::Pose(v) => Goal::Target(IkTarget::Pose(pose_of(&v))),
-            End::Joints(_) => return Err(CliError::internal("pose parser returned joints")),
-        },
+        (None, Some(p)) => Goal::Target(IkTarget::Pose(pose_arg("--to-pose", p)?.isometry("--to-pose")?)),
         _ => return Err(CliError::bad_input("give exactly one of --to and --to-pose")),
     };
     let same = || CliError::bad_input("--from and --to are the same configuration: nothing to plan");

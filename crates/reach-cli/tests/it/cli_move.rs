@@ -168,7 +168,11 @@ fn bad_input_and_infeasible() {
     fails(&with(&["--duration", "-1"]), 2, "duration");
     fails(&with(&["--duration", "NaN"]), 2, "--duration");
     fails(&with(&["--duration", "10", "--dt", "0"]), 2, "dt");
-    fails(&["move", "spbu6", "--from", "0,0,0", "--to", "90,0,0,90,0,0", "--duration", "1"], 2, "expected 6");
+    fails(
+        &["move", "spbu6", "--from", "0,0,0", "--to", "90,0,0,90,0,0", "--duration", "1"],
+        2,
+        "--from: robot `spbu6` has 6 joints, got 3",
+    );
     fails(
         &["move", "spbu6", "--from-pose", "30,0,0,0,0,0", "--to-pose", "0,3,5,-90,0,0", "--duration", "1"],
         2,
@@ -251,4 +255,86 @@ fn long_tool_motions_show_no_progress_bar_when_not_on_a_terminal() {
         assert!(run.stderr.is_empty(), "no progress bar when not on a terminal: {}", run.stderr);
     }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Regression: UR5's joint 1 (limits ±360°) from 170° to −170° turns the literal 340° in a
+/// joint-space move, and J1 used to report the wrapped 20° (0.116) next to J2 = 1.978. With the
+/// one joint-difference rule (literal for bounded joints) J1 = J2 for this monotone move.
+#[test]
+fn move_crossing_180_reports_j1_equal_to_j2() {
+    let v = common::json(&[
+        "move",
+        "ur5",
+        "--from",
+        "170,-90,90,0,90,0",
+        "--to",
+        "-170,-90,90,0,90,0",
+        "--duration",
+        "4",
+        "--json",
+    ]);
+    let (j1, j2) = (f(&v["effort"]["j1"]), f(&v["effort"]["j2"]));
+    let w1 = f(&v["effort"]["weights"][0]);
+    assert!((j1 - w1 * 340f64.to_radians()).abs() < 1e-9, "J1 = {j1}");
+    assert!((j1 - j2).abs() < 1e-9, "J1 = {j1}, J2 = {j2}");
+    let samples = v["samples"].as_array().unwrap();
+    assert!((q(&samples[samples.len() - 1])[0] + 170.0).abs() < 1e-9);
+}
+
+/// `reach move --json` (joint and tool space) and `reach plan --json` are the library's
+/// reports for the same jobs, and match their schemas.
+#[test]
+fn move_and_plan_json_are_the_library_reports() {
+    use reach::jobs::motion::{End, MoveRequest, Space};
+    use reach::jobs::{Job, Joints, PlanRequest, Pose, Request, RobotInput};
+    let joint = MoveRequest {
+        duration_s: Some(2.0),
+        ..MoveRequest::joints(
+            Joints::Deg(vec![0.0, -90.0, 90.0, 0.0, 90.0, 0.0]),
+            Joints::Deg(vec![30.0, -60.0, 60.0, 0.0, 90.0, 0.0]),
+        )
+    };
+    let job = Job { robot: RobotInput::Preset("ur5".into()), request: Request::Move(joint) };
+    common::assert_report(
+        &["move", "ur5", "--from", "0,-90,90,0,90,0", "--to", "30,-60,60,0,90,0", "--duration", "2", "--json"],
+        &job,
+        "move.report",
+    );
+    let weld = |x: f64, y: f64, z: f64| Pose::xyz_rpy_deg([x, y, z], [0.0, -41.86854343693031, -50.19442890773481]);
+    let tool = MoveRequest {
+        from: End::Pose(weld(0.05, 0.74, 0.07)),
+        to: End::Pose(weld(0.5, 0.2, 0.7)),
+        space: Space::Tool,
+        speed_m_s: Some(0.001),
+        dt_s: Some(10.0),
+        ..MoveRequest::joints(Joints::Deg(Vec::new()), Joints::Deg(Vec::new()))
+    };
+    let job = Job { robot: RobotInput::Preset("welder6r".into()), request: Request::Move(tool) };
+    let v = common::assert_report(
+        &[
+            "move",
+            "welder6r",
+            "--from-pose",
+            "0.05,0.74,0.07,0,-41.86854343693031,-50.19442890773481",
+            "--to-pose",
+            "0.5,0.2,0.7,0,-41.86854343693031,-50.19442890773481",
+            "--space",
+            "tool",
+            "--speed",
+            "0.001",
+            "--dt",
+            "10",
+            "--json",
+        ],
+        &job,
+        "move.report",
+    );
+    assert_eq!(v["space"], "tool");
+    assert_eq!(v["intervals"][0]["decision"], "default");
+    let path = "examples/seed003_welding.toml";
+    let task =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/seed003_welding.toml")).unwrap();
+    let job = Job { robot: RobotInput::Preset("welder6r".into()), request: Request::Plan(PlanRequest { task }) };
+    let v = common::assert_report(&["plan", path, "--json"], &job, "plan.report");
+    assert_eq!(v["motions"][0]["name"], "weld P -> M");
 }

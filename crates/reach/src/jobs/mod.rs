@@ -19,12 +19,14 @@
 
 pub mod input;
 pub mod kinematics;
+pub mod motion;
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 pub use input::{AngleUnit, Joints, LoadedRobot, Pose, PoseReport, RobotInput};
 pub use kinematics::{FkReport, FkRequest, JacobianReport, JacobianRequest};
+pub use motion::{MoveReport, MoveRequest, PlanReport, PlanRequest};
 
 use crate::Robot;
 use crate::error::Result;
@@ -37,6 +39,10 @@ pub enum Request {
     Fk(FkRequest),
     /// The Jacobian and its measures.
     Jacobian(JacobianRequest),
+    /// One motion in joint or tool space.
+    Move(MoveRequest),
+    /// Every motion of a task file.
+    Plan(PlanRequest),
 }
 
 /// A workflow's report, tagged by `"kind"` like its request.
@@ -47,6 +53,10 @@ pub enum Report {
     Fk(FkReport),
     /// The Jacobian and its measures.
     Jacobian(JacobianReport),
+    /// One motion in joint or tool space.
+    Move(MoveReport),
+    /// Every motion of a task file.
+    Plan(PlanReport),
 }
 
 /// A request together with its robot.
@@ -78,6 +88,8 @@ pub fn run(robot: &Robot, request: &Request) -> Result<Report> {
     Ok(match request {
         Request::Fk(r) => Report::Fk(kinematics::fk(robot, r)?),
         Request::Jacobian(r) => Report::Jacobian(kinematics::jacobian(robot, r)?),
+        Request::Move(r) => Report::Move(motion::move_motion(robot, r)?),
+        Request::Plan(r) => Report::Plan(motion::plan(robot, r)?),
     })
 }
 
@@ -94,6 +106,10 @@ pub fn schemas() -> Vec<(&'static str, serde_json::Value)> {
         ("fk.report", of::<FkReport>()),
         ("jacobian.request", of::<JacobianRequest>()),
         ("jacobian.report", of::<JacobianReport>()),
+        ("move.request", of::<MoveRequest>()),
+        ("move.report", of::<MoveReport>()),
+        ("plan.request", of::<PlanRequest>()),
+        ("plan.report", of::<PlanReport>()),
     ]
 }
 

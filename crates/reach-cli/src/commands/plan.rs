@@ -1,0 +1,88 @@
+//! `reach plan` — every motion of a task file (docs/task-format.md): the CLI reads the file and
+//! loads the robot its `robot` key names; `reach::jobs::motion::plan` parses the text and
+//! computes each motion as `reach move` would; rendering is shared with `reach move`
+//! (`move_render.rs`). `--json` prints the report (docs/schemas/plan.report.schema.json).
+//!
+//! Exit status: 0 when every motion is feasible; 3 when one is not (all reports are printed,
+//! the first infeasible motion's reason on stderr); 2 for bad input.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::Args;
+use reach::Robot;
+use reach::jobs::motion::{PlanReport, PlanRequest, Task};
+use reach::model::UrdfChain;
+
+use crate::commands::move_cmd::Bars;
+use crate::commands::move_render::{infeasible, write_comparison, write_plan, write_report};
+use crate::error::CliError;
+use crate::output::write_json;
+use crate::robot_arg::load_robot;
+
+/// Arguments of `reach plan`.
+#[derive(Debug, Clone, Args)]
+pub struct PlanArgs {
+    /// Task file (TOML, docs/task-format.md).
+    #[arg(value_name = "TASK")]
+    pub task: PathBuf,
+
+    /// Print the report as JSON (docs/schemas/plan.report.schema.json): robot, description,
+    /// motions (each as `reach move --json`).
+    #[arg(long)]
+    pub json: bool,
+
+    /// Drawings: --svg DIR, --png DIR (one file per motion), --png-width PX.
+    #[command(flatten)]
+    pub draw: crate::plot::DrawArgs,
+}
+
+/// Parses a task file's text, loads the robot its `robot` key names and plans every motion
+/// (with progress bars unless `json`).
+///
+/// # Errors
+/// [`CliError::BadInput`] for a malformed file (prefixed with `origin`), an unknown robot, a
+/// bad motion.
+pub fn plan_task(text: &str, origin: &str, json: bool) -> Result<(Robot, Task, PlanReport), CliError> {
+    let prefixed =
+        |e: reach::Error| CliError::bad_input(format!("{origin}: {}", crate::error::one_line(&e.to_string())));
+    let task = Task::parse(text).map_err(prefixed)?;
+    let robot = load_robot(&task.robot, &UrdfChain { base: None, tip: None })?.robot;
+    let mut bars = Bars { json, current: None };
+    let report = reach::jobs::motion::plan_with_progress(
+        &robot,
+        &PlanRequest { task: text.to_string() },
+        &mut |name, done, total| bars.report(name, done, total),
+    )
+    .map_err(prefixed)?;
+    Ok((robot, task, report))
+}
+
+/// Runs `reach plan`.
+///
+/// # Errors
+/// See the module docs.
+pub fn run_plan(args: &PlanArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let text = std::fs::read_to_string(&args.task)
+        .map_err(|e| CliError::bad_input(format!("{}: {e}", args.task.display())))?;
+    let (robot, task, report) = plan_task(&text, &args.task.display().to_string(), args.json)?;
+    write_plan(&args.draw, &robot, &task.motions, &report.motions)?;
+    if args.json {
+        write_json(out, &report)?;
+    } else {
+        if !report.description.is_empty() {
+            writeln!(out, "{}", report.description)?;
+        }
+        for m in &report.motions {
+            write_report(out, m, m.samples.len().div_ceil(10))?;
+        }
+        write_comparison(out, &report.motions)?;
+    }
+    match report.motions.iter().find(|m| !m.feasible) {
+        Some(m) => {
+            out.flush()?;
+            Err(infeasible(m))
+        }
+        None => Ok(()),
+    }
+}

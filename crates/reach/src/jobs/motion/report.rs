@@ -1,0 +1,145 @@
+//! The reports of `move` (one motion) and `plan` (every motion of a task file).
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use super::request::Space;
+use crate::motion::tracking::Decision;
+
+/// One sample of a motion (what `reach drive` reads: `t_s`, `q_deg`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct MoveSample {
+    /// Time, seconds.
+    pub t_s: f64,
+    /// Joint values: revolute joints in degrees, prismatic joints in metres.
+    pub q_deg: Vec<f64>,
+    /// Joint rates: revolute joints in degrees/s, prismatic joints in m/s.
+    pub qd_deg_s: Vec<f64>,
+    /// Tool position, metres.
+    pub xyz_m: [f64; 3],
+    /// Tool orientation: roll, pitch, yaw in degrees, `R = Rz(yaw)·Ry(pitch)·Rx(roll)`.
+    pub rpy_deg: [f64; 3],
+}
+
+/// How an interval's configuration was chosen (tool space).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum IntervalDecision {
+    /// The default configuration (feasible, no criterion given).
+    Default,
+    /// The only feasible configuration.
+    OnlyFeasible,
+    /// Several were feasible but not the default, and no criterion was given: the first.
+    FirstFeasible,
+    /// Several were feasible; the criteria chose (`choose`).
+    Criterion,
+    /// Several were feasible and none met the criteria: the default was kept (K14).
+    CriterionRejected,
+    /// Outside the reachable set, or no configuration feasible (K8).
+    NotRealizable,
+}
+
+impl From<Decision> for IntervalDecision {
+    fn from(d: Decision) -> Self {
+        match d {
+            Decision::Default => IntervalDecision::Default,
+            Decision::OnlyFeasible => IntervalDecision::OnlyFeasible,
+            Decision::FirstFeasible => IntervalDecision::FirstFeasible,
+            Decision::Criterion => IntervalDecision::Criterion,
+            Decision::CriterionRejected => IntervalDecision::CriterionRejected,
+            Decision::NotRealizable => IntervalDecision::NotRealizable,
+        }
+    }
+}
+
+/// One interval of a motion (joint space: the whole motion; tool space: between singular
+/// positions and workspace boundaries).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct MoveInterval {
+    /// Start time, seconds.
+    pub start_s: f64,
+    /// End time, seconds.
+    pub end_s: f64,
+    /// Configuration realised (`joint` for a joint-space move, a branch label in tool space,
+    /// `null` when none is feasible).
+    pub configuration: Option<String>,
+    /// Whether the interval is realised within every limit.
+    pub feasible: bool,
+    /// Every limit broken (by any configuration tracked), with where, in degrees (metres).
+    pub reasons: Vec<String>,
+    /// How the configuration was chosen (tool space only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub decision: Option<IntervalDecision>,
+}
+
+/// One event of the tracking log (tool space).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct MoveEvent {
+    /// Time, seconds.
+    pub t_s: f64,
+    /// `K1` … `K14`.
+    pub code: String,
+    /// The text.
+    pub message: String,
+}
+
+/// Effort functionals of a motion.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct MoveEffort {
+    /// `Σ wᵢ|Δᵢ(q(t0), q(t1))|` (radians; metres for prismatic joints), `Δ` the robot's joint
+    /// difference (literal for bounded joints).
+    pub j1: f64,
+    /// `Σ wᵢ·(total variation of qᵢ over the samples)`, same differences.
+    pub j2: f64,
+    /// Mechanical energy `∫ Σ|τᵢ·q̇ᵢ| dt`, joules (rigid links, no friction); `null` when it
+    /// cannot be computed (see `energy_note`).
+    pub energy_j: Option<f64>,
+    /// Why `energy_j` is `null` (e.g. no link masses in the robot file); `null` otherwise.
+    pub energy_note: Option<String>,
+    /// The joint weights used.
+    pub weights: Vec<f64>,
+}
+
+/// One motion (`reach move --json`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct MoveReport {
+    /// The request's label (empty on the command line).
+    pub name: String,
+    /// Robot name.
+    pub robot: String,
+    /// `joint` or `tool`.
+    pub space: Space,
+    /// Duration, seconds.
+    pub duration_s: f64,
+    /// The samples.
+    pub samples: Vec<MoveSample>,
+    /// Per-interval status.
+    pub intervals: Vec<MoveInterval>,
+    /// Event log (tool space: K1–K14).
+    pub events: Vec<MoveEvent>,
+    /// J1, J2, energy.
+    pub effort: MoveEffort,
+    /// Whether the whole motion respects every limit.
+    pub feasible: bool,
+    /// Why not, one line each.
+    pub reasons: Vec<String>,
+}
+
+/// Every motion of a task file (`reach plan --json`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct PlanReport {
+    /// Robot name.
+    pub robot: String,
+    /// The task's description.
+    pub description: String,
+    /// One report per `[[motion]]`, in order.
+    pub motions: Vec<MoveReport>,
+}
+
+impl PlanReport {
+    /// Whether every motion is feasible.
+    #[must_use]
+    pub fn feasible(&self) -> bool {
+        self.motions.iter().all(|m| m.feasible)
+    }
+}
