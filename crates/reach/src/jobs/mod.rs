@@ -17,12 +17,14 @@
 //!   and the generated JSON Schemas are kept in `docs/schemas/` (a test checks they are
 //!   current).
 
+pub mod ik;
 pub mod input;
 pub mod kinematics;
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+pub use ik::{IkReport, IkRequest, IkScanReport, IkScanRequest};
 pub use input::{AngleUnit, Joints, LoadedRobot, Pose, PoseReport, RobotInput};
 pub use kinematics::{FkReport, FkRequest, JacobianReport, JacobianRequest};
 
@@ -37,6 +39,10 @@ pub enum Request {
     Fk(FkRequest),
     /// The Jacobian and its measures.
     Jacobian(JacobianRequest),
+    /// Inverse kinematics: every solution of a target and the choice among them.
+    Ik(IkRequest),
+    /// Seed 000's table of configurations of a planar 3-link arm.
+    IkScan(IkScanRequest),
 }
 
 /// A workflow's report, tagged by `"kind"` like its request.
@@ -47,6 +53,10 @@ pub enum Report {
     Fk(FkReport),
     /// The Jacobian and its measures.
     Jacobian(JacobianReport),
+    /// Inverse kinematics.
+    Ik(IkReport),
+    /// Seed 000's table of configurations.
+    IkScan(IkScanReport),
 }
 
 /// A request together with its robot.
@@ -78,6 +88,8 @@ pub fn run(robot: &Robot, request: &Request) -> Result<Report> {
     Ok(match request {
         Request::Fk(r) => Report::Fk(kinematics::fk(robot, r)?),
         Request::Jacobian(r) => Report::Jacobian(kinematics::jacobian(robot, r)?),
+        Request::Ik(r) => Report::Ik(ik::ik(robot, r)?),
+        Request::IkScan(r) => Report::IkScan(ik::ik_scan(robot, r)?),
     })
 }
 
@@ -94,6 +106,10 @@ pub fn schemas() -> Vec<(&'static str, serde_json::Value)> {
         ("fk.report", of::<FkReport>()),
         ("jacobian.request", of::<JacobianRequest>()),
         ("jacobian.report", of::<JacobianReport>()),
+        ("ik.request", of::<IkRequest>()),
+        ("ik.report", of::<IkReport>()),
+        ("ik_scan.request", of::<IkScanRequest>()),
+        ("ik_scan.report", of::<IkScanReport>()),
     ]
 }
 
