@@ -442,7 +442,10 @@ fn a_half_turn_matrix_is_read_exactly() {
 // The --json output is the library's report (reach::jobs::ik)
 
 fn ik_job(robot: &str, request: reach::jobs::IkRequest) -> reach::jobs::Job {
-    reach::jobs::Job { robot: reach::jobs::RobotInput::Preset(robot.into()), request: reach::jobs::Request::Ik(request) }
+    reach::jobs::Job {
+        robot: reach::jobs::RobotInput::Preset(robot.into()),
+        request: reach::jobs::Request::Ik(request),
+    }
 }
 
 #[test]
@@ -457,14 +460,16 @@ fn ik_json_is_the_library_report() {
     // The same orientation as a quaternion (180° about x: w = 0, x = 1) and as radians.
     let quat = Pose { xyz_m: Some([0.5, -0.2, 0.3]), quat_wxyz: Some([0.0, 1.0, 0.0, 0.0]), ..Pose::default() };
     let args = ["ik", "puma560", "--xyz", "0.5,-0.2,0.3", "--quat", "0,1,0,0", "--all", "--json"];
-    let by_quat = common::assert_report(&args, &ik_job("puma560", IkRequest { all: true, ..IkRequest::new(quat) }), "ik.report");
+    let by_quat =
+        common::assert_report(&args, &ik_job("puma560", IkRequest { all: true, ..IkRequest::new(quat) }), "ik.report");
     let q = |r: &Value| -> Vec<Vec<f64>> { solutions(r) };
     assert_eq!(q(&by_quat).len(), q(&by_rpy).len());
     for (a, b) in q(&by_quat).iter().zip(q(&by_rpy)) {
         assert!(same_angles(a, &b, 1e-9), "{a:?} vs {b:?}");
     }
     let pi = std::f64::consts::PI.to_string();
-    let rad = json(&["ik", "puma560", "--xyz", "0.5,-0.2,0.3", "--rpy", &format!("{pi},0,0"), "--rad", "--all", "--json"]);
+    let rad =
+        json(&["ik", "puma560", "--xyz", "0.5,-0.2,0.3", "--rpy", &format!("{pi},0,0"), "--rad", "--all", "--json"]);
     for (a, b) in q(&rad).iter().zip(q(&by_rpy)) {
         assert!(same_angles(a, &b, 1e-9), "{a:?} vs {b:?}");
     }
@@ -476,8 +481,19 @@ fn ik_json_is_the_library_report() {
     };
     let request = IkRequest { choose: Some(choice), ..IkRequest::new(pose) };
     let args = [
-        "ik", "puma560", "--xyz", "0.5,-0.2,0.3", "--rpy", "180,0,0", "--choose", "topsis", "--criteria", "change,limits",
-        "--weights", "0.7,0.3", "--json",
+        "ik",
+        "puma560",
+        "--xyz",
+        "0.5,-0.2,0.3",
+        "--rpy",
+        "180,0,0",
+        "--choose",
+        "topsis",
+        "--criteria",
+        "change,limits",
+        "--weights",
+        "0.7,0.3",
+        "--json",
     ];
     let ranked = common::assert_report(&args, &ik_job("puma560", request), "ik.report");
     assert_eq!(ranked["ranking"]["ranked"][0]["solution"], ranked["chosen"]);
@@ -492,7 +508,8 @@ fn ik_json_is_the_library_report() {
 #[test]
 fn scan_json_is_the_library_report() {
     use reach::jobs::{IkScanRequest, Joints};
-    let request = IkScanRequest { xyz_m: [2.4, 0.2, 0.0], step_deg: 1.0, from: Some(Joints::Deg(vec![60.0, -40.0, -30.0])) };
+    let request =
+        IkScanRequest { xyz_m: [2.4, 0.2, 0.0], step_deg: 1.0, from: Some(Joints::Deg(vec![60.0, -40.0, -30.0])) };
     let job = reach::jobs::Job {
         robot: reach::jobs::RobotInput::Preset("planar3".into()),
         request: reach::jobs::Request::IkScan(request),

@@ -178,8 +178,7 @@ pub fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let from = args.from.as_deref().map(joints_of).transpose()?;
     if let Some(step) = &args.scan {
         let xyz = parse_exact("--xyz", args.xyz.as_deref().unwrap_or_default(), 3, "x,y,z in metres")?;
-        let request =
-            IkScanRequest { xyz_m: [xyz[0], xyz[1], xyz[2]], step_deg: parse_finite("--scan", step)?, from };
+        let request = IkScanRequest { xyz_m: [xyz[0], xyz[1], xyz[2]], step_deg: parse_finite("--scan", step)?, from };
         let scan_flags = [("step_deg", "--scan"), ("xyz_m", "--xyz"), ("from", "--from")];
         let report = reach::jobs::ik::ik_scan(robot, &request).map_err(|e| flagged(e, &scan_flags))?;
         if args.json {
@@ -217,7 +216,10 @@ fn finish(out: &mut dyn Write, reason: Option<String>) -> Result<(), CliError> {
 fn pose_of(args: &IkArgs) -> Result<Pose, CliError> {
     if let Some(text) = &args.matrix {
         let m = parse_exact("--matrix", text, 16, "a 4x4 matrix, row-major")?;
-        return Ok(Pose { matrix: Some(std::array::from_fn(|r| std::array::from_fn(|c| m[4 * r + c]))), ..Pose::default() });
+        return Ok(Pose {
+            matrix: Some(std::array::from_fn(|r| std::array::from_fn(|c| m[4 * r + c]))),
+            ..Pose::default()
+        });
     }
     let Some(text) = &args.xyz else {
         return Err(CliError::bad_input("give the target with --xyz or --matrix"));
@@ -255,7 +257,12 @@ fn request_of(args: &IkArgs, from: Option<Joints>) -> Result<IkRequest, CliError
     request.all = args.all;
     request.from = from;
     request.joint_weights = args.joint_weights.as_deref().map(|t| parse_list("--joint-weights", t)).transpose()?;
-    request.solver = args.solver.as_deref().map(|name| IkSolverName::parse("solver", name)).transpose().map_err(|e| flagged(e, &FLAGS))?;
+    request.solver = args
+        .solver
+        .as_deref()
+        .map(|name| IkSolverName::parse("solver", name))
+        .transpose()
+        .map_err(|e| flagged(e, &FLAGS))?;
     if let Some(method) = &args.choose {
         let [method_field, criteria_field, _] = CHOICE_FIELDS;
         let parse = || -> Result<IkChoice, reach::Error> {
@@ -284,7 +291,8 @@ fn request_of(args: &IkArgs, from: Option<Joints>) -> Result<IkRequest, CliError
                 .map_err(|_| CliError::bad_input(format!("--restarts: expected a whole number ≥ 1, got {t:?}")))
         })
         .transpose()?;
-    request.numeric.time_budget_s = args.time_budget.as_deref().map(|t| parse_finite("--time-budget", t)).transpose()?;
+    request.numeric.time_budget_s =
+        args.time_budget.as_deref().map(|t| parse_finite("--time-budget", t)).transpose()?;
     Ok(request)
 }
 
@@ -319,7 +327,12 @@ impl ChoiceSpec {
                 weights: weights.map(<[f64]>::to_vec),
             };
             choice.check(CHOICE_FIELDS)?;
-            Ok(ChoiceSpec { choice, from: from.to_vec(), joint_weights: joint_weights.to_vec(), labels: labels.clone() })
+            Ok(ChoiceSpec {
+                choice,
+                from: from.to_vec(),
+                joint_weights: joint_weights.to_vec(),
+                labels: labels.clone(),
+            })
         })();
         spec.map_err(|e| flagged(e, &Self::flags(&labels)))
     }

@@ -83,7 +83,8 @@ impl IkSolverName {
                 .find(|n| n.kind() == Some(k))
             })
             .ok_or_else(|| {
-                let known: Vec<&str> = std::iter::once("auto").chain(SolverKind::ALL.iter().map(|k| k.as_str())).collect();
+                let known: Vec<&str> =
+                    std::iter::once("auto").chain(SolverKind::ALL.iter().map(|k| k.as_str())).collect();
                 Error::request(field, format!("unknown solver `{name}` (known: {})", known.join(", ")))
             })
     }
@@ -219,7 +220,9 @@ impl IkChoice {
         }
         let names: Vec<&str> = self.criteria.iter().map(|c| c.as_str()).collect();
         match (&self.weights, self.method) {
-            (Some(_), IkChoiceMethod::Pareto) => Err(Error::request(weights_field, "the pareto filter takes no weights")),
+            (Some(_), IkChoiceMethod::Pareto) => {
+                Err(Error::request(weights_field, "the pareto filter takes no weights"))
+            }
             (Some(w), _) => {
                 crate::decide::mcdm::normalise_weights(&names, w).map_err(|e| match e {
                     DecideError::WeightCount { expected, found } => Error::request(
@@ -652,9 +655,8 @@ fn options(request: &IkRequest, from: &[f64]) -> Result<IkOptions> {
 /// One solution in display units.
 #[must_use]
 pub fn solution_report(robot: &Robot, s: &IkSolution) -> IkSolutionReport {
-    let display = |joint: usize, v: f64| {
-        super::input::from_si(robot.joints()[joint - 1].kind, v, super::input::AngleUnit::Deg)
-    };
+    let display =
+        |joint: usize, v: f64| super::input::from_si(robot.joints()[joint - 1].kind, v, super::input::AngleUnit::Deg);
     let bound = |joint: usize, v: f64| v.is_finite().then(|| display(joint, v));
     IkSolutionReport {
         // `+ 0.0` turns −0 into 0.
@@ -703,7 +705,9 @@ pub fn ik(robot: &Robot, request: &IkRequest) -> Result<IkReport> {
     let all = kind.build(robot)?.solve(robot, &target, &options)?;
     let closest = all.closest_index(&from, &weights);
     let ranking = match &request.choose {
-        Some(choice) if closest.is_some() => Some(choice.rank(robot, &all, &from, &weights, CHOICE_FIELDS, "choose")?),
+        Some(choice) if closest.is_some() => {
+            Some(choice.rank(robot, &all, &from, &weights, CHOICE_FIELDS, "choose")?)
+        }
         _ => None,
     };
     let chosen = ranking.as_ref().map_or(closest, |r| r.ranked.first().map(|e| e.solution));
@@ -909,12 +913,7 @@ mod tests {
                 .map(|(i, q)| robot.joint_difference(i, robot.home()[i], q.to_radians()).abs())
                 .sum()
         };
-        let best = report
-            .solutions
-            .iter()
-            .filter(|s| s.within_limits)
-            .map(cost)
-            .fold(f64::INFINITY, f64::min);
+        let best = report.solutions.iter().filter(|s| s.within_limits).map(cost).fold(f64::INFINITY, f64::min);
         assert!((cost(&report.solutions[chosen]) - best).abs() < 1e-12);
         // Without `all`, only the chosen one is listed.
         let one = ik(&robot, &puma_request()).unwrap();
@@ -946,10 +945,7 @@ mod tests {
             criteria: default_criteria(),
             weights: Some(vec![1.0, 1.0, 1.0]),
         });
-        assert_eq!(
-            ik(&robot, &request).unwrap_err().to_string(),
-            "choose.weights: the pareto filter takes no weights"
-        );
+        assert_eq!(ik(&robot, &request).unwrap_err().to_string(), "choose.weights: the pareto filter takes no weights");
         let mut request = puma_request();
         request.numeric.restarts = Some(0);
         assert!(ik(&robot, &request).unwrap_err().to_string().starts_with("numeric.restarts:"));
