@@ -138,9 +138,11 @@ pub enum Command {
             score (TOPSIS closeness, VIKOR Q, weighted sum) and whether the solution is \
             Pareto-optimal; rank 1 is chosen. --weights always means criterion weights and \
             needs --choose; joint weights are --joint-weights. See docs/choosing.md.\n\n\
-            Units: metres, degrees (prismatic joints in metres); rpy is R = Rz(yaw)·Ry(pitch)·Rx(roll); \
-            --matrix is 16 numbers row-major, last row 0 0 0 1. Comma lists may start with a minus.\n\n\
-            --json prints {\"robot\", \"solver\", \"status\" (ok, unreachable, singular, \
+            Units: metres, degrees (prismatic joints in metres); rpy is R = Rz(yaw)·Ry(pitch)·Rx(roll) \
+            (radians with --rad); --quat is w,x,y,z; --matrix is 16 numbers row-major, last row 0 0 0 1. \
+            Comma lists may start with a minus.\n\n\
+            --json prints the report (docs/schemas/ik.report.schema.json; with --scan \
+            ik_scan.report.schema.json): {\"robot\", \"solver\", \"status\" (ok, unreachable, singular, \
             outside_limits, orientation_unreachable, no_convergence), \"reason\", \"solutions\": \
             [{\"q_deg\", \"branch\", \"position_error_m\", \"orientation_error_rad\", \
             \"within_limits\", \"violations\", \"singular\"}], \"chosen\", with --choose \"ranking\": \

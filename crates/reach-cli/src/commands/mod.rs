@@ -10,6 +10,7 @@ pub mod demo;
 pub mod drive;
 pub mod fk;
 pub mod ik;
+mod ik_render;
 pub mod jacobian;
 pub mod move_cmd;
 pub mod move_render;

@@ -435,3 +435,89 @@ fn a_half_turn_matrix_is_read_exactly() {
     let want: Vec<f64> = m.split(',').map(|v| v.parse().unwrap()).collect();
     assert!(rows.iter().zip(&want).all(|(a, b)| (a - b).abs() < 1e-9), "{rows:?}");
 }
+
+// ---------------------------------------------------------------------------------------
+// The --json output is the library's report (reach::jobs::ik)
+
+fn ik_job(robot: &str, request: reach::jobs::IkRequest) -> reach::jobs::Job {
+    reach::jobs::Job {
+        robot: reach::jobs::RobotInput::Preset(robot.into()),
+        request: reach::jobs::Request::Ik(request),
+    }
+}
+
+#[test]
+fn ik_json_is_the_library_report() {
+    use reach::jobs::ik::{IkChoice, IkChoiceMethod, IkCriterionName};
+    use reach::jobs::{IkRequest, Pose};
+    let pose = Pose::xyz_rpy_deg([0.5, -0.2, 0.3], [180.0, 0.0, 0.0]);
+    let all = IkRequest { all: true, ..IkRequest::new(pose.clone()) };
+    let args = ["ik", "puma560", "--xyz", "0.5,-0.2,0.3", "--rpy", "180,0,0", "--all", "--json"];
+    let by_rpy = common::assert_report(&args, &ik_job("puma560", all), "ik.report");
+    assert!(by_rpy["solutions"].as_array().unwrap().len() > 1, "{by_rpy}");
+    // The same orientation as a quaternion (180° about x: w = 0, x = 1) and as radians.
+    let quat = Pose { xyz_m: Some([0.5, -0.2, 0.3]), quat_wxyz: Some([0.0, 1.0, 0.0, 0.0]), ..Pose::default() };
+    let args = ["ik", "puma560", "--xyz", "0.5,-0.2,0.3", "--quat", "0,1,0,0", "--all", "--json"];
+    let by_quat =
+        common::assert_report(&args, &ik_job("puma560", IkRequest { all: true, ..IkRequest::new(quat) }), "ik.report");
+    let q = |r: &Value| -> Vec<Vec<f64>> { solutions(r) };
+    assert_eq!(q(&by_quat).len(), q(&by_rpy).len());
+    for (a, b) in q(&by_quat).iter().zip(q(&by_rpy)) {
+        assert!(same_angles(a, &b, 1e-9), "{a:?} vs {b:?}");
+    }
+    let pi = std::f64::consts::PI.to_string();
+    let rad =
+        json(&["ik", "puma560", "--xyz", "0.5,-0.2,0.3", "--rpy", &format!("{pi},0,0"), "--rad", "--all", "--json"]);
+    for (a, b) in q(&rad).iter().zip(q(&by_rpy)) {
+        assert!(same_angles(a, &b, 1e-9), "{a:?} vs {b:?}");
+    }
+    // --choose topsis: the ranking is the library's.
+    let choice = IkChoice {
+        method: IkChoiceMethod::Topsis,
+        criteria: vec![IkCriterionName::Change, IkCriterionName::Limits],
+        weights: Some(vec![0.7, 0.3]),
+    };
+    let request = IkRequest { choose: Some(choice), ..IkRequest::new(pose) };
+    let args = [
+        "ik",
+        "puma560",
+        "--xyz",
+        "0.5,-0.2,0.3",
+        "--rpy",
+        "180,0,0",
+        "--choose",
+        "topsis",
+        "--criteria",
+        "change,limits",
+        "--weights",
+        "0.7,0.3",
+        "--json",
+    ];
+    let ranked = common::assert_report(&args, &ik_job("puma560", request), "ik.report");
+    assert_eq!(ranked["ranking"]["ranked"][0]["solution"], ranked["chosen"]);
+    // --matrix: seed 001's T1 on spbu6.
+    let t1 = [[1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 3.0], [0.0, -1.0, 0.0, 5.0], [0.0, 0.0, 0.0, 1.0]];
+    let request = IkRequest::new(Pose { matrix: Some(t1), ..Pose::default() });
+    let args = ["ik", "spbu6", "--matrix", "1,0,0,0,0,0,1,3,0,-1,0,5,0,0,0,1", "--json"];
+    let report = common::assert_report(&args, &ik_job("spbu6", request), "ik.report");
+    assert!(same_angles(&chosen_q(&report), &[90.0, 0.0, 0.0, 90.0, 0.0, 0.0], 1e-6), "{report}");
+}
+
+#[test]
+fn scan_json_is_the_library_report() {
+    use reach::jobs::{IkScanRequest, Joints};
+    let request =
+        IkScanRequest { xyz_m: [2.4, 0.2, 0.0], step_deg: 1.0, from: Some(Joints::Deg(vec![60.0, -40.0, -30.0])) };
+    let job = reach::jobs::Job {
+        robot: reach::jobs::RobotInput::Preset("planar3".into()),
+        request: reach::jobs::Request::IkScan(request),
+    };
+    let args = ["ik", "planar3", "--xyz", "2.4,0.2,0", "--scan", "1", "--from", "60,-40,-30", "--json"];
+    let report = common::assert_report(&args, &job, "ik_scan.report");
+    let rows = report["rows"].as_array().unwrap();
+    let chosen = report["chosen"].as_u64().unwrap() as usize;
+    assert!(rows.len() > 10 && rows.iter().all(|r| r["s_deg"].as_f64() >= rows[chosen]["s_deg"].as_f64()));
+    // The CSV lists the same rows.
+    let csv = ok(&["ik", "planar3", "--xyz", "2.4,0.2,0", "--scan", "1", "--from", "60,-40,-30", "--csv"]);
+    assert_eq!(csv.lines().count(), rows.len() + 1);
+}

@@ -8,14 +8,15 @@ use serde::Serialize;
 use super::DecideError;
 use super::mcdm::{Criterion, DecisionMatrix, Direction, Method, Ranking, rank};
 use crate::ik::IkSolution;
-use crate::model::{JointKind, Robot};
+use crate::model::Robot;
 
 /// A criterion evaluated on one IK solution.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum IkCriterion {
     /// Weighted joint change from a reference configuration (seeds 000/001):
-    /// `Σ wᵢ |qᵢ − refᵢ|`, revolute differences wrapped to (−π, π]. Unit `rad` (mixed with
+    /// `Σ wᵢ |Δqᵢ|`, each `Δqᵢ` by [`Joint::difference`](crate::model::Joint::difference) (wrapped
+    /// only for revolute joints without limits). Unit `rad` (mixed with
     /// metres for prismatic joints); less is better.
     JointChange {
         /// Reference configuration (e.g. the current one).
@@ -63,16 +64,8 @@ impl IkCriterion {
             IkCriterion::JointChange { reference, weights } => {
                 check_vector("reference", reference, dof, false)?;
                 check_vector("joint weights", weights, dof, true)?;
-                Ok(robot
-                    .joints()
-                    .iter()
-                    .enumerate()
-                    .map(|(i, j)| {
-                        let d = q[i] - reference[i];
-                        let d = if j.kind == JointKind::Revolute { crate::angle::wrap(d) } else { d };
-                        weights[i] * d.abs()
-                    })
-                    .sum())
+                // The one joint-difference rule (`Joint::difference`), as `IkSolutions::closest_to`.
+                Ok((0..dof).map(|i| weights[i] * robot.joint_difference(i, reference[i], q[i]).abs()).sum())
             }
             IkCriterion::LimitMargin => Ok(robot
                 .joints()

@@ -17,6 +17,7 @@
 //!   and the generated JSON Schemas are kept in `docs/schemas/` (a test checks they are
 //!   current).
 
+pub mod ik;
 pub mod input;
 pub mod kinematics;
 pub mod motion;
@@ -24,6 +25,7 @@ pub mod motion;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+pub use ik::{IkReport, IkRequest, IkScanReport, IkScanRequest};
 pub use input::{AngleUnit, Joints, LoadedRobot, Pose, PoseReport, RobotInput};
 pub use kinematics::{FkReport, FkRequest, JacobianReport, JacobianRequest};
 pub use motion::{MoveReport, MoveRequest, PlanReport, PlanRequest};
@@ -43,6 +45,10 @@ pub enum Request {
     Move(MoveRequest),
     /// Every motion of a task file.
     Plan(PlanRequest),
+    /// Inverse kinematics: every solution of a target and the choice among them.
+    Ik(IkRequest),
+    /// Seed 000's table of configurations of a planar 3-link arm.
+    IkScan(IkScanRequest),
 }
 
 /// A workflow's report, tagged by `"kind"` like its request.
@@ -57,6 +63,10 @@ pub enum Report {
     Move(MoveReport),
     /// Every motion of a task file.
     Plan(PlanReport),
+    /// Inverse kinematics.
+    Ik(IkReport),
+    /// Seed 000's table of configurations.
+    IkScan(IkScanReport),
 }
 
 /// A request together with its robot.
@@ -90,6 +100,8 @@ pub fn run(robot: &Robot, request: &Request) -> Result<Report> {
         Request::Jacobian(r) => Report::Jacobian(kinematics::jacobian(robot, r)?),
         Request::Move(r) => Report::Move(motion::move_motion(robot, r)?),
         Request::Plan(r) => Report::Plan(motion::plan(robot, r)?),
+        Request::Ik(r) => Report::Ik(ik::ik(robot, r)?),
+        Request::IkScan(r) => Report::IkScan(ik::ik_scan(robot, r)?),
     })
 }
 
@@ -110,6 +122,10 @@ pub fn schemas() -> Vec<(&'static str, serde_json::Value)> {
         ("move.report", of::<MoveReport>()),
         ("plan.request", of::<PlanRequest>()),
         ("plan.report", of::<PlanReport>()),
+        ("ik.request", of::<IkRequest>()),
+        ("ik.report", of::<IkReport>()),
+        ("ik_scan.request", of::<IkScanRequest>()),
+        ("ik_scan.report", of::<IkScanReport>()),
     ]
 }
 

@@ -1,0 +1,969 @@
+//! The `ik` workflow: every solution for a tool pose (or position), the one closest to the
+//! current configuration or the one a multi-criteria method ranks first; and, for seed 000's
+//! planar arm, the thesis's table of configurations ([`ik_scan`]).
+//!
+//! "No solution" is an answer, not an error: the report's `status` is a stable code
+//! (`ok`, `unreachable`, `singular`, `outside_limits`, `orientation_unreachable`,
+//! `branch_absent`, `no_convergence`) and `reason` says it in words.
+
+use std::time::Duration;
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use super::input::{Joints, Pose, q_display, rpy_deg};
+use crate::Robot;
+use crate::decide::{Criterion, DecideError, Direction, IkCriterion, Method, ik_matrix, rank};
+use crate::error::{Error, Result};
+use crate::ik::planar::{PaperScan, PlanarRedundant, ScanRow};
+use crate::ik::{IkFailure, IkOptions, IkSolution, IkSolutions, IkTarget, SolverKind};
+use crate::model::seed000::PlanarPaperAngles;
+use crate::tolerance::IK_POSITION;
+
+/// The solver to use: `auto` (the default) picks the first closed form that fits the robot,
+/// else the numeric solver.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum IkSolverName {
+    /// Auto-detected ([`SolverKind::detect`]).
+    #[default]
+    Auto,
+    /// Planar redundant 3-link arm.
+    Planar,
+    /// Base yaw and a planar two-link arm.
+    YawTwoLink,
+    /// Base yaw and a planar three-link arm.
+    YawPlanar3,
+    /// Two links and a wrist.
+    TwoLinkWrist,
+    /// 6R arm with a spherical wrist.
+    SphericalWrist,
+    /// 6R arm with three parallel axes.
+    ParallelAxes,
+    /// Damped least squares with restarts, any serial chain.
+    Numeric,
+}
+
+impl IkSolverName {
+    /// The solver kind, `None` for `auto`.
+    #[must_use]
+    pub fn kind(self) -> Option<SolverKind> {
+        Some(match self {
+            IkSolverName::Auto => return None,
+            IkSolverName::Planar => SolverKind::Planar,
+            IkSolverName::YawTwoLink => SolverKind::YawTwoLink,
+            IkSolverName::YawPlanar3 => SolverKind::YawPlanar3,
+            IkSolverName::TwoLinkWrist => SolverKind::TwoLinkWrist,
+            IkSolverName::SphericalWrist => SolverKind::SphericalWrist,
+            IkSolverName::ParallelAxes => SolverKind::ParallelAxes,
+            IkSolverName::Numeric => SolverKind::Numeric,
+        })
+    }
+
+    /// Parses a name as written on the command line (`auto`, `spherical-wrist`, …).
+    ///
+    /// # Errors
+    /// [`Error::Request`] naming `field` for an unknown name, listing the known ones.
+    pub fn parse(field: &str, name: &str) -> Result<Self> {
+        if name == "auto" {
+            return Ok(IkSolverName::Auto);
+        }
+        SolverKind::parse(name)
+            .and_then(|k| {
+                [
+                    IkSolverName::Planar,
+                    IkSolverName::YawTwoLink,
+                    IkSolverName::YawPlanar3,
+                    IkSolverName::TwoLinkWrist,
+                    IkSolverName::SphericalWrist,
+                    IkSolverName::ParallelAxes,
+                    IkSolverName::Numeric,
+                ]
+                .into_iter()
+                .find(|n| n.kind() == Some(k))
+            })
+            .ok_or_else(|| {
+                let known: Vec<&str> =
+                    std::iter::once("auto").chain(SolverKind::ALL.iter().map(|k| k.as_str())).collect();
+                Error::request(field, format!("unknown solver `{name}` (known: {})", known.join(", ")))
+            })
+    }
+}
+
+/// A multi-criteria method choosing among the solutions within limits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum IkChoiceMethod {
+    /// TOPSIS: closeness to the ideal.
+    Topsis,
+    /// VIKOR: compromise index Q, with its acceptance conditions.
+    Vikor,
+    /// Weighted sum of min-max scores.
+    WeightedSum,
+    /// The non-dominated solutions, least joint change first (no weights).
+    Pareto,
+}
+
+impl IkChoiceMethod {
+    /// Parses a method name (case-insensitive).
+    ///
+    /// # Errors
+    /// [`Error::Request`] naming `field` for an unknown name, listing the known ones.
+    pub fn parse(field: &str, name: &str) -> Result<Self> {
+        match name.trim().to_ascii_lowercase().as_str() {
+            "pareto" => Ok(IkChoiceMethod::Pareto),
+            m => match Method::parse(m) {
+                Some(Method::Topsis) => Ok(IkChoiceMethod::Topsis),
+                Some(Method::Vikor) => Ok(IkChoiceMethod::Vikor),
+                Some(Method::WeightedSum) => Ok(IkChoiceMethod::WeightedSum),
+                None => Err(Error::request(
+                    field,
+                    format!("unknown method `{name}` (known: topsis, vikor, weighted-sum, pareto)"),
+                )),
+            },
+        }
+    }
+
+    /// The ranking method, `None` for the Pareto filter.
+    fn method(self) -> Option<Method> {
+        match self {
+            IkChoiceMethod::Topsis => Some(Method::Topsis),
+            IkChoiceMethod::Vikor => Some(Method::Vikor),
+            IkChoiceMethod::WeightedSum => Some(Method::WeightedSum),
+            IkChoiceMethod::Pareto => None,
+        }
+    }
+}
+
+/// A criterion of the IK choice.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum IkCriterionName {
+    /// `Σ wᵢ·|Δqᵢ|` from `from` (radians, metres; the robot's joint-difference rule), less is
+    /// better.
+    Change,
+    /// Smallest normalised distance to a joint limit, more is better.
+    Limits,
+    /// Yoshikawa's manipulability, more is better.
+    Manipulability,
+    /// Smallest singular value of the Jacobian, more is better.
+    SigmaMin,
+}
+
+impl IkCriterionName {
+    /// Every criterion, in the order of the documentation.
+    pub const ALL: [IkCriterionName; 4] =
+        [IkCriterionName::Change, IkCriterionName::Limits, IkCriterionName::Manipulability, IkCriterionName::SigmaMin];
+
+    /// The name (`change`, `limits`, `manipulability`, `sigma_min`).
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            IkCriterionName::Change => "change",
+            IkCriterionName::Limits => "limits",
+            IkCriterionName::Manipulability => "manipulability",
+            IkCriterionName::SigmaMin => "sigma_min",
+        }
+    }
+
+    /// Parses a name (case-insensitive, `-` for `_`).
+    ///
+    /// # Errors
+    /// [`Error::Request`] naming `field` for an unknown name, listing the known ones.
+    pub fn parse(field: &str, name: &str) -> Result<Self> {
+        let key = name.trim().to_ascii_lowercase().replace('-', "_");
+        IkCriterionName::ALL.into_iter().find(|c| c.as_str() == key).ok_or_else(|| {
+            let known: Vec<&str> = IkCriterionName::ALL.iter().map(|c| c.as_str()).collect();
+            Error::request(field, format!("unknown criterion `{name}` (known: {})", known.join(", ")))
+        })
+    }
+}
+
+fn default_criteria() -> Vec<IkCriterionName> {
+    vec![IkCriterionName::Change, IkCriterionName::Limits, IkCriterionName::Manipulability]
+}
+
+/// A multi-criteria choice among the solutions within limits.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct IkChoice {
+    /// The method.
+    pub method: IkChoiceMethod,
+    /// The criteria, in column order (default `change, limits, manipulability`).
+    #[serde(default = "default_criteria")]
+    pub criteria: Vec<IkCriterionName>,
+    /// One weight per criterion, ≥ 0, not all 0 (normalised to sum 1); not for `pareto`.
+    /// Default: equal weights.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub weights: Option<Vec<f64>>,
+}
+
+/// Names of the three parts of an [`IkChoice`] in messages: method, criteria, weights.
+pub const CHOICE_FIELDS: [&str; 3] = ["choose.method", "choose.criteria", "choose.weights"];
+
+impl IkChoice {
+    /// Checks the choice and returns the weights to use (equal weights by default).
+    ///
+    /// # Errors
+    /// [`Error::Request`] naming the field of `fields` (method, criteria, weights; weights as
+    /// `weights[i] (criterion)`): no criteria, a criterion given twice, weights for `pareto`, a
+    /// wrong weight count, a negative or non-finite weight, all weights zero.
+    pub fn check(&self, fields: [&str; 3]) -> Result<Vec<f64>> {
+        let [_, criteria_field, weights_field] = fields;
+        if self.criteria.is_empty() {
+            return Err(Error::request(criteria_field, "no criteria given"));
+        }
+        for (k, c) in self.criteria.iter().enumerate() {
+            if self.criteria[..k].contains(c) {
+                return Err(Error::request(criteria_field, format!("`{}` is given twice", c.as_str())));
+            }
+        }
+        let names: Vec<&str> = self.criteria.iter().map(|c| c.as_str()).collect();
+        match (&self.weights, self.method) {
+            (Some(_), IkChoiceMethod::Pareto) => {
+                Err(Error::request(weights_field, "the pareto filter takes no weights"))
+            }
+            (Some(w), _) => {
+                crate::decide::mcdm::normalise_weights(&names, w).map_err(|e| match e {
+                    DecideError::WeightCount { expected, found } => Error::request(
+                        weights_field,
+                        format!("expected {expected} weights, one per criterion ({}), got {found}", names.join(",")),
+                    ),
+                    DecideError::InvalidWeight { criterion, value } => {
+                        let i = names.iter().position(|n| *n == criterion).map_or(0, |i| i + 1);
+                        Error::request(
+                            format!("{weights_field}[{i}] ({criterion})"),
+                            format!("must be finite and not negative, got {value}"),
+                        )
+                    }
+                    DecideError::ZeroWeights => Error::request(weights_field, "all weights are zero"),
+                    e => Error::request(weights_field, e.to_string()),
+                })?;
+                Ok(w.clone())
+            }
+            (None, _) => Ok(vec![1.0; self.criteria.len()]),
+        }
+    }
+
+    /// Ranks the solutions within limits of `all`; indices in the ranking refer to
+    /// `all.solutions`. `from` and `joint_weights` (SI, one per joint) define the `change`
+    /// criterion and Pareto's tie-break.
+    ///
+    /// # Errors
+    /// As [`IkChoice::check`]; [`Error::Request`] naming `field` when the criteria cannot be
+    /// evaluated or cannot discriminate (an all-zero column).
+    pub fn rank(
+        &self,
+        robot: &Robot,
+        all: &IkSolutions,
+        from: &[f64],
+        joint_weights: &[f64],
+        fields: [&str; 3],
+        field: &str,
+    ) -> Result<IkRanking> {
+        let weights = self.check(fields)?;
+        let change = IkCriterion::JointChange { reference: from.to_vec(), weights: joint_weights.to_vec() };
+        let criteria: Vec<IkCriterion> = self
+            .criteria
+            .iter()
+            .map(|c| match c {
+                IkCriterionName::Change => change.clone(),
+                IkCriterionName::Limits => IkCriterion::LimitMargin,
+                IkCriterionName::Manipulability => IkCriterion::Manipulability,
+                IkCriterionName::SigmaMin => IkCriterion::SigmaMin,
+            })
+            .collect();
+        let candidates: Vec<usize> = (0..all.solutions.len()).filter(|&i| all.solutions[i].within_limits).collect();
+        let solutions: Vec<IkSolution> = candidates.iter().map(|&i| all.solutions[i].clone()).collect();
+        let decide = |e: DecideError| Error::request(field, e.to_string());
+        let matrix = ik_matrix(robot, &solutions, &criteria).map_err(decide)?;
+        matrix.reject_zero_columns().map_err(decide)?;
+        let describe = |weight: Option<f64>, c: &Criterion| IkCriterionReport {
+            name: c.name.clone(),
+            unit: c.unit.clone(),
+            direction: match c.direction {
+                Direction::MoreIsBetter => CriterionDirection::MoreIsBetter,
+                Direction::LessIsBetter => CriterionDirection::LessIsBetter,
+            },
+            weight,
+        };
+        if let Some(method) = self.method.method() {
+            let ranking = rank(&matrix, &weights, method).map_err(decide)?;
+            return Ok(IkRanking {
+                method: self.method,
+                criteria: ranking.criteria.iter().zip(&ranking.weights).map(|(c, w)| describe(Some(*w), c)).collect(),
+                score: match method {
+                    Method::WeightedSum => "weighted sum of min-max scores (1 = best), higher is better",
+                    Method::Topsis => "closeness C = d-/(d+ + d-) to the ideal, higher is better",
+                    Method::Vikor => "compromise index Q (v = 0.5), lower is better",
+                }
+                .into(),
+                ranked: ranking
+                    .ranked
+                    .iter()
+                    .map(|e| IkRankedReport {
+                        solution: candidates[e.index],
+                        rank: e.rank,
+                        score: Some(e.score),
+                        values: matrix.rows()[e.index].clone(),
+                        normalised: Some(e.normalised.clone()),
+                        pareto_optimal: e.pareto_optimal,
+                    })
+                    .collect(),
+                vikor: ranking.vikor.map(|v| IkVikorReport {
+                    dq: v.dq,
+                    acceptable_advantage: v.acceptable_advantage,
+                    acceptable_stability: v.acceptable_stability,
+                    compromise: v.compromise.iter().map(|&i| candidates[i]).collect(),
+                }),
+            });
+        }
+        // Pareto: the non-dominated ones first, least weighted joint change first (the seeds'
+        // rule), then the dominated ones in the same order.
+        let front = matrix.pareto();
+        let cost: Vec<f64> =
+            solutions.iter().map(|s| change.evaluate(robot, &s.q)).collect::<Result<_, _>>().map_err(decide)?;
+        let mut order: Vec<usize> = (0..solutions.len()).collect();
+        order.sort_by(|&a, &b| {
+            (!front.contains(&a)).cmp(&!front.contains(&b)).then(cost[a].total_cmp(&cost[b])).then(a.cmp(&b))
+        });
+        Ok(IkRanking {
+            method: IkChoiceMethod::Pareto,
+            criteria: matrix.criteria().iter().map(|c| describe(None, c)).collect(),
+            score: "none: non-dominated first, then least joint change from --from".into(),
+            ranked: order
+                .iter()
+                .enumerate()
+                .map(|(k, &i)| IkRankedReport {
+                    solution: candidates[i],
+                    rank: k + 1,
+                    score: None,
+                    values: matrix.rows()[i].clone(),
+                    normalised: None,
+                    pareto_optimal: front.contains(&i),
+                })
+                .collect(),
+            vikor: None,
+        })
+    }
+}
+
+/// Options of the numeric solver (ignored by the closed forms).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct IkNumericRequest {
+    /// Number of starts, ≥ 1 (default 16).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub restarts: Option<usize>,
+    /// Iterations per start, ≥ 1 (default 200).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_iterations: Option<usize>,
+    /// Wall-time budget of the solve, seconds (> 0; default: none). A budget makes the result
+    /// depend on the machine's speed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub time_budget_s: Option<f64>,
+    /// Largest accepted position error, metres (> 0; default 1e-6).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub position_tolerance_m: Option<f64>,
+    /// Largest accepted orientation error, radians (> 0; default 1e-6).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub orientation_tolerance_rad: Option<f64>,
+}
+
+/// Inverse kinematics of one target.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct IkRequest {
+    /// The target: a full pose, or a position alone (orientation free).
+    pub target: Pose,
+    /// The solver (default `auto`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub solver: Option<IkSolverName>,
+    /// List every solution, within the joint limits or not (otherwise only the chosen one,
+    /// or every one when none is within limits).
+    #[serde(default)]
+    pub all: bool,
+    /// The current configuration (default: home): the closest solution is chosen, the
+    /// numeric solver starts there, and undetermined angles at singularities keep its values.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub from: Option<Joints>,
+    /// Weights `wᵢ ≥ 0` of the joint changes `Σ wᵢ·|Δqᵢ|`, one per joint (default all 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub joint_weights: Option<Vec<f64>>,
+    /// Choose by several criteria instead of the least joint change (`solutions` then lists
+    /// every solution and `ranking` explains the choice).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub choose: Option<IkChoice>,
+    /// Redundant arms: the free parameter, degrees (planar3: absolute angle of the last link).
+    /// Default: sample the self-motion with `step_deg`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub free_angle_deg: Option<f64>,
+    /// Redundant arms: sampling step of the self-motion, degrees (> 0; default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub step_deg: Option<f64>,
+    /// Numeric solver options.
+    #[serde(default)]
+    pub numeric: IkNumericRequest,
+}
+
+impl IkRequest {
+    /// A request for `target` with every option at its default.
+    #[must_use]
+    pub fn new(target: Pose) -> Self {
+        IkRequest {
+            target,
+            solver: None,
+            all: false,
+            from: None,
+            joint_weights: None,
+            choose: None,
+            free_angle_deg: None,
+            step_deg: None,
+            numeric: IkNumericRequest::default(),
+        }
+    }
+}
+
+/// The target as solved: position, and orientation unless free.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct IkTargetReport {
+    /// Position, metres.
+    pub xyz_m: [f64; 3],
+    /// Roll, pitch, yaw in degrees, `R = Rz(yaw)·Ry(pitch)·Rx(roll)`; `null`: orientation free.
+    pub rpy_deg: Option<[f64; 3]>,
+}
+
+/// A joint outside its limits, in display units (revolute degrees, prismatic metres).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct IkViolationReport {
+    /// 1-based joint number.
+    pub joint: usize,
+    /// Joint name.
+    pub name: String,
+    /// The value.
+    pub value_deg: f64,
+    /// Lower limit (`null` when unbounded).
+    pub lower_deg: Option<f64>,
+    /// Upper limit (`null` when unbounded).
+    pub upper_deg: Option<f64>,
+}
+
+/// One solution.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct IkSolutionReport {
+    /// Joint values: revolute in degrees, prismatic in metres.
+    pub q_deg: Vec<f64>,
+    /// Branch label, e.g. `shoulder=left elbow=up wrist=noflip`.
+    pub branch: String,
+    /// Tool position error, metres.
+    pub position_error_m: f64,
+    /// Tool orientation error, radians.
+    pub orientation_error_rad: f64,
+    /// Whether every joint is within its limits.
+    pub within_limits: bool,
+    /// The joints outside their limits.
+    pub violations: Vec<IkViolationReport>,
+    /// Singular configurations the solution sits at: `wrist`, `elbow`, `shoulder`, `jacobian`.
+    pub singular: Vec<String>,
+}
+
+/// Whether larger or smaller values of a criterion are preferred.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum CriterionDirection {
+    /// Larger is better.
+    MoreIsBetter,
+    /// Smaller is better.
+    LessIsBetter,
+}
+
+/// One criterion of a ranking.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct IkCriterionReport {
+    /// Name.
+    pub name: String,
+    /// Unit of the raw values.
+    pub unit: String,
+    /// Preferred direction.
+    pub direction: CriterionDirection,
+    /// Weight, normalised to sum 1 (`null` for pareto).
+    pub weight: Option<f64>,
+}
+
+/// One ranked solution.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct IkRankedReport {
+    /// Index into `solutions`.
+    pub solution: usize,
+    /// 1-based rank (pareto: 1 for the chosen, then the other non-dominated, then the rest).
+    pub rank: usize,
+    /// The method's score (`null` for pareto).
+    pub score: Option<f64>,
+    /// Raw criterion values, in the criteria's units.
+    pub values: Vec<f64>,
+    /// Normalised values as the method uses them (`null` for pareto).
+    pub normalised: Option<Vec<f64>>,
+    /// Whether no other candidate is better or equal on every criterion and better on one.
+    pub pareto_optimal: bool,
+}
+
+/// VIKOR's acceptance of its Q-best solution (conditions C1 and C2) and the compromise set.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct IkVikorReport {
+    /// `DQ = 1/(m − 1)` for `m` candidates (0 with one).
+    pub dq: f64,
+    /// C1: `Q(a″) − Q(a′) ≥ DQ`.
+    pub acceptable_advantage: bool,
+    /// C2: a′ is also best by S or by R.
+    pub acceptable_stability: bool,
+    /// The compromise set, indices into `solutions`, best first.
+    pub compromise: Vec<usize>,
+}
+
+impl IkVikorReport {
+    /// Whether the Q-best solution alone is the compromise (C1 and C2 hold).
+    #[must_use]
+    pub fn accepted(&self) -> bool {
+        self.acceptable_advantage && self.acceptable_stability
+    }
+}
+
+/// The ranking of a multi-criteria choice.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct IkRanking {
+    /// The method.
+    pub method: IkChoiceMethod,
+    /// The criteria, in column order, with the normalised weights.
+    pub criteria: Vec<IkCriterionReport>,
+    /// Meaning of `score`.
+    pub score: String,
+    /// The candidates, best first.
+    pub ranked: Vec<IkRankedReport>,
+    /// VIKOR only: acceptance conditions C1/C2 and the compromise set.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vikor: Option<IkVikorReport>,
+}
+
+/// The solutions of one target and the choice among them (`reach ik --json`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct IkReport {
+    /// Robot name.
+    pub robot: String,
+    /// Name of the solver used.
+    pub solver: String,
+    /// `ok`, or why no solution is within limits: `unreachable`, `singular`,
+    /// `outside_limits`, `orientation_unreachable`, `branch_absent`, `no_convergence`.
+    pub status: String,
+    /// The reason in words (`null` when the status is `ok`).
+    pub reason: Option<String>,
+    /// The target as solved.
+    pub target: IkTargetReport,
+    /// The configuration the choice is measured from (display units).
+    pub from_q_deg: Vec<f64>,
+    /// The joint weights of `Σ wᵢ·|Δqᵢ|`.
+    pub joint_weights: Vec<f64>,
+    /// How many solutions the solver found.
+    pub found: usize,
+    /// How many of them are within the joint limits.
+    pub within_limits: usize,
+    /// With `all` or `choose`, or when none is within limits: every solution found;
+    /// otherwise the chosen one only.
+    pub solutions: Vec<IkSolutionReport>,
+    /// Index of the chosen solution in `solutions` (`null` when none is within limits).
+    pub chosen: Option<usize>,
+    /// With `choose`: the ranking of the solutions within limits.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ranking: Option<IkRanking>,
+}
+
+/// The stable code of a failure (`unreachable`, `outside_limits`, …).
+#[must_use]
+pub fn failure_code(failure: &IkFailure) -> &'static str {
+    match failure {
+        IkFailure::Unreachable { .. } => "unreachable",
+        IkFailure::OrientationUnreachable => "orientation_unreachable",
+        IkFailure::Singular { .. } => "singular",
+        IkFailure::OutsideLimits { .. } => "outside_limits",
+        IkFailure::BranchAbsent { .. } => "branch_absent",
+        IkFailure::NoConvergence { .. } => "no_convergence",
+    }
+}
+
+fn status(failure: Option<&IkFailure>) -> (String, Option<String>) {
+    match failure {
+        None => ("ok".into(), None),
+        Some(f) => (failure_code(f).into(), Some(f.to_string())),
+    }
+}
+
+/// `joint_weights`: one finite, non-negative weight per joint (default all 1).
+fn joint_weights(robot: &Robot, weights: Option<&[f64]>) -> Result<Vec<f64>> {
+    let Some(w) = weights else { return Ok(vec![1.0; robot.dof()]) };
+    if w.len() != robot.dof() {
+        return Err(Error::request(
+            "joint_weights",
+            format!("robot `{}` has {} joints, got {} weights", robot.name(), robot.dof(), w.len()),
+        ));
+    }
+    if let Some(i) = w.iter().position(|v| !v.is_finite() || *v < 0.0) {
+        return Err(Error::request(
+            format!("joint_weights[{}]", i + 1),
+            format!("must be finite and not negative, got {}", w[i]),
+        ));
+    }
+    Ok(w.to_vec())
+}
+
+/// The solver options of a request.
+fn options(request: &IkRequest, from: &[f64]) -> Result<IkOptions> {
+    let mut options = IkOptions { seed: Some(from.to_vec()), ..IkOptions::default() };
+    if let Some(a) = request.free_angle_deg {
+        if !a.is_finite() {
+            return Err(Error::request("free_angle_deg", format!("expected a finite number, got {a}")));
+        }
+        options.free_parameter = Some(a.to_radians());
+    }
+    if let Some(step) = request.step_deg {
+        if !(step.is_finite() && step > 0.0) {
+            return Err(Error::request("step_deg", format!("must be a positive angle in degrees, got {step}")));
+        }
+        options.redundancy_step = step.to_radians();
+    }
+    let n = &request.numeric;
+    let whole = |field: &str, v: Option<usize>| match v {
+        Some(0) => Err(Error::request(field, "expected a whole number ≥ 1, got 0")),
+        other => Ok(other),
+    };
+    if let Some(r) = whole("numeric.restarts", n.restarts)? {
+        options.restarts = r;
+    }
+    if let Some(m) = whole("numeric.max_iterations", n.max_iterations)? {
+        options.max_iterations = m;
+    }
+    if let Some(t) = super::input::positive("numeric.time_budget_s", n.time_budget_s)? {
+        options.numeric.time_budget = Some(Duration::from_secs_f64(t));
+    }
+    if let Some(t) = super::input::positive("numeric.position_tolerance_m", n.position_tolerance_m)? {
+        options.numeric.position_tolerance = t;
+    }
+    if let Some(t) = super::input::positive("numeric.orientation_tolerance_rad", n.orientation_tolerance_rad)? {
+        options.numeric.orientation_tolerance = t;
+    }
+    Ok(options)
+}
+
+/// One solution in display units.
+#[must_use]
+pub fn solution_report(robot: &Robot, s: &IkSolution) -> IkSolutionReport {
+    let display =
+        |joint: usize, v: f64| super::input::from_si(robot.joints()[joint - 1].kind, v, super::input::AngleUnit::Deg);
+    let bound = |joint: usize, v: f64| v.is_finite().then(|| display(joint, v));
+    IkSolutionReport {
+        // `+ 0.0` turns −0 into 0.
+        q_deg: q_display(robot, &s.q).into_iter().map(|v| v + 0.0).collect(),
+        branch: s.branch.to_string(),
+        position_error_m: s.position_error,
+        orientation_error_rad: s.orientation_error,
+        within_limits: s.within_limits,
+        violations: s
+            .violations
+            .iter()
+            .map(|v| IkViolationReport {
+                joint: v.joint,
+                name: v.name.clone(),
+                value_deg: display(v.joint, v.value),
+                lower_deg: bound(v.joint, v.lower),
+                upper_deg: bound(v.joint, v.upper),
+            })
+            .collect(),
+        singular: s.singularities.iter().map(|k| k.as_str().to_string()).collect(),
+    }
+}
+
+/// Solves the target and chooses a solution.
+///
+/// The default choice is the solution within limits with the least `Σ wᵢ·|Δqᵢ|` from `from`
+/// ([`IkSolutions::closest_index`], each `Δqᵢ` by the robot's one joint-difference rule
+/// [`crate::model::Joint::difference`]); with `choose`, the method's rank 1.
+///
+/// # Errors
+/// [`Error::Request`] naming the field (`target.matrix`, `from`, `joint_weights[6]`,
+/// `choose.weights`, `numeric.restarts`, …); [`Error::Ik`] for a solver that does not fit the
+/// robot. No solution within limits is not an error: see the report's `status`.
+pub fn ik(robot: &Robot, request: &IkRequest) -> Result<IkReport> {
+    let target = request.target.target("target")?;
+    let from = match &request.from {
+        Some(q) => q.si(robot, "from")?,
+        None => robot.home(),
+    };
+    let weights = joint_weights(robot, request.joint_weights.as_deref())?;
+    if let Some(choice) = &request.choose {
+        choice.check(CHOICE_FIELDS)?;
+    }
+    let options = options(request, &from)?;
+    let kind = request.solver.unwrap_or_default().kind().unwrap_or_else(|| SolverKind::detect(robot));
+    let all = kind.build(robot)?.solve(robot, &target, &options)?;
+    let closest = all.closest_index(&from, &weights);
+    let ranking = match &request.choose {
+        Some(choice) if closest.is_some() => {
+            Some(choice.rank(robot, &all, &from, &weights, CHOICE_FIELDS, "choose")?)
+        }
+        _ => None,
+    };
+    let chosen = ranking.as_ref().map_or(closest, |r| r.ranked.first().map(|e| e.solution));
+    let shown: Vec<usize> = match chosen {
+        Some(i) if !request.all && ranking.is_none() => vec![i],
+        _ => (0..all.solutions.len()).collect(),
+    };
+    let (status, reason) = status(all.failure.as_ref());
+    let p = target.position();
+    Ok(IkReport {
+        robot: robot.name().to_string(),
+        solver: all.solver.to_string(),
+        status,
+        reason,
+        target: IkTargetReport {
+            xyz_m: [p.x, p.y, p.z],
+            rpy_deg: match &target {
+                IkTarget::Pose(pose) => Some(rpy_deg(&pose.rotation)),
+                IkTarget::Position(_) => None,
+            },
+        },
+        from_q_deg: q_display(robot, &from),
+        joint_weights: weights,
+        found: all.solutions.len(),
+        within_limits: all.feasible().count(),
+        solutions: shown.iter().map(|&i| solution_report(robot, &all.solutions[i])).collect(),
+        chosen: chosen.and_then(|c| shown.iter().position(|&i| i == c)),
+        ranking,
+    })
+}
+
+// ---------------------------------------------------------------------------------------------
+// The planar scan: seed 000's table of configurations.
+// ---------------------------------------------------------------------------------------------
+
+/// Seed 000's table of configurations of a planar 3-link arm for one position (notes 000
+/// §4.1): α from α_min to 180° in steps, and the row with the least
+/// `S = |α − α0| + |β − β0| + |γ − γ0|` from the current configuration.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct IkScanRequest {
+    /// The tool position, metres (in the arm's plane).
+    pub xyz_m: [f64; 3],
+    /// The step of α, degrees (> 0).
+    pub step_deg: f64,
+    /// The current configuration (default: home).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub from: Option<Joints>,
+}
+
+/// The thesis's angles α, β, γ, degrees.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct PaperAnglesReport {
+    /// Interior angle at joint A, degrees.
+    pub alpha_deg: f64,
+    /// Interior angle at joint B, degrees.
+    pub beta_deg: f64,
+    /// Absolute angle of the first link, degrees.
+    pub gamma_deg: f64,
+}
+
+impl PaperAnglesReport {
+    fn of(p: &PlanarPaperAngles) -> Self {
+        PaperAnglesReport {
+            alpha_deg: p.alpha.to_degrees(),
+            beta_deg: p.beta.to_degrees(),
+            gamma_deg: p.gamma.to_degrees(),
+        }
+    }
+}
+
+/// One row of the table.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct IkScanRow {
+    /// The thesis's angles.
+    pub paper: PaperAnglesReport,
+    /// Joint values, degrees.
+    pub q_deg: [f64; 3],
+    /// `S` from the current configuration, degrees.
+    pub s_deg: f64,
+    /// Whether every joint is within its limits.
+    pub within_limits: bool,
+}
+
+/// The table of configurations (`reach ik --scan --json`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct IkScanReport {
+    /// Robot name.
+    pub robot: String,
+    /// The step of α, degrees.
+    pub step_deg: f64,
+    /// The target in the arm's plane, metres.
+    pub plane_xy_m: [f64; 2],
+    /// The smallest α of the table, degrees (`null` when the target is unreachable).
+    pub alpha_min_deg: Option<f64>,
+    /// The current configuration, joint values in degrees.
+    pub from_q_deg: Vec<f64>,
+    /// The current configuration, the thesis's angles.
+    pub from_paper: PaperAnglesReport,
+    /// `ok`, or why there is no row: a code as in the `ik` report.
+    pub status: String,
+    /// The reason in words (`null` when the status is `ok`).
+    pub reason: Option<String>,
+    /// How many rows are within the joint limits.
+    pub within_limits: usize,
+    /// The rows, α ascending.
+    pub rows: Vec<IkScanRow>,
+    /// Index of the row with the least `S` (`null` without rows).
+    pub chosen: Option<usize>,
+}
+
+/// The thesis's angles of configuration `q` of `arm` (notes 000 §2): `γ = φ1`,
+/// `β = φ2 − φ1 + 180°`, `α = φ3 − φ2 + 180°` from the absolute link angles `φ`.
+fn paper_angles(arm: &PlanarRedundant, q: &[f64]) -> PlanarPaperAngles {
+    let phi = arm.link_angles(&[q[0], q[1], q[2]]);
+    let pi = std::f64::consts::PI;
+    PlanarPaperAngles { gamma: phi[0], beta: phi[1] - phi[0] + pi, alpha: phi[2] - phi[1] + pi }
+}
+
+/// `S` of a row against the start (notes 000 §6.3), radians.
+fn s_of(row: &ScanRow, start: &PlanarPaperAngles) -> f64 {
+    let p = &row.paper;
+    (p.alpha - start.alpha).abs() + (p.beta - start.beta).abs() + (p.gamma - start.gamma).abs()
+}
+
+/// Builds seed 000's table of configurations.
+///
+/// # Errors
+/// [`Error::Request`] for a non-finite position or a step that is not a positive angle
+/// (`step_deg`), a bad `from`; [`Error::Ik`] when the robot is not a planar 3-link arm.
+pub fn ik_scan(robot: &Robot, request: &IkScanRequest) -> Result<IkScanReport> {
+    let arm = PlanarRedundant::from_robot(robot)?;
+    let step = request.step_deg;
+    if !(step.is_finite() && step > 0.0) {
+        return Err(Error::request("step_deg", format!("the step must be a positive angle in degrees, got {step}")));
+    }
+    if let Some(i) = request.xyz_m.iter().position(|v| !v.is_finite()) {
+        return Err(Error::request(
+            format!("xyz_m[{}]", i + 1),
+            format!("expected a finite number, got {}", request.xyz_m[i]),
+        ));
+    }
+    let from = match &request.from {
+        Some(q) => q.si(robot, "from")?,
+        None => robot.home(),
+    };
+    let (x, y, offset) = arm.plane_coordinates(&nalgebra::Point3::from(request.xyz_m));
+    let scan = if offset.abs() > IK_POSITION {
+        let failure = IkFailure::Unreachable { distance: offset.abs(), reach: 0.0 };
+        PaperScan { alpha_min: None, rows: Vec::new(), failure: Some(failure) }
+    } else {
+        arm.paper_scan([x, y], step.to_radians())?
+    };
+    let start = paper_angles(&arm, &from);
+    let (status, reason) = status(scan.failure.as_ref());
+    Ok(IkScanReport {
+        robot: robot.name().to_string(),
+        step_deg: step,
+        plane_xy_m: [x, y],
+        alpha_min_deg: scan.alpha_min.map(f64::to_degrees),
+        from_q_deg: q_display(robot, &from),
+        from_paper: PaperAnglesReport::of(&start),
+        status,
+        reason,
+        within_limits: scan.rows.iter().filter(|r| r.within_limits).count(),
+        rows: scan
+            .rows
+            .iter()
+            .map(|row| IkScanRow {
+                paper: PaperAnglesReport::of(&row.paper),
+                q_deg: row.q.map(f64::to_degrees),
+                s_deg: s_of(row, &start).to_degrees(),
+                within_limits: row.within_limits,
+            })
+            .collect(),
+        chosen: scan.select_min_s(&start).map(|(i, _)| i),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::presets;
+
+    fn puma_request() -> IkRequest {
+        IkRequest::new(Pose::xyz_rpy_deg([0.5, -0.2, 0.3], [180.0, 0.0, 0.0]))
+    }
+
+    #[test]
+    fn the_default_choice_is_the_closest_by_the_joint_difference_rule() {
+        let robot = presets::get("puma560").unwrap();
+        let mut request = puma_request();
+        request.all = true;
+        let report = ik(&robot, &request).unwrap();
+        assert_eq!(report.status, "ok");
+        assert_eq!(report.solutions.len(), report.found);
+        let chosen = report.chosen.unwrap();
+        // The chosen one has the least Σ |Δq| from home, each Δq by Joint::difference.
+        let cost = |s: &IkSolutionReport| -> f64 {
+            s.q_deg
+                .iter()
+                .enumerate()
+                .map(|(i, q)| robot.joint_difference(i, robot.home()[i], q.to_radians()).abs())
+                .sum()
+        };
+        let best = report.solutions.iter().filter(|s| s.within_limits).map(cost).fold(f64::INFINITY, f64::min);
+        assert!((cost(&report.solutions[chosen]) - best).abs() < 1e-12);
+        // Without `all`, only the chosen one is listed.
+        let one = ik(&robot, &puma_request()).unwrap();
+        assert_eq!(one.solutions, vec![report.solutions[chosen].clone()]);
+        assert_eq!(one.chosen, Some(0));
+    }
+
+    #[test]
+    fn choice_with_change_alone_agrees_with_the_closest() {
+        let robot = presets::get("puma560").unwrap();
+        let mut request = puma_request();
+        request.choose =
+            Some(IkChoice { method: IkChoiceMethod::Topsis, criteria: vec![IkCriterionName::Change], weights: None });
+        let ranked = ik(&robot, &request).unwrap();
+        let closest = ik(&robot, &puma_request()).unwrap();
+        assert_eq!(ranked.solutions[ranked.chosen.unwrap()], closest.solutions[0]);
+        assert_eq!(ranked.ranking.unwrap().ranked.len(), ranked.within_limits);
+    }
+
+    #[test]
+    fn bad_fields_are_named() {
+        let robot = presets::get("puma560").unwrap();
+        let mut request = puma_request();
+        request.joint_weights = Some(vec![1.0, 1.0, 1.0, 1.0, 1.0, -1.0]);
+        assert!(ik(&robot, &request).unwrap_err().to_string().starts_with("joint_weights[6]: must be finite"));
+        let mut request = puma_request();
+        request.choose = Some(IkChoice {
+            method: IkChoiceMethod::Pareto,
+            criteria: default_criteria(),
+            weights: Some(vec![1.0, 1.0, 1.0]),
+        });
+        assert_eq!(ik(&robot, &request).unwrap_err().to_string(), "choose.weights: the pareto filter takes no weights");
+        let mut request = puma_request();
+        request.numeric.restarts = Some(0);
+        assert!(ik(&robot, &request).unwrap_err().to_string().starts_with("numeric.restarts:"));
+        assert!(IkSolverName::parse("solver", "foo").unwrap_err().to_string().contains("spherical-wrist"));
+        assert_eq!(IkSolverName::parse("solver", "yaw-planar3").unwrap(), IkSolverName::YawPlanar3);
+        let json = serde_json::to_value(IkSolverName::YawPlanar3).unwrap();
+        assert_eq!(json, "yaw-planar3");
+    }
+
+    #[test]
+    fn the_scan_of_planar3_chooses_the_least_s() {
+        let robot = presets::get("planar3").unwrap();
+        let request = IkScanRequest { xyz_m: [2.4, 0.2, 0.0], step_deg: 1.0, from: None };
+        let report = ik_scan(&robot, &request).unwrap();
+        assert_eq!(report.status, "ok");
+        let chosen = report.chosen.unwrap();
+        assert!(report.rows.iter().all(|r| r.s_deg >= report.rows[chosen].s_deg));
+        let off_plane = IkScanRequest { xyz_m: [2.4, 0.2, 1.0], ..request };
+        assert_eq!(ik_scan(&robot, &off_plane).unwrap().status, "unreachable");
+    }
+}
