@@ -19,12 +19,16 @@
 
 pub mod input;
 pub mod kinematics;
+pub mod world;
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 pub use input::{AngleUnit, Joints, LoadedRobot, Pose, PoseReport, RobotInput};
 pub use kinematics::{FkReport, FkRequest, JacobianReport, JacobianRequest};
+pub use world::{
+    AvoidReport, AvoidRequest, CheckReport, CheckRequest, CspaceReport, CspaceRequest, PathReport, PathRequest,
+};
 
 use crate::Robot;
 use crate::error::Result;
@@ -37,6 +41,14 @@ pub enum Request {
     Fk(FkRequest),
     /// The Jacobian and its measures.
     Jacobian(JacobianRequest),
+    /// Collisions and clearances of one configuration in a scene.
+    Check(CheckRequest),
+    /// Seed 000's planar detour around point obstacles.
+    Avoid(AvoidRequest),
+    /// Seed 004's configuration-space grid (and fitted region).
+    Cspace(CspaceRequest),
+    /// A collision-free, timed joint-space path through a scene.
+    Path(PathRequest),
 }
 
 /// A workflow's report, tagged by `"kind"` like its request.
@@ -47,6 +59,14 @@ pub enum Report {
     Fk(FkReport),
     /// The Jacobian and its measures.
     Jacobian(JacobianReport),
+    /// Collisions and clearances of one configuration in a scene.
+    Check(CheckReport),
+    /// Seed 000's planar detour around point obstacles.
+    Avoid(AvoidReport),
+    /// Seed 004's configuration-space grid (and fitted region).
+    Cspace(CspaceReport),
+    /// A collision-free, timed joint-space path through a scene.
+    Path(PathReport),
 }
 
 /// A request together with its robot.
@@ -78,6 +98,10 @@ pub fn run(robot: &Robot, request: &Request) -> Result<Report> {
     Ok(match request {
         Request::Fk(r) => Report::Fk(kinematics::fk(robot, r)?),
         Request::Jacobian(r) => Report::Jacobian(kinematics::jacobian(robot, r)?),
+        Request::Check(r) => Report::Check(world::check(robot, r)?),
+        Request::Avoid(r) => Report::Avoid(world::avoid(robot, r)?),
+        Request::Cspace(r) => Report::Cspace(world::cspace(robot, r)?),
+        Request::Path(r) => Report::Path(world::path(robot, r)?),
     })
 }
 
@@ -94,6 +118,14 @@ pub fn schemas() -> Vec<(&'static str, serde_json::Value)> {
         ("fk.report", of::<FkReport>()),
         ("jacobian.request", of::<JacobianRequest>()),
         ("jacobian.report", of::<JacobianReport>()),
+        ("check.request", of::<CheckRequest>()),
+        ("check.report", of::<CheckReport>()),
+        ("avoid.request", of::<AvoidRequest>()),
+        ("avoid.report", of::<AvoidReport>()),
+        ("cspace.request", of::<CspaceRequest>()),
+        ("cspace.report", of::<CspaceReport>()),
+        ("path.request", of::<PathRequest>()),
+        ("path.report", of::<PathReport>()),
     ]
 }
 
