@@ -280,6 +280,5 @@ fn describe(p: &Primitive, l: &[String; 3]) -> (&'static str, String) {
                 poly(b, &l[0])
             ),
         ),
-        _ => ("primitive", format!("{p:?}")),
     }
 }
