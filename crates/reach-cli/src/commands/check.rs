@@ -1,11 +1,12 @@
-//! `reach check` — collisions and clearances of one configuration in a scene.
+//! `reach check` — collisions and clearances of one configuration in a scene
+//! (`reach::jobs::world::check`; `--json` prints its report).
 
 use std::io::Write;
 
 use clap::Args;
-use reach::world::{CollisionChecker, Report, Scene, Verdict};
+use reach::jobs::{CheckReport, CheckRequest};
 
-use crate::error::CliError;
+use crate::error::{CliError, one_line};
 use crate::numbers::{JointArgs, q_text};
 use crate::output::{Align, Table, fixed, write_json};
 use crate::robot_arg::RobotArgs;
@@ -25,29 +26,28 @@ pub struct CheckArgs {
     #[command(flatten)]
     pub joints: JointArgs,
 
-    /// Print the report as JSON.
+    /// Print the report as JSON (docs/schemas/check.report.schema.json).
     #[arg(long)]
     pub json: bool,
 }
 
-/// Reads and parses a scene file; errors are bad input naming the file.
+/// Reads a scene file's text (the library parses it).
 ///
 /// # Errors
-/// [`CliError::BadInput`] when the file cannot be read or parsed.
-pub fn load_scene(path: &str) -> Result<Scene, CliError> {
-    let text =
-        std::fs::read_to_string(path).map_err(|e| CliError::bad_input(format!("cannot read scene `{path}`: {e}")))?;
-    Scene::from_toml_str(&text).map_err(|e| CliError::bad_input(format!("{path}: {e}")))
+/// [`CliError::BadInput`] naming the file when it cannot be read.
+pub fn read_scene(path: &str) -> Result<String, CliError> {
+    std::fs::read_to_string(path).map_err(|e| CliError::bad_input(format!("cannot read scene `{path}`: {e}")))
 }
 
-fn verdict_text(v: &Verdict, scene: &Scene) -> String {
-    match v {
-        Verdict::Free => "free".into(),
-        Verdict::OutsideZone { zone } => format!("tool outside zone `{}`", scene.tool_zone[*zone].name),
-        Verdict::SelfCollision { link_a, link_b } => format!("self-collision: links {link_a} and {link_b}"),
-        Verdict::Obstacle { link, obstacle } => {
-            format!("collision: link {link} with `{}`", scene.obstacles[*obstacle].name)
+/// A library error of a request with the scene of file `path`: a scene that does not parse is
+/// reported with the file's name, anything else as it is.
+#[must_use]
+pub fn scene_error(path: &str, e: reach::Error) -> CliError {
+    match e {
+        reach::Error::World(w @ (reach::world::WorldError::Parse { .. } | reach::world::WorldError::Shape { .. })) => {
+            CliError::bad_input(one_line(&format!("{path}: {w}")))
         }
+        e => e.into(),
     }
 }
 
@@ -59,17 +59,19 @@ fn verdict_text(v: &Verdict, scene: &Scene) -> String {
 pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let loaded = args.robot.load()?;
     let robot = &loaded.robot;
-    let scene = load_scene(&args.scene)?;
-    let values = args.joints.resolve(robot)?;
-    let mut checker = CollisionChecker::new(robot, &scene);
-    let report: Report = checker.report(&values.si).map_err(|e| CliError::bad_input(e.to_string()))?;
+    let request = CheckRequest { scene: read_scene(&args.scene)?, q: args.joints.joints()? };
+    let report = reach::jobs::world::check(robot, &request).map_err(|e| scene_error(&args.scene, e))?;
     if args.json {
         return write_json(out, &report);
     }
+    write_text(robot, &report, out)
+}
+
+fn write_text(robot: &reach::Robot, report: &CheckReport, out: &mut dyn Write) -> Result<(), CliError> {
     let mut head = Table::key_value();
     head.pair("robot", robot.name().to_string());
-    head.pair("q", q_text(robot, &values.deg));
-    head.pair("verdict", verdict_text(&report.verdict, &scene));
+    head.pair("q", q_text(robot, &report.q_deg));
+    head.pair("verdict", report.verdict_text.clone());
     let mm = |v: Option<f64>| v.map_or("-".to_string(), |c| format!("{} m", fixed(c, 6)));
     head.pair("min obstacle clearance", mm(report.min_obstacle_clearance_m));
     head.pair("min self clearance", mm(report.min_self_clearance_m));

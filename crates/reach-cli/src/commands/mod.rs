@@ -5,7 +5,7 @@
 pub mod avoid;
 pub mod check;
 pub mod cspace;
-pub mod cspace_fit;
+pub mod cspace_render;
 pub mod demo;
 pub mod drive;
 pub mod fk;

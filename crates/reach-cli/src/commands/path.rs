@@ -1,28 +1,17 @@
-//! `reach path` — a collision-free joint-space path through a scene (RRT-Connect with
-//! shortcutting, [`reach::world::planner`]), timed waypoint to waypoint and re-checked.
-//!
-//! The path is timed with [`JointPath`]: one cycloidal segment per edge, stopping at every
-//! waypoint, so the timed motion stays on the planner's straight joint-space edges. Each
-//! segment takes the fastest synchronised time within the joints' speed limits, or a share
-//! of `--duration` proportional to its joint-space length. The timed trajectory is then
-//! sampled and every sample re-checked with [`CollisionChecker::report`]: the smallest
-//! obstacle and self clearances are reported.
+//! `reach path` — a collision-free joint-space path through a scene, timed and re-checked
+//! (`reach::jobs::world::path`: RRT-Connect with shortcutting, cycloidal segments that stop
+//! at every waypoint; `--json` prints its report).
 
 use std::io::Write;
-use std::time::Duration;
 
 use clap::Args;
 use reach::Robot;
-use reach::ik::IkTarget;
-use reach::motion::{JointMotion, JointPath, JointRates, Profile};
-use reach::world::planner::{Goal, PlanError, PlanOptions, PlanStats, path_length, plan};
-use reach::world::{CollisionChecker, Scene};
-use serde::Serialize;
+use reach::jobs::world::{PathReport, PathRequest, PathRun, TimedPath, path_run};
+use reach::jobs::{Joints, Pose};
 
-use crate::commands::check::load_scene;
-use crate::commands::move_cmd::pose_arg;
-use crate::error::{CliError, one_line};
-use crate::numbers::{AngleUnit, parse_finite, parse_joint_values, q_display};
+use crate::commands::check::{read_scene, scene_error};
+use crate::error::CliError;
+use crate::numbers::{parse_exact, parse_finite, parse_list};
 use crate::output::{Table, fixed, fixeds, write_json};
 use crate::robot_arg::RobotArgs;
 
@@ -63,10 +52,8 @@ pub struct PathArgs {
     #[arg(long, value_name = "S", allow_hyphen_values = true)]
     pub duration: Option<String>,
 
-    /// Print JSON: {"robot", "scene", "found", "reason", "seed", "budget_ms", "waypoints_deg",
-    /// "stats": {"iterations", "nodes", "checks", "raw_waypoints", "raw_length", "length",
-    /// "time_s"}, "duration_s", "segment_durations_s", "samples", "collision_free",
-    /// "min_clearance_m", "min_self_clearance_m"}; lengths are joint-space (rad / m).
+    /// Print the report as JSON (docs/schemas/path.report.schema.json); lengths are
+    /// joint-space (rad / m).
     #[arg(long)]
     pub json: bool,
 
@@ -76,118 +63,34 @@ pub struct PathArgs {
     pub draw: crate::plot::DrawArgs,
 }
 
-/// Planning statistics of the JSON output.
-#[derive(Debug, Clone, Serialize)]
-struct StatsJson {
-    /// RRT-Connect iterations (0 when the straight edge was free).
-    iterations: usize,
-    /// Tree nodes over both trees.
-    nodes: usize,
-    /// Single-configuration collision checks during the search and shortcutting.
-    checks: usize,
-    /// Waypoints before shortcutting.
-    raw_waypoints: usize,
-    /// Joint-space length before shortcutting (rad / m).
-    raw_length: f64,
-    /// Joint-space length of the returned path (rad / m).
-    length: Option<f64>,
-    /// Wall time of the planner call, s.
-    time_s: f64,
-}
-
-/// The JSON output of `reach path`.
-#[derive(Debug, Clone, Serialize)]
-struct PathJson {
-    robot: String,
-    scene: String,
-    /// Whether a path was found.
-    found: bool,
-    /// Why not (null when found).
-    reason: Option<String>,
-    seed: u64,
-    budget_ms: u64,
-    /// Waypoints from start to goal (degrees; prismatic metres).
-    waypoints_deg: Vec<Vec<f64>>,
-    stats: StatsJson,
-    /// Duration of the timed motion, s.
-    duration_s: Option<f64>,
-    /// Duration of each segment, s.
-    segment_durations_s: Vec<f64>,
-    /// Samples re-checked.
-    samples: usize,
-    /// Whether every sample of the timed motion is free.
-    collision_free: Option<bool>,
-    /// Smallest link–obstacle clearance over the samples, m (null without obstacles).
-    min_clearance_m: Option<f64>,
-    /// Smallest link–link clearance over the samples, m.
-    min_self_clearance_m: Option<f64>,
-}
-
-/// The timed, re-checked path.
-struct Timed {
-    durations: Vec<f64>,
-    times: Vec<f64>,
-    q: Vec<Vec<f64>>,
-    qd: Vec<Vec<f64>>,
-    collision_free: bool,
-    min_clearance: Option<f64>,
-    min_self: Option<f64>,
-}
-
-fn motion_error(e: impl std::fmt::Display) -> CliError {
-    CliError::bad_input(one_line(&e.to_string()))
-}
-
-/// Segment durations: the synchronised minimum time per edge within the speed limits, or
-/// `total` shared by joint-space length.
-fn durations(robot: &Robot, waypoints: &[Vec<f64>], total: Option<f64>) -> Result<Vec<f64>, CliError> {
-    match total {
-        Some(t) => {
-            let lengths: Vec<f64> = waypoints.windows(2).map(path_length).collect();
-            let sum: f64 = lengths.iter().sum();
-            Ok(lengths.iter().map(|l| t * l / sum).collect())
+impl PathArgs {
+    /// The library request (the scene file read).
+    ///
+    /// # Errors
+    /// [`CliError::BadInput`] for an unreadable scene, malformed numbers, both or neither of
+    /// `--to` and `--to-pose`.
+    pub fn request(&self) -> Result<PathRequest, CliError> {
+        let to_pose = match &self.to_pose {
+            Some(t) => {
+                let v = parse_exact("--to-pose", t, 6, "x,y,z in metres, roll,pitch,yaw in degrees")?;
+                Some(Pose::xyz_rpy_deg([v[0], v[1], v[2]], [v[3], v[4], v[5]]))
+            }
+            None => None,
+        };
+        if self.to.is_some() == to_pose.is_some() {
+            return Err(CliError::bad_input("give exactly one of --to and --to-pose"));
         }
-        None => {
-            let rates = JointRates::from_robot(robot, None)
-                .map_err(|e| CliError::bad_input(format!("give --duration: {}", one_line(&e.to_string()))))?;
-            waypoints
-                .windows(2)
-                .map(|w| {
-                    JointMotion::synchronised(robot, &w[0], &w[1], 0.0, &rates, Profile::Cycloidal)
-                        .map(|(m, _)| m.duration())
-                        .map_err(motion_error)
-                })
-                .collect()
-        }
+        Ok(PathRequest {
+            scene: read_scene(&self.scene)?,
+            from: Joints::Deg(parse_list("--from", &self.from)?),
+            to: self.to.as_deref().map(|t| parse_list("--to", t).map(Joints::Deg)).transpose()?,
+            to_pose,
+            seed: self.seed,
+            budget_ms: self.budget_ms,
+            duration_s: self.duration.as_deref().map(|d| parse_finite("--duration", d)).transpose()?,
+        })
     }
 }
-
-fn time_and_check(robot: &Robot, scene: &Scene, waypoints: &[Vec<f64>], total: Option<f64>) -> Result<Timed, CliError> {
-    let durations = durations(robot, waypoints, total)?;
-    let path = JointPath::through(robot, waypoints, &durations, 0.0, Profile::Cycloidal).map_err(motion_error)?;
-    let steps = (20 * durations.len()).clamp(200, 2000);
-    let traj = path.sample(path.duration() / steps as f64).map_err(motion_error)?;
-    let times = traj.times();
-    let q: Vec<Vec<f64>> = traj.samples.into_iter().map(|s| s.q).collect();
-    let qd: Vec<Vec<f64>> = times.iter().map(|t| path.velocity(*t)).collect();
-    let mut checker = CollisionChecker::new(robot, scene);
-    let (mut free, mut min_clearance, mut min_self) = (true, None::<f64>, None::<f64>);
-    for qk in &q {
-        let report = checker.report(qk).map_err(|e| CliError::internal(e.to_string()))?;
-        free &= report.verdict.is_free();
-        if let Some(c) = report.min_obstacle_clearance_m {
-            min_clearance = Some(min_clearance.map_or(c, |m| m.min(c)));
-        }
-        if let Some(c) = report.min_self_clearance_m {
-            min_self = Some(min_self.map_or(c, |m| m.min(c)));
-        }
-    }
-    Ok(Timed { durations, times, q, qd, collision_free: free, min_clearance, min_self })
-}
-
-/// Joint-space distance (`path_length` units: rad and m mixed, Euclidean) at or below which
-/// the start and the goal are one configuration and there is nothing to plan.
-const SAME_CONFIGURATION: f64 = 1e-12;
 
 /// Plans, times and re-checks the path and prints the report.
 ///
@@ -197,115 +100,19 @@ const SAME_CONFIGURATION: f64 = 1e-12;
 /// solution for the goal pose.
 pub fn run(args: &PathArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let robot = args.robot.load()?.robot;
-    let scene = load_scene(&args.scene)?;
-    let split = |t: &str| t.split(',').map(str::to_string).collect::<Vec<_>>();
-    let from = parse_joint_values(&robot, &split(&args.from), AngleUnit::Deg)
-        .map_err(|e| CliError::bad_input(format!("--from: {e}")))?;
-    let start = from.si.clone();
-    // The ends as typed (no round trip through radians in the report).
-    let mut typed_goal = None;
-    let goal = match (&args.to, &args.to_pose) {
-        (Some(t), None) => {
-            let to = parse_joint_values(&robot, &split(t), AngleUnit::Deg)
-                .map_err(|e| CliError::bad_input(format!("--to: {e}")))?;
-            typed_goal = Some(to.deg);
-            Goal::Joints(to.si)
-        }
-        (None, Some(p)) => Goal::Target(IkTarget::Pose(pose_arg("--to-pose", p)?.isometry("--to-pose")?)),
-        _ => return Err(CliError::bad_input("give exactly one of --to and --to-pose")),
-    };
-    let same = || CliError::bad_input("--from and --to are the same configuration: nothing to plan");
-    // A joint goal is compared before planning; a pose goal only once IK has chosen its
-    // configuration (below).
-    if let Goal::Joints(q) = &goal
-        && path_length(&[start.clone(), q.clone()]) <= SAME_CONFIGURATION
-    {
-        return Err(same());
-    }
-    let total = match &args.duration {
-        Some(d) => {
-            let v = parse_finite("--duration", d)?;
-            if v <= 0.0 {
-                return Err(CliError::bad_input(format!("--duration must be positive, got {v}")));
-            }
-            Some(v)
-        }
-        None => None,
-    };
+    let request = args.request()?;
     args.draw.check_files()?;
-    let options = PlanOptions {
-        seed: args.seed,
-        max_time: Some(Duration::from_millis(args.budget_ms)),
-        ..PlanOptions::default()
-    };
-    let mut json = PathJson {
-        robot: robot.name().to_string(),
-        scene: args.scene.clone(),
-        found: false,
-        reason: None,
-        seed: args.seed,
-        budget_ms: args.budget_ms,
-        waypoints_deg: Vec::new(),
-        stats: StatsJson {
-            iterations: 0,
-            nodes: 0,
-            checks: 0,
-            raw_waypoints: 0,
-            raw_length: 0.0,
-            length: None,
-            time_s: 0.0,
-        },
-        duration_s: None,
-        segment_durations_s: Vec::new(),
-        samples: 0,
-        collision_free: None,
-        min_clearance_m: None,
-        min_self_clearance_m: None,
-    };
-    match plan(&robot, &scene, &start, &goal, &options) {
-        Ok(p) => {
-            let PlanStats { iterations, nodes, checks, raw_waypoints, raw_length, time_s, .. } = p.stats;
-            let length = path_length(&p.waypoints);
-            json.stats =
-                StatsJson { iterations, nodes, checks, raw_waypoints, raw_length, length: Some(length), time_s };
-            json.found = true;
-            json.waypoints_deg = p.waypoints.iter().map(|q| q_display(&robot, q)).collect();
-            json.waypoints_deg[0].clone_from(&from.deg);
-            if let (Some(last), Some(g)) = (json.waypoints_deg.last_mut(), typed_goal) {
-                *last = g;
-            }
-            if length <= SAME_CONFIGURATION {
-                return Err(same());
-            }
-            let timed = time_and_check(&robot, &scene, &p.waypoints, total)?;
-            json.duration_s = timed.times.last().copied();
-            json.segment_durations_s = timed.durations.clone();
-            json.samples = timed.q.len();
-            json.collision_free = Some(timed.collision_free);
-            json.min_clearance_m = timed.min_clearance;
-            json.min_self_clearance_m = timed.min_self;
-            if args.draw.any() {
-                args.draw.write(&drawing(&robot, &scene, &p.waypoints, &timed))?;
-            }
-        }
-        Err(e @ (PlanError::Input(_) | PlanError::World(_) | PlanError::Ik(_))) => {
-            return Err(CliError::bad_input(one_line(&e.to_string())));
-        }
-        Err(e) => {
-            if let PlanError::BudgetExhausted { iterations, nodes, time_s } = e {
-                json.stats.iterations = iterations;
-                json.stats.nodes = nodes;
-                json.stats.time_s = time_s;
-            }
-            json.reason = Some(one_line(&e.to_string()));
-        }
+    let run = path_run(&robot, &request).map_err(|e| scene_error(&args.scene, e))?;
+    if let (true, Some(timed)) = (args.draw.any(), &run.timed) {
+        args.draw.write(&drawing(&robot, &run, timed))?;
     }
+    let report = &run.report;
     if args.json {
-        write_json(out, &json)?;
+        write_json(out, report)?;
     } else {
-        write_report(out, &json)?;
+        write_report(out, &args.scene, report)?;
     }
-    match (&json.reason, json.collision_free) {
+    match (&report.reason, report.collision_free) {
         (Some(r), _) => {
             out.flush()?;
             Err(CliError::NoSolution(format!("no path: {r}")))
@@ -315,10 +122,10 @@ pub fn run(args: &PathArgs, out: &mut dyn Write) -> Result<(), CliError> {
     }
 }
 
-fn write_report(out: &mut dyn Write, j: &PathJson) -> Result<(), CliError> {
+fn write_report(out: &mut dyn Write, scene: &str, j: &PathReport) -> Result<(), CliError> {
     let mut head = Table::key_value();
     head.pair("robot", j.robot.clone());
-    head.pair("scene", j.scene.clone());
+    head.pair("scene", scene.to_string());
     head.pair("result", if j.found { "path found".to_string() } else { "NO PATH".to_string() });
     if let Some(r) = &j.reason {
         head.pair("reason", r.clone());
@@ -360,7 +167,7 @@ fn write_report(out: &mut dyn Write, j: &PathJson) -> Result<(), CliError> {
     Ok(())
 }
 
-fn drawing(robot: &Robot, scene: &Scene, waypoints: &[Vec<f64>], timed: &Timed) -> crate::plot::Svg {
+fn drawing(robot: &Robot, run: &PathRun, timed: &TimedPath) -> crate::plot::Svg {
     use crate::plot::drawings::{TrajectoryDrawing, joint_series_si, title, trajectory};
     let tool =
         |q: &Vec<f64>| robot.fk(q).map(|p| p.translation.vector).map(|v| [v.x, v.y, v.z]).unwrap_or([f64::NAN; 3]);
@@ -369,14 +176,14 @@ fn drawing(robot: &Robot, scene: &Scene, waypoints: &[Vec<f64>], timed: &Timed) 
             robot,
             &format!(
                 "planned path, {} waypoints, {} s, cycloidal segments",
-                waypoints.len(),
+                run.waypoints.len(),
                 fixed(timed.times.last().copied().unwrap_or(0.0), 3)
             ),
         ),
         times: timed.times.clone(),
         joints: joint_series_si(robot, &timed.q, &timed.qd),
         tool: timed.q.iter().map(tool).collect(),
-        tool_waypoints: waypoints.iter().map(tool).collect(),
-        obstacles: &scene.obstacles,
+        tool_waypoints: run.waypoints.iter().map(tool).collect(),
+        obstacles: &run.scene.obstacles,
     })
 }

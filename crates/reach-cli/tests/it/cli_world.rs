@@ -112,3 +112,107 @@ fn cspace_fit_without_allowed_nodes_is_infeasible() {
         &["--fit", "no allowed node"],
     );
 }
+
+/// The text of a file of the repository.
+fn repo_text(path: &str) -> String {
+    std::fs::read_to_string(format!("{}/{path}", common::REPO_ROOT)).unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+#[test]
+fn check_avoid_and_cspace_json_are_the_library_reports_and_match_their_schemas() {
+    use reach::jobs::{AvoidRequest, CheckRequest, CspaceRequest, Job, Joints, Request, RobotInput};
+    let avoid = Job {
+        robot: RobotInput::Preset("planar3".into()),
+        request: Request::Avoid(AvoidRequest {
+            start: Some(Joints::Deg(vec![60.0, -40.0, -30.0])),
+            from_xy_m: None,
+            to_xy_m: [2.4, 0.2],
+            obstacles_xy_m: vec![[2.0, 0.7]],
+            step_deg: 0.01,
+            literal_test: false,
+            printed_waypoints: false,
+            choose: None,
+        }),
+    };
+    let v = common::assert_report(
+        &["avoid", "planar3", "--start", "60,-40,-30", "--to", "2.4,0.2", "--obstacle", "2.0,0.7", "--json"],
+        &avoid,
+        "avoid.report",
+    );
+    assert_eq!(v["outcome"]["outcome"], "detour");
+    let cspace = Job {
+        robot: RobotInput::Preset("varan4".into()),
+        request: Request::Cspace(CspaceRequest {
+            scene: repo_text("examples/seed004_ceiling.toml"),
+            step_deg: 15.0,
+            fix: [("q1".to_string(), 0.0)].into(),
+            fit: false,
+        }),
+    };
+    let v = common::assert_report(
+        &["cspace", "varan4", "examples/seed004_ceiling.toml", "--step", "15", "--fix", "q1=0", "--json"],
+        &cspace,
+        "cspace.report",
+    );
+    assert_eq!(v["allowed"], 635);
+    let check = Job {
+        robot: RobotInput::Preset("varan4".into()),
+        request: Request::Check(CheckRequest {
+            scene: repo_text("examples/seed004_two_planes.toml"),
+            q: Joints::Deg(vec![0.0, 60.0, -30.0, -30.0]),
+        }),
+    };
+    let v = common::assert_report(
+        &["check", "varan4", "examples/seed004_two_planes.toml", "0", "60", "-30", "-30", "--json"],
+        &check,
+        "check.report",
+    );
+    assert_eq!(v["q_deg"], serde_json::json!([0.0, 60.0, -30.0, -30.0]));
+}
+
+#[test]
+fn path_json_is_the_library_report_and_matches_its_schema() {
+    use reach::jobs::{Job, Joints, PathRequest, Report, Request, RobotInput};
+    let job = Job {
+        robot: RobotInput::Preset("planar3".into()),
+        request: Request::Path(PathRequest {
+            scene: repo_text("examples/path_planar3_post.toml"),
+            from: Joints::Deg(vec![60.0, -40.0, -30.0]),
+            to: Some(Joints::Deg(vec![0.0, -30.0, -30.0])),
+            to_pose: None,
+            seed: 1,
+            budget_ms: 1000,
+            duration_s: Some(10.0),
+        }),
+    };
+    let args = [
+        "path",
+        "planar3",
+        "examples/path_planar3_post.toml",
+        "--from",
+        "60,-40,-30",
+        "--to",
+        "0,-30,-30",
+        "--duration",
+        "10",
+        "--json",
+    ];
+    let mut output = json(&args);
+    common::assert_valid("path.report", &output);
+    let Report::Path(report) = job.run().unwrap() else { panic!("not a path report") };
+    let mut expected = serde_json::to_value(&report).unwrap();
+    // The planner's wall time differs from run to run; everything else is seeded.
+    for v in [&mut output, &mut expected] {
+        let time = v["stats"].as_object_mut().unwrap().remove("time_s").unwrap();
+        assert!(time.as_f64().unwrap() >= 0.0);
+    }
+    assert_eq!(output, expected);
+    assert_eq!(output["found"], true);
+}
+
+#[test]
+fn a_scene_that_does_not_parse_names_the_file_line_and_column() {
+    let file = common::temp_file("broken_scene.toml", "[[obstacles]]\nshape = \"box\"\nsize = [1, 2\n");
+    let line = fails(&["check", "planar3", file.to_str().unwrap(), "0", "0", "0"], 2, &["broken_scene.toml", "line"]);
+    assert!(line.contains("column"), "{line}");
+}

@@ -21,6 +21,7 @@ pub mod ik;
 pub mod input;
 pub mod kinematics;
 pub mod motion;
+pub mod world;
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -29,6 +30,9 @@ pub use ik::{IkReport, IkRequest, IkScanReport, IkScanRequest};
 pub use input::{AngleUnit, Joints, LoadedRobot, Pose, PoseReport, RobotInput};
 pub use kinematics::{FkReport, FkRequest, JacobianReport, JacobianRequest};
 pub use motion::{MoveReport, MoveRequest, PlanReport, PlanRequest};
+pub use world::{
+    AvoidReport, AvoidRequest, CheckReport, CheckRequest, CspaceReport, CspaceRequest, PathReport, PathRequest,
+};
 
 use crate::Robot;
 use crate::error::Result;
@@ -49,6 +53,14 @@ pub enum Request {
     Ik(IkRequest),
     /// Seed 000's table of configurations of a planar 3-link arm.
     IkScan(IkScanRequest),
+    /// Collisions and clearances of one configuration in a scene.
+    Check(CheckRequest),
+    /// Seed 000's planar detour around point obstacles.
+    Avoid(AvoidRequest),
+    /// Seed 004's configuration-space grid (and fitted region).
+    Cspace(CspaceRequest),
+    /// A collision-free, timed joint-space path through a scene.
+    Path(PathRequest),
 }
 
 /// A workflow's report, tagged by `"kind"` like its request.
@@ -67,6 +79,14 @@ pub enum Report {
     Ik(IkReport),
     /// Seed 000's table of configurations.
     IkScan(IkScanReport),
+    /// Collisions and clearances of one configuration in a scene.
+    Check(CheckReport),
+    /// Seed 000's planar detour around point obstacles.
+    Avoid(AvoidReport),
+    /// Seed 004's configuration-space grid (and fitted region).
+    Cspace(CspaceReport),
+    /// A collision-free, timed joint-space path through a scene.
+    Path(PathReport),
 }
 
 /// A request together with its robot.
@@ -102,6 +122,10 @@ pub fn run(robot: &Robot, request: &Request) -> Result<Report> {
         Request::Plan(r) => Report::Plan(motion::plan(robot, r)?),
         Request::Ik(r) => Report::Ik(ik::ik(robot, r)?),
         Request::IkScan(r) => Report::IkScan(ik::ik_scan(robot, r)?),
+        Request::Check(r) => Report::Check(world::check(robot, r)?),
+        Request::Avoid(r) => Report::Avoid(world::avoid(robot, r)?),
+        Request::Cspace(r) => Report::Cspace(world::cspace(robot, r)?),
+        Request::Path(r) => Report::Path(world::path(robot, r)?),
     })
 }
 
@@ -126,6 +150,14 @@ pub fn schemas() -> Vec<(&'static str, serde_json::Value)> {
         ("ik.report", of::<IkReport>()),
         ("ik_scan.request", of::<IkScanRequest>()),
         ("ik_scan.report", of::<IkScanReport>()),
+        ("check.request", of::<CheckRequest>()),
+        ("check.report", of::<CheckReport>()),
+        ("avoid.request", of::<AvoidRequest>()),
+        ("avoid.report", of::<AvoidReport>()),
+        ("cspace.request", of::<CspaceRequest>()),
+        ("cspace.report", of::<CspaceReport>()),
+        ("path.request", of::<PathRequest>()),
+        ("path.report", of::<PathReport>()),
     ]
 }
 

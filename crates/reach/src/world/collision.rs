@@ -12,7 +12,7 @@ use crate::tolerance::CONTACT;
 const MIN_SEGMENT: f64 = 1e-9;
 
 /// The outcome of one collision check, in the order the checks run.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(tag = "verdict", rename_all = "snake_case")]
 pub enum Verdict {
     /// No collision, tool inside its zone.
@@ -47,7 +47,7 @@ impl Verdict {
 }
 
 /// Clearance between one link and one obstacle.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub struct LinkClearance {
     /// 1-based link number (`dof + 1` is the segment from the last frame to the tool point).
     pub link: usize,
@@ -61,7 +61,7 @@ pub struct LinkClearance {
 }
 
 /// Clearance between two non-adjacent links.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub struct SelfClearance {
     /// 1-based link number.
     pub link_a: usize,
@@ -76,7 +76,7 @@ pub struct SelfClearance {
 }
 
 /// Where the tool point is relative to one tool-zone entry.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub struct Contact {
     /// Zone name.
     pub zone: String,
@@ -87,7 +87,7 @@ pub struct Contact {
 }
 
 /// Full clearance report of one configuration.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub struct Report {
     /// The first failed check (or free).
     pub verdict: Verdict,

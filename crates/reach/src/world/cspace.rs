@@ -60,7 +60,7 @@ impl GridSpec {
 }
 
 /// Counts per class.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub struct GridCounts {
     /// Number of nodes.
     pub nodes: usize,

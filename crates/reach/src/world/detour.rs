@@ -92,7 +92,7 @@ impl DetourOptions {
 }
 
 /// What the planner decided.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(tag = "outcome", rename_all = "snake_case")]
 pub enum DetourOutcome {
     /// No obstacle in the way: move directly.

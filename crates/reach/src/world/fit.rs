@@ -93,7 +93,7 @@ pub struct FittedPart {
 }
 
 /// Confusion counts of a region against grid truth ("allowed" is the positive class).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub struct Confusion {
     /// Grid nodes.
     pub nodes: usize,

@@ -27,7 +27,7 @@ pub fn r_and(x1: f64, x2: f64) -> f64 {
 
 /// Which sign of the squared coordinate a parabolic cylinder uses (notes 004 D8: the printed
 /// eq. 11 lost a square; both restorations are offered).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub enum Parabola {
     /// `X = s² − 2p·t` (default: the square restored on the first bracket).
     SquareFirst,
@@ -36,7 +36,7 @@ pub enum Parabola {
 }
 
 /// One region primitive; coordinates `q = (q2, q3, q4)` in degrees.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[non_exhaustive]
 pub enum Primitive {
     /// Half-space `d·q − b ≥ 0` (eq. 6).

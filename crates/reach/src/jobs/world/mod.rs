@@ -1,0 +1,86 @@
+//! The world workflows: a configuration checked against a scene (`check`), seed 000's planar
+//! detour (`avoid`), seed 004's configuration-space grid and its fitted region (`cspace`),
+//! and a collision-free, timed joint-space path through a scene (`path`).
+//!
+//! Requests that need a scene carry the **text** of the scene file (`scene`, TOML,
+//! docs/scene-format.md); it is parsed here ([`parse_scene`]), so a front end only reads the
+//! file.
+
+pub mod avoid;
+pub mod check;
+pub mod cspace;
+pub mod path;
+
+pub use avoid::{AvoidChoice, AvoidReport, AvoidRequest, AvoidRun, AvoidSide, avoid, avoid_run};
+pub use check::{CheckReport, CheckRequest, check};
+pub use cspace::{
+    CspaceReport, CspaceRequest, CspaceSection, FitPrimitive, FitReport, cspace, cspace_axes, cspace_with_grid,
+};
+pub use path::{PathReport, PathRequest, PathRun, PathStatsReport, TimedPath, path, path_run};
+
+use crate::error::Result;
+use crate::world::Scene;
+
+/// Parses a request's scene text.
+///
+/// # Errors
+/// [`crate::Error::World`]: [`crate::world::WorldError::Parse`] with the line and column of
+/// malformed TOML, or the shape or entry that is invalid.
+pub fn parse_scene(text: &str) -> Result<Scene> {
+    Ok(Scene::from_toml_str(text)?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::jobs::{Job, Report};
+    use crate::world::WorldError;
+
+    #[test]
+    fn a_malformed_scene_is_a_world_error_with_line_and_column() {
+        let e = parse_scene("[[obstacles]]\nshape = \"sphere\"\ncentre = [0, 0\n").unwrap_err();
+        let crate::Error::World(WorldError::Parse { line, column, .. }) = e else { panic!("{e:?}") };
+        assert!(line >= 3 && column >= 1, "{line}:{column}");
+    }
+
+    #[test]
+    fn a_cspace_job_reads_fixes_by_joint_and_rejects_unknown_ones() {
+        let scene = include_str!("../../../../../examples/seed004_ceiling.toml");
+        let job: Job = serde_json::from_value(serde_json::json!({
+            "robot": {"preset": "varan4"},
+            "request": {"kind": "cspace", "scene": scene, "step_deg": 15, "fix": {"q1": 0}}
+        }))
+        .unwrap();
+        let Report::Cspace(report) = job.run().unwrap() else { panic!("not a cspace report") };
+        assert_eq!((report.nodes, report.allowed), (2601, 635));
+        let mut bad = job.clone();
+        if let crate::jobs::Request::Cspace(r) = &mut bad.request {
+            r.fix = [("q9".to_string(), 0.0)].into();
+        }
+        let e = bad.run().unwrap_err();
+        assert_eq!(e.code(), "request");
+        assert!(e.to_string().starts_with("fix.q9: `q9` is not a joint q1..q4"), "{e}");
+    }
+
+    #[test]
+    fn avoid_needs_exactly_one_start_and_a_positive_step() {
+        let robot = crate::model::presets::get("planar3").unwrap();
+        let mut request = AvoidRequest {
+            start: None,
+            from_xy_m: None,
+            to_xy_m: [2.4, 0.2],
+            obstacles_xy_m: vec![],
+            step_deg: 0.01,
+            literal_test: false,
+            printed_waypoints: false,
+            choose: None,
+        };
+        assert!(avoid(&robot, &request).unwrap_err().to_string().contains("exactly one of `start` and `from_xy_m`"));
+        request.start = Some(crate::jobs::Joints::Deg(vec![60.0, -40.0, -30.0]));
+        request.step_deg = 0.0;
+        assert!(avoid(&robot, &request).unwrap_err().to_string().starts_with("step_deg: must be positive"));
+        request.step_deg = 0.01;
+        let report = avoid(&robot, &request).unwrap();
+        assert!(!report.failed() && !report.blocked);
+    }
+}

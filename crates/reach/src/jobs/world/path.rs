@@ -1,0 +1,296 @@
+//! The `path` workflow: a collision-free joint-space path through a scene (RRT-Connect with
+//! shortcutting, [`crate::world::planner`]), timed waypoint to waypoint and re-checked.
+//!
+//! The path is timed with [`JointPath`]: one cycloidal segment per edge, stopping at every
+//! waypoint, so the timed motion stays on the planner's straight joint-space edges. Each
+//! segment takes the fastest synchronised time within the joints' speed limits, or a share
+//! of `duration_s` proportional to its joint-space length. The timed trajectory is then
+//! sampled and every sample re-checked with [`CollisionChecker::report`]: the smallest
+//! obstacle and self clearances are reported.
+
+use std::time::Duration;
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use super::parse_scene;
+use crate::Robot;
+use crate::error::{Error, Result};
+use crate::jobs::input::{Joints, Pose, positive, q_display};
+use crate::motion::{JointMotion, JointPath, JointRates, Profile};
+use crate::world::planner::{Goal, PlanError, PlanOptions, PlanStats, path_length, plan};
+use crate::world::{CollisionChecker, Scene};
+
+fn default_seed() -> u64 {
+    1
+}
+
+fn default_budget_ms() -> u64 {
+    1000
+}
+
+/// Joint-space distance (`path_length` units: rad and m mixed, Euclidean) at or below which
+/// the start and the goal are one configuration and there is nothing to plan.
+const SAME_CONFIGURATION: f64 = 1e-12;
+
+/// A collision-free path from a configuration to a configuration or a tool pose. Give exactly
+/// one of `to` and `to_pose`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PathRequest {
+    /// The text of the scene file (TOML: obstacles, tool zone, touching policy).
+    pub scene: String,
+    /// Start joint values.
+    pub from: Joints,
+    /// Goal joint values.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub to: Option<Joints>,
+    /// Goal tool pose: every feasible, collision-free IK solution is a goal; the nearest
+    /// reachable one wins.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub to_pose: Option<Pose>,
+    /// Seed of the planner's random generator (default 1).
+    #[serde(default = "default_seed")]
+    pub seed: u64,
+    /// Wall-time budget of the search, milliseconds (default 1000).
+    #[serde(default = "default_budget_ms")]
+    pub budget_ms: u64,
+    /// Total duration of the timed motion, seconds (default: the fastest synchronised motion
+    /// within the joints' speed limits, segment by segment).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub duration_s: Option<f64>,
+}
+
+/// Planning statistics.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct PathStatsReport {
+    /// RRT-Connect iterations (0 when the straight edge was free).
+    pub iterations: usize,
+    /// Tree nodes over both trees.
+    pub nodes: usize,
+    /// Single-configuration collision checks during the search and shortcutting.
+    pub checks: usize,
+    /// Waypoints before shortcutting.
+    pub raw_waypoints: usize,
+    /// Joint-space length before shortcutting (rad / m).
+    pub raw_length: f64,
+    /// Joint-space length of the returned path (rad / m).
+    pub length: Option<f64>,
+    /// Wall time of the planner call, s (varies from run to run).
+    pub time_s: f64,
+}
+
+/// The planned, timed and re-checked path (`reach path --json`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct PathReport {
+    /// Robot name.
+    pub robot: String,
+    /// Whether a path was found.
+    pub found: bool,
+    /// Why not (`null` when found).
+    pub reason: Option<String>,
+    /// Seed of the planner.
+    pub seed: u64,
+    /// Wall-time budget of the search, ms.
+    pub budget_ms: u64,
+    /// Waypoints from start to goal (revolute degrees, prismatic metres).
+    pub waypoints_deg: Vec<Vec<f64>>,
+    /// Planning statistics.
+    pub stats: PathStatsReport,
+    /// Duration of the timed motion, s.
+    pub duration_s: Option<f64>,
+    /// Duration of each segment, s.
+    pub segment_durations_s: Vec<f64>,
+    /// Samples re-checked.
+    pub samples: usize,
+    /// Whether every sample of the timed motion is free.
+    pub collision_free: Option<bool>,
+    /// Smallest link–obstacle clearance over the samples, m (`null` without obstacles).
+    pub min_clearance_m: Option<f64>,
+    /// Smallest link–link clearance over the samples, m.
+    pub min_self_clearance_m: Option<f64>,
+}
+
+/// The timed path's samples (SI).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TimedPath {
+    /// Sample times, s.
+    pub times: Vec<f64>,
+    /// Joint positions at each time.
+    pub q: Vec<Vec<f64>>,
+    /// Joint velocities at each time.
+    pub qd: Vec<Vec<f64>>,
+}
+
+/// The report with what a drawing needs.
+#[derive(Debug, Clone)]
+pub struct PathRun {
+    /// The report.
+    pub report: PathReport,
+    /// The parsed scene.
+    pub scene: Scene,
+    /// The planner's waypoints, SI (empty when no path was found).
+    pub waypoints: Vec<Vec<f64>>,
+    /// The timed path (`None` when no path was found).
+    pub timed: Option<TimedPath>,
+}
+
+/// Plans, times and re-checks the path (see [`path_run`]).
+///
+/// # Errors
+/// As [`path_run`].
+pub fn path(robot: &Robot, request: &PathRequest) -> Result<PathReport> {
+    Ok(path_run(robot, request)?.report)
+}
+
+/// Plans, times and re-checks the path. No path (budget exhausted, start or goal in
+/// collision, no IK solution for the goal pose) is an answer: `found` is false and `reason`
+/// says why.
+///
+/// # Errors
+/// [`Error::World`] for a malformed scene; [`Error::Request`] for bad joint values (`from`,
+/// `to`), a bad pose (`to_pose`), both or neither goal, a `duration_s` that is not > 0, a goal
+/// that is the start; [`Error::Plan`] for input the planner rejects (limits, IK options);
+/// [`Error::Motion`] when the path cannot be timed (a joint without a speed limit and no
+/// `duration_s`).
+pub fn path_run(robot: &Robot, request: &PathRequest) -> Result<PathRun> {
+    let scene = parse_scene(&request.scene)?;
+    let start = request.from.si(robot, "from")?;
+    let goal = match (&request.to, &request.to_pose) {
+        (Some(q), None) => Goal::Joints(q.si(robot, "to")?),
+        (None, Some(p)) => Goal::Target(p.target("to_pose")?),
+        _ => return Err(Error::request("to", "give exactly one of `to` and `to_pose`")),
+    };
+    let total = positive("duration_s", request.duration_s)?;
+    let same = || Error::request("to", "the same configuration as `from`: nothing to plan");
+    // A joint goal is compared before planning; a pose goal only once IK has chosen its
+    // configuration.
+    if let Goal::Joints(q) = &goal
+        && path_length(&[start.clone(), q.clone()]) <= SAME_CONFIGURATION
+    {
+        return Err(same());
+    }
+    let options = PlanOptions {
+        seed: request.seed,
+        max_time: Some(Duration::from_millis(request.budget_ms)),
+        ..PlanOptions::default()
+    };
+    let mut report = PathReport {
+        robot: robot.name().to_string(),
+        found: false,
+        reason: None,
+        seed: request.seed,
+        budget_ms: request.budget_ms,
+        waypoints_deg: Vec::new(),
+        stats: PathStatsReport {
+            iterations: 0,
+            nodes: 0,
+            checks: 0,
+            raw_waypoints: 0,
+            raw_length: 0.0,
+            length: None,
+            time_s: 0.0,
+        },
+        duration_s: None,
+        segment_durations_s: Vec::new(),
+        samples: 0,
+        collision_free: None,
+        min_clearance_m: None,
+        min_self_clearance_m: None,
+    };
+    match plan(robot, &scene, &start, &goal, &options) {
+        Ok(p) => {
+            let PlanStats { iterations, nodes, checks, raw_waypoints, raw_length, time_s, .. } = p.stats;
+            let length = path_length(&p.waypoints);
+            if length <= SAME_CONFIGURATION {
+                return Err(same());
+            }
+            report.stats =
+                PathStatsReport { iterations, nodes, checks, raw_waypoints, raw_length, length: Some(length), time_s };
+            report.found = true;
+            report.waypoints_deg = p.waypoints.iter().map(|q| q_display(robot, q)).collect();
+            // The ends as typed (no round trip through radians).
+            report.waypoints_deg[0] = request.from.display(robot);
+            if let (Some(last), Some(to)) = (report.waypoints_deg.last_mut(), &request.to) {
+                *last = to.display(robot);
+            }
+            let (durations, timed, check) = time_and_check(robot, &scene, &p.waypoints, total)?;
+            report.duration_s = timed.times.last().copied();
+            report.segment_durations_s = durations;
+            report.samples = timed.q.len();
+            report.collision_free = Some(check.free);
+            report.min_clearance_m = check.min_clearance;
+            report.min_self_clearance_m = check.min_self;
+            return Ok(PathRun { report, scene, waypoints: p.waypoints, timed: Some(timed) });
+        }
+        Err(e @ (PlanError::Input(_) | PlanError::World(_) | PlanError::Ik(_))) => return Err(e.into()),
+        Err(e) => {
+            if let PlanError::BudgetExhausted { iterations, nodes, time_s } = e {
+                report.stats.iterations = iterations;
+                report.stats.nodes = nodes;
+                report.stats.time_s = time_s;
+            }
+            report.reason = Some(e.to_string().split_whitespace().collect::<Vec<_>>().join(" "));
+        }
+    }
+    Ok(PathRun { report, scene, waypoints: Vec::new(), timed: None })
+}
+
+/// Segment durations: the synchronised minimum time per edge within the speed limits, or
+/// `total` shared by joint-space length.
+fn durations(robot: &Robot, waypoints: &[Vec<f64>], total: Option<f64>) -> Result<Vec<f64>> {
+    match total {
+        Some(t) => {
+            let lengths: Vec<f64> = waypoints.windows(2).map(path_length).collect();
+            let sum: f64 = lengths.iter().sum();
+            Ok(lengths.iter().map(|l| t * l / sum).collect())
+        }
+        None => {
+            let rates = JointRates::from_robot(robot, None).map_err(|e| {
+                Error::request("duration_s", format!("needed: the robot's speed limits cannot time the path ({e})"))
+            })?;
+            waypoints
+                .windows(2)
+                .map(|w| {
+                    Ok(JointMotion::synchronised(robot, &w[0], &w[1], 0.0, &rates, Profile::Cycloidal)
+                        .map(|(m, _)| m.duration())?)
+                })
+                .collect()
+        }
+    }
+}
+
+/// The re-check of the timed samples.
+struct Check {
+    free: bool,
+    min_clearance: Option<f64>,
+    min_self: Option<f64>,
+}
+
+fn time_and_check(
+    robot: &Robot,
+    scene: &Scene,
+    waypoints: &[Vec<f64>],
+    total: Option<f64>,
+) -> Result<(Vec<f64>, TimedPath, Check)> {
+    let durations = durations(robot, waypoints, total)?;
+    let path = JointPath::through(robot, waypoints, &durations, 0.0, Profile::Cycloidal)?;
+    let steps = (20 * durations.len()).clamp(200, 2000);
+    let traj = path.sample(path.duration() / steps as f64)?;
+    let times = traj.times();
+    let q: Vec<Vec<f64>> = traj.samples.into_iter().map(|s| s.q).collect();
+    let qd: Vec<Vec<f64>> = times.iter().map(|t| path.velocity(*t)).collect();
+    let mut checker = CollisionChecker::new(robot, scene);
+    let mut check = Check { free: true, min_clearance: None, min_self: None };
+    for qk in &q {
+        let report = checker.report(qk)?;
+        check.free &= report.verdict.is_free();
+        if let Some(c) = report.min_obstacle_clearance_m {
+            check.min_clearance = Some(check.min_clearance.map_or(c, |m| m.min(c)));
+        }
+        if let Some(c) = report.min_self_clearance_m {
+            check.min_self = Some(check.min_self.map_or(c, |m| m.min(c)));
+        }
+    }
+    Ok((durations, TimedPath { times, q, qd }, check))
+}
