@@ -28,12 +28,6 @@ pub struct JointArgs {
 }
 
 impl JointArgs {
-    /// The unit the revolute values are written in.
-    #[must_use]
-    pub fn angle_input(&self) -> AngleUnit {
-        if self.rad { AngleUnit::Rad } else { AngleUnit::Deg }
-    }
-
     /// The values as typed, in the unit of `--rad`, each checked to be a finite number (the
     /// count is checked against the robot by the library).
     ///
@@ -48,24 +42,6 @@ impl JointArgs {
             .collect::<Result<Vec<_>, _>>()?;
         Ok(if self.rad { reach::jobs::Joints::Rad(values) } else { reach::jobs::Joints::Deg(values) })
     }
-
-    /// Parses the values for `robot`.
-    ///
-    /// # Errors
-    /// See [`parse_joint_values`].
-    pub fn resolve(&self, robot: &Robot) -> Result<JointValues, CliError> {
-        parse_joint_values(robot, &self.q, self.angle_input())
-    }
-}
-
-/// A joint vector read from the command line.
-#[derive(Debug, Clone, PartialEq)]
-pub struct JointValues {
-    /// SI units: radians, metres (what the library takes).
-    pub si: Vec<f64>,
-    /// Display units: revolute joints in degrees, prismatic joints in metres. Values typed
-    /// in degrees are kept exactly as typed (no round trip through radians).
-    pub deg: Vec<f64>,
 }
 
 /// Parses one number; `label` names it in the error (`joint 3`, `--speed`).
@@ -113,33 +89,6 @@ pub fn parse_exact(option: &str, text: &str, count: usize, what: &str) -> Result
     let values = parse_list(option, text)?;
     if values.len() != count {
         return Err(CliError::bad_input(format!("{option}: expected {count} numbers ({what}), got {}", values.len())));
-    }
-    Ok(values)
-}
-
-/// Parses one value per joint of `robot` and converts it to SI units (revolute: from
-/// degrees unless `unit` is [`AngleUnit::Rad`]; prismatic: metres as given).
-///
-/// # Errors
-/// [`CliError::BadInput`] when the number of values differs from the robot's joint count
-/// (checked first), or a value is not a finite number (naming the 1-based joint).
-pub fn parse_joint_values(robot: &Robot, texts: &[String], unit: AngleUnit) -> Result<JointValues, CliError> {
-    if texts.len() != robot.dof() {
-        return Err(CliError::bad_input(format!(
-            "robot `{}` has {} joints, got {} joint value{}",
-            robot.name(),
-            robot.dof(),
-            texts.len(),
-            if texts.len() == 1 { "" } else { "s" }
-        )));
-    }
-    let mut values = JointValues { si: Vec::with_capacity(texts.len()), deg: Vec::with_capacity(texts.len()) };
-    for (i, (joint, text)) in robot.joints().iter().zip(texts).enumerate() {
-        let typed = parse_finite(&format!("joint {}", i + 1), text)?;
-        // Degrees to radians shrinks the value, so a finite input stays finite.
-        let si = to_si(joint.kind, typed, unit);
-        values.si.push(si);
-        values.deg.push(if unit == AngleUnit::Deg { typed } else { from_si(joint.kind, si, AngleUnit::Deg) });
     }
     Ok(values)
 }

@@ -86,8 +86,6 @@ pub struct LoadedRobot {
     pub source: RobotSource,
     /// Units of the TOML description (`None` for URDF, which is always metres and radians).
     pub units: Option<FileUnits>,
-    /// The library's description of the robot, for requests ([`reach::jobs::Job`]).
-    pub input: RobotInput,
 }
 
 impl RobotArgs {
@@ -155,7 +153,7 @@ pub fn load_robot(arg: &str, chain: &UrdfChain) -> Result<LoadedRobot, CliError>
         }
         (RobotSource::File { .. }, _) => CliError::bad_input(format!("{arg}: {}", one_line(&e.to_string()))),
     })?;
-    Ok(LoadedRobot { robot: loaded.robot, source, units: loaded.units, input })
+    Ok(LoadedRobot { robot: loaded.robot, source, units: loaded.units })
 }
 
 /// Loads a preset by name (with its file units).

@@ -674,7 +674,11 @@ fn fk_and_jacobian_json_are_the_library_reports_and_match_their_schemas() {
     let fk = Job { robot: robot.clone(), request: Request::Fk(FkRequest { q: q.clone() }) };
     crate::common::assert_report(&["fk", "ur5", "0", "-90", "90", "0", "90", "0", "--json"], &fk, "fk.report");
     let jac = Job { robot, request: Request::Jacobian(JacobianRequest { q }) };
-    crate::common::assert_report(&["jacobian", "ur5", "0", "-90", "90", "0", "90", "0", "--json"], &jac, "jacobian.report");
+    crate::common::assert_report(
+        &["jacobian", "ur5", "0", "-90", "90", "0", "90", "0", "--json"],
+        &jac,
+        "jacobian.report",
+    );
     let rad = Job {
         robot: RobotInput::Preset("planar3".into()),
         request: Request::Fk(FkRequest { q: Joints::Rad(vec![0.5, -0.25, 1.0]) }),

@@ -58,7 +58,8 @@ fn tour_key_numbers_are_unchanged() {
     let puma = json(&["ik", "puma560", "--xyz", "0.5,-0.2,0.3", "--rpy", "180,0,0", "--all", "--json"]);
     assert_eq!(puma["solutions"].as_array().map(Vec::len), Some(8), "{puma}");
     // Seed 004: 635 allowed nodes at 15° with q1 fixed (README tour).
-    let cspace = json(&["cspace", "varan4", "examples/seed004_ceiling.toml", "--step", "15", "--fix", "q1=0", "--json"]);
+    let cspace =
+        json(&["cspace", "varan4", "examples/seed004_ceiling.toml", "--step", "15", "--fix", "q1=0", "--json"]);
     assert_eq!(cspace["counts"]["allowed"].as_u64(), Some(635), "{}", cspace["counts"]);
     // Seed 003: the −β configuration breaks θ4 on s ∈ (618.10, 882.21) mm.
     let plan = json(&["plan", "examples/seed003_welding.toml", "--json"]);
