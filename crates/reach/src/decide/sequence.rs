@@ -427,7 +427,11 @@ pub fn joint_change_costs(
         }
     }
     let mut configs = vec![Some(start.to_vec())];
-    configs.extend(targets.iter().map(|t| t.closest_to(start, weights).map(|s| s.q.clone())));
+    configs.extend(targets.iter().map(|t| {
+        let mut near = t.clone();
+        near.express_near(robot, start);
+        near.closest_to(start, weights).map(|s| s.q.clone())
+    }));
     config_costs(robot, configs, weights)
 }
 

@@ -312,6 +312,27 @@ impl IkSolutions {
         IkSolutions { solver, solutions, failure, differences }
     }
 
+    /// Re-expresses each solution's revolute values by the representative `qᵢ + 2πk` nearest to
+    /// `from` that stays within the joint's limits. A joint whose range is wider than a turn (a
+    /// UR5's ±360°) has two representatives of most angles; the solver reports the one in
+    /// (−π, π], and this picks the one a joint-space motion from `from` reaches by turning least —
+    /// what [`IkSolutions::closest_to`] then measures with the robot's one joint-difference rule
+    /// ([`Joint::difference`](crate::model::Joint::difference)). Joints of a narrower range (one
+    /// representative within limits), prismatic joints and values with no representative within
+    /// limits are unchanged; `from` shorter than the joint vector leaves the rest unchanged.
+    pub fn express_near(&mut self, robot: &Robot, from: &[f64]) {
+        for solution in &mut self.solutions {
+            for ((v, joint), &reference) in solution.q.iter_mut().zip(robot.joints()).zip(from) {
+                if joint.kind == JointKind::Revolute && reference.is_finite() {
+                    let near = crate::angle::nearest_equivalent(*v, reference);
+                    if joint.limits.contains(near, LIMIT_SLACK) {
+                        *v = near;
+                    }
+                }
+            }
+        }
+    }
+
     /// The index in [`IkSolutions::solutions`] of [`IkSolutions::closest_to`]'s choice (same
     /// rule, same arguments), for callers that keep indices (rankings, reports).
     #[must_use]

@@ -702,7 +702,8 @@ pub fn ik(robot: &Robot, request: &IkRequest) -> Result<IkReport> {
     }
     let options = options(request, &from)?;
     let kind = request.solver.unwrap_or_default().kind().unwrap_or_else(|| SolverKind::detect(robot));
-    let all = kind.build(robot)?.solve(robot, &target, &options)?;
+    let mut all = kind.build(robot)?.solve(robot, &target, &options)?;
+    all.express_near(robot, &from);
     let closest = all.closest_index(&from, &weights);
     let ranking = match &request.choose {
         Some(choice) if closest.is_some() => {

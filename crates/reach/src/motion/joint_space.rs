@@ -310,7 +310,8 @@ fn solve_end(
     which: &str,
 ) -> Result<Vec<f64>, MotionError> {
     let options = IkOptions { seed: Some(reference.to_vec()), ..choice.ik.clone() };
-    let all = ik::solve(robot, &IkTarget::Pose(*pose), &options)?;
+    let mut all = ik::solve(robot, &IkTarget::Pose(*pose), &options)?;
+    all.express_near(robot, reference);
     match all.closest_to(reference, &choice.weights) {
         Some(s) => Ok(s.q.clone()),
         None => Err(MotionError::NoIkSolution {

@@ -158,7 +158,8 @@ impl ToolPath {
         let mut samples = Vec::with_capacity(self.samples.len());
         for (k, sample) in self.samples.iter().enumerate() {
             ik_options.seed = Some(previous.clone());
-            let all = solver.solve(robot, &IkTarget::Pose(sample.pose), &ik_options)?;
+            let mut all = solver.solve(robot, &IkTarget::Pose(sample.pose), &ik_options)?;
+            all.express_near(robot, &previous);
             let chosen: Option<&IkSolution> = match all.closest_to(&previous, &options.weights) {
                 Some(s) => Some(s),
                 None if options.allow_outside_limits => closest_any(&all.solutions, &previous, &options.weights),
