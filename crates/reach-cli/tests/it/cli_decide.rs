@@ -53,9 +53,11 @@ fn choose_ranks_the_solutions_within_limits_and_explains_the_ranking() {
         let score = e["score"].as_f64().unwrap();
         assert!((0.0..=1.0).contains(&score) && score <= previous, "closeness sorted: {ranking}");
         previous = score;
-        // The `change` value is Σ |qᵢ − fromᵢ| (wrapped, joint weights 1) of that solution.
+        // The `change` value is Σ |qᵢ − fromᵢ| (joint weights 1) of that solution, each
+        // difference by the one joint-difference rule: UR5's joints are bounded (±360°), so
+        // literal, as a joint-space motion travels it.
         let q = nums(&topsis["solutions"][e["solution"].as_u64().unwrap() as usize]["q_deg"]);
-        let change: f64 = q.iter().zip(&from).map(|(a, b)| angle_gap(*a, *b).to_radians().abs()).sum();
+        let change: f64 = q.iter().zip(&from).map(|(a, b)| (a - b).to_radians().abs()).sum();
         assert!((nums(&e["values"])[0] - change).abs() < 1e-9, "{e}");
         assert_eq!(nums(&e["normalised"]).len(), 4);
     }
