@@ -28,12 +28,6 @@ pub struct JointArgs {
 }
 
 impl JointArgs {
-    /// The unit the revolute values are written in.
-    #[must_use]
-    pub fn angle_input(&self) -> AngleUnit {
-        if self.rad { AngleUnit::Rad } else { AngleUnit::Deg }
-    }
-
     /// The values as typed, in the unit of `--rad`, each checked to be a finite number (the
     /// count is checked against the robot by the library).
     ///
@@ -47,14 +41,6 @@ impl JointArgs {
             .map(|(i, t)| parse_finite(&format!("joint {}", i + 1), t))
             .collect::<Result<Vec<_>, _>>()?;
         Ok(if self.rad { reach::jobs::Joints::Rad(values) } else { reach::jobs::Joints::Deg(values) })
-    }
-
-    /// Parses the values for `robot`.
-    ///
-    /// # Errors
-    /// See [`parse_joint_values`].
-    pub fn resolve(&self, robot: &Robot) -> Result<JointValues, CliError> {
-        parse_joint_values(robot, &self.q, self.angle_input())
     }
 }
 

@@ -22,7 +22,13 @@ pub struct AvoidArgs {
 
     /// Current gripper position x,y [m]; the start configuration is the thesis's
     /// minimum-change choice from the home pose (or give --start).
-    #[arg(long, value_name = "X,Y", allow_hyphen_values = true, conflicts_with = "start", required_unless_present = "start")]
+    #[arg(
+        long,
+        value_name = "X,Y",
+        allow_hyphen_values = true,
+        conflicts_with = "start",
+        required_unless_present = "start"
+    )]
     pub from: Option<String>,
 
     /// Start joint values q1,q2,q3 [deg] instead of --from.

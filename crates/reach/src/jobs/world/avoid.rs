@@ -134,7 +134,9 @@ pub struct AvoidRun {
 
 fn finite(field: &str, values: &[f64]) -> Result<()> {
     match values.iter().position(|v| !v.is_finite()) {
-        Some(i) => Err(Error::request(format!("{field}[{}]", i + 1), format!("expected a finite number, got {}", values[i]))),
+        Some(i) => {
+            Err(Error::request(format!("{field}[{}]", i + 1), format!("expected a finite number, got {}", values[i])))
+        }
         None => Ok(()),
     }
 }
@@ -176,10 +178,9 @@ pub fn avoid_run(robot: &Robot, request: &AvoidRequest) -> Result<AvoidRun> {
             let home = robot.home();
             let options = DetourOptions { step, ..DetourOptions::default() };
             let plan = plan_detour(&arm, &[home[0], home[1], home[2]], k, &[], &options)?;
-            let q = *plan
-                .configurations
-                .first()
-                .ok_or_else(|| Error::request("from_xy_m", format!("({}, {}) m is outside the workspace", k[0], k[1])))?;
+            let q = *plan.configurations.first().ok_or_else(|| {
+                Error::request("from_xy_m", format!("({}, {}) m is outside the workspace", k[0], k[1]))
+            })?;
             let d = q_display(robot, &q);
             (q, [d[0], d[1], d[2]])
         }
@@ -239,17 +240,15 @@ fn choose(
             format!("unknown method `{}` (known: topsis, vikor, weighted-sum)", choice.method),
         )
     })?;
-    let names: Vec<String> = choice.criteria.clone().unwrap_or_else(|| {
-        ["s", "clearance", "path_length"].iter().map(|s| (*s).to_string()).collect()
-    });
+    let names: Vec<String> = choice
+        .criteria
+        .clone()
+        .unwrap_or_else(|| ["s", "clearance", "path_length"].iter().map(|s| (*s).to_string()).collect());
     let criteria = names
         .iter()
         .map(|n| {
             DetourCriterion::parse(n).ok_or_else(|| {
-                Error::request(
-                    "choose.criteria",
-                    format!("unknown criterion `{n}` (known: s, clearance, path_length)"),
-                )
+                Error::request("choose.criteria", format!("unknown criterion `{n}` (known: s, clearance, path_length)"))
             })
         })
         .collect::<Result<Vec<_>>>()?;
