@@ -184,7 +184,7 @@ impl Tracker<'_> {
         let robot = self.robot();
         let filter = &self.configurations[c];
         let anchor = (0..points.len())
-            .filter_map(|k| anchor(&sols[k], filter, self.solving.numeric).map(|a| (k, a)))
+            .filter_map(|k| anchor(&sols[k], filter, self.solving.by_label()).map(|a| (k, a)))
             .min_by_key(|(k, (q, _))| {
                 let singular = sols[*k].solutions.iter().any(|x| x.q == *q && !x.singularities.is_empty());
                 (singular, *k)

@@ -5,10 +5,11 @@
 //!
 //! # The input
 //!
-//! A path is a list of [`PathSample`]s — path parameter `s` (arc length of the tool point in
-//! the paper; any strictly increasing parameter here), time `t` (strictly increasing) and
-//! tool pose, e.g. the samples of a [`ToolPath`](super::ToolPath) — wrapped in a [`TrackedPath`]. Singular positions and limit crossings are refined
-//! between samples by bisection, so the path must be evaluable between samples: either give
+//! A path is a list of [`PathSample`](super::PathSample)s — path parameter `s` (arc length of
+//! the tool point in the paper; any strictly increasing parameter here), time `t` (strictly
+//! increasing) and tool pose, e.g. the samples of a [`ToolPath`](super::ToolPath) — wrapped in
+//! a [`TrackedPath`]. Singular positions and limit crossings are refined between samples by
+//! bisection, so the path must be evaluable between samples: either give
 //! a closure `Fn(f64) -> Isometry3<f64>` over `s` ([`TrackedPath::with_evaluator`]) or let the
 //! path interpolate its samples (straight-line position, slerped orientation;
 //! [`TrackedPath::sampled`]). Time between samples is interpolated linearly in `s`.
@@ -16,18 +17,25 @@
 //! # Configurations and continuity
 //!
 //! A *configuration* is a [`Branch`] filter: the `key=value` pairs a solution's label must
-//! carry (the welder's `config=+β`, a PUMA's `elbow=up`; the empty filter matches every
-//! solution). Along an interval, a configuration is followed from an anchor sample (the first
+//! carry (e.g. seed 003's `config=+β`, a PUMA's `elbow=up`; the empty filter matches every
+//! solution). The caller names them ([`TrackingOptions::configurations`]) or the solver does
+//! ([`IkSolver::configurations`](crate::ik::IkSolver::configurations), in its default order).
+//! Tracking knows no particular solver: what it needs from one is asked through the
+//! [`IkSolver`](crate::ik::IkSolver) trait.
+//!
+//! Along an interval, a configuration is followed from an anchor sample (the first
 //! where a non-singular solution of the filter exists): at every sample the solver is called
 //! with the previous joint vector as seed, and the solution **with the same full branch
 //! label** nearest to the previous joint vector is taken, its revolute angles unwrapped
 //! ([`crate::angle::nearest_equivalent`]) so that the joint trajectory is continuous. Only at a
 //! sample where the label is missing and a solution flagged singular exists (branches merge
 //! there) is the nearest singular solution taken. A label that disappears otherwise is
-//! reported ([`ViolationKind::BranchLost`]), never replaced silently. The numeric solver's
-//! labels name the start that found a solution, not a geometric branch, so with it the
-//! filter alone is kept and continuity comes from nearness (it is seeded with the previous
-//! joint vector).
+//! reported ([`ViolationKind::BranchLost`]), never replaced silently. This holds for solvers
+//! whose labels name branches
+//! ([`IkSolver::enumerates_all_branches`](crate::ik::IkSolver::enumerates_all_branches));
+//! the labels of a search (the numeric solver: the start that found a solution) or of a
+//! sampled self-motion (the sampled parameter) do not, so with them the filter alone is kept
+//! and continuity comes from nearness (the solver is seeded with the previous joint vector).
 //!
 //! # Rates
 //!
@@ -39,13 +47,15 @@
 //!
 //! # Singular positions (notes 003 §3.6, §4 steps 2–3)
 //!
-//! For robots the seed-003 closed form fits ([`ParallelAxes`]), the closed-form measures are
-//! scanned along the samples: `√(1 − |cos θ_elbow|)` (0 where |Δ| = 1), `sin∠(w, e6)` (wrist)
-//! and `(ρ − |D|)/L` (shoulder), for each shoulder/wrist branch the configurations use. For
-//! every other robot the relative smallest singular value `σ_min/σ_max` of the Jacobian is
-//! scanned, minimised over the solutions of the configurations (the translational rows for
-//! position-only tracking). Every local minimum of a measure is refined by golden-section
-//! search on `s`; a refined minimum at or below [`TRACKING_SINGULAR`] is a singular position.
+//! When the solver computes singularity measures in closed form
+//! ([`IkSolver::singularity_measures`](crate::ik::IkSolver::singularity_measures); seed 003's
+//! arm: `√(1 − |cos θ_elbow|)`, 0 where |Δ| = 1, `sin∠(w, e6)` for the wrist and
+//! `(ρ − |D|)/L` for the shoulder, [`PathMeasures`](crate::ik::parallel_axes::PathMeasures)),
+//! those are scanned along the samples of a full-pose path. Otherwise the relative smallest
+//! singular value `σ_min/σ_max` of the Jacobian is scanned, minimised over the solutions of the
+//! configurations (the translational rows for position-only tracking). Every local minimum of
+//! a measure is refined by golden-section search on `s`; a refined minimum at or below
+//! [`TRACKING_SINGULAR`](crate::tolerance::TRACKING_SINGULAR) is a singular position.
 //! Points where the path leaves or enters the reachable set (no solution of any configuration)
 //! are refined by bisection. The path is split into intervals at all of them.
 //!
@@ -53,7 +63,7 @@
 //!
 //! In each interval every configuration is tracked and checked against the joint ranges and
 //! speed limits; each violation names the joint, the limit, and where it starts and ends, the
-//! crossings refined by bisection to [`TRACKING_PARAMETER`]. A revolute joint whose range is
+//! crossings refined by bisection to [`TRACKING_PARAMETER`](crate::tolerance::TRACKING_PARAMETER). A revolute joint whose range is
 //! narrower than a full turn is out of range where *no* representative `q + 2πk` lies in it
 //! (as the paper checks wrapped angles; for such a range a continuous motion can only pass
 //! from one representative to another through the gap, so this is also the check of the
@@ -65,6 +75,12 @@
 //!
 //! The decisions are logged as [`TrackingEvent`]s equivalent to the paper's operator
 //! messages K1–K14 ([`EventCode`]).
+//!
+//! # Files
+//!
+//! `path` (the [`TrackedPath`]), `branch` (following one configuration, [`step_rates`]),
+//! `singular` (the scan for split points), `checks` (limit violations), `intervals` (the
+//! per-interval tracking and choice, [`Criterion`]) and `events` (the K1–K14 log).
 
 mod branch;
 mod checks;
@@ -78,19 +94,17 @@ use std::cell::Cell;
 use serde::Serialize;
 use thiserror::Error;
 
-use crate::ik::parallel_axes::{ParallelAxes, Shoulder, Wrist};
-use crate::ik::{Branch, IkError, SolverKind};
-use crate::model::{Joint, Robot};
+use crate::ik::{Branch, IkError, SingularityMeasures, SolverKind};
+use crate::model::Robot;
 use crate::tolerance::TRACKING_PARAMETER;
 
+use branch::Solving;
 pub use branch::{BranchTrack, step_rates, track_configuration};
-use branch::{Solving, is_numeric};
 pub use checks::{Violation, ViolationKind, WrapCrossing};
 use events::EventLog;
 pub use events::{EventCode, TrackingEvent};
 pub use intervals::{ConfigurationTrack, Criterion, Decision, IntervalReport, TrajectoryPoint};
 pub use path::TrackedPath;
-use singular::Measure;
 pub use singular::{SingularityDetection, SplitKind, SplitPoint};
 
 /// Why a tracking problem was rejected.
@@ -181,12 +195,12 @@ impl TrackingReport {
 pub struct TrackingOptions {
     /// The IK solver; `None`: [`SolverKind::detect`].
     pub solver: Option<SolverKind>,
-    /// The configurations to consider (branch filters). Empty: for [`ParallelAxes`] the paper's
-    /// two, `shoulder=w config=+β wrist=e5` and `shoulder=w config=−β wrist=e5`; for the
-    /// numeric solver one (follow the nearest solution); for other closed forms every branch
-    /// label found at the first reachable sample.
+    /// The configurations to consider (branch filters). Empty: the solver's
+    /// ([`IkSolver::configurations`](crate::ik::IkSolver::configurations), e.g. seed 003's
+    /// two, `config=+β` first; any solution for the numeric solver), those of them with a
+    /// solution at the first reachable sample.
     pub configurations: Vec<Branch>,
-    /// Index of the default configuration (the paper's "+β"; 0).
+    /// Index of the default configuration (0: the first, e.g. the paper's `config=+β`).
     pub default_configuration: usize,
     /// Track the tool position only.
     pub position_only: bool,
@@ -231,9 +245,8 @@ struct Tracker<'a> {
     solving: Solving<'a>,
     path: &'a TrackedPath<'a>,
     configurations: Vec<Branch>,
-    closed_form: Option<ParallelAxes>,
-    measures: Vec<Measure>,
-    length_scale: f64,
+    /// The solver's closed-form singularity measures, else the Jacobian's is scanned.
+    closed_form: Option<Box<dyn SingularityMeasures>>,
     tolerance: f64,
     check_velocity: bool,
 }
@@ -321,65 +334,54 @@ pub fn track_with_progress(
     progress: &dyn Fn(usize, usize),
 ) -> Result<TrackingReport, TrackingError> {
     let kind = options.solver.unwrap_or_else(|| SolverKind::detect(robot));
-    let solver = kind.build(robot)?;
-    let numeric = is_numeric(solver.as_ref());
-    let solving = Solving { robot, solver, position_only: options.position_only, numeric };
-    let closed_form = if kind == SolverKind::ParallelAxes && !options.position_only {
-        ParallelAxes::from_robot(robot).ok()
-    } else {
-        None
-    };
-    let configurations = if options.configurations.is_empty() {
-        default_configurations(&solving, path, closed_form.is_some())?
+    let solving = Solving { robot, solver: kind.build(robot)?, position_only: options.position_only };
+    let mut configurations = if options.configurations.is_empty() {
+        default_configurations(&solving, path)?
     } else {
         options.configurations.clone()
     };
+    let mut default = options.default_configuration;
     if configurations.is_empty() {
-        // No reachable sample to read labels from: one "any solution" configuration.
-        let tracker = Tracker::new(solving, path, vec![Branch::default()], closed_form, options, progress);
-        return track_with(tracker, 0, criterion);
+        // The solver lists none: one "any solution" configuration.
+        configurations.push(Branch::default());
+        default = 0;
     }
-    if options.default_configuration >= configurations.len() {
+    if default >= configurations.len() {
         return Err(TrackingError::InvalidOption {
             option: "default_configuration",
-            reason: format!("index {} but only {} configurations", options.default_configuration, configurations.len()),
+            reason: format!("index {default} but only {} configurations", configurations.len()),
         });
     }
-    let closed_form = if options.detection == SingularityDetection::Jacobian { None } else { closed_form };
-    track_with(
-        Tracker::new(solving, path, configurations, closed_form, options, progress),
-        options.default_configuration,
-        criterion,
-    )
+    // A solver's closed-form measures are of full poses.
+    let measures = match options.detection {
+        SingularityDetection::Auto if !options.position_only => {
+            solving.solver.singularity_measures(robot, &configurations)
+        }
+        _ => None,
+    };
+    track_with(Tracker::new(solving, path, configurations, measures, options, progress), default, criterion)
 }
 
-fn default_configurations(
-    solving: &Solving<'_>,
-    path: &TrackedPath<'_>,
-    paper: bool,
-) -> Result<Vec<Branch>, TrackingError> {
-    if paper {
-        return Ok(["+β", "−β"]
-            .into_iter()
-            .map(|c| Branch::new([("shoulder", "w"), ("config", c), ("wrist", "e5")]))
-            .collect());
-    }
-    if solving.numeric {
-        return Ok(vec![Branch::default()]);
+/// The solver's configurations ([`IkSolver::configurations`], in its order) that have a
+/// solution at the first sample where the path is reachable (all of them when none has, or
+/// when the path is nowhere reachable). A single configuration is kept as it is.
+fn default_configurations(solving: &Solving<'_>, path: &TrackedPath<'_>) -> Result<Vec<Branch>, TrackingError> {
+    let listed = solving.solver.configurations(solving.robot);
+    if listed.len() <= 1 {
+        return Ok(listed);
     }
     for p in path.samples() {
         let sols = solving.solve(&p.pose, None)?;
         if !sols.solutions.is_empty() {
-            let mut labels: Vec<Branch> = Vec::new();
-            for s in &sols.solutions {
-                if !labels.contains(&s.branch) {
-                    labels.push(s.branch.clone());
-                }
-            }
-            return Ok(labels);
+            let present: Vec<Branch> = listed
+                .iter()
+                .filter(|c| sols.solutions.iter().any(|s| branch::matches(&s.branch, c)))
+                .cloned()
+                .collect();
+            return Ok(if present.is_empty() { listed } else { present });
         }
     }
-    Ok(Vec::new())
+    Ok(listed)
 }
 
 impl<'a> Tracker<'a> {
@@ -387,33 +389,10 @@ impl<'a> Tracker<'a> {
         solving: Solving<'a>,
         path: &'a TrackedPath<'a>,
         configurations: Vec<Branch>,
-        closed_form: Option<ParallelAxes>,
+        closed_form: Option<Box<dyn SingularityMeasures>>,
         options: &TrackingOptions,
         progress: &'a dyn Fn(usize, usize),
     ) -> Self {
-        let robot = solving.robot;
-        let length_scale =
-            robot.joints().iter().filter_map(Joint::dh).map(|p| p.a.abs() + p.d.abs()).sum::<f64>().max(1e-3);
-        let measures = match &closed_form {
-            Some(_) => {
-                let mut m = Vec::new();
-                for shoulder in [Shoulder::W, Shoulder::MinusW] {
-                    for wrist in [Wrist::E5, Wrist::MinusE5] {
-                        let used = configurations.iter().any(|c| {
-                            c.get("shoulder").is_none_or(|v| v == shoulder.label())
-                                && c.get("wrist").is_none_or(|v| v == wrist.label())
-                        });
-                        if used {
-                            m.push(Measure::Elbow(shoulder, wrist));
-                            m.push(Measure::Wrist(shoulder, wrist));
-                        }
-                    }
-                }
-                m.push(Measure::Shoulder);
-                m
-            }
-            None => vec![Measure::Jacobian],
-        };
         let tolerance = TRACKING_PARAMETER * (path.end() - path.start()).abs().max(f64::MIN_POSITIVE);
         let meter = Meter {
             hook: progress,
@@ -427,8 +406,6 @@ impl<'a> Tracker<'a> {
             path,
             configurations,
             closed_form,
-            measures,
-            length_scale,
             tolerance,
             check_velocity: !options.ignore_velocity,
         }

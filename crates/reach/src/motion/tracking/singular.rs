@@ -6,8 +6,7 @@ use serde::Serialize;
 
 use super::branch::matches;
 use super::{Tracker, TrackingError};
-use crate::ik::parallel_axes::{Shoulder, Wrist};
-use crate::ik::{IkError, IkOptions, IkSolutions, SingularityKind};
+use crate::ik::{IkError, IkSolutions, SingularityKind};
 use crate::kinematics::{JacobianAxes, Manipulability};
 use crate::tolerance::TRACKING_SINGULAR;
 
@@ -39,35 +38,13 @@ pub struct SplitPoint {
 /// How singular positions are detected.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum SingularityDetection {
-    /// The seed-003 closed-form measures when [`ParallelAxes`] is the solver, else the Jacobian.
+    /// The solver's closed-form measures for full-pose tracking when it has them
+    /// ([`IkSolver::singularity_measures`](crate::ik::IkSolver::singularity_measures), e.g.
+    /// seed 003's), else the Jacobian.
     #[default]
     Auto,
     /// The Jacobian's relative smallest singular value, for every robot.
     Jacobian,
-}
-
-/// A scanned singularity measure.
-#[derive(Debug, Clone, Copy)]
-pub(super) enum Measure {
-    /// `sign·√|1 − |cos θ_elbow||` of one arm of the closed form.
-    Elbow(Shoulder, Wrist),
-    /// `sin∠(w, e6)` of one arm.
-    Wrist(Shoulder, Wrist),
-    /// `(ρ − |D|)/L`.
-    Shoulder,
-    /// `σ_min/σ_max`, minimised over the configurations' solutions.
-    Jacobian,
-}
-
-impl Measure {
-    fn kind(self) -> SingularityKind {
-        match self {
-            Measure::Elbow(..) => SingularityKind::Elbow,
-            Measure::Wrist(..) => SingularityKind::Wrist,
-            Measure::Shoulder => SingularityKind::Shoulder,
-            Measure::Jacobian => SingularityKind::Jacobian,
-        }
-    }
 }
 
 /// The scan of the samples ([`Tracker::split_points`]).
@@ -91,28 +68,22 @@ impl Tracker<'_> {
         Ok(self.reachable(&sols))
     }
 
-    /// Every measure at `s` (`None` where undefined, e.g. unreachable).
+    /// How many measures are scanned: the solver's closed-form ones, else one, `σ_min/σ_max`
+    /// of the Jacobian minimised over the configurations' solutions.
+    fn measure_count(&self) -> usize {
+        self.closed_form.as_ref().map_or(1, |m| m.kinds().len())
+    }
+
+    /// Every measure at `pose` (`None` where undefined, e.g. unreachable); `sols` are the
+    /// unseeded solutions there when known.
     pub(super) fn measures_at(
         &self,
         pose: &Isometry3<f64>,
         sols: Option<&IkSolutions>,
     ) -> Result<Vec<Option<f64>>, TrackingError> {
         let robot = self.robot();
-        let mut out = Vec::with_capacity(self.measures.len());
-        if let Some(cf) = &self.closed_form {
-            let m = cf.measures(robot, pose, &IkOptions::default())?;
-            for measure in &self.measures {
-                out.push(match *measure {
-                    Measure::Elbow(sh, wr) => m.arm(sh, wr).map(|a| {
-                        let e = a.elbow_margin();
-                        e.signum() * e.abs().sqrt()
-                    }),
-                    Measure::Wrist(sh, wr) => m.arm(sh, wr).map(|a| a.wrist_sine),
-                    Measure::Shoulder => Some(m.shoulder_margin() / self.length_scale),
-                    Measure::Jacobian => None,
-                });
-            }
-            return Ok(out);
+        if let Some(closed_form) = &self.closed_form {
+            return Ok(closed_form.at(robot, pose)?);
         }
         let owned;
         let sols = match sols {
@@ -129,8 +100,7 @@ impl Tracker<'_> {
             let v = if m.sigma_max > 0.0 { m.sigma_min / m.sigma_max } else { 0.0 };
             best = Some(best.map_or(v, |b: f64| b.min(v)));
         }
-        out.push(best);
-        Ok(out)
+        Ok(vec![best])
     }
 
     /// Bisection between `a` (predicate `pa`) and `b` (the opposite) to the path tolerance.
@@ -190,12 +160,17 @@ impl Tracker<'_> {
     pub(super) fn split_points(&self) -> Result<Scan, TrackingError> {
         let samples = self.path.samples();
         let mut reach = Vec::with_capacity(samples.len());
-        let mut values: Vec<Vec<Option<f64>>> = Vec::with_capacity(samples.len());
+        // Per measure, its value at every sample.
+        let mut values: Vec<Vec<Option<f64>>> = vec![Vec::with_capacity(samples.len()); self.measure_count()];
         let mut all = Vec::with_capacity(samples.len());
         for p in samples {
             let sols = self.solving.solve(&p.pose, None)?;
             reach.push(self.reachable(&sols));
-            values.push(self.measures_at(&p.pose, Some(&sols))?);
+            let at = self.measures_at(&p.pose, Some(&sols))?;
+            debug_assert_eq!(at.len(), values.len(), "one value per measure");
+            for (column, value) in values.iter_mut().zip(at) {
+                column.push(value);
+            }
             all.push(sols);
             self.meter.advance(self.configurations.len());
         }
@@ -208,8 +183,8 @@ impl Tracker<'_> {
             }
         }
         let n = samples.len();
-        for (i, measure) in self.measures.iter().enumerate() {
-            let v = |k: usize| values[k][i].filter(|x| *x >= 0.0);
+        for (i, column) in values.iter().enumerate() {
+            let v = |k: usize| column[k].filter(|x| *x >= 0.0);
             for k in 0..n {
                 let Some(vk) = v(k) else { continue };
                 let left = if k > 0 { v(k - 1) } else { None };
@@ -217,14 +192,14 @@ impl Tracker<'_> {
                 let (Some(l), Some(r)) = (left, right) else {
                     // An end sample (or next to an unreachable one): singular only if the sample is.
                     if vk <= TRACKING_SINGULAR && (k == 0 || k == n - 1) {
-                        points.push(self.singular_point(samples[k].s, *measure, vk)?);
+                        points.push(self.singular_point(samples[k].s, i, vk)?);
                     }
                     continue;
                 };
                 if vk <= l && vk <= r && !(vk == l && k > 1 && v(k - 2).is_some_and(|x| x == vk)) {
                     let (s, m) = self.minimise(i, samples[k - 1].s, samples[k + 1].s)?;
                     if m <= TRACKING_SINGULAR {
-                        points.push(self.singular_point(s, *measure, m)?);
+                        points.push(self.singular_point(s, i, m)?);
                     }
                 }
             }
@@ -247,17 +222,19 @@ impl Tracker<'_> {
         Ok(Scan { points: merged, reach, solutions: all })
     }
 
-    /// A singular position at `s`, its kind read from the solver's flags when it sets one.
-    pub(super) fn singular_point(&self, s: f64, measure: Measure, value: f64) -> Result<SplitPoint, TrackingError> {
-        let sols = self.solving.solve(&self.path.pose_at(s)?, None)?;
-        let flagged = sols
-            .solutions
-            .iter()
-            .filter(|x| self.configurations.iter().any(|c| matches(&x.branch, c)))
-            .find_map(|x| x.singularities.first().copied());
-        let kind = match measure {
-            Measure::Jacobian => flagged.unwrap_or(SingularityKind::Jacobian),
-            other => other.kind(),
+    /// A singular position at `s` found by measure `i`: of the measure's kind, or for the
+    /// Jacobian's of the kind the solver flags there, if it flags one.
+    pub(super) fn singular_point(&self, s: f64, i: usize, value: f64) -> Result<SplitPoint, TrackingError> {
+        let kind = match &self.closed_form {
+            Some(closed_form) => closed_form.kinds()[i],
+            None => {
+                let sols = self.solving.solve(&self.path.pose_at(s)?, None)?;
+                sols.solutions
+                    .iter()
+                    .filter(|x| self.configurations.iter().any(|c| matches(&x.branch, c)))
+                    .find_map(|x| x.singularities.first().copied())
+                    .unwrap_or(SingularityKind::Jacobian)
+            }
         };
         Ok(SplitPoint { s, t: self.path.time_at(s), kind: SplitKind::Singular(kind), measure: value })
     }
