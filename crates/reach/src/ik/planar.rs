@@ -744,7 +744,7 @@ impl IkSolver for PlanarRedundant {
         finish(robot, target, candidates, NAME, if_empty)
     }
 
-    /// The two elbows, `elbow=up` first (the bend `−e` of [`two_link`], the order of
+    /// The two elbows, `elbow=up` first (the bend `−e` of `two_link`, the order of
     /// [`IkSolver::solve`]). With a position target the labels also carry the sampled
     /// redundancy parameter (`phi_deg=…`), which these filters leave free.
     fn configurations(&self, _robot: &Robot) -> Vec<Branch> {

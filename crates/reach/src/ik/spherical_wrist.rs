@@ -673,10 +673,10 @@ impl IkSolver for SphericalWrist {
     }
 
     /// The eight branches in the order [`IkSolver::solve`] returns them: the shoulder of the
-    /// positive root of `h` first (`front`, or without a lateral offset `d` the side
+    /// positive root of `h` first (`front` without a lateral offset `d`, else the side
     /// `sgn(α1)·d` points to, `right` when positive), then the other; per shoulder the elbow of
-    /// the triangle root `s = +1` first (`up` when `sgn(h)·sgn(α1)·a2 < 0`, see
-    /// [`elbow_label`]), then the other; per elbow `noflip` (the `acos` branch) first.
+    /// the triangle root `s = +1` first (`up` when `sgn(h)·sgn(α1)·a2 < 0`), then the other;
+    /// per elbow `noflip` (the `acos` branch) first.
     fn configurations(&self, _robot: &Robot) -> Vec<Branch> {
         let d = self.lateral;
         let shoulders = if is_zero_length(d) {

@@ -203,7 +203,7 @@ impl IkSolver for YawPlanar3 {
     }
 
     /// The four base and elbow branches in the order [`IkSolver::solve`] returns them
-    /// ([`yaw_configurations`]); the labels also carry the last link's angle (`phi_deg=…`,
+    /// (`yaw_configurations`); the labels also carry the last link's angle (`phi_deg=…`,
     /// sampled for a position target), which these filters leave free.
     fn configurations(&self, _robot: &Robot) -> Vec<Branch> {
         yaw_configurations()

@@ -353,7 +353,7 @@ impl IkSolver for YawTwoLink {
         finish(robot, target, candidates, NAME, if_empty)
     }
 
-    /// The four branches in the order [`IkSolver::solve`] returns them ([`yaw_configurations`]).
+    /// The four branches in the order [`IkSolver::solve`] returns them (`yaw_configurations`).
     fn configurations(&self, _robot: &Robot) -> Vec<Branch> {
         yaw_configurations()
     }
