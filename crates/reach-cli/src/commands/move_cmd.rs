@@ -30,7 +30,7 @@ use reach::effort::dynamics::trajectory_energy_with_rates;
 use reach::effort::{Differences, j1, j2};
 use reach::motion::joint_space::EndChoice;
 use reach::motion::sample::PerSampleIk;
-use reach::motion::tracking::{TrackedPath, TrackingOptions, track_with_progress};
+use reach::motion::tracking::{TrackedPath, TrackingOptions, describe, track_with_progress};
 use reach::motion::{JointMotion, JointRates, Profile, ToolMotion};
 use serde::{Deserialize, Serialize};
 
@@ -280,7 +280,7 @@ pub struct EventJson {
     pub t_s: f64,
     /// `K1` … `K14`.
     pub code: String,
-    /// The text.
+    /// The text as operators read it (angles in degrees; `reach::motion::tracking::describe`).
     pub message: String,
 }
 
@@ -682,7 +682,7 @@ fn tool_space(robot: &Robot, spec: &MoveSpec, progress: bool) -> Result<Computed
     let events = report
         .events
         .iter()
-        .map(|e| EventJson { t_s: e.t, code: e.code.as_str().into(), message: e.message.clone() })
+        .map(|e| EventJson { t_s: e.t, code: e.code.as_str().into(), message: describe(e, robot, true) })
         .collect();
     Ok((times, q, qd, intervals, events))
 }

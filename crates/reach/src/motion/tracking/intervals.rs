@@ -8,7 +8,7 @@ use serde::Serialize;
 
 use super::branch::{Lock, anchor, pick, step_rates, unwrap_to};
 use super::checks::{Violation, WrapCrossing};
-use super::events::EventLog;
+use super::log::EventLog;
 use super::singular::{Scan, SplitKind, SplitPoint};
 use super::{Tracker, TrackingError};
 use crate::ik::{Branch, IkSolutions};
@@ -100,7 +100,8 @@ pub struct IntervalReport {
     pub reachable: bool,
     /// Every configuration tracked over the interval (empty when unreachable).
     pub configurations: Vec<ConfigurationTrack>,
-    /// Index (into [`TrackingReport::configurations`]) of the configuration realised.
+    /// Index (into [`TrackingReport::configurations`](super::TrackingReport::configurations)) of
+    /// the configuration realised.
     pub chosen: Option<usize>,
     /// Why.
     pub decision: Decision,

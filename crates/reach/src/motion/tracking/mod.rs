@@ -63,7 +63,7 @@
 //!
 //! In each interval every configuration is tracked and checked against the joint ranges and
 //! speed limits; each violation names the joint, the limit, and where it starts and ends, the
-//! crossings refined by bisection to [`TRACKING_PARAMETER`](crate::tolerance::TRACKING_PARAMETER). A revolute joint whose range is
+//! crossings refined by bisection to [`TRACKING_PARAMETER`]. A revolute joint whose range is
 //! narrower than a full turn is out of range where *no* representative `q + 2πk` lies in it
 //! (as the paper checks wrapped angles; for such a range a continuous motion can only pass
 //! from one representative to another through the gap, so this is also the check of the
@@ -74,18 +74,21 @@
 //! Intervals are separated by singular positions, so the configuration changes only there.
 //!
 //! The decisions are logged as [`TrackingEvent`]s equivalent to the paper's operator
-//! messages K1–K14 ([`EventCode`]).
+//! messages K1–K14 ([`EventCode`]). An event carries its data in SI units and radians
+//! ([`EventDetail`]); [`describe`] makes the operator's text, in degrees or radians.
 //!
 //! # Files
 //!
 //! `path` (the [`TrackedPath`]), `branch` (following one configuration, [`step_rates`]),
 //! `singular` (the scan for split points), `checks` (limit violations), `intervals` (the
-//! per-interval tracking and choice, [`Criterion`]) and `events` (the K1–K14 log).
+//! per-interval tracking and choice, [`Criterion`]), `events` (the K1–K14 events, their data
+//! and [`describe`], the one text renderer) and `log` (the log the tracker writes).
 
 mod branch;
 mod checks;
 mod events;
 mod intervals;
+mod log;
 mod path;
 mod singular;
 
@@ -101,9 +104,9 @@ use crate::tolerance::TRACKING_PARAMETER;
 use branch::Solving;
 pub use branch::{BranchTrack, step_rates, track_configuration};
 pub use checks::{Violation, ViolationKind, WrapCrossing};
-use events::EventLog;
-pub use events::{EventCode, TrackingEvent};
+pub use events::{EventCode, EventDetail, TrackingEvent, describe};
 pub use intervals::{ConfigurationTrack, Criterion, Decision, IntervalReport, TrajectoryPoint};
+use log::EventLog;
 pub use path::TrackedPath;
 pub use singular::{SingularityDetection, SplitKind, SplitPoint};
 
@@ -424,7 +427,7 @@ fn track_with(
     let path = tracker.path;
     let scan = tracker.split_points()?;
     let bounds = tracker.bounds(&scan.points);
-    let mut log = EventLog::new(tracker.robot(), path, &tracker.configurations);
+    let mut log = EventLog::new(path, &tracker.configurations);
     for p in scan.points.iter().filter(|p| p.s <= path.start() + tracker.tolerance) {
         log.split(p);
     }
