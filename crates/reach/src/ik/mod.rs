@@ -18,6 +18,11 @@
 //!
 //! [`solve`] picks a solver from the robot's structure ([`SolverKind::detect`]) or uses the
 //! one named; a robot with no closed form falls back to the numeric solver.
+//!
+//! Path tracking ([`crate::motion::tracking`]) asks a solver, through [`IkSolver`], what it
+//! needs to know of it: the configurations to track ([`IkSolver::configurations`]), whether
+//! labels name branches ([`IkSolver::enumerates_all_branches`]) and any closed-form
+//! singularity measures ([`IkSolver::singularity_measures`]).
 
 mod solution;
 
@@ -175,6 +180,68 @@ pub trait IkSolver {
     ) -> Result<IkSolutions, IkError> {
         Ok(self.solve(robot, target, options)?.restricted_to(branch))
     }
+
+    /// The configurations a path is tracked in when the caller names none
+    /// ([`crate::motion::tracking`]), in the default order: the first is the default
+    /// configuration. Each is a branch filter — the `key=value` pairs a solution's label must
+    /// carry ([`Branch`]); the empty filter matches every solution.
+    ///
+    /// The default implementation is one empty filter: any solution, followed by nearness
+    /// (what a search such as the numeric solver can offer). The closed forms list their
+    /// branches in the order [`IkSolver::solve`] returns them (seed 003's arm lists the paper's
+    /// two configurations, `config=+β` first).
+    ///
+    /// # Example
+    /// ```
+    /// use reach::ik::{IkSolver, SolverKind};
+    /// let welder = reach::model::presets::get("welder6r").unwrap();
+    /// let solver = SolverKind::detect(&welder).build(&welder).unwrap();
+    /// let labels: Vec<String> = solver.configurations(&welder).iter().map(ToString::to_string).collect();
+    /// assert_eq!(labels, ["shoulder=w config=+β wrist=e5", "shoulder=w config=−β wrist=e5"]);
+    /// ```
+    fn configurations(&self, robot: &Robot) -> Vec<Branch> {
+        let _ = robot;
+        vec![Branch::default()]
+    }
+
+    /// Whether [`IkSolver::solve`] returns every solution of a target, each labelled with the
+    /// name of its branch, so that a label names the same continuous branch at neighbouring
+    /// targets (the closed forms of non-redundant arms). Path tracking then follows a
+    /// configuration by the full label of its first solution ([`IkSolver::solve_branch`]).
+    ///
+    /// `false` (the default) for a search, whose labels name the start that found a solution
+    /// (the numeric solver), and for a sampled self-motion, whose labels carry the sampled
+    /// parameter (the redundant planar arms): tracking keeps the configuration's filter and
+    /// follows the solution nearest to the previous joint vector, passed as the seed; a seeded
+    /// solve then makes one start only ([`IkOptions::restarts`]): it follows the seed instead of
+    /// searching afresh.
+    fn enumerates_all_branches(&self) -> bool {
+        false
+    }
+
+    /// Closed-form singularity measures of full-pose targets for the given configurations, to
+    /// be scanned along a path (notes 003 §3.6, §4 steps 2–3), or `None` (the default): path
+    /// tracking then scans the relative smallest singular value of the Jacobian.
+    fn singularity_measures(&self, robot: &Robot, configurations: &[Branch]) -> Option<Box<dyn SingularityMeasures>> {
+        let _ = (robot, configurations);
+        None
+    }
+}
+
+/// Singularity measures a solver computes in closed form for path tracking
+/// ([`IkSolver::singularity_measures`]), each for one kind of singular position.
+pub trait SingularityMeasures {
+    /// What each measure detects, in the order of the values of [`SingularityMeasures::at`].
+    fn kinds(&self) -> &[SingularityKind];
+
+    /// The measures of a tool pose, in the order of [`SingularityMeasures::kinds`]: each
+    /// dimensionless, non-negative where it applies and 0 at a singular position of its kind;
+    /// `None` or negative where it does not apply (e.g. the target is out of reach of the
+    /// branch it measures).
+    ///
+    /// # Errors
+    /// [`IkError`] for a non-finite pose.
+    fn at(&self, robot: &Robot, pose: &Isometry3<f64>) -> Result<Vec<Option<f64>>, IkError>;
 }
 
 /// The solvers, by name.
@@ -267,4 +334,67 @@ impl SolverKind {
 /// ```
 pub fn solve(robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError> {
     SolverKind::detect(robot).build(robot)?.solve(robot, target, options)
+}
+
+/// Checks of [`IkSolver::configurations`] shared by the solvers' unit tests.
+#[cfg(test)]
+pub(crate) mod configuration_order {
+    use std::f64::consts::PI;
+
+    use nalgebra::Point3;
+
+    use super::{Branch, IkOptions, IkSolver, IkTarget};
+    use crate::model::Robot;
+    use crate::rng::SplitMix64;
+
+    /// The labels of `solver.configurations(robot)` as text.
+    pub(crate) fn labels(solver: &dyn IkSolver, robot: &Robot) -> Vec<String> {
+        solver.configurations(robot).iter().map(ToString::to_string).collect()
+    }
+
+    /// Solves the poses of `cases` random joint vectors (angles uniform in (−π, π]) and checks
+    /// that the solutions come in the order of the configurations: each solution matches at
+    /// most one configuration, and those matched increase strictly along the solutions (poses
+    /// with a singular solution, where branches merge, are skipped). Returns how many poses had
+    /// a solution of every configuration.
+    pub(crate) fn check(solver: &dyn IkSolver, robot: &Robot, cases: usize) -> usize {
+        check_with(solver, robot, cases, false, &IkOptions::default())
+    }
+
+    /// [`check`] with position targets when `position_only`, and the given options.
+    pub(crate) fn check_with(
+        solver: &dyn IkSolver,
+        robot: &Robot,
+        cases: usize,
+        position_only: bool,
+        options: &IkOptions,
+    ) -> usize {
+        let configurations = solver.configurations(robot);
+        let matches = |label: &Branch, filter: &Branch| filter.0.iter().all(|(k, v)| label.get(k) == Some(v.as_str()));
+        let mut rng = SplitMix64(0xc0f1_6000 ^ robot.dof() as u64);
+        let mut complete = 0;
+        for _ in 0..cases {
+            let q: Vec<f64> = (0..robot.dof()).map(|_| (2.0 * rng.next_f64() - 1.0) * PI).collect();
+            let pose = robot.fk(&q).unwrap();
+            let target = if position_only {
+                IkTarget::Position(Point3::from(pose.translation.vector))
+            } else {
+                IkTarget::Pose(pose)
+            };
+            let sols = solver.solve(robot, &target, options).unwrap();
+            if sols.solutions.iter().any(|s| !s.singularities.is_empty()) {
+                continue;
+            }
+            let mut order = Vec::new();
+            for s in &sols.solutions {
+                let found: Vec<usize> =
+                    (0..configurations.len()).filter(|&c| matches(&s.branch, &configurations[c])).collect();
+                assert!(found.len() <= 1, "{}: `{}` matches configurations {found:?}", robot.name(), s.branch);
+                order.extend(found);
+            }
+            assert!(order.windows(2).all(|w| w[0] < w[1]), "{}: configurations {order:?} at q = {q:?}", robot.name());
+            complete += usize::from(order.len() == configurations.len());
+        }
+        complete
+    }
 }

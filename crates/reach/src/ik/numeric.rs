@@ -381,6 +381,17 @@ impl IkSolver for Numeric {
             }
         }
     }
+
+    /// One configuration, any solution: the labels name the start that found a solution, not
+    /// a geometric branch, so a path is followed by nearness to the previous joint vector.
+    fn configurations(&self, _robot: &Robot) -> Vec<Branch> {
+        vec![Branch::default()]
+    }
+
+    /// `false`: a search finds some of the solutions, labelled by their start.
+    fn enumerates_all_branches(&self) -> bool {
+        false
+    }
 }
 
 impl Numeric {
@@ -922,5 +933,14 @@ mod tests {
         assert!(same_configuration(&rp, &[PI - 1e-6, 0.2], &[-PI + 1e-6, 0.2]));
         assert!(!same_configuration(&rp, &[0.0, 0.2], &[0.0, 0.2 + 2.0 * PI]));
         assert!(!same_configuration(&rp, &[0.0, 0.2], &[1e-3, 0.2]));
+    }
+
+    #[test]
+    fn configurations_are_one_any_solution_followed_by_nearness() {
+        let panda = presets::get("panda").unwrap();
+        let s = Numeric::from_robot(&panda).unwrap();
+        assert_eq!(s.configurations(&panda), [Branch::default()]);
+        assert!(!s.enumerates_all_branches());
+        assert!(s.singularity_measures(&panda, &[Branch::default()]).is_none());
     }
 }

@@ -63,7 +63,15 @@
 //!   (`e5`) and seed + 180° (`−e5`), and θ2…θ5 follow.
 //!
 //! [`ParallelAxes::measures`] returns Δ and these singularity measures for a target without
-//! solving, for path tracking (notes 003 §4 step 2: detect singular positions along a path).
+//! solving, for path tracking (notes 003 §4 step 2: detect singular positions along a path);
+//! [`PathMeasures`] are the ones path tracking scans ([`IkSolver::singularity_measures`]).
+//!
+//! # Tracking
+//!
+//! A path is tracked by default in the paper's two configurations, `shoulder=w config=+β
+//! wrist=e5` (the default) and `shoulder=w config=−β wrist=e5`
+//! ([`IkSolver::configurations`]); the labels name the branches
+//! ([`IkSolver::enumerates_all_branches`]).
 //!
 //! # Failure reasons
 //!
@@ -81,11 +89,11 @@ use nalgebra::{Isometry3, Rotation3, Vector3};
 use serde::Serialize;
 
 use super::{
-    Branch, Candidate, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, chain_target,
-    finish,
+    Branch, Candidate, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind,
+    SingularityMeasures, chain_target, finish,
 };
 use crate::kinematics::check_q;
-use crate::model::{Convention, JointKind, Robot};
+use crate::model::{Convention, Joint, JointKind, Robot};
 use crate::tolerance::{BOUNDARY, IK_AXIS_DISTANCE, IK_PARALLEL_SINE, STRUCTURE_ANGLE, STRUCTURE_LENGTH};
 
 const NAME: &str = "parallel-axes";
@@ -809,6 +817,86 @@ impl IkSolver for ParallelAxes {
         }
         Ok(self.solve(robot, target, options)?.restricted_to(branch))
     }
+
+    /// The paper's two configurations, `shoulder=w config=+β wrist=e5` (the default) and
+    /// `shoulder=w config=−β wrist=e5` (notes 003 §3.7, §4).
+    fn configurations(&self, _robot: &Robot) -> Vec<Branch> {
+        [Config::PlusBeta, Config::MinusBeta]
+            .into_iter()
+            .map(|c| {
+                Branch::new([("shoulder", Shoulder::W.label()), ("config", c.label()), ("wrist", Wrist::E5.label())])
+            })
+            .collect()
+    }
+
+    fn enumerates_all_branches(&self) -> bool {
+        true
+    }
+
+    /// Seed 003's measures ([`PathMeasures`]).
+    fn singularity_measures(&self, robot: &Robot, configurations: &[Branch]) -> Option<Box<dyn SingularityMeasures>> {
+        Some(Box::new(PathMeasures::new(self.clone(), robot, configurations)))
+    }
+}
+
+/// Seed 003's closed-form singularity measures along a path (notes 003 §3.6), from
+/// [`ParallelAxes::measures`]: for every shoulder/wrist branch the configurations use (a
+/// configuration without a `shoulder` or `wrist` pair uses both of that pair), the elbow
+/// measure `sign(m)·√|m|` with `m = 1 − |cos θ_elbow|` (0 where |Δ| = 1, negative out of
+/// reach) and the wrist measure `sin∠(w, e6)`; then the shoulder measure `(ρ − |D|)/L`, `L`
+/// the sum of the robot's DH lengths `|a| + |d|` (at least 1 mm).
+#[derive(Debug, Clone)]
+pub struct PathMeasures {
+    solver: ParallelAxes,
+    arms: Vec<(Shoulder, Wrist)>,
+    kinds: Vec<SingularityKind>,
+    length_scale: f64,
+}
+
+impl PathMeasures {
+    /// The measures of the shoulder/wrist branches `configurations` use.
+    #[must_use]
+    pub fn new(solver: ParallelAxes, robot: &Robot, configurations: &[Branch]) -> Self {
+        let mut arms = Vec::new();
+        let mut kinds = Vec::new();
+        for shoulder in [Shoulder::W, Shoulder::MinusW] {
+            for wrist in [Wrist::E5, Wrist::MinusE5] {
+                let used = configurations.iter().any(|c| {
+                    c.get("shoulder").is_none_or(|v| v == shoulder.label())
+                        && c.get("wrist").is_none_or(|v| v == wrist.label())
+                });
+                if used {
+                    arms.push((shoulder, wrist));
+                    kinds.extend([SingularityKind::Elbow, SingularityKind::Wrist]);
+                }
+            }
+        }
+        kinds.push(SingularityKind::Shoulder);
+        let length_scale =
+            robot.joints().iter().filter_map(Joint::dh).map(|p| p.a.abs() + p.d.abs()).sum::<f64>().max(1e-3);
+        PathMeasures { solver, arms, kinds, length_scale }
+    }
+}
+
+impl SingularityMeasures for PathMeasures {
+    fn kinds(&self) -> &[SingularityKind] {
+        &self.kinds
+    }
+
+    fn at(&self, robot: &Robot, pose: &Isometry3<f64>) -> Result<Vec<Option<f64>>, IkError> {
+        let m = self.solver.measures(robot, pose, &IkOptions::default())?;
+        let mut out = Vec::with_capacity(self.kinds.len());
+        for &(shoulder, wrist) in &self.arms {
+            let arm = m.arm(shoulder, wrist);
+            out.push(arm.map(|a| {
+                let e = a.elbow_margin();
+                e.signum() * e.abs().sqrt()
+            }));
+            out.push(arm.map(|a| a.wrist_sine));
+        }
+        out.push(Some(m.shoulder_margin() / self.length_scale));
+        Ok(out)
+    }
 }
 
 #[cfg(test)]
@@ -928,6 +1016,30 @@ mod tests {
         let expected = [105.2482, -32.9417, 43.3392, -169.6025, -155.4427, 138.1315];
         for (q, e) in s.q.iter().zip(expected) {
             assert!((q.to_degrees() - e).abs() < 1e-4, "{} vs {e}", q.to_degrees());
+        }
+    }
+
+    #[test]
+    fn configurations_are_the_papers_two_and_the_measures_their_arm() {
+        use crate::ik::configuration_order::{check, labels};
+        for name in ["welder6r", "ur5"] {
+            let robot = presets::get(name).unwrap();
+            let s = ParallelAxes::from_robot(&robot).unwrap();
+            assert!(s.enumerates_all_branches());
+            assert_eq!(labels(&s, &robot), ["shoulder=w config=+β wrist=e5", "shoulder=w config=−β wrist=e5"]);
+            assert!(check(&s, &robot, 200) > 50, "{name}");
+            // The paper's configurations use one arm (w, e5): its elbow and wrist, and the shoulder.
+            let m = s.singularity_measures(&robot, &s.configurations(&robot)).unwrap();
+            assert_eq!(m.kinds(), [SingularityKind::Elbow, SingularityKind::Wrist, SingularityKind::Shoulder]);
+            // Any solution: all four arms.
+            let m = s.singularity_measures(&robot, &[Branch::default()]).unwrap();
+            assert_eq!(m.kinds().len(), 9);
+            // At a pose: the elbow measure is √(1 − |cos θ_elbow|) of the paper's arm.
+            let pose = robot.fk(&[0.3, 0.2, 0.9, -1.0, -0.8, 0.4]).unwrap();
+            let paper = *s.measures(&robot, &pose, &IkOptions::default()).unwrap().paper().unwrap();
+            let values = s.singularity_measures(&robot, &s.configurations(&robot)).unwrap().at(&robot, &pose).unwrap();
+            assert!((values[0].unwrap() - paper.elbow_margin().sqrt()).abs() < 1e-15, "{name}");
+            assert_eq!(values[1], Some(paper.wrist_sine));
         }
     }
 }

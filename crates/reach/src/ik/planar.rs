@@ -743,6 +743,19 @@ impl IkSolver for PlanarRedundant {
         let if_empty = self.unreachable(p).unwrap_or(IkFailure::OrientationUnreachable);
         finish(robot, target, candidates, NAME, if_empty)
     }
+
+    /// The two elbows, `elbow=up` first (the bend `−e` of `two_link`, the order of
+    /// [`IkSolver::solve`]). With a position target the labels also carry the sampled
+    /// redundancy parameter (`phi_deg=…`), which these filters leave free.
+    fn configurations(&self, _robot: &Robot) -> Vec<Branch> {
+        ["up", "down"].into_iter().map(|e| Branch::new([("elbow", e)])).collect()
+    }
+
+    /// `false`: the labels of a position target carry the sampled redundancy parameter, which
+    /// changes from one target to the next, so a path is followed by nearness.
+    fn enumerates_all_branches(&self) -> bool {
+        false
+    }
 }
 
 #[cfg(test)]
@@ -879,5 +892,16 @@ mod tests {
         assert!(matches!(arm.solve(&robot, &target, &seed), Err(IkError::Kinematics(_))));
         assert!(matches!(arm.paper_scan([2.0, 1.0], 0.0), Err(IkError::InvalidInput(_))));
         assert!(matches!(arm.paper_scan([2.0, 1.0], 1e-9), Err(IkError::InvalidInput(_))));
+    }
+
+    #[test]
+    fn configurations_are_the_two_elbows_in_the_order_of_the_solve() {
+        use crate::ik::configuration_order::{check, labels};
+        let robot = presets::get("planar3").unwrap();
+        let s = PlanarRedundant::from_robot(&robot).unwrap();
+        assert_eq!(labels(&s, &robot), ["elbow=up", "elbow=down"]);
+        assert!(check(&s, &robot, 200) > 100);
+        // Position targets label the sampled redundancy parameter: not one label per branch.
+        assert!(!s.enumerates_all_branches());
     }
 }

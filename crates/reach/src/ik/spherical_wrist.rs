@@ -671,6 +671,44 @@ impl IkSolver for SphericalWrist {
         }
         Ok(self.solve(robot, target, options)?.restricted_to(branch))
     }
+
+    /// The eight branches in the order [`IkSolver::solve`] returns them: the shoulder of the
+    /// positive root of `h` first (`front` without a lateral offset `d`, else the side
+    /// `sgn(α1)·d` points to, `right` when positive), then the other; per shoulder the elbow of
+    /// the triangle root `s = +1` first (`up` when `sgn(h)·sgn(α1)·a2 < 0`), then the other;
+    /// per elbow `noflip` (the `acos` branch) first.
+    fn configurations(&self, _robot: &Robot) -> Vec<Branch> {
+        let d = self.lateral;
+        let shoulders = if is_zero_length(d) {
+            ["front", "back"]
+        } else if self.s1 * d >= 0.0 {
+            ["right", "left"]
+        } else {
+            ["left", "right"]
+        };
+        let a2 = self.joints[1].a;
+        arm_configurations(shoulders, [self.s1 * a2 < 0.0, -self.s1 * a2 < 0.0], true)
+    }
+
+    fn enumerates_all_branches(&self) -> bool {
+        true
+    }
+}
+
+/// The eight labels `shoulder × elbow × wrist` of a 6R arm with a spherical wrist, in the
+/// order of its solve: per shoulder (in the order given) both elbows, `up` first where
+/// `up_first` says so, and per elbow both wrists, `noflip` first when `noflip_first`.
+pub(crate) fn arm_configurations(shoulders: [&'static str; 2], up_first: [bool; 2], noflip_first: bool) -> Vec<Branch> {
+    let ordered = |first: bool, a: &'static str, b: &'static str| if first { [a, b] } else { [b, a] };
+    let mut out = Vec::with_capacity(8);
+    for (shoulder, up) in shoulders.into_iter().zip(up_first) {
+        for elbow in ordered(up, "up", "down") {
+            for wrist in ordered(noflip_first, "noflip", "flip") {
+                out.push(Branch::new([("shoulder", shoulder), ("elbow", elbow), ("wrist", wrist)]));
+            }
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -751,5 +789,48 @@ mod tests {
         }
         let fk = robot.fk_matrix(&q).unwrap();
         assert!((t.to_homogeneous() - fk.to_homogeneous()).abs().max() < 1e-14);
+    }
+
+    #[test]
+    fn configurations_are_the_eight_branches_in_the_order_of_the_solve() {
+        use crate::ik::configuration_order::{check, labels};
+        let puma = presets::get("puma560").unwrap();
+        let s = SphericalWrist::from_robot(&puma).unwrap();
+        assert!(s.enumerates_all_branches());
+        let expected: Vec<String> = [("right", "down"), ("right", "up"), ("left", "up"), ("left", "down")]
+            .into_iter()
+            .flat_map(|(sh, el)| ["noflip", "flip"].map(|w| format!("shoulder={sh} elbow={el} wrist={w}")))
+            .collect();
+        assert_eq!(labels(&s, &puma), expected);
+        assert_eq!(check(&s, &puma, 200), 200, "puma560: every pose has all eight branches");
+        // The order follows the signs of α1, a2 and the lateral offset d.
+        let arm = |alpha1_deg: f64, a2: f64, d2: f64| {
+            let r = |a: f64, alpha_deg: f64, d: f64| Joint::revolute(a, alpha_deg.to_radians(), d, 0.0);
+            Robot::new(RobotSpec::new(
+                "arm",
+                Convention::Dh,
+                vec![
+                    r(0.0, alpha1_deg, 0.3),
+                    r(a2, 0.0, d2),
+                    r(0.0203, -90.0, 0.0),
+                    r(0.0, 90.0, 0.4318),
+                    r(0.0, -90.0, 0.0),
+                    r(0.0, 0.0, 0.05625),
+                ],
+            ))
+            .unwrap()
+        };
+        for (alpha1, a2, d2, first) in [
+            (90.0, 0.4318, 0.0, "shoulder=front elbow=down wrist=noflip"),
+            (-90.0, 0.4318, 0.0, "shoulder=front elbow=up wrist=noflip"),
+            (90.0, -0.4318, 0.0, "shoulder=front elbow=up wrist=noflip"),
+            (90.0, 0.4318, -0.15, "shoulder=left elbow=down wrist=noflip"),
+            (-90.0, 0.4318, 0.15, "shoulder=left elbow=up wrist=noflip"),
+        ] {
+            let robot = arm(alpha1, a2, d2);
+            let s = SphericalWrist::from_robot(&robot).unwrap();
+            assert_eq!(labels(&s, &robot)[0], first, "α1 = {alpha1}°, a2 = {a2}, d2 = {d2}");
+            assert!(check(&s, &robot, 100) > 50, "α1 = {alpha1}°, a2 = {a2}, d2 = {d2}");
+        }
     }
 }

@@ -87,8 +87,9 @@ use std::f64::consts::PI;
 use nalgebra::{IsometryMatrix3, Point3};
 
 use super::spherical_wrist::{
-    Arm, DhJoint, arm_branch, elbow_label, fallback_failure, flange_goal, free_theta, is_zero_length, joint_values,
-    require_spherical_wrist, revolute_dh6, seed_thetas, unsupported, wrist_arm_twists, wrist_centre, wrist_label,
+    Arm, DhJoint, arm_branch, arm_configurations, elbow_label, fallback_failure, flange_goal, free_theta,
+    is_zero_length, joint_values, require_spherical_wrist, revolute_dh6, seed_thetas, unsupported, wrist_arm_twists,
+    wrist_centre, wrist_label,
 };
 use super::{
     Branch, Candidate, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, finish,
@@ -331,6 +332,19 @@ impl IkSolver for TwoLinkWrist {
         }
         Ok(self.solve(robot, target, options)?.restricted_to(branch))
     }
+
+    /// The eight branches in the order [`IkSolver::solve`] returns them: `front`, then `back`;
+    /// per shoulder the elbow of `θ3 = asin(…)` first (`up` when
+    /// `sgn(u)·sgn(α1)·sgn(α3)·sgn(l1·l2) > 0`, `u` = ±ρ the shoulder's reach), then the other;
+    /// per elbow the wrist of `ψ ∈ (0, π)` first (`noflip` when `sgn(α4) < 0`).
+    fn configurations(&self, _robot: &Robot) -> Vec<Branch> {
+        let sign = self.s1 * self.s3 * (self.l1() * self.l2()).signum();
+        arm_configurations(["front", "back"], [sign > 0.0, sign < 0.0], self.s4 < 0.0)
+    }
+
+    fn enumerates_all_branches(&self) -> bool {
+        true
+    }
 }
 
 #[cfg(test)]
@@ -365,5 +379,52 @@ mod tests {
         let sol = all.solutions.iter().find(|s| s.q[..3].iter().all(|v| v.abs() < 1e-12)).unwrap();
         assert!((sol.q[5] - 0.4).abs() < 1e-12 && (sol.q[3] + 0.4).abs() < 1e-12, "{:?}", sol.q);
         assert!(sol.singularities.contains(&SingularityKind::Wrist));
+    }
+
+    #[test]
+    fn configurations_are_the_eight_branches_in_the_order_of_the_solve() {
+        use crate::ik::configuration_order::{check, labels};
+        use crate::model::{Convention, Joint, RobotSpec};
+        let spbu6 = presets::get("spbu6").unwrap();
+        let s = TwoLinkWrist::from_robot(&spbu6).unwrap();
+        assert!(s.enumerates_all_branches());
+        let expected: Vec<String> = [("front", "up"), ("front", "down"), ("back", "down"), ("back", "up")]
+            .into_iter()
+            .flat_map(|(sh, el)| ["noflip", "flip"].map(|w| format!("shoulder={sh} elbow={el} wrist={w}")))
+            .collect();
+        assert_eq!(labels(&s, &spbu6), expected);
+        assert!(check(&s, &spbu6, 200) > 100);
+        // The order follows the signs of α1, α3, α4 and the link lengths.
+        let arm = |alpha1: f64, l1: f64, alpha3: f64, l2: f64, alpha4: f64| {
+            let r = |a: f64, alpha_deg: f64, d: f64, theta_deg: f64| {
+                Joint::revolute(a, alpha_deg.to_radians(), d, theta_deg.to_radians())
+            };
+            Robot::new(RobotSpec::new(
+                "arm",
+                Convention::Dh,
+                vec![
+                    r(0.0, alpha1, 0.0, 0.0),
+                    r(l1, 0.0, 0.0, -90.0),
+                    r(0.0, alpha3, 0.0, 0.0),
+                    r(0.0, alpha4, l2, 0.0),
+                    r(0.0, -alpha4, 0.0, 0.0),
+                    r(0.0, 0.0, 0.0, 0.0),
+                ],
+            ))
+            .unwrap()
+        };
+        for (alpha1, l1, alpha3, l2, alpha4, first) in [
+            (-90.0, 5.0, -90.0, 3.0, -90.0, "shoulder=front elbow=up wrist=noflip"),
+            (90.0, 5.0, -90.0, 3.0, -90.0, "shoulder=front elbow=down wrist=noflip"),
+            (-90.0, 5.0, 90.0, 3.0, -90.0, "shoulder=front elbow=down wrist=noflip"),
+            (-90.0, -5.0, -90.0, 3.0, 90.0, "shoulder=front elbow=down wrist=flip"),
+            (-90.0, 5.0, -90.0, -3.0, 90.0, "shoulder=front elbow=down wrist=flip"),
+        ] {
+            let robot = arm(alpha1, l1, alpha3, l2, alpha4);
+            let s = TwoLinkWrist::from_robot(&robot).unwrap();
+            let what = format!("α1 = {alpha1}°, l1 = {l1}, α3 = {alpha3}°, l2 = {l2}, α4 = {alpha4}°");
+            assert_eq!(labels(&s, &robot)[0], first, "{what}");
+            assert!(check(&s, &robot, 100) > 30, "{what}");
+        }
     }
 }

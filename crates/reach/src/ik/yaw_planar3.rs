@@ -35,7 +35,7 @@ use super::planar::{
     PhiInterval, PlanarChain, TwoLink, check_options, check_step, elbow_label, phi_intervals, phi_label,
     sample_intervals, two_link,
 };
-use super::yaw_two_link::{YawBranch, YawFrame, read_yaw_arm};
+use super::yaw_two_link::{YawBranch, YawFrame, read_yaw_arm, yaw_configurations};
 use super::{
     Branch, Candidate, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, finish,
 };
@@ -201,6 +201,19 @@ impl IkSolver for YawPlanar3 {
         };
         finish(robot, target, candidates, NAME, if_empty)
     }
+
+    /// The four base and elbow branches in the order [`IkSolver::solve`] returns them
+    /// (`yaw_configurations`); the labels also carry the last link's angle (`phi_deg=…`,
+    /// sampled for a position target), which these filters leave free.
+    fn configurations(&self, _robot: &Robot) -> Vec<Branch> {
+        yaw_configurations()
+    }
+
+    /// `false`: the labels of a position target carry the sampled redundancy parameter, which
+    /// changes from one target to the next, so a path is followed by nearness.
+    fn enumerates_all_branches(&self) -> bool {
+        false
+    }
 }
 
 #[cfg(test)]
@@ -225,5 +238,24 @@ mod tests {
             let err = YawPlanar3::from_robot(&robot).unwrap_err();
             assert!(matches!(err, IkError::Unsupported { .. }), "{name}: {err}");
         }
+    }
+
+    #[test]
+    fn configurations_are_the_four_base_and_elbow_branches_in_the_order_of_the_solve() {
+        use crate::ik::configuration_order::{check, check_with, labels};
+        let robot = presets::get("varan4").unwrap();
+        let s = YawPlanar3::from_robot(&robot).unwrap();
+        assert_eq!(
+            labels(&s, &robot),
+            ["base=front elbow=up", "base=front elbow=down", "base=back elbow=down", "base=back elbow=up"]
+        );
+        // A pose fixes the base: two solutions, in order.
+        assert_eq!(check(&s, &robot, 100), 0);
+        // A position with the last link's angle given: all four, in order.
+        let options = IkOptions { free_parameter: Some(-0.3), ..IkOptions::default() };
+        let complete = check_with(&s, &robot, 200, true, &options);
+        assert!(complete > 20, "{complete}");
+        // The labels carry the last link's angle (`phi_deg`): not one label per branch.
+        assert!(!s.enumerates_all_branches());
     }
 }

@@ -276,6 +276,16 @@ impl YawTwoLink {
     }
 }
 
+/// The base and elbow branches of an arm on a yaw joint, in the order of its solve:
+/// `base=front` (the base towards the target) then `base=back`; the elbow of the bend `−e`
+/// of [`two_link`] first, which is `up` reaching forwards and `down` reaching back.
+pub(crate) fn yaw_configurations() -> Vec<Branch> {
+    [("front", "up"), ("front", "down"), ("back", "down"), ("back", "up")]
+        .into_iter()
+        .map(|(base, elbow)| Branch::new([("base", base), ("elbow", elbow)]))
+        .collect()
+}
+
 impl IkSolver for YawTwoLink {
     fn name(&self) -> &'static str {
         NAME
@@ -342,6 +352,15 @@ impl IkSolver for YawTwoLink {
         };
         finish(robot, target, candidates, NAME, if_empty)
     }
+
+    /// The four branches in the order [`IkSolver::solve`] returns them (`yaw_configurations`).
+    fn configurations(&self, _robot: &Robot) -> Vec<Branch> {
+        yaw_configurations()
+    }
+
+    fn enumerates_all_branches(&self) -> bool {
+        true
+    }
 }
 
 #[cfg(test)]
@@ -380,5 +399,20 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn configurations_are_the_four_branches_in_the_order_of_the_solve() {
+        use crate::ik::configuration_order::{check_with, labels};
+        let robot = presets::get("log-loader").unwrap();
+        let s = YawTwoLink::from_robot(&robot).unwrap();
+        assert!(s.enumerates_all_branches());
+        assert_eq!(
+            labels(&s, &robot),
+            ["base=front elbow=up", "base=front elbow=down", "base=back elbow=down", "base=back elbow=up"]
+        );
+        // A pose of a 3-joint arm fixes the branch: check positions.
+        let complete = check_with(&s, &robot, 200, true, &IkOptions::default());
+        assert!(complete > 100, "{complete}");
     }
 }

@@ -18,7 +18,7 @@ use reach::model::presets;
 use reach::motion::PathSample;
 use reach::motion::tracking::{
     ConfigurationTrack, Decision, EventCode, SingularityDetection, SplitKind, TRACKING_PROGRESS_CHUNK, TrackedPath,
-    TrackingError, TrackingOptions, TrackingReport, ViolationKind, track, track_with_progress,
+    TrackingError, TrackingOptions, TrackingReport, ViolationKind, describe, track, track_with_progress,
 };
 
 const YAW_DEG: f64 = 30.0;
@@ -148,8 +148,9 @@ fn elbow_touch_splits_the_path_and_the_configuration_switches_only_there() {
     assert!(codes[..k2].contains(&EventCode::K9) && codes[k2..].contains(&EventCode::K9));
     assert_eq!(codes.last(), Some(&EventCode::K11));
     let k4 = r.events_with(EventCode::K4).last().unwrap();
-    assert_eq!((k4.interval, k4.joint), (Some(2), Some(2)));
-    assert!(k4.to_string().contains("switching to configuration \"base=front elbow=down\""), "{k4}");
+    assert_eq!((k4.interval, k4.joint()), (Some(2), Some(1))); // joint 2, 0-based in the data
+    let text = describe(k4, &robot, true);
+    assert!(text.contains("switching to configuration \"base=front elbow=down\""), "{text}");
 }
 
 #[test]
@@ -231,7 +232,10 @@ fn leaving_the_workspace_midway_is_reported_not_a_panic() {
     // K1 when leaving and for the unreachable interval, K8 for it, K3 when re-entering.
     let k8 = r.events_with(EventCode::K8).next().unwrap();
     assert_eq!(k8.interval, Some(2));
-    assert!(r.events_with(EventCode::K1).any(|e| e.interval == Some(2) && e.message.contains("(0.166667, 0.833333)")));
+    assert!(
+        r.events_with(EventCode::K1)
+            .any(|e| e.interval == Some(2) && describe(e, &robot, true).contains("(0.166667, 0.833333)"))
+    );
     assert!(r.events_with(EventCode::K3).any(|e| (e.s - 5.0 / 6.0).abs() < 1e-8));
     // The realised trajectory covers the two reachable intervals only.
     assert!(r.trajectory.iter().all(|p| p.s <= 1.0 / 6.0 + 1e-8 || p.s >= 5.0 / 6.0 - 1e-8));
@@ -296,8 +300,9 @@ fn a_speed_limit_is_located_where_the_rate_crosses_it() {
         assert!((v.s_end - until).abs() < 1e-6, "{} vs {until}", v.s_end);
         assert!((v.worst.abs() - rate(0.0)).abs() < 0.01, "worst {}", v.worst);
     }
-    assert!(r.events_with(EventCode::K5).any(|e| e.interval == Some(1) && e.joint == Some(3)));
-    assert!(r.events_with(EventCode::K12).any(|e| e.interval == Some(1) && e.joint == Some(3)));
+    // Joint 3: index 2 in the data.
+    assert!(r.events_with(EventCode::K5).any(|e| e.interval == Some(1) && e.joint() == Some(2)));
+    assert!(r.events_with(EventCode::K12).any(|e| e.interval == Some(1) && e.joint() == Some(2)));
     assert!(r.events_with(EventCode::K8).any(|e| e.interval == Some(1)));
 }
 

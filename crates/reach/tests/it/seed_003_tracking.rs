@@ -22,8 +22,8 @@ use reach::ik::{Branch, SolverKind};
 use reach::model::presets;
 use reach::motion::PathSample;
 use reach::motion::tracking::{
-    ConfigurationTrack, Decision, EventCode, TrackedPath, TrackingOptions, TrackingReport, ViolationKind, step_rates,
-    track, track_configuration,
+    ConfigurationTrack, Decision, EventCode, EventDetail, TrackedPath, TrackingEvent, TrackingOptions, TrackingReport,
+    ViolationKind, describe, step_rates, track, track_configuration,
 };
 
 /// |MP| = √891000 mm (notes 003 §5.2).
@@ -59,6 +59,11 @@ fn report() -> &'static TrackingReport {
         let path = TrackedPath::with_evaluator(&grid, &eval).unwrap();
         track(&welder(), &path, &TrackingOptions::default(), None).unwrap()
     })
+}
+
+/// An event as the CLI prints it, the text in degrees.
+fn line(e: &TrackingEvent) -> String {
+    format!("{} [s = {:.6}, t = {:.3} s] {}", e.code.as_str(), e.s, e.t, describe(e, &welder(), true))
 }
 
 fn config<'a>(r: &'a TrackingReport, label: &str) -> &'a ConfigurationTrack {
@@ -108,18 +113,25 @@ fn plus_beta_is_feasible_and_chosen() {
     // K6 ("+β" realizable), K7 (θ4 of "−β"), K9 ("+β" realized), K11; no K13 (only one feasible).
     let codes: Vec<EventCode> = r.events.iter().map(|e| e.code).collect();
     assert_eq!(codes, [EventCode::K3, EventCode::K6, EventCode::K7, EventCode::K9, EventCode::K11]);
-    let k9 = r.events_with(EventCode::K9).next().unwrap().to_string();
+    let k9 = line(r.events_with(EventCode::K9).next().unwrap());
     assert_eq!(
         k9,
         "K9 [s = 0.000000, t = 0.000 s] in interval P1 I realize configuration \"shoulder=w config=+β wrist=e5\""
     );
     let k7 = r.events_with(EventCode::K7).next().unwrap();
-    assert_eq!(k7.joint, Some(4));
-    let text = k7.to_string();
+    assert_eq!(k7.joint(), Some(3)); // θ4, 0-based in the data
+    let text = line(k7);
     assert!(text.starts_with("K7 [s = 0.618"), "{text}");
     assert!(text.contains("θ4 (wrist-pitch)") && text.contains("−β"), "{text}");
     // The range as operators read it: welder6r's θ4 limits −175° … 150°, in degrees.
     assert!(text.contains("[-175.00, 150.00] deg"), "{text}");
+    // The data: SI and radians; the same text in radians.
+    let EventDetail::JointLimit { lower, upper, value, s_start, .. } = k7.detail else { panic!("{:?}", k7.detail) };
+    assert_eq!((lower, upper), ((-175f64).to_radians(), 150f64.to_radians()));
+    assert_eq!(s_start, k7.s);
+    assert!(value > upper && value <= std::f64::consts::PI, "worst θ4 {value} rad");
+    let text = describe(k7, &welder(), false);
+    assert!(text.contains("θ4 (wrist-pitch)") && text.contains("[-3.0543, 2.6180] rad"), "{text}");
 }
 
 #[test]

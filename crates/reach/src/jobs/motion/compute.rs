@@ -3,13 +3,13 @@
 use std::cell::RefCell;
 
 use crate::Robot;
-use crate::effort::dynamics::trajectory_energy_with_rates;
+use crate::effort::dynamics::{joint_rates, trajectory_energy_with_rates};
 use crate::effort::{Differences, j1, j2, joint_weights};
 use crate::error::{Error, Result};
 use crate::jobs::input::{AngleUnit, from_si, joints_outside_limits, positive, q_display, rpy_deg, unit_name};
 use crate::motion::joint_space::EndChoice;
 use crate::motion::sample::PerSampleIk;
-use crate::motion::tracking::{Criterion, TrackedPath, TrackingOptions, track_with_progress};
+use crate::motion::tracking::{Criterion, TrackedPath, TrackingOptions, describe, track_with_progress};
 use crate::motion::{JointMotion, JointRates, ToolMotion};
 
 use super::report::{MoveEffort, MoveEvent, MoveInterval, MoveReport, MoveSample};
@@ -232,7 +232,9 @@ fn tool_space(robot: &Robot, request: &MoveRequest, progress: &mut dyn FnMut(usi
             (report.trajectory.iter().map(|p| p.t).collect(), report.trajectory.iter().map(|p| p.q.clone()).collect())
         }
     };
-    let qd = central_rates(robot, &times, &q);
+    // The one rate estimator (`effort::dynamics::joint_rates`: the robot's joint-difference rule,
+    // uneven steps), also behind the energy.
+    let qd = joint_rates(robot, &times, &q)?.0;
     let intervals = report
         .intervals
         .iter()
@@ -276,25 +278,8 @@ fn tool_space(robot: &Robot, request: &MoveRequest, progress: &mut dyn FnMut(usi
     let events = report
         .events
         .iter()
-        .map(|e| MoveEvent { t_s: e.t, code: e.code.as_str().into(), message: e.message.clone() })
+        .map(|e| MoveEvent { t_s: e.t, code: e.code.as_str().into(), message: describe(e, robot, true) })
         .collect();
     Ok(Computed { times, q, qd, intervals, events })
 }
 
-/// Central differences of the tracked joint vectors, each difference by the robot's one rule
-/// ([`Robot::joint_difference`]): a continuous joint reported as −179° after +179° moved 2°.
-fn central_rates(robot: &Robot, t: &[f64], q: &[Vec<f64>]) -> Vec<Vec<f64>> {
-    let n = q.len();
-    if n < 2 {
-        return vec![vec![0.0; robot.dof()]; n];
-    }
-    (0..n)
-        .map(|k| {
-            let (a, b) = (k.saturating_sub(1), (k + 1).min(n - 1));
-            let h = t[b] - t[a];
-            (0..q[a].len())
-                .map(|i| if h > 0.0 { robot.joint_difference(i, q[a][i], q[b][i]) / h } else { 0.0 })
-                .collect()
-        })
-        .collect()
-}
