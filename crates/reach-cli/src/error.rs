@@ -109,6 +109,28 @@ impl From<reach::Error> for CliError {
     }
 }
 
+/// The library's error with its request field named by the command-line flag it came from:
+/// `flags` maps field prefixes to flags (the longest matching prefix wins; `duration_s` →
+/// `--duration`), an index becomes ` value i` (`target.xyz_m[2]` → `--xyz value 2`) and a
+/// sub-field is dropped (`choose.method` → `--choose`). Other errors convert unchanged.
+pub fn flagged(e: reach::Error, flags: &[(&str, &str)]) -> CliError {
+    let reach::Error::Request { field, reason } = &e else { return e.into() };
+    let hit = flags
+        .iter()
+        .filter(|(key, _)| {
+            field.strip_prefix(key).is_some_and(|rest| rest.is_empty() || rest.starts_with(['[', ' ', ':', '.']))
+        })
+        .max_by_key(|(key, _)| key.len());
+    let Some((key, flag)) = hit else { return e.into() };
+    let rest = &field[key.len()..];
+    let rest = match rest.strip_prefix('[').and_then(|r| r.split_once(']')) {
+        Some((index, tail)) => format!(" value {index}{tail}"),
+        None if rest.starts_with('.') => String::new(),
+        None => rest.to_string(),
+    };
+    CliError::bad_input(format!("{flag}{rest}: {reason}"))
+}
+
 impl From<reach::KinematicsError> for CliError {
     /// Wrong joint vectors are the user's input; anything else is a bug in the caller.
     fn from(e: reach::KinematicsError) -> Self {

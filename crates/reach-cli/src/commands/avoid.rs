@@ -148,7 +148,21 @@ pub fn run(args: &AvoidArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let robot = &loaded.robot;
     let request = args.request()?;
     args.draw.check_files()?;
-    let run = avoid_run(robot, &request)?;
+    let run = avoid_run(robot, &request).map_err(|e| {
+        crate::error::flagged(
+            e,
+            &[
+                ("start", "--start"),
+                ("from_xy_m", "--from"),
+                ("to_xy_m", "--to"),
+                ("obstacles_xy_m", "--obstacle"),
+                ("step_deg", "--step"),
+                ("choose.criteria", "--criteria"),
+                ("choose.weights", "--weights"),
+                ("choose", "--choose"),
+            ],
+        )
+    })?;
     let report = &run.report;
     if args.draw.any() {
         let title = format!("{}: {}", robot.name(), outcome_text(&report.outcome));

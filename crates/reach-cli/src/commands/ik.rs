@@ -147,25 +147,6 @@ const FLAGS: [(&str, &str); 16] = [
     ("numeric.time_budget_s", "--time-budget"),
 ];
 
-/// A library error with the request field replaced by the flag it came from (`target.xyz_m[2]`
-/// → `--xyz value 2`).
-fn flagged(e: reach::Error, flags: &[(&str, &str)]) -> CliError {
-    let reach::Error::Request { field, reason } = &e else { return e.into() };
-    let hit = flags
-        .iter()
-        .filter(|(key, _)| {
-            field.strip_prefix(key).is_some_and(|rest| rest.is_empty() || rest.starts_with(['[', ' ', ':']))
-        })
-        .max_by_key(|(key, _)| key.len());
-    let Some((key, flag)) = hit else { return e.into() };
-    let rest = &field[key.len()..];
-    let rest = match rest.strip_prefix('[').and_then(|r| r.split_once(']')) {
-        Some((index, tail)) => format!(" value {index}{tail}"),
-        None => rest.to_string(),
-    };
-    CliError::bad_input(format!("{flag}{rest}: {reason}"))
-}
-
 /// Runs `reach ik`.
 ///
 /// # Errors
@@ -180,7 +161,7 @@ pub fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
         let xyz = parse_exact("--xyz", args.xyz.as_deref().unwrap_or_default(), 3, "x,y,z in metres")?;
         let request = IkScanRequest { xyz_m: [xyz[0], xyz[1], xyz[2]], step_deg: parse_finite("--scan", step)?, from };
         let scan_flags = [("step_deg", "--scan"), ("xyz_m", "--xyz"), ("from", "--from")];
-        let report = reach::jobs::ik::ik_scan(robot, &request).map_err(|e| flagged(e, &scan_flags))?;
+        let report = reach::jobs::ik::ik_scan(robot, &request).map_err(|e| crate::error::flagged(e, &scan_flags))?;
         if args.json {
             write_json(out, &report)?;
         } else if args.csv {
@@ -191,7 +172,7 @@ pub fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
         return finish(out, report.reason);
     }
     let request = request_of(args, from)?;
-    let report = reach::jobs::ik::ik(robot, &request).map_err(|e| flagged(e, &FLAGS))?;
+    let report = reach::jobs::ik::ik(robot, &request).map_err(|e| crate::error::flagged(e, &FLAGS))?;
     if args.json {
         write_json(out, &report)?;
     } else {
@@ -262,7 +243,7 @@ fn request_of(args: &IkArgs, from: Option<Joints>) -> Result<IkRequest, CliError
         .as_deref()
         .map(|name| IkSolverName::parse("solver", name))
         .transpose()
-        .map_err(|e| flagged(e, &FLAGS))?;
+        .map_err(|e| crate::error::flagged(e, &FLAGS))?;
     if let Some(method) = &args.choose {
         let [method_field, criteria_field, _] = CHOICE_FIELDS;
         let parse = || -> Result<IkChoice, reach::Error> {
@@ -276,7 +257,7 @@ fn request_of(args: &IkArgs, from: Option<Joints>) -> Result<IkRequest, CliError
             };
             Ok(IkChoice { method, criteria, weights: None })
         };
-        let mut choice = parse().map_err(|e| flagged(e, &FLAGS))?;
+        let mut choice = parse().map_err(|e| crate::error::flagged(e, &FLAGS))?;
         choice.weights = args.weights.as_deref().map(|t| parse_list("--weights", t)).transpose()?;
         request.choose = Some(choice);
     }
@@ -334,7 +315,7 @@ impl ChoiceSpec {
                 labels: labels.clone(),
             })
         })();
-        spec.map_err(|e| flagged(e, &Self::flags(&labels)))
+        spec.map_err(|e| crate::error::flagged(e, &Self::flags(&labels)))
     }
 
     fn flags(labels: &[String; 3]) -> [(&'static str, &str); 4] {
@@ -346,6 +327,6 @@ impl ChoiceSpec {
     pub(crate) fn rank(&self, robot: &Robot, all: &IkSolutions) -> Result<IkRanking, CliError> {
         self.choice
             .rank(robot, all, &self.from, &self.joint_weights, CHOICE_FIELDS, "choose")
-            .map_err(|e| flagged(e, &Self::flags(&self.labels)))
+            .map_err(|e| crate::error::flagged(e, &Self::flags(&self.labels)))
     }
 }

@@ -186,26 +186,26 @@ impl MoveArgs {
 /// The library's error with the request field named by its flag (`duration_s` → `--duration`,
 /// `from.joints` → `--from`, `from.pose…` → `--from-pose`, `choose.criteria` → `--criteria`).
 fn flag_error(request: &MoveRequest, e: reach::Error) -> CliError {
-    let reach::Error::Request { field, reason } = e else { return e.into() };
-    let (head, rest) = field.find(['.', ':', '[']).map_or((field.as_str(), ""), |i| field.split_at(i));
-    let pose = |end: &End| matches!(end, End::Pose(_));
-    let (flag, rest) = match head {
-        "from" | "to"
-            if rest.starts_with(".pose") || pose(if head == "from" { &request.from } else { &request.to }) =>
-        {
-            (format!("--{head}-pose"), "")
-        }
-        "from" | "to" => (format!("--{head}"), rest.strip_prefix(".joints").unwrap_or(rest)),
-        "duration_s" => ("--duration".into(), rest),
-        "speed_m_s" => ("--speed".into(), rest),
-        "dt_s" => ("--dt".into(), rest),
-        "joint_weights" => ("--joint-weights".into(), rest),
-        "choose" if rest == ".criteria" => ("--criteria".into(), ""),
-        "choose" if rest == ".weights" => ("--weights".into(), ""),
-        "choose" => ("--choose".into(), ""),
-        other => (other.to_string(), rest),
-    };
-    reach::Error::request(format!("{flag}{rest}"), reason).into()
+    let end =
+        |end: &End, joints: &'static str, pose: &'static str| if matches!(end, End::Pose(_)) { pose } else { joints };
+    crate::error::flagged(
+        e,
+        &[
+            ("from.pose", "--from-pose"),
+            ("from.joints", "--from"),
+            ("from", end(&request.from, "--from", "--from-pose")),
+            ("to.pose", "--to-pose"),
+            ("to.joints", "--to"),
+            ("to", end(&request.to, "--to", "--to-pose")),
+            ("duration_s", "--duration"),
+            ("speed_m_s", "--speed"),
+            ("dt_s", "--dt"),
+            ("joint_weights", "--joint-weights"),
+            ("choose.criteria", "--criteria"),
+            ("choose.weights", "--weights"),
+            ("choose", "--choose"),
+        ],
+    )
 }
 
 /// Tool-space motions with at least this many samples show a progress bar while they are

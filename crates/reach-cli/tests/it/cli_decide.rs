@@ -381,7 +381,7 @@ fn plan_choose_ranks_the_configurations_of_each_interval() {
     // on a criterion not listed.
     let not_listed =
         temp_file("req.toml", &example.replace("weights = [0.5, 0.5]", "weights = [0.5, 0.5]\nrequire = { j2 = 1.0 }"));
-    fails(&["plan", not_listed.to_str().unwrap()], 2, &["[choose] require", "`j2` is not one of the criteria"]);
+    fails(&["plan", not_listed.to_str().unwrap()], 2, &["choose.require", "`j2` is not one of the criteria"]);
     for (from, to, needle) in [
         ("[\"limits\", \"manipulability\"]", "[\"limits\", \"luck\"]", "unknown criterion 'luck'"),
         ("weights = [0.5, 0.5]", "weights = [0.5]", "expected 2 weights"),
@@ -441,7 +441,7 @@ fn move_choose_flags_act_as_the_task_files_choose() {
     assert!((r["effort"]["j1"].as_f64().unwrap() - std::f64::consts::FRAC_PI_2).abs() < 1e-12, "{r}");
     // Bad input: exit 2, naming the flag.
     let bad = |extra: &[&'static str], needles: &[&str]| fails(&[line.as_slice(), extra].concat(), 2, needles);
-    bad(&["--choose", "nope", "--criteria", "limits"], &["--choose method", "nope"]);
+    bad(&["--choose", "nope", "--criteria", "limits"], &["--choose", "nope"]);
     bad(&["--choose", "topsis", "--criteria", "limits,bogus"], &["--choose", "bogus"]);
     bad(&["--choose", "topsis", "--criteria", "limits", "--weights", "1,2"], &["--choose", "weights"]);
     // Usage errors (clap, several lines): --choose needs --criteria, --weights needs --choose.

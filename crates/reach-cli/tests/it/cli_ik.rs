@@ -453,13 +453,16 @@ fn ik_json_is_the_library_report() {
     let pose = Pose::xyz_rpy_deg([0.5, -0.2, 0.3], [180.0, 0.0, 0.0]);
     let all = IkRequest { all: true, ..IkRequest::new(pose.clone()) };
     let args = ["ik", "puma560", "--xyz", "0.5,-0.2,0.3", "--rpy", "180,0,0", "--all", "--json"];
-    let by_rpy = common::assert_report(&args, &ik_job("puma560", all), "ik.report");
+    let by_rpy = crate::common::assert_report(&args, &ik_job("puma560", all), "ik.report");
     assert!(by_rpy["solutions"].as_array().unwrap().len() > 1, "{by_rpy}");
     // The same orientation as a quaternion (180° about x: w = 0, x = 1) and as radians.
     let quat = Pose { xyz_m: Some([0.5, -0.2, 0.3]), quat_wxyz: Some([0.0, 1.0, 0.0, 0.0]), ..Pose::default() };
     let args = ["ik", "puma560", "--xyz", "0.5,-0.2,0.3", "--quat", "0,1,0,0", "--all", "--json"];
-    let by_quat =
-        common::assert_report(&args, &ik_job("puma560", IkRequest { all: true, ..IkRequest::new(quat) }), "ik.report");
+    let by_quat = crate::common::assert_report(
+        &args,
+        &ik_job("puma560", IkRequest { all: true, ..IkRequest::new(quat) }),
+        "ik.report",
+    );
     let q = |r: &Value| -> Vec<Vec<f64>> { solutions(r) };
     assert_eq!(q(&by_quat).len(), q(&by_rpy).len());
     for (a, b) in q(&by_quat).iter().zip(q(&by_rpy)) {
@@ -493,13 +496,13 @@ fn ik_json_is_the_library_report() {
         "0.7,0.3",
         "--json",
     ];
-    let ranked = common::assert_report(&args, &ik_job("puma560", request), "ik.report");
+    let ranked = crate::common::assert_report(&args, &ik_job("puma560", request), "ik.report");
     assert_eq!(ranked["ranking"]["ranked"][0]["solution"], ranked["chosen"]);
     // --matrix: seed 001's T1 on spbu6.
     let t1 = [[1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 3.0], [0.0, -1.0, 0.0, 5.0], [0.0, 0.0, 0.0, 1.0]];
     let request = IkRequest::new(Pose { matrix: Some(t1), ..Pose::default() });
     let args = ["ik", "spbu6", "--matrix", "1,0,0,0,0,0,1,3,0,-1,0,5,0,0,0,1", "--json"];
-    let report = common::assert_report(&args, &ik_job("spbu6", request), "ik.report");
+    let report = crate::common::assert_report(&args, &ik_job("spbu6", request), "ik.report");
     assert!(same_angles(&chosen_q(&report), &[90.0, 0.0, 0.0, 90.0, 0.0, 0.0], 1e-6), "{report}");
 }
 
@@ -513,7 +516,7 @@ fn scan_json_is_the_library_report() {
         request: reach::jobs::Request::IkScan(request),
     };
     let args = ["ik", "planar3", "--xyz", "2.4,0.2,0", "--scan", "1", "--from", "60,-40,-30", "--json"];
-    let report = common::assert_report(&args, &job, "ik_scan.report");
+    let report = crate::common::assert_report(&args, &job, "ik_scan.report");
     let rows = report["rows"].as_array().unwrap();
     let chosen = report["chosen"].as_u64().unwrap() as usize;
     assert!(rows.len() > 10 && rows.iter().all(|r| r["s_deg"].as_f64() >= rows[chosen]["s_deg"].as_f64()));

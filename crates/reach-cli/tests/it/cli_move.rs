@@ -295,7 +295,7 @@ fn move_and_plan_json_are_the_library_reports() {
         )
     };
     let job = Job { robot: RobotInput::Preset("ur5".into()), request: Request::Move(joint) };
-    common::assert_report(
+    crate::common::assert_report(
         &["move", "ur5", "--from", "0,-90,90,0,90,0", "--to", "30,-60,60,0,90,0", "--duration", "2", "--json"],
         &job,
         "move.report",
@@ -310,7 +310,7 @@ fn move_and_plan_json_are_the_library_reports() {
         ..MoveRequest::joints(Joints::Deg(Vec::new()), Joints::Deg(Vec::new()))
     };
     let job = Job { robot: RobotInput::Preset("welder6r".into()), request: Request::Move(tool) };
-    let v = common::assert_report(
+    let v = crate::common::assert_report(
         &[
             "move",
             "welder6r",
@@ -335,6 +335,6 @@ fn move_and_plan_json_are_the_library_reports() {
     let task =
         std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/seed003_welding.toml")).unwrap();
     let job = Job { robot: RobotInput::Preset("welder6r".into()), request: Request::Plan(PlanRequest { task }) };
-    let v = common::assert_report(&["plan", path, "--json"], &job, "plan.report");
+    let v = crate::common::assert_report(&["plan", path, "--json"], &job, "plan.report");
     assert_eq!(v["motions"][0]["name"], "weld P -> M");
 }

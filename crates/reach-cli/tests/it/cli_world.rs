@@ -134,7 +134,7 @@ fn check_avoid_and_cspace_json_are_the_library_reports_and_match_their_schemas()
             choose: None,
         }),
     };
-    let v = common::assert_report(
+    let v = crate::common::assert_report(
         &["avoid", "planar3", "--start", "60,-40,-30", "--to", "2.4,0.2", "--obstacle", "2.0,0.7", "--json"],
         &avoid,
         "avoid.report",
@@ -149,7 +149,7 @@ fn check_avoid_and_cspace_json_are_the_library_reports_and_match_their_schemas()
             fit: false,
         }),
     };
-    let v = common::assert_report(
+    let v = crate::common::assert_report(
         &["cspace", "varan4", "examples/seed004_ceiling.toml", "--step", "15", "--fix", "q1=0", "--json"],
         &cspace,
         "cspace.report",
@@ -162,7 +162,7 @@ fn check_avoid_and_cspace_json_are_the_library_reports_and_match_their_schemas()
             q: Joints::Deg(vec![0.0, 60.0, -30.0, -30.0]),
         }),
     };
-    let v = common::assert_report(
+    let v = crate::common::assert_report(
         &["check", "varan4", "examples/seed004_two_planes.toml", "0", "60", "-30", "-30", "--json"],
         &check,
         "check.report",

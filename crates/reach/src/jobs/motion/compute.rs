@@ -282,4 +282,3 @@ fn tool_space(robot: &Robot, request: &MoveRequest, progress: &mut dyn FnMut(usi
         .collect();
     Ok(Computed { times, q, qd, intervals, events })
 }
-

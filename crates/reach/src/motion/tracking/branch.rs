@@ -7,7 +7,7 @@ use serde::Serialize;
 
 use super::TrackingError;
 use super::path::validate_samples;
-use crate::angle::{nearest_equivalent, shortest_difference, wrap};
+use crate::angle::{nearest_equivalent, wrap};
 use crate::ik::{Branch, IkError, IkOptions, IkSolutions, IkSolver, IkTarget};
 use crate::model::{JointKind, Robot};
 use crate::motion::sample::PathSample;
@@ -254,9 +254,10 @@ pub fn track_configuration(
 /// use reach::motion::tracking::step_rates;
 /// let robot = reach::model::presets::get("log-loader").unwrap();
 /// let d = 179f64.to_radians();
-/// let q = vec![vec![d, 0.0, 0.0], vec![-d, 0.0, 0.0]]; // 2° through ±180°
+/// // A bounded joint from +179° to −179° turns 358° (the one rule, `Joint::difference`).
+/// let q = vec![vec![d, 0.0, 0.0], vec![-d, 0.0, 0.0]];
 /// let r = step_rates(&robot, &[0.0, 1.0], &q).unwrap();
-/// approx::assert_relative_eq!(r[0][0], 2f64.to_radians(), epsilon = 1e-12);
+/// approx::assert_relative_eq!(r[0][0], -358f64.to_radians(), epsilon = 1e-12);
 /// ```
 pub fn step_rates(robot: &Robot, t: &[f64], q: &[Vec<f64>]) -> Result<Vec<Vec<f64>>, TrackingError> {
     if t.len() != q.len() {
