@@ -452,12 +452,7 @@ pub fn config_costs(
     })?;
     check_configs(robot, &configs)?;
     let j1 = |a: &[f64], b: &[f64]| -> f64 {
-        robot
-            .joints()
-            .iter()
-            .enumerate()
-            .map(|(i, jt)| weights[i] * jt.difference(a[i], b[i]).abs())
-            .sum()
+        robot.joints().iter().enumerate().map(|(i, jt)| weights[i] * jt.difference(a[i], b[i]).abs()).sum()
     };
     let costs = configs
         .iter()

@@ -359,7 +359,11 @@ fn leg_j1_and_duration_use_the_same_joint_difference_across_180_deg() {
     let motion = JointMotion::for_robot(&ur5, &a, &b, 0.0, d[0][1], Profile::Cycloidal).unwrap();
     let end = motion.position(d[0][1]);
     assert!((end[0] - b[0]).abs() < 1e-9 && (motion.position(d[0][1] / 2.0)[0]).abs() < 1e-9, "the move passes 0°");
-    let fastest = reach::decide::motion_criteria::point_to_point_duration(&[travelled, 0.0, 0.0, 0.0, 0.0, 0.0], &rates, Profile::Cycloidal)
-        .unwrap();
+    let fastest = reach::decide::motion_criteria::point_to_point_duration(
+        &[travelled, 0.0, 0.0, 0.0, 0.0, 0.0],
+        &rates,
+        Profile::Cycloidal,
+    )
+    .unwrap();
     assert!((d[0][1] - fastest).abs() < 1e-12, "duration {} s times the same 340°", d[0][1]);
 }
