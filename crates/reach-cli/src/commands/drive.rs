@@ -6,7 +6,6 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
 use reach::Robot;
-use reach::angle::shortest_difference;
 use reach::drive::output::{GcodeDialect, coil_table_csv, gcode, step_dir_text, step_rows, to_csv};
 use reach::drive::{
     DriveError, GridError, JointSample, StepSchedule, Verification, axes, grid_error, point_to_point,
@@ -224,13 +223,9 @@ fn task_samples(robot: &Robot, text: &str, path: &Path) -> Result<Vec<JointSampl
         let mut rows = m.samples.iter();
         if let (Some(last), Some(first)) = (samples.last(), m.samples.first()) {
             let start = sample_si(robot, offset, &first.q_deg);
-            let jump = robot.joints().iter().zip(&last.q).zip(&start.q).position(|((j, &a), &b)| {
-                let gap = match j.kind {
-                    JointKind::Revolute => shortest_difference(a, b),
-                    JointKind::Prismatic => b - a,
-                };
-                gap.abs() > JOIN_TOLERANCE
-            });
+            // The one joint-difference rule: what a joint-space move from `a` to `b` travels.
+            let jump =
+                (0..robot.dof()).position(|i| robot.joint_difference(i, last.q[i], start.q[i]).abs() > JOIN_TOLERANCE);
             if let Some(i) = jump {
                 return Err(CliError::bad_input(format!(
                     "task file `{}`: motion `{}` starts away from where the previous motion ended \

@@ -15,9 +15,7 @@
 use std::io::Write;
 
 use clap::{ArgGroup, Args};
-use reach::Robot;
-use reach::ik::IkSolutions;
-use reach::jobs::ik::{CHOICE_FIELDS, IkChoice, IkChoiceMethod, IkCriterionName, IkRanking, IkSolverName};
+use reach::jobs::ik::{CHOICE_FIELDS, IkChoice, IkChoiceMethod, IkCriterionName, IkSolverName};
 use reach::jobs::{IkRequest, IkScanRequest, Joints, Pose};
 
 pub use super::ik_render::demo;
@@ -275,58 +273,4 @@ fn request_of(args: &IkArgs, from: Option<Joints>) -> Result<IkRequest, CliError
     request.numeric.time_budget_s =
         args.time_budget.as_deref().map(|t| parse_finite("--time-budget", t)).transpose()?;
     Ok(request)
-}
-
-/// A multi-criteria choice checked up front, for workflows that choose among IK solutions
-/// many times (`reach tasks`' `[choose]`): the library's [`IkChoice`] with the reference
-/// configuration, the joint weights, and the names of its three inputs in messages.
-#[derive(Debug, Clone)]
-pub(crate) struct ChoiceSpec {
-    choice: IkChoice,
-    from: Vec<f64>,
-    joint_weights: Vec<f64>,
-    labels: [String; 3],
-}
-
-impl ChoiceSpec {
-    /// Checks a method name, criterion names and weights; `labels` name the three inputs in
-    /// messages (`--choose`, `--criteria`, `--weights` or a task file's keys).
-    pub(crate) fn new(
-        method: &str,
-        names: &[String],
-        weights: Option<&[f64]>,
-        from: &[f64],
-        joint_weights: &[f64],
-        labels: [&str; 3],
-    ) -> Result<Self, CliError> {
-        let labels = labels.map(String::from);
-        let [method_field, criteria_field, _] = CHOICE_FIELDS;
-        let spec = (|| -> Result<Self, reach::Error> {
-            let choice = IkChoice {
-                method: IkChoiceMethod::parse(method_field, method)?,
-                criteria: names.iter().map(|n| IkCriterionName::parse(criteria_field, n)).collect::<Result<_, _>>()?,
-                weights: weights.map(<[f64]>::to_vec),
-            };
-            choice.check(CHOICE_FIELDS)?;
-            Ok(ChoiceSpec {
-                choice,
-                from: from.to_vec(),
-                joint_weights: joint_weights.to_vec(),
-                labels: labels.clone(),
-            })
-        })();
-        spec.map_err(|e| crate::error::flagged(e, &Self::flags(&labels)))
-    }
-
-    fn flags(labels: &[String; 3]) -> [(&'static str, &str); 4] {
-        let [m, c, w] = CHOICE_FIELDS;
-        [(m, &labels[0]), (c, &labels[1]), (w, &labels[2]), ("choose", &labels[0])]
-    }
-
-    /// Ranks the solutions within limits; indices refer to `all.solutions`.
-    pub(crate) fn rank(&self, robot: &Robot, all: &IkSolutions) -> Result<IkRanking, CliError> {
-        self.choice
-            .rank(robot, all, &self.from, &self.joint_weights, CHOICE_FIELDS, "choose")
-            .map_err(|e| crate::error::flagged(e, &Self::flags(&self.labels)))
-    }
 }

@@ -19,3 +19,4 @@ pub mod plan;
 pub mod robot_show;
 pub mod robots;
 pub mod tasks;
+pub mod tasks_render;

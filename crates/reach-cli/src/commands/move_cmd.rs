@@ -19,7 +19,6 @@ use std::path::PathBuf;
 use clap::{Args, ValueEnum};
 use reach::jobs::motion::{ChoiceSpec, End, MoveRequest};
 use reach::jobs::{Joints, Pose};
-use reach::motion::Profile;
 
 use crate::commands::move_render::{infeasible, move_drawing, write_csv, write_report};
 use crate::error::CliError;
@@ -268,12 +267,4 @@ pub fn run(args: &MoveArgs, out: &mut dyn Write) -> Result<(), CliError> {
         out.flush()?;
         Err(infeasible(&m))
     }
-}
-
-/// The time law of a profile name (`reach tasks` files share the names).
-///
-/// # Errors
-/// [`CliError::BadInput`] if the library refuses the profile.
-pub(crate) fn profile_of(name: Option<ProfileName>, default: ProfileName) -> Result<Profile, CliError> {
-    Ok(name.unwrap_or(default).profile()?)
 }

@@ -193,8 +193,11 @@ fn choose_bad_input_exits_2() {
 
 const SEED001: [f64; 6] = [1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0, 1.0 / 18.0, 1.0 / 18.0, 1.0 / 18.0];
 
+/// J1 between two ur5 configurations in degrees. ur5's joints are bounded (±360°), so the one
+/// joint-difference rule (`Robot::joint_difference`) takes the literal difference — what the
+/// joint-space move travels, as the leg durations do.
 fn j1_deg(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).zip(SEED001).map(|((x, y), w)| w * angle_gap(*x, *y).to_radians().abs()).sum()
+    a.iter().zip(b).zip(SEED001).map(|((x, y), w)| w * (y - x).to_radians().abs()).sum()
 }
 
 fn permutations(items: &mut Vec<usize>, k: usize, visit: &mut dyn FnMut(&[usize])) {
@@ -313,7 +316,7 @@ fn tasks_bad_input_and_infeasible() {
         "negative.toml",
         "targets = [[0.4, 0, 0.1]]\n[choose]\nmethod = \"vikor\"\ncriteria = [\"change\", \"limits\"]\nweights = [1.0, -2.0]\n",
     );
-    fails(&["tasks", "ur5", "visiting", negative.to_str().unwrap()], 2, &["[choose] weights value 2", "negative"]);
+    fails(&["tasks", "ur5", "visiting", negative.to_str().unwrap()], 2, &["[choose] weights[2]", "negative"]);
     let unknown =
         temp_file("unknown.toml", "targets = [[0.4, 0, 0.1]]\n[choose]\nmethod = \"topsis\"\ncriteria = [\"luck\"]\n");
     fails(&["tasks", "ur5", "visiting", unknown.to_str().unwrap()], 2, &["unknown criterion `luck`"]);
@@ -632,4 +635,38 @@ fn positive_work_visiting_on_puma560_is_optimal_on_its_asymmetric_matrix() {
     assert!((total - best).abs() < 1e-6 * best, "plan {total} J, brute force {best} J");
     let out = ok(&["tasks", "puma560", "visiting", file.to_str().unwrap()]);
     assert!(out.contains("positive work") && out.contains("leg energy [J]"), "{out}");
+}
+
+/// The `tasks` job of `reach tasks ROBOT KIND FILE [--budget S]`, as the library runs it.
+fn tasks_job(robot: &str, kind: reach::jobs::tasks::TaskKind, file: &str, budget_s: Option<f64>) -> reach::jobs::Job {
+    let task = std::fs::read_to_string(format!("{}/{file}", common::REPO_ROOT)).unwrap();
+    reach::jobs::Job {
+        robot: reach::jobs::RobotInput::Preset(robot.into()),
+        request: reach::jobs::Request::Tasks(reach::jobs::TasksRequest { task_kind: kind, task, budget_s }),
+    }
+}
+
+#[test]
+fn tasks_json_is_the_library_report() {
+    use reach::jobs::tasks::TaskKind;
+    let file = "examples/tasks_visiting.toml";
+    let r = common::assert_report(
+        &["tasks", "ur5", "visiting", file, "--budget", "6", "--json"],
+        &tasks_job("ur5", TaskKind::Visiting, file, Some(6.0)),
+        "tasks.report",
+    );
+    assert!(r["within_budget"]["total_duration_s"].as_f64().unwrap() <= 6.0);
+    let file = "examples/tasks_collection.toml";
+    common::assert_report(
+        &["tasks", "ur5", "collection", file, "--budget", "8", "--json"],
+        &tasks_job("ur5", TaskKind::Collection, file, Some(8.0)),
+        "tasks.report",
+    );
+    let file = "examples/tasks_visiting_energy.toml";
+    let r = common::assert_report(
+        &["tasks", "puma560", "visiting", file, "--json"],
+        &tasks_job("puma560", TaskKind::Visiting, file, None),
+        "tasks.report",
+    );
+    assert!(r["plan"]["total_energy_j"].as_f64().unwrap() > 0.0);
 }

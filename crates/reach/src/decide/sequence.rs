@@ -38,7 +38,7 @@ use super::DecideError;
 use super::motion_criteria::point_to_point_duration;
 use crate::effort::dynamics::{mechanical_energy, positive_work};
 use crate::ik::IkSolutions;
-use crate::model::{JointKind, Robot};
+use crate::model::Robot;
 use crate::motion::{JointMotion, JointRates, Profile};
 
 /// Largest number of reachable targets solved exactly (Held–Karp, `O(2ⁿ n²)`).
@@ -399,7 +399,8 @@ pub struct ConfigCosts {
     /// Node 0's configuration followed by the chosen configuration per target (`None`:
     /// no feasible IK solution — unreachable).
     pub configs: Vec<Option<Vec<f64>>>,
-    /// `(n+1)×(n+1)` matrix of J1 = `Σ ωᵢ |qᵢ − q'ᵢ|` (revolute differences wrapped) between
+    /// `(n+1)×(n+1)` matrix of J1 = `Σ ωᵢ |qᵢ − q'ᵢ|` (joint differences as
+    /// [`Joint::difference`](crate::model::Joint::difference), as the leg durations) between
     /// configurations; `+∞` to and from unreachable targets.
     pub costs: Vec<Vec<f64>>,
 }
@@ -436,7 +437,9 @@ pub fn joint_change_costs(
 }
 
 /// Builds [`ConfigCosts`] from configurations already chosen (node 0 first; `None`:
-/// unreachable): the J1 matrix `Σ ωᵢ |qᵢ − q'ᵢ|` between them, revolute differences wrapped.
+/// unreachable): the J1 matrix `Σ ωᵢ |qᵢ − q'ᵢ|` between them, joint differences as
+/// [`Joint::difference`](crate::model::Joint::difference) (what the leg's joint-space move
+/// travels, the same rule as [`leg_durations`] and [`energy_costs`]).
 ///
 /// # Errors
 /// [`DecideError::BadVector`] when `weights` or a configuration does not have one finite value
@@ -453,16 +456,7 @@ pub fn config_costs(
     })?;
     check_configs(robot, &configs)?;
     let j1 = |a: &[f64], b: &[f64]| -> f64 {
-        robot
-            .joints()
-            .iter()
-            .enumerate()
-            .map(|(i, jt)| {
-                let d = b[i] - a[i];
-                let d = if jt.kind == JointKind::Revolute { crate::angle::wrap(d) } else { d };
-                weights[i] * d.abs()
-            })
-            .sum()
+        robot.joints().iter().enumerate().map(|(i, jt)| weights[i] * jt.difference(a[i], b[i]).abs()).sum()
     };
     let costs = configs
         .iter()

@@ -21,6 +21,7 @@ pub mod ik;
 pub mod input;
 pub mod kinematics;
 pub mod motion;
+pub mod tasks;
 pub mod world;
 
 use schemars::JsonSchema;
@@ -30,6 +31,7 @@ pub use ik::{IkReport, IkRequest, IkScanReport, IkScanRequest};
 pub use input::{AngleUnit, Joints, LoadedRobot, Pose, PoseReport, RobotInput};
 pub use kinematics::{FkReport, FkRequest, JacobianReport, JacobianRequest};
 pub use motion::{MoveReport, MoveRequest, PlanReport, PlanRequest};
+pub use tasks::{TasksReport, TasksRequest};
 pub use world::{
     AvoidReport, AvoidRequest, CheckReport, CheckRequest, CspaceReport, CspaceRequest, PathReport, PathRequest,
 };
@@ -61,6 +63,8 @@ pub enum Request {
     Cspace(CspaceRequest),
     /// A collision-free, timed joint-space path through a scene.
     Path(PathRequest),
+    /// Seed 001's collection and visiting tasks (sequencing, budgets).
+    Tasks(TasksRequest),
 }
 
 /// A workflow's report, tagged by `"kind"` like its request.
@@ -87,6 +91,8 @@ pub enum Report {
     Cspace(CspaceReport),
     /// A collision-free, timed joint-space path through a scene.
     Path(PathReport),
+    /// Seed 001's collection and visiting tasks (sequencing, budgets).
+    Tasks(TasksReport),
 }
 
 /// A request together with its robot.
@@ -126,6 +132,7 @@ pub fn run(robot: &Robot, request: &Request) -> Result<Report> {
         Request::Avoid(r) => Report::Avoid(world::avoid(robot, r)?),
         Request::Cspace(r) => Report::Cspace(world::cspace(robot, r)?),
         Request::Path(r) => Report::Path(world::path(robot, r)?),
+        Request::Tasks(r) => Report::Tasks(tasks::tasks(robot, r)?),
     })
 }
 
@@ -158,6 +165,8 @@ pub fn schemas() -> Vec<(&'static str, serde_json::Value)> {
         ("cspace.report", of::<CspaceReport>()),
         ("path.request", of::<PathRequest>()),
         ("path.report", of::<PathReport>()),
+        ("tasks.request", of::<TasksRequest>()),
+        ("tasks.report", of::<TasksReport>()),
     ]
 }
 

@@ -188,7 +188,7 @@ fn unreachable_targets_are_skipped() {
     assert_eq!(c.skipped, vec![2]);
     // J1 by hand for start → the configuration chosen for target 1.
     let q1 = cc.configs[1].as_ref().unwrap();
-    let j1: f64 = (0..6).map(|i| w[i] * reach::angle::wrap(q1[i] - start[i]).abs()).sum();
+    let j1: f64 = (0..6).map(|i| w[i] * puma.joint_difference(i, start[i], q1[i]).abs()).sum();
     assert!((cc.costs[0][1] - j1).abs() < 1e-12);
 }
 
@@ -336,4 +336,34 @@ fn energy_costs_need_link_masses_and_matching_shapes() {
         energy_costs(&puma, &missing, &[vec![0.0; 2], vec![0.0; 2]], Profile::Cycloidal, EnergyKind::Absolute),
         Err(DecideError::BadVector { what: "configurations", .. })
     ));
+}
+
+/// Regression: `reach tasks` costed a leg's J1 with the wrapped joint difference but timed it
+/// (and its energy) with the literal one. On ur5 (joint 1 bounded to ±360°) a leg from +170°
+/// to −170° travels 340° in joint space: J1, duration and the move itself must all agree.
+#[test]
+fn leg_j1_and_duration_use_the_same_joint_difference_across_180_deg() {
+    let ur5 = presets::get("ur5").unwrap();
+    let deg = |v: [f64; 6]| v.iter().map(|x| x.to_radians()).collect::<Vec<f64>>();
+    let a = deg([170.0, -90.0, 90.0, 0.0, 90.0, 0.0]);
+    let b = deg([-170.0, -90.0, 90.0, 0.0, 90.0, 0.0]);
+    let w = vec![1.0; 6];
+    let configs = vec![Some(a.clone()), Some(b.clone())];
+    let costs = reach::decide::sequence::config_costs(&ur5, configs.clone(), &w).unwrap();
+    let travelled = ur5.joint_difference(0, a[0], b[0]).abs();
+    assert!((travelled - 340f64.to_radians()).abs() < 1e-12, "ur5 joint 1 is bounded: literal difference");
+    assert!((costs.costs[0][1] - travelled).abs() < 1e-12, "J1 {} rad, travelled {travelled} rad", costs.costs[0][1]);
+    assert!((costs.costs[1][0] - travelled).abs() < 1e-12);
+    let rates = JointRates::from_robot(&ur5, None).unwrap();
+    let d = leg_durations(&ur5, &configs, &rates, Profile::Cycloidal).unwrap();
+    let motion = JointMotion::for_robot(&ur5, &a, &b, 0.0, d[0][1], Profile::Cycloidal).unwrap();
+    let end = motion.position(d[0][1]);
+    assert!((end[0] - b[0]).abs() < 1e-9 && (motion.position(d[0][1] / 2.0)[0]).abs() < 1e-9, "the move passes 0°");
+    let fastest = reach::decide::motion_criteria::point_to_point_duration(
+        &[travelled, 0.0, 0.0, 0.0, 0.0, 0.0],
+        &rates,
+        Profile::Cycloidal,
+    )
+    .unwrap();
+    assert!((d[0][1] - fastest).abs() < 1e-12, "duration {} s times the same 340°", d[0][1]);
 }
