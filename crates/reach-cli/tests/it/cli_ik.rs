@@ -5,7 +5,6 @@
 
 use serde_json::Value;
 
-use crate::common;
 use crate::common::{Run, angle_gap, fails, json, nums, ok, reach, stdout_json};
 
 /// No solution: exit 3, the report on stdout, one `error: ` line on stderr.

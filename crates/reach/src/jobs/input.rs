@@ -467,8 +467,10 @@ mod tests {
             ..Pose::default()
         };
         let p = pose.isometry("to").unwrap();
-        let (r, _, y) = p.rotation.euler_angles();
-        assert!(p.rotation.angle() > 3.14, "{r} {y}");
+        // diag(−1, 1, −1) is a half turn about y, read exactly (not a small roll).
+        assert!((p.rotation.angle() - std::f64::consts::PI).abs() < 1e-12, "{:?}", p.rotation.euler_angles());
+        let axis = p.rotation.axis().unwrap();
+        assert!((axis.y.abs() - 1.0).abs() < 1e-12, "{axis:?}");
     }
 
     #[test]

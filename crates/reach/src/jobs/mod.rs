@@ -42,6 +42,10 @@ use crate::error::Result;
 /// A workflow's request (the robot is given beside it, see [`Job`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(tag = "kind", rename_all = "snake_case")]
+#[allow(
+    clippy::large_enum_variant,
+    reason = "a request is built once per job; boxing would only complicate its construction"
+)]
 pub enum Request {
     /// Forward kinematics.
     Fk(FkRequest),

@@ -148,6 +148,9 @@ fn joint_space(robot: &Robot, request: &MoveRequest) -> Result<Computed> {
     Ok(Computed { times, q, qd, intervals: vec![interval], events: Vec::new() })
 }
 
+/// One kind of limit check: its name, whether sample `k` passes, and the limit as text.
+type LimitCheck<'a> = (&'a str, &'a dyn Fn(usize) -> bool, String);
+
 /// Stretches of samples where a joint is outside its range or above its speed limit, in
 /// degrees (metres) as operators read them.
 fn limit_reasons(robot: &Robot, times: &[f64], q: &[Vec<f64>], qd: &[Vec<f64>]) -> Vec<String> {
@@ -157,7 +160,7 @@ fn limit_reasons(robot: &Robot, times: &[f64], q: &[Vec<f64>], qd: &[Vec<f64>]) 
         let shown = |v: f64| from_si(joint.kind, v, AngleUnit::Deg);
         let position = |k: usize| !joints_outside_limits(robot, &q[k]).contains(&(i + 1));
         let speed = |k: usize| joint.max_velocity.is_none_or(|m| qd[k][i].abs() <= m * (1.0 + SPEED_SLACK));
-        let checks: [(&str, &dyn Fn(usize) -> bool, String); 2] = [
+        let checks: [LimitCheck<'_>; 2] = [
             (
                 "position",
                 &position,

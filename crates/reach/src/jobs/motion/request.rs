@@ -83,6 +83,10 @@ impl ProfileName {
 /// `{"pose": {"xyz_m": [0.4, 0.1, 0.3], "rpy_deg": [180, 0, 0]}}`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
+#[allow(
+    clippy::large_enum_variant,
+    reason = "a request is built once per job; boxing would only complicate its construction"
+)]
 pub enum End {
     /// Joint values.
     Joints(Joints),
