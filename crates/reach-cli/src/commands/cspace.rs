@@ -110,12 +110,12 @@ fn write_text(report: &CspaceReport, out: &mut dyn Write) -> Result<(), CliError
     let mut head = Table::key_value();
     head.pair("robot", report.robot.clone());
     head.pair("step", format!("{} deg", report.step_deg));
-    head.pair("nodes", report.nodes.to_string());
-    head.pair("allowed", report.allowed.to_string());
-    head.pair("outside limits", report.outside_limits.to_string());
-    head.pair("outside tool zone", report.outside_zone.to_string());
-    head.pair("self-collision", report.self_collision.to_string());
-    head.pair("obstacle collision", report.obstacle_collision.to_string());
+    head.pair("nodes", report.counts.nodes.to_string());
+    head.pair("allowed", report.counts.allowed.to_string());
+    head.pair("outside limits", report.counts.outside_limits.to_string());
+    head.pair("outside tool zone", report.counts.outside_zone.to_string());
+    head.pair("self-collision", report.counts.self_collision.to_string());
+    head.pair("obstacle collision", report.counts.obstacle_collision.to_string());
     head.write(out, "")?;
     if let Some(s) = report.sections.first() {
         writeln!(out, "allowed nodes per value of q{}:", s.joint)?;

@@ -58,18 +58,10 @@ pub struct CspaceReport {
     pub robot: String,
     /// Grid step, degrees.
     pub step_deg: f64,
-    /// Number of nodes.
-    pub nodes: usize,
-    /// Allowed nodes (N in the paper).
-    pub allowed: usize,
-    /// Nodes outside the joint limits.
-    pub outside_limits: usize,
-    /// Nodes whose tool point is outside the zone.
-    pub outside_zone: usize,
-    /// Self-colliding nodes.
-    pub self_collision: usize,
-    /// Nodes colliding with an obstacle.
-    pub obstacle_collision: usize,
+    /// Counts per class over the whole grid (`nodes`, `allowed` — N in the paper — and the
+    /// four reasons a node is forbidden).
+    #[serde(flatten)]
+    pub counts: GridCounts,
     /// Counts per value of the first swept joint.
     pub sections: Vec<CspaceSection>,
     /// With `fit`: the fitted region's primitives and confusion counts.
@@ -174,16 +166,10 @@ pub fn cspace_with_grid(
             .collect()
     });
     let fit = if request.fit { Some(fit(&grid)?) } else { None };
-    let c = grid.counts;
     let report = CspaceReport {
         robot: robot.name().to_string(),
         step_deg: request.step_deg,
-        nodes: c.nodes,
-        allowed: c.allowed,
-        outside_limits: c.outside_limits,
-        outside_zone: c.outside_zone,
-        self_collision: c.self_collision,
-        obstacle_collision: c.obstacle_collision,
+        counts: grid.counts,
         sections,
         fit,
     };

@@ -52,7 +52,7 @@ mod tests {
         }))
         .unwrap();
         let Report::Cspace(report) = job.run().unwrap() else { panic!("not a cspace report") };
-        assert_eq!((report.nodes, report.allowed), (2601, 635));
+        assert_eq!((report.counts.nodes, report.counts.allowed), (2601, 635));
         let mut bad = job.clone();
         if let crate::jobs::Request::Cspace(r) = &mut bad.request {
             r.fix = [("q9".to_string(), 0.0)].into();
