@@ -95,12 +95,7 @@ impl From<serde_json::Error> for CliError {
     }
 }
 
-/// Collapses a message to a single line (library and parser messages may contain line
-/// breaks; the CLI promises one line on stderr).
-#[must_use]
-pub fn one_line(message: &str) -> String {
-    message.split_whitespace().collect::<Vec<_>>().join(" ")
-}
+pub use reach::one_line;
 
 impl From<reach::Error> for CliError {
     /// The library's errors are about the user's input (a request field, a file, a joint).

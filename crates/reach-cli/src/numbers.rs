@@ -7,7 +7,7 @@
 
 use clap::Args;
 use reach::Robot;
-pub use reach::jobs::input::{AngleUnit, from_si, joints_outside_limits, q_display, to_si};
+pub use reach::jobs::input::{AngleUnit, from_si, joints_outside_limits, q_display};
 use reach::model::JointKind;
 
 use crate::error::CliError;

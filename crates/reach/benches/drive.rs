@@ -12,8 +12,9 @@ use std::f64::consts::TAU;
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use reach::drive::{JointSample, axes, point_to_point, schedule_trajectory};
+use reach::drive::{axes, point_to_point, schedule_trajectory};
 use reach::model::{JointDrive, Wiring, presets};
+use reach::motion::JointSample;
 
 fn robot() -> reach::Robot {
     let puma = presets::get("puma560").unwrap();
@@ -39,7 +40,7 @@ fn bench(c: &mut Criterion) {
         .map(|i| {
             let t = i as f64 * 1e-3;
             let q = (0..6).map(|j| 0.5 * (TAU * t / (2.0 + j as f64)).sin()).collect();
-            JointSample::new(t, q)
+            JointSample::of(&robot, t, q)
         })
         .collect();
     let steps = schedule_trajectory(&axes, &samples).unwrap().step_count();

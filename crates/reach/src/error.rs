@@ -104,6 +104,13 @@ impl Error {
     }
 }
 
+/// Collapses a message to a single line: parser messages (TOML, XML, JSON) may contain line
+/// breaks, and front ends promise one line per error.
+#[must_use]
+pub fn one_line(message: &str) -> String {
+    message.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
 /// The crate's result type.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 

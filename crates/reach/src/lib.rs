@@ -74,6 +74,6 @@ mod rng;
 pub mod tolerance;
 pub mod world;
 
-pub use error::{Error, Result};
+pub use error::{Error, Result, one_line};
 pub use kinematics::{Jacobian, KinematicsError, Manipulability};
 pub use model::{ModelError, Robot, RobotSpec};

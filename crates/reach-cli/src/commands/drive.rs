@@ -2,23 +2,23 @@
 //! a summary for people, CSV/JSON step lists, coil tables, step/direction events or G-code.
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 use reach::Robot;
-use reach::drive::output::{GcodeDialect, coil_table_csv, gcode, step_dir_text, step_rows, to_csv};
-use reach::drive::{
-    DriveError, GridError, JointSample, StepSchedule, Verification, axes, grid_error, point_to_point,
-    schedule_trajectory, verify,
+use reach::drive::DriveError;
+use reach::drive::output::GcodeDialect;
+use reach::jobs::Joints;
+use reach::jobs::drive::{
+    DriveMotion, DriveMotionKind, DriveProgram, DriveReport, DriveRequest, PointToPointRequest, parse_motion_json,
 };
-use reach::model::JointKind;
-use serde::{Deserialize, Serialize};
+use reach::jobs::motion::Task;
+use reach::model::{JointKind, UrdfChain};
 
-use crate::error::{CliError, one_line};
-use crate::numbers::{AngleUnit, display_unit, parse_finite, to_si};
+use crate::error::{CliError, flagged, one_line};
+use crate::numbers::{display_unit, parse_finite, parse_list};
 use crate::output::{Align, Table, fixed, write_json};
-use crate::robot_arg::RobotArgs;
-use reach::jobs::motion::{PlanRequest, Task};
+use crate::robot_arg::{RobotArgs, load_robot};
 
 /// Output formats of `reach drive`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -27,7 +27,7 @@ pub enum DriveFormat {
     Summary,
     /// One line per step: t_s,joint,name,dir,index,position,coils.
     Csv,
-    /// {"robot", "duration_s", "joints", "check", "steps": [...]}.
+    /// The report (docs/schemas/drive.report.schema.json): joints, check, steps.
     Json,
     /// G-code for GRBL/Marlin (axes X Y Z A B C in joint degrees).
     Gcode,
@@ -60,17 +60,17 @@ pub struct DriveArgs {
     #[arg(value_name = "MOTION|TASK", conflicts_with_all = ["from", "to"])]
     pub motion: Option<PathBuf>,
 
-    /// Point-to-point move: start joint values (degrees, or radians with --rad; metres for
-    /// prismatic joints), space- or comma-separated.
-    #[arg(long, num_args = 1.., value_delimiter = ',', allow_negative_numbers = true, requires = "to")]
-    pub from: Vec<String>,
+    /// Point-to-point move: start joint values q1,..,qn (degrees, or radians with --rad;
+    /// metres for prismatic joints), comma- or blank-separated.
+    #[arg(long, value_name = "Q1,..,QN", allow_hyphen_values = true, requires = "to")]
+    pub from: Option<String>,
 
-    /// Point-to-point move: target joint values.
-    #[arg(long, num_args = 1.., value_delimiter = ',', allow_negative_numbers = true, requires = "from")]
-    pub to: Vec<String>,
+    /// Point-to-point move: target joint values q1,..,qn.
+    #[arg(long, value_name = "Q1,..,QN", allow_hyphen_values = true, requires = "from")]
+    pub to: Option<String>,
 
     /// Point-to-point duration in seconds (default: the shortest the motors allow).
-    #[arg(long, value_name = "S", requires = "to")]
+    #[arg(long, value_name = "S", allow_hyphen_values = true, requires = "to")]
     pub duration: Option<String>,
 
     /// --from/--to revolute values are in radians.
@@ -90,216 +90,92 @@ pub struct DriveArgs {
     pub output: Option<PathBuf>,
 }
 
-/// The part of a motion file `reach drive` reads; other fields (as in the full
-/// `reach move --json` report) are ignored.
-#[derive(Deserialize)]
-struct MotionFile {
-    samples: Vec<MotionSample>,
-}
-
-#[derive(Deserialize)]
-struct MotionSample {
-    t_s: f64,
-    q_deg: Vec<f64>,
-}
-
-/// Per-joint summary in the JSON output.
-#[derive(Debug, Serialize)]
-struct JointJson {
-    joint: usize,
-    name: String,
-    steps_per_unit: f64,
-    start_position: i64,
-    end_position: i64,
-    steps: usize,
-    max_rate_hz: f64,
-    max_step_rate_hz: f64,
-    max_deviation_steps: f64,
-    max_deviation_si: f64,
-}
-
-#[derive(Debug, Serialize)]
-struct DriveJson {
-    robot: String,
-    kind: &'static str,
-    start_s: f64,
-    duration_s: f64,
-    joints: Vec<JointJson>,
-    check: Verification,
-    /// Point-to-point only: the target's rounding to the step grid.
-    target_grid_error: Option<GridError>,
-    steps: Vec<reach::drive::output::StepRow>,
-}
-
-fn drive_error(e: DriveError) -> CliError {
-    let message = one_line(&e.to_string());
-    match e {
-        DriveError::RateLimit { .. } | DriveError::AccelerationLimit { .. } | DriveError::DurationTooShort { .. } => {
-            CliError::NoSolution(message)
-        }
-        DriveError::Kinematics(_) => CliError::internal(message),
-        _ => CliError::BadInput(message),
-    }
-}
-
-fn parse_q(robot: &Robot, label: &str, texts: &[String], unit: AngleUnit) -> Result<Vec<f64>, CliError> {
-    if texts.len() != robot.dof() {
-        return Err(CliError::bad_input(format!(
-            "{label}: robot `{}` has {} joints, got {} values",
-            robot.name(),
-            robot.dof(),
-            texts.len()
-        )));
-    }
-    robot
-        .joints()
-        .iter()
-        .zip(texts)
-        .enumerate()
-        .map(|(i, (j, t))| Ok(to_si(j.kind, parse_finite(&format!("{label} joint {}", i + 1), t)?, unit)))
-        .collect()
-}
-
-/// One sample in the file units (`q_deg`: degrees, prismatic metres) to SI; extra values are
-/// kept so the schedule reports the length mismatch.
-fn sample_si(robot: &Robot, t_s: f64, q_deg: &[f64]) -> JointSample {
-    let q = robot
-        .joints()
-        .iter()
-        .zip(q_deg)
-        .map(|(j, &v)| to_si(j.kind, v, AngleUnit::Deg))
-        .chain(q_deg.iter().skip(robot.dof()).copied())
-        .collect();
-    JointSample::new(t_s, q)
-}
-
-/// Reads the motion to drive: a task file (`.toml`) is planned motion by motion, anything else
-/// is read as a JSON motion file.
-fn read_motion(robot: &Robot, path: &Path) -> Result<Vec<JointSample>, CliError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| CliError::bad_input(format!("cannot read motion file `{}`: {e}", path.display())))?;
-    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml")) {
-        return task_samples(robot, &text, path);
-    }
-    let file: MotionFile = serde_json::from_str(&text)
-        .map_err(|e| CliError::bad_input(format!("motion file `{}`: {}", path.display(), one_line(&e.to_string()))))?;
-    Ok(file.samples.iter().map(|s| sample_si(robot, s.t_s, &s.q_deg)).collect())
-}
-
-/// How far (rad or m) a task's motion may start from where the previous one ended.
-const JOIN_TOLERANCE: f64 = 1e-6;
-
-/// Plans every motion of a task file (as `reach plan` does) and joins them into one
-/// trajectory: each motion starts where the previous one ended, in time and in joint space.
+/// The request of these arguments: the motion file or task file read, numbers parsed.
 ///
 /// # Errors
-/// [`CliError::BadInput`] when the task names another robot or a motion does not start where
-/// the previous one ended; [`CliError::NoSolution`] for an infeasible motion.
-fn task_samples(robot: &Robot, text: &str, path: &Path) -> Result<Vec<JointSample>, CliError> {
-    let task = Task::parse(text)
-        .map_err(|e| CliError::bad_input(format!("{}: {}", path.display(), one_line(&e.to_string()))))?;
-    let task_robot =
-        crate::robot_arg::load_robot(&task.robot, &reach::model::UrdfChain { base: None, tip: None })?.robot;
-    if task_robot.name() != robot.name() || task_robot.dof() != robot.dof() {
-        return Err(CliError::bad_input(format!(
-            "task file `{}` is for robot `{}`, not `{}`",
-            path.display(),
-            task_robot.name(),
-            robot.name()
-        )));
-    }
-    let report = reach::jobs::motion::plan(robot, &PlanRequest { task: text.to_string() })?;
-    let motions = &report.motions;
-    let mut samples: Vec<JointSample> = Vec::new();
-    for m in motions {
-        if !m.feasible {
-            return Err(CliError::NoSolution(format!(
-                "motion `{}` is infeasible: {}",
-                m.name,
-                m.reasons.first().map_or("see `reach plan`", String::as_str)
-            )));
-        }
-        let offset = samples.last().map_or(0.0, |s| s.t);
-        let mut rows = m.samples.iter();
-        if let (Some(last), Some(first)) = (samples.last(), m.samples.first()) {
-            let start = sample_si(robot, offset, &first.q_deg);
-            // The one joint-difference rule: what a joint-space move from `a` to `b` travels.
-            let jump =
-                (0..robot.dof()).position(|i| robot.joint_difference(i, last.q[i], start.q[i]).abs() > JOIN_TOLERANCE);
-            if let Some(i) = jump {
-                return Err(CliError::bad_input(format!(
-                    "task file `{}`: motion `{}` starts away from where the previous motion ended \
-                     (joint {} `{}`); a drive cannot jump",
-                    path.display(),
-                    m.name,
-                    i + 1,
-                    robot.joints()[i].name
-                )));
+/// [`CliError::BadInput`] for an unreadable file, a task file for another robot, bad numbers,
+/// or neither/both of a file and `--from/--to`.
+fn request(args: &DriveArgs, robot: &Robot) -> Result<DriveRequest, CliError> {
+    let unit = |values: Vec<f64>| if args.rad { Joints::Rad(values) } else { Joints::Deg(values) };
+    let motion = match (&args.motion, &args.from, &args.to) {
+        (Some(path), None, None) => {
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| CliError::bad_input(format!("cannot read `{}`: {e}", path.display())))?;
+            let origin =
+                |e: reach::Error| CliError::bad_input(format!("{}: {}", path.display(), one_line(&e.to_string())));
+            if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml")) {
+                let task = Task::parse(&text).map_err(origin)?;
+                let task_robot = load_robot(&task.robot, &UrdfChain { base: None, tip: None })?.robot;
+                if task_robot.name() != robot.name() || task_robot.dof() != robot.dof() {
+                    return Err(CliError::bad_input(format!(
+                        "task file `{}` is for robot `{}`, not `{}`",
+                        path.display(),
+                        task_robot.name(),
+                        robot.name()
+                    )));
+                }
+                DriveMotion::Task(text)
+            } else {
+                DriveMotion::Samples(parse_motion_json(&text).map_err(origin)?)
             }
-            rows.next();
         }
-        samples.extend(rows.map(|s| sample_si(robot, offset + s.t_s - m.samples[0].t_s, &s.q_deg)));
+        (None, Some(from), Some(to)) => DriveMotion::PointToPoint(PointToPointRequest {
+            from: unit(parse_list("--from", from)?),
+            to: unit(parse_list("--to", to)?),
+            duration_s: args.duration.as_deref().map(|d| parse_finite("--duration", d)).transpose()?,
+        }),
+        _ => {
+            return Err(CliError::bad_input(
+                "give a motion file, or a point-to-point move with --from Q1,..,QN --to Q1,..,QN (not both)",
+            ));
+        }
+    };
+    let program = match args.format {
+        DriveFormat::Summary | DriveFormat::Json => None,
+        DriveFormat::Csv => Some(DriveProgram::Csv),
+        DriveFormat::Coils => Some(DriveProgram::Coils),
+        DriveFormat::Events => Some(DriveProgram::Events),
+        DriveFormat::Gcode => Some(DriveProgram::Gcode(match args.dialect {
+            Dialect::Grbl => GcodeDialect::Grbl,
+            Dialect::Marlin => GcodeDialect::Marlin,
+        })),
+    };
+    Ok(DriveRequest { motion, program })
+}
+
+/// Exit status 3 for a motion the motors cannot follow, 2 for other bad input, flags named.
+fn drive_error(e: reach::Error) -> CliError {
+    match &e {
+        reach::Error::Drive(
+            DriveError::RateLimit { .. }
+            | DriveError::AccelerationLimit { .. }
+            | DriveError::DurationTooShort { .. }
+            | DriveError::InfeasibleMotion { .. },
+        ) => CliError::NoSolution(one_line(&e.to_string())),
+        _ => flagged(e, &[("from", "--from"), ("to", "--to"), ("duration_s", "--duration"), ("program", "--format")]),
     }
-    Ok(samples)
 }
 
 /// Builds the schedule and writes the chosen output.
 ///
 /// # Errors
-/// [`CliError::BadInput`] for a bad robot, missing drive data, unreadable motion or bad
-/// numbers; [`CliError::NoSolution`] when the motion exceeds a motor's limits.
+/// [`CliError::BadInput`] for a bad robot, missing drive data, unreadable motion, bad numbers
+/// or joint values outside their limits; [`CliError::NoSolution`] when the motion exceeds a
+/// motor's limits.
 pub fn run(args: &DriveArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let loaded = args.robot.load()?;
     let robot = &loaded.robot;
-    let axes = axes(robot).map_err(drive_error)?;
-    let unit = if args.rad { AngleUnit::Rad } else { AngleUnit::Deg };
-    let mut target_error = None;
-    let (kind, schedule, plan, waypoints): (&str, StepSchedule, Vec<JointSample>, Vec<f64>) =
-        match (&args.motion, args.from.is_empty()) {
-            (Some(path), true) => {
-                let samples = read_motion(robot, path)?;
-                let schedule = schedule_trajectory(&axes, &samples).map_err(drive_error)?;
-                let times = samples.iter().map(|s| s.t).collect();
-                ("trajectory", schedule, samples, times)
-            }
-            (None, false) => {
-                let from = parse_q(robot, "--from", &args.from, unit)?;
-                let to = parse_q(robot, "--to", &args.to, unit)?;
-                let duration = args.duration.as_deref().map(|d| parse_finite("--duration", d)).transpose()?;
-                let p2p = point_to_point(&axes, &from, &to, duration, 0.0).map_err(drive_error)?;
-                target_error = Some(grid_error(robot, &axes, &to).map_err(drive_error)?);
-                let segments = ((p2p.duration / 0.02).ceil() as usize).clamp(10, 2000);
-                let samples = p2p.samples(segments);
-                let times = samples.iter().map(|s| s.t).collect();
-                ("point_to_point", p2p.schedule, samples, times)
-            }
-            _ => {
-                return Err(CliError::bad_input(
-                    "give a motion file, or a point-to-point move with --from Q… --to Q… (not both)",
-                ));
-            }
-        };
-    let check = verify(robot, &schedule, &plan).map_err(drive_error)?;
-    let text = match args.format {
-        DriveFormat::Csv => to_csv(&schedule),
-        DriveFormat::Coils => coil_table_csv(&schedule).map_err(drive_error)?,
-        DriveFormat::Events => step_dir_text(&schedule),
-        DriveFormat::Gcode => {
-            let dialect = match args.dialect {
-                Dialect::Grbl => GcodeDialect::Grbl,
-                Dialect::Marlin => GcodeDialect::Marlin,
-            };
-            if waypoints.len() < 2 {
-                return Err(CliError::bad_input("G-code needs a move that takes time"));
-            }
-            gcode(&schedule, &waypoints, dialect, robot.name()).map_err(drive_error)?
-        }
-        DriveFormat::Json => {
+    let request = request(args, robot)?;
+    let report = reach::jobs::drive::drive(robot, &request).map_err(drive_error)?;
+    let text = match (args.format, &report.program) {
+        (DriveFormat::Json, _) => {
             let mut buffer = Vec::new();
-            write_json(&mut buffer, &json(robot, kind, &schedule, &check, target_error))?;
+            write_json(&mut buffer, &report)?;
             String::from_utf8(buffer).map_err(|e| CliError::internal(e.to_string()))?
         }
-        DriveFormat::Summary => summary(robot, kind, &schedule, &check, target_error.as_ref())?,
+        (DriveFormat::Summary, _) => summary(robot, &report)?,
+        (_, Some(program)) => program.clone(),
+        (_, None) => return Err(CliError::internal("the drive report has no program text")),
     };
     match &args.output {
         Some(path) => {
@@ -312,59 +188,21 @@ pub fn run(args: &DriveArgs, out: &mut dyn Write) -> Result<(), CliError> {
     Ok(())
 }
 
-fn max_rate(steps: &[reach::drive::Step]) -> f64 {
-    steps.windows(2).map(|w| 1.0 / (w[1].t - w[0].t)).fold(0.0, f64::max)
-}
-
-fn json(
-    robot: &Robot,
-    kind: &'static str,
-    schedule: &StepSchedule,
-    check: &Verification,
-    target_grid_error: Option<GridError>,
-) -> DriveJson {
-    DriveJson {
-        robot: robot.name().to_string(),
-        kind,
-        start_s: schedule.start_time,
-        duration_s: schedule.end_time - schedule.start_time,
-        joints: schedule
-            .joints
-            .iter()
-            .enumerate()
-            .map(|(i, j)| JointJson {
-                joint: j.axis.joint,
-                name: j.axis.name.clone(),
-                steps_per_unit: j.axis.steps_per_unit,
-                start_position: j.start_position,
-                end_position: j.end_position,
-                steps: j.steps.len(),
-                max_rate_hz: max_rate(&j.steps),
-                max_step_rate_hz: j.axis.max_step_rate,
-                max_deviation_steps: check.max_deviation_steps[i],
-                max_deviation_si: check.max_deviation[i],
-            })
-            .collect(),
-        check: check.clone(),
-        target_grid_error,
-        steps: step_rows(schedule),
-    }
-}
-
-fn summary(
-    robot: &Robot,
-    kind: &str,
-    schedule: &StepSchedule,
-    check: &Verification,
-    target: Option<&GridError>,
-) -> Result<String, CliError> {
+fn summary(robot: &Robot, report: &DriveReport) -> Result<String, CliError> {
     let mut buffer: Vec<u8> = Vec::new();
     let out: &mut dyn Write = &mut buffer;
+    let check = &report.check;
     let mut head = Table::key_value();
     head.pair("robot", format!("{} ({} joints)", robot.name(), robot.dof()));
-    head.pair("motion", kind.replace('_', "-"));
-    head.pair("time", format!("{} .. {} s", fixed(schedule.start_time, 4), fixed(schedule.end_time, 4)));
-    head.pair("steps", schedule.step_count().to_string());
+    let motion = match report.motion {
+        DriveMotionKind::Samples => "trajectory",
+        DriveMotionKind::Task => "task",
+        DriveMotionKind::PointToPoint => "point-to-point",
+    };
+    head.pair("motion", motion.to_string());
+    let end = report.start_s + report.duration_s;
+    head.pair("time", format!("{} .. {} s", fixed(report.start_s, 4), fixed(end, 4)));
+    head.pair("steps", report.steps.len().to_string());
     head.pair(
         "tool error",
         format!(
@@ -373,7 +211,7 @@ fn summary(
             fixed(check.tool_orientation_error.to_degrees(), 5)
         ),
     );
-    if let Some(g) = target {
+    if let Some(g) = &report.target_grid_error {
         head.pair(
             "target on step grid",
             format!(
@@ -396,22 +234,22 @@ fn summary(
         ("max dev [steps]", Align::Right),
         ("max dev", Align::Right),
     ]);
-    for (i, j) in schedule.joints.iter().enumerate() {
-        let (unit, scale) = match j.axis.kind {
+    for j in &report.joints {
+        let (unit, scale) = match j.joint_kind {
             JointKind::Revolute => (display_unit(JointKind::Revolute), 180.0 / std::f64::consts::PI),
             JointKind::Prismatic => ("mm", 1000.0),
         };
         table.row(vec![
-            j.axis.joint.to_string(),
-            j.axis.name.clone(),
-            format!("{} /{unit}", fixed(j.axis.steps_per_unit / scale, 4)),
+            j.joint.to_string(),
+            j.name.clone(),
+            format!("{} /{unit}", fixed(j.steps_per_unit / scale, 4)),
             j.start_position.to_string(),
             j.end_position.to_string(),
-            j.steps.len().to_string(),
-            fixed(max_rate(&j.steps), 1),
-            fixed(j.axis.max_step_rate, 1),
-            fixed(check.max_deviation_steps[i], 3),
-            format!("{} {unit}", fixed(check.max_deviation[i] * scale, 5)),
+            j.steps.to_string(),
+            fixed(j.max_rate_hz, 1),
+            fixed(j.max_step_rate_hz, 1),
+            fixed(j.max_deviation_steps, 3),
+            format!("{} {unit}", fixed(j.max_deviation_si * scale, 5)),
         ]);
     }
     table.write(out, "  ")?;

@@ -2,15 +2,16 @@
 //! data (planar3: 27.78 steps/deg, 500 Hz; seed 000 D8 move φ = (100, 400, 200) in 0.8 s),
 //! and the error paths (exit 2 for bad input, 3 for motor limits).
 
-use crate::common::{fails, ok, temp_file};
+use reach::jobs::drive::{DriveMotion, DriveProgram, DriveRequest, PointToPointRequest};
+use reach::jobs::{Job, Joints, Request, RobotInput};
 
-const D8: [&str; 9] = ["drive", "planar3", "--from", "0", "0", "0", "--to", "3.6", "-14.4"];
+use crate::common::{assert_report, fails, ok, temp_file};
+
+/// Seed 000's D8 move, joint values blank-separated in one argument.
+const D8: [&str; 6] = ["drive", "planar3", "--from", "0 0 0", "--to", "3.6 -14.4 -7.2"];
 
 fn d8(extra: &[&str]) -> Vec<String> {
-    let mut v: Vec<String> = D8.iter().map(|s| s.to_string()).collect();
-    v.push("-7.2".into());
-    v.extend(extra.iter().map(|s| s.to_string()));
-    v
+    D8.iter().chain(extra).map(|s| s.to_string()).collect()
 }
 
 fn run_vec(args: &[String]) -> String {
@@ -31,7 +32,19 @@ fn summary_of_the_seed_000_synchronised_move() {
 
 #[test]
 fn json_csv_events_and_coils() {
-    let v: serde_json::Value = serde_json::from_str(&run_vec(&d8(&["--format", "json"]))).unwrap();
+    let args = d8(&["--format", "json"]);
+    let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+    let request = DriveRequest {
+        motion: DriveMotion::PointToPoint(PointToPointRequest {
+            from: Joints::Deg(vec![0.0; 3]),
+            to: Joints::Deg(vec![3.6, -14.4, -7.2]),
+            duration_s: None,
+        }),
+        program: None,
+    };
+    let job = Job { robot: RobotInput::Preset("planar3".into()), request: Request::Drive(request.clone()) };
+    let v = assert_report(&refs, &job, "drive.report");
+    assert_eq!(v["motion"], "point_to_point");
     assert_eq!(v["duration_s"], 0.8);
     let ends: Vec<i64> = v["joints"].as_array().unwrap().iter().map(|j| j["end_position"].as_i64().unwrap()).collect();
     assert_eq!(ends, [100, -400, -200]);
@@ -47,6 +60,11 @@ fn json_csv_events_and_coils() {
     assert_eq!(events.lines().filter(|l| l.contains("DIR")).count(), 3);
     let coils = run_vec(&d8(&["--format", "coils"]));
     assert_eq!(coils.lines().count(), 1 + 3 + 700);
+    // A service asks for the program in the request: the same text as the command line.
+    let gcode =
+        DriveRequest { program: Some(DriveProgram::Gcode(reach::drive::output::GcodeDialect::Marlin)), ..request };
+    let program = reach::jobs::drive::drive(&reach::model::presets::get("planar3").unwrap(), &gcode).unwrap().program;
+    assert_eq!(program.as_deref(), Some(run_vec(&d8(&["--format", "gcode", "--dialect", "marlin"])).as_str()));
 }
 
 #[test]
@@ -131,9 +149,15 @@ fn task_files() {
 fn bad_input() {
     fails(&["drive", "puma560", "--from", "0,0,0,0,0,0", "--to", "1,0,0,0,0,0"], 2, &["joint 1", "no drive data"]);
     fails(&["drive", "planar3", "--from", "0,0", "--to", "1,0,0"], 2, &["--from", "3 joints"]);
-    fails(&["drive", "planar3", "--from", "0,0,0", "--to", "1,x,0"], 2, &["--to joint 2"]);
+    fails(&["drive", "planar3", "--from", "0,0,0", "--to", "1,x,0"], 2, &["--to value 2"]);
     fails(&["drive", "planar3", "--from", "0,0,0", "--to", "90,0,0", "--duration", "1"], 3, &["too short", "joint 1"]);
     fails(&["drive", "planar3"], 2, &["--from"]);
+    // A negative value may lead the list (here it is outside joint 1's range [0°, 180°]).
+    fails(
+        &["drive", "planar3", "--from", "-10,-20,-30", "--to", "9,-20,-30"],
+        2,
+        &["--from", "-10 deg", "[0, 180] deg"],
+    );
     // A microstepping drive has no coil table.
     let robot = temp_file(
         "m.toml",
@@ -145,4 +169,35 @@ fn bad_input() {
         2,
         &["microstepping 16"],
     );
+}
+
+#[test]
+fn joint_limits_are_checked_before_anything_is_written() {
+    // planar3's joint 1 ranges over [0°, 180°]: 270° is refused, naming the joint, the value and
+    // the limit in the unit typed (degrees, or radians with --rad), and no G-code file is made.
+    let path = temp_file("refused.gcode", "");
+    std::fs::remove_file(&path).unwrap();
+    let args = ["drive", "planar3", "--from", "0,0,0", "--to", "270,0,0", "--format", "gcode", "-o"];
+    let mut args = args.to_vec();
+    args.push(path.to_str().unwrap());
+    fails(&args, 2, &["--to", "joint 1", "270 deg", "[0, 180] deg"]);
+    assert!(!path.exists());
+    fails(&["drive", "planar3", "--rad", "--from", "0,0,0", "--to", "4.5,0,0"], 2, &["--to", "4.5 rad"]);
+    // A value far outside any range is refused the same way (it used to overflow).
+    fails(&["drive", "planar3", "--from", "0,0,0", "--to", "1e308,-45,-30"], 2, &["--to", "joint 1"]);
+    // A sampled motion that leaves the range names the sample.
+    let motion =
+        temp_file("out.json", r#"{"samples": [{"t_s": 0, "q_deg": [170, 0, 0]}, {"t_s": 20, "q_deg": [190, 0, 0]}]}"#);
+    fails(&["drive", "planar3", motion.to_str().unwrap()], 2, &["sample 1", "190 deg"]);
+}
+
+#[test]
+fn a_joint_without_limits_cannot_ask_for_unbounded_steps() {
+    // A joint with no range: 1e12 degrees would take ~3e13 steps; refused before allocating.
+    let robot = temp_file(
+        "free.toml",
+        "name = \"free\"\nlength_unit = \"m\"\nangle_unit = \"deg\"\n[[joints]]\nname = \"j\"\na = 1\n\
+         drive = { steps_per_rev = 200, max_step_rate = 500, wiring = \"bipolar\" }\n",
+    );
+    fails(&["drive", robot.to_str().unwrap(), "--from", "0", "--to", "1e12"], 2, &["joint 1", "motor steps"]);
 }

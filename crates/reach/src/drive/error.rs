@@ -92,6 +92,30 @@ pub enum DriveError {
         /// The joint's microstepping.
         microstepping: u32,
     },
+    /// A motion of a task file is infeasible (beyond a joint's range or speed), so there is
+    /// nothing to drive.
+    #[error("motion `{motion}` is infeasible: {reason}")]
+    InfeasibleMotion {
+        /// The motion's name in the task file.
+        motion: String,
+        /// The first reason `reach plan` gives.
+        reason: String,
+    },
+    /// A plan whose schedule would hold more steps than a joint may have.
+    #[error(
+        "joint {joint} ({name}): the motion takes {steps:.0} motor steps, more than the {limit} one schedule may hold; \
+         split the motion or check its joint values"
+    )]
+    TooManySteps {
+        /// 1-based joint number.
+        joint: usize,
+        /// Joint name.
+        name: String,
+        /// Steps the motion takes (path length in steps).
+        steps: f64,
+        /// [`super::MAX_STEPS_PER_JOINT`].
+        limit: u64,
+    },
     /// G-code has axis letters for six joints only.
     #[error("G-code maps joints to the axis letters X Y Z A B C; the robot has {0} joints")]
     TooManyAxes(usize),

@@ -16,7 +16,7 @@
 //!   tables as data, and a per-step coil-state iterator.
 //! * [`Axis`] — one joint's conversion between joint values and motor steps, from the robot's
 //!   drive data ([`crate::model::JointDrive`], `[joints.drive]` in the robot file).
-//! * [`schedule_trajectory`] — a sampled joint trajectory → per-joint step timestamps, with
+//! * [`schedule_trajectory`] — a sampled joint trajectory ([`crate::motion::JointSample`]s) → per-joint step timestamps, with
 //!   rounding that never drifts, checked against each motor's rate and acceleration limits.
 //! * [`point_to_point`] — a synchronised move with a common trapezoidal step-rate ramp.
 //! * [`simulate`], [`verify`], [`grid_error`] — integrate a schedule back into joint angles and compare it
@@ -50,5 +50,7 @@ mod verify;
 pub use axis::{Axis, axes};
 pub use coils::{CoilSequence, CoilState};
 pub use error::DriveError;
-pub use schedule::{JointSample, JointSchedule, PointToPoint, Step, StepSchedule, point_to_point, schedule_trajectory};
+pub use schedule::{
+    JointSchedule, MAX_STEPS_PER_JOINT, PointToPoint, Step, StepSchedule, point_to_point, schedule_trajectory,
+};
 pub use verify::{GridError, Verification, grid_error, simulate, verify};

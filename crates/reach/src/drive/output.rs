@@ -3,13 +3,14 @@
 
 use std::fmt::Write as _;
 
-use serde::Serialize;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 
 use super::{DriveError, StepSchedule};
 use crate::model::JointKind;
 
 /// One step of one joint, for CSV/JSON output.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct StepRow {
     /// Time of the pulse, s.
     pub t_s: f64,
@@ -163,7 +164,8 @@ pub fn step_dir_text(schedule: &StepSchedule) -> String {
 }
 
 /// Which firmware reads the G-code (they differ in the dwell parameter).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
 pub enum GcodeDialect {
     /// GRBL / grblHAL: `G4 P<seconds>`.
     Grbl,

@@ -1,24 +1,13 @@
 use serde::Serialize;
 
 use super::{Axis, DriveError};
+use crate::Robot;
+use crate::motion::JointSample;
 use crate::tolerance::DRIVE_LIMIT_SLACK;
 
-/// One sample of a planned joint trajectory: time (s) and joint values (SI).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct JointSample {
-    /// Time, seconds.
-    pub t: f64,
-    /// Joint values, radians or metres, base to tip.
-    pub q: Vec<f64>,
-}
-
-impl JointSample {
-    /// A sample at time `t` with joint values `q`.
-    #[must_use]
-    pub fn new(t: f64, q: Vec<f64>) -> Self {
-        JointSample { t, q }
-    }
-}
+/// The most steps one joint's schedule may hold (about 0.5 GB of steps): a plan that asks for
+/// more is refused before anything is allocated.
+pub const MAX_STEPS_PER_JOINT: u64 = 20_000_000;
 
 /// One motor step.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -180,12 +169,13 @@ pub fn schedule_trajectory(axes: &[Axis], samples: &[JointSample]) -> Result<Ste
         if first.is_some() {
             continue; // keep checking the other joints for the suggested duration
         }
+        too_many_steps(axis, travel)?;
         // Pass 2: boundary crossings, up while s ≥ n + ½, down while s < n − ½. The counter
         // after a step equals the rounding counter `n` (a dropped chatter pair nets zero).
         let min_interval = 1.0 / axis.max_step_rate;
         let start = (exact[0] + 0.5).floor() as i64;
         let mut n = start;
-        let mut steps: Vec<Step> = Vec::with_capacity(travel.min(1e7) as usize + 1);
+        let mut steps: Vec<Step> = Vec::with_capacity(travel as usize + 1);
         for (i, w) in samples.windows(2).enumerate() {
             let (ta, tb) = (w[0].t, w[1].t);
             let (s_prev, s_next) = (exact[i], exact[i + 1]);
@@ -235,6 +225,21 @@ pub fn schedule_trajectory(axes: &[Axis], samples: &[JointSample]) -> Result<Ste
         });
     }
     Ok(StepSchedule { start_time: t0, end_time: t_end, joints })
+}
+
+/// Refuses a joint whose plan travels more than [`MAX_STEPS_PER_JOINT`] steps (`travel`, a
+/// bound on its step count: path length in steps).
+fn too_many_steps(axis: &Axis, travel: f64) -> Result<(), DriveError> {
+    // `!(≤)` also refuses a NaN travel.
+    if !(travel <= MAX_STEPS_PER_JOINT as f64) {
+        return Err(DriveError::TooManySteps {
+            joint: axis.joint,
+            name: axis.name.clone(),
+            steps: travel,
+            limit: MAX_STEPS_PER_JOINT,
+        });
+    }
+    Ok(())
 }
 
 /// Appends a step, or drops it together with the previous step when it undoes that step
@@ -309,14 +314,14 @@ impl PointToPoint {
     }
 
     /// `count + 1` samples of the planned move at equal time intervals (for [`super::verify`]
-    /// and G-code).
+    /// and G-code), flagged against `robot`'s position limits.
     #[must_use]
-    pub fn samples(&self, count: usize) -> Vec<JointSample> {
+    pub fn samples(&self, robot: &Robot, count: usize) -> Vec<JointSample> {
         let count = count.max(1);
         (0..=count)
             .map(|i| {
                 let t = self.start_time + self.duration * i as f64 / count as f64;
-                JointSample::new(t, self.planned_at(t))
+                JointSample::of(robot, t, self.planned_at(t))
             })
             .collect()
     }
@@ -383,6 +388,9 @@ pub fn point_to_point(
         && !(d.is_finite() && d > 0.0)
     {
         return Err(DriveError::Trajectory(format!("duration must be a positive number of seconds, got {d}")));
+    }
+    for (axis, (&a, &b)) in axes.iter().zip(from.iter().zip(to)) {
+        too_many_steps(axis, (axis.exact_steps(b) - axis.exact_steps(a)).abs())?;
     }
     let from_steps: Vec<i64> = axes.iter().zip(from).map(|(a, &q)| a.quantise(q)).collect();
     let to_steps: Vec<i64> = axes.iter().zip(to).map(|(a, &q)| a.quantise(q)).collect();

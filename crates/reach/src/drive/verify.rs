@@ -1,10 +1,12 @@
-use serde::Serialize;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 
-use super::{DriveError, JointSample, StepSchedule};
+use super::{DriveError, StepSchedule};
 use crate::Robot;
+use crate::motion::JointSample;
 
 /// A schedule integrated back into joint angles and compared with its plan.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct Verification {
     /// Largest |simulated − planned| per joint over all samples, SI (radians or metres).
     pub max_deviation: Vec<f64>,
@@ -76,7 +78,7 @@ pub fn verify(robot: &Robot, schedule: &StepSchedule, plan: &[JointSample]) -> R
 
 /// How far the step grid moves a configuration: the joint values the motors can hold
 /// nearest to `q`, and the errors that rounding to them causes.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct GridError {
     /// The nearest joint values on the step grid, SI.
     pub snapped: Vec<f64>,

@@ -245,6 +245,32 @@ pub fn joints_outside_limits(robot: &Robot, q: &[f64]) -> Vec<usize> {
         .collect()
 }
 
+/// Refuses joint values (SI) outside their position limits, naming the first such joint, its
+/// value and its limits in `unit` (prismatic joints in metres):
+/// `to: joint 1 `q1` = 270 deg is outside its limits [-180, 180] deg`.
+///
+/// # Errors
+/// [`Error::Request`] naming `field`.
+pub fn require_within_limits(robot: &Robot, q: &[f64], unit: AngleUnit, field: &str) -> Result<()> {
+    let Some(i) = robot.first_joint_outside_limits(q, LIMIT_SLACK) else {
+        return Ok(());
+    };
+    let joint = &robot.joints()[i];
+    let shown = |v: f64| from_si(joint.kind, v, unit);
+    let name = unit_name(joint.kind, unit);
+    Err(Error::request(
+        field,
+        format!(
+            "joint {} `{}` = {} {name} is outside its limits [{}, {}] {name}",
+            i + 1,
+            joint.name,
+            shown(q[i]),
+            shown(joint.limits.lower),
+            shown(joint.limits.upper)
+        ),
+    ))
+}
+
 /// A pose as typed: position in metres with one orientation, or a homogeneous matrix.
 ///
 /// Exactly one of: `matrix`; or `xyz_m` with at most one of `rpy_deg`, `rpy_rad`, `quat_wxyz`

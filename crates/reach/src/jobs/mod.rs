@@ -17,6 +17,7 @@
 //!   and the generated JSON Schemas are kept in `docs/schemas/` (a test checks they are
 //!   current).
 
+pub mod drive;
 pub mod ik;
 pub mod input;
 pub mod kinematics;
@@ -27,6 +28,7 @@ pub mod world;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+pub use drive::{DriveReport, DriveRequest};
 pub use ik::{IkReport, IkRequest, IkScanReport, IkScanRequest};
 pub use input::{AngleUnit, Joints, LoadedRobot, Pose, PoseReport, RobotInput};
 pub use kinematics::{FkReport, FkRequest, JacobianReport, JacobianRequest};
@@ -69,6 +71,8 @@ pub enum Request {
     Path(PathRequest),
     /// Seed 001's collection and visiting tasks (sequencing, budgets).
     Tasks(TasksRequest),
+    /// Stepper step schedules (and G-code, coil tables, step/direction events) for a motion.
+    Drive(DriveRequest),
 }
 
 /// A workflow's report, tagged by `"kind"` like its request.
@@ -97,6 +101,8 @@ pub enum Report {
     Path(PathReport),
     /// Seed 001's collection and visiting tasks (sequencing, budgets).
     Tasks(TasksReport),
+    /// Stepper step schedules for a motion.
+    Drive(DriveReport),
 }
 
 /// A request together with its robot.
@@ -137,6 +143,7 @@ pub fn run(robot: &Robot, request: &Request) -> Result<Report> {
         Request::Cspace(r) => Report::Cspace(world::cspace(robot, r)?),
         Request::Path(r) => Report::Path(world::path(robot, r)?),
         Request::Tasks(r) => Report::Tasks(tasks::tasks(robot, r)?),
+        Request::Drive(r) => Report::Drive(drive::drive(robot, r)?),
     })
 }
 
@@ -171,6 +178,8 @@ pub fn schemas() -> Vec<(&'static str, serde_json::Value)> {
         ("path.report", of::<PathReport>()),
         ("tasks.request", of::<TasksRequest>()),
         ("tasks.report", of::<TasksReport>()),
+        ("drive.request", of::<DriveRequest>()),
+        ("drive.report", of::<DriveReport>()),
     ]
 }
 

@@ -15,6 +15,7 @@
 //! beyond; collection's total does not depend on the order, so only the budget selects. The
 //! file format is `docs/task-format.md` ("reach tasks").
 
+use crate::error::one_line;
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -254,10 +255,6 @@ impl Picker<'_> {
             None => Err(one_line(&all.failure.unwrap_or(IkFailure::OrientationUnreachable).to_string())),
         })
     }
-}
-
-fn one_line(text: &str) -> String {
-    text.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
 /// The `[choose]` section as a checked [`IkChoice`].

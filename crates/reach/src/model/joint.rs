@@ -29,7 +29,7 @@ impl Convention {
 }
 
 /// Revolute (angle, radians) or prismatic (length, metres).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum JointKind {
     /// Rotation about the joint axis; the joint variable is an angle in radians.

@@ -1,5 +1,6 @@
 //! URDF import of serial chains (through `urdf-rs`).
 
+use crate::error::one_line;
 use std::collections::{BTreeMap, BTreeSet};
 
 use nalgebra::{Isometry3, Unit, Vector3};
@@ -215,8 +216,4 @@ impl Robot {
 
 fn cycle(link: &str) -> ModelError {
     ModelError::Urdf(format!("the link tree has a cycle through link `{link}`"))
-}
-
-fn one_line(s: &str) -> String {
-    s.split_whitespace().collect::<Vec<_>>().join(" ")
 }

@@ -26,7 +26,7 @@ use serde::Serialize;
 use super::{MotionError, check_number};
 use crate::ik::{self, IkFailure, IkOptions, IkSolution, IkTarget};
 use crate::model::Robot;
-use crate::tolerance::SAMPLE_GRID;
+use crate::tolerance::{LIMIT_SLACK, SAMPLE_GRID};
 
 /// One sample of a tool path: the samples of a [`ToolPath`] and the input of path tracking
 /// ([`TrackedPath`](super::tracking::TrackedPath)).
@@ -65,6 +65,16 @@ pub struct JointSample {
     /// Whether every joint is within its limits (always `true` for joint motions built without
     /// a robot).
     pub within_limits: bool,
+}
+
+impl JointSample {
+    /// A sample of `robot` at time `t` with joint values `q` (SI), flagged against the joints'
+    /// position limits.
+    #[must_use]
+    pub fn of(robot: &Robot, t: f64, q: Vec<f64>) -> Self {
+        let within_limits = robot.first_joint_outside_limits(&q, LIMIT_SLACK).is_none();
+        JointSample { t, q, within_limits }
+    }
 }
 
 /// A sampled joint motion (see the module docs).

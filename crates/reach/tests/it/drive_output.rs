@@ -4,8 +4,9 @@
 use std::collections::HashSet;
 
 use reach::drive::output::{GcodeDialect, coil_table_csv, gcode, step_dir_events, step_dir_text, step_rows, to_csv};
-use reach::drive::{DriveError, JointSample, axes, point_to_point, schedule_trajectory};
+use reach::drive::{DriveError, axes, point_to_point, schedule_trajectory};
 use reach::model::presets;
+use reach::motion::JointSample;
 
 fn planar3_move() -> reach::drive::PointToPoint {
     let robot = presets::get("planar3").unwrap();
@@ -63,9 +64,9 @@ fn step_dir_events_set_direction_before_pulses() {
     let k = axes[0].steps_per_unit;
     // Joint 1: 3 steps forward, then 5 back (to −2).
     let samples = vec![
-        JointSample::new(0.0, vec![0.0, 0.0, 0.0]),
-        JointSample::new(0.1, vec![3.0 / k, 0.0, 0.0]),
-        JointSample::new(0.2, vec![-2.0 / k, 0.0, 0.0]),
+        JointSample::of(&robot, 0.0, vec![0.0, 0.0, 0.0]),
+        JointSample::of(&robot, 0.1, vec![3.0 / k, 0.0, 0.0]),
+        JointSample::of(&robot, 0.2, vec![-2.0 / k, 0.0, 0.0]),
     ];
     let schedule = schedule_trajectory(&axes, &samples).unwrap();
     let events = step_dir_events(&schedule);

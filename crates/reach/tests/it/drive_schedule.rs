@@ -4,8 +4,10 @@
 
 use std::f64::consts::{PI, TAU};
 
-use reach::drive::{Axis, DriveError, JointSample, StepSchedule, axes, point_to_point, schedule_trajectory, verify};
+use reach::Robot;
+use reach::drive::{Axis, DriveError, StepSchedule, axes, point_to_point, schedule_trajectory, verify};
 use reach::model::presets;
+use reach::motion::JointSample;
 
 fn deg(v: f64) -> f64 {
     v.to_radians()
@@ -39,7 +41,7 @@ fn measured_acceleration(steps: &[reach::drive::Step]) -> f64 {
 
 /// A back-and-forth path on planar3: three sines with different periods, sampled every
 /// `dt`, ending exactly where it started.
-fn back_and_forth(seconds: f64, dt: f64) -> Vec<JointSample> {
+fn back_and_forth(robot: &Robot, seconds: f64, dt: f64) -> Vec<JointSample> {
     let n = (seconds / dt).round() as usize;
     (0..=n)
         .map(|i| {
@@ -50,7 +52,7 @@ fn back_and_forth(seconds: f64, dt: f64) -> Vec<JointSample> {
             } else {
                 vec![f(12.0, 5.0, 45.123), f(6.0, 2.5, -90.456), f(2.9, 1.25, -30.789)]
             };
-            JointSample::new(t, q)
+            JointSample::of(robot, t, q)
         })
         .collect()
 }
@@ -59,7 +61,7 @@ fn back_and_forth(seconds: f64, dt: f64) -> Vec<JointSample> {
 fn long_back_and_forth_path_has_zero_net_drift() {
     let robot = presets::get("planar3").unwrap();
     let axes = axes(&robot).unwrap();
-    let samples = back_and_forth(100.0, 0.001); // 20 full periods of the slowest sine
+    let samples = back_and_forth(&robot, 100.0, 0.001); // 20 full periods of the slowest sine
     let schedule = schedule_trajectory(&axes, &samples).unwrap();
     for (j, axis) in schedule.joints.iter().zip(&axes) {
         assert_eq!(j.end_position, j.start_position, "joint {}", axis.joint);
@@ -89,7 +91,7 @@ fn long_back_and_forth_path_has_zero_net_drift() {
 fn simulated_angles_stay_within_one_step_of_the_plan() {
     let robot = presets::get("planar3").unwrap();
     let axes = axes(&robot).unwrap();
-    let samples = back_and_forth(10.0, 0.004);
+    let samples = back_and_forth(&robot, 10.0, 0.004);
     let schedule = schedule_trajectory(&axes, &samples).unwrap();
     let v = verify(&robot, &schedule, &samples).unwrap();
     assert!(v.within_one_step);
@@ -128,7 +130,7 @@ fn plan_turning_back_at_a_step_boundary_does_not_chatter() {
         .map(|i| {
             let t = i as f64 * 1e-4;
             let s = 0.5 + 0.3 * (TAU * 200.0 * t).sin();
-            JointSample::new(t, vec![s / k, 0.0, 0.0])
+            JointSample::of(&robot, t, vec![s / k, 0.0, 0.0])
         })
         .collect();
     let schedule = schedule_trajectory(&axes, &samples).unwrap();
@@ -147,7 +149,7 @@ fn a_too_fast_trajectory_names_the_joint_the_time_and_a_slower_duration() {
         .map(|i| {
             let t = i as f64 * 0.01;
             let u = ((t - 1.0).clamp(0.0, 1.0)).min(1.0);
-            JointSample::new(t, vec![0.0, deg(-36.0 * u), 0.0])
+            JointSample::of(&robot, t, vec![0.0, deg(-36.0 * u), 0.0])
         })
         .collect();
     let err = schedule_trajectory(&axes, &samples).unwrap_err();
@@ -166,7 +168,7 @@ fn a_too_fast_trajectory_names_the_joint_the_time_and_a_slower_duration() {
     assert!(message.contains("joint 2 (B)") && message.contains("t = 1.0000 s") && message.contains("6.0000 s"));
     // The suggestion works; 1 % faster than it does not.
     let retimed = |factor: f64| -> Vec<JointSample> {
-        samples.iter().map(|s| JointSample::new(s.t * factor, s.q.clone())).collect()
+        samples.iter().map(|s| JointSample { t: s.t * factor, ..s.clone() }).collect()
     };
     let ok = schedule_trajectory(&axes, &retimed(2.0)).unwrap();
     assert_rates_respected(&ok);
@@ -184,7 +186,7 @@ fn acceleration_limits_are_checked_on_sampled_trajectories() {
         .map(|i| {
             let t = i as f64 * 0.002;
             let s = if t <= 0.1 { 1500.0 * t * t } else { 15.0 + 300.0 * (t - 0.1) };
-            JointSample::new(t, vec![0.0, 0.0, s / k])
+            JointSample::of(&robot, t, vec![0.0, 0.0, s / k])
         })
         .collect();
     match schedule_trajectory(&axes, &samples).unwrap_err() {
@@ -203,7 +205,7 @@ fn acceleration_limits_are_checked_on_sampled_trajectories() {
 fn malformed_trajectories_are_rejected() {
     let robot = presets::get("planar3").unwrap();
     let axes = axes(&robot).unwrap();
-    let s = |t: f64, q: Vec<f64>| JointSample::new(t, q);
+    let s = |t: f64, q: Vec<f64>| JointSample::of(&robot, t, q);
     let cases = [
         (vec![s(0.0, vec![0.0; 3])], "at least 2"),
         (vec![s(0.0, vec![0.0; 3]), s(1.0, vec![0.0; 2])], "sample 1 has 2"),
@@ -247,7 +249,7 @@ fn point_to_point_trapezoid_is_synchronised_and_within_limits() {
     let mid = &steps[1500..1502];
     assert!((1.0 / (mid[1].t - mid[0].t) - 500.0).abs() < 1e-6);
     // Simulated angles within one step of the (grid-snapped) plan.
-    let check = verify(&robot, &plan.schedule, &plan.samples(2000)).unwrap();
+    let check = verify(&robot, &plan.schedule, &plan.samples(&robot, 2000)).unwrap();
     assert!(check.within_one_step, "{:?}", check.max_deviation_steps);
 }
 
