@@ -38,7 +38,7 @@ Examples:
                                             every IK solution with its branch label
   reach ik spbu6 --matrix 1,0,0,0,0,0,1,3,0,-1,0,5,0,0,0,1
                                             the solution closest to home
-  reach ik planar3 --xyz 2.4,0.2,0 --scan 0.01 --csv
+  reach ik planar3 --xyz 2.4,0.2,0 --scan 0.01 --csv table.csv
                                             seed 000's table of configurations
   reach ik ur5 --xyz 0.4,-0.2,0.3 --rpy 180,0,0 --choose topsis --criteria change,limits,manipulability --weights 0.5,0.3,0.2
                                             rank the IK solutions by several criteria
@@ -152,7 +152,7 @@ pub enum Command {
             ok prints the report, one line on stderr, and exits with status 3.\n\n\
             --scan DEG (planar arm of seed 000, position target): the thesis's table of \
             configurations, alpha from alpha_min to 180 deg in steps of DEG, and the row with the \
-            least S = |α − α0| + |β − β0| + |γ − γ0| from --from; --csv prints every row \
+            least S = |α − α0| + |β − β0| + |γ − γ0| from --from; --csv FILE writes every row \
             (alpha_deg, beta_deg, gamma_deg, q1_deg, q2_deg, q3_deg, S_deg, within_limits, chosen).",
         after_help = "Examples:\n  \
             reach ik puma560 --xyz 0.5,-0.2,0.3 --rpy 180,0,0 --all\n  \
@@ -162,7 +162,7 @@ pub enum Command {
             reach ik puma560 --xyz 0.5,-0.2,0.3 --rpy 180,0,0 --choose vikor --joint-weights 1,1,1,0.2,0.2,0.2\n  \
             reach ik welder6r --xyz 0.05,0.74,0.07 --rpy 0,-41.8685,-50.1944 --from 105,-33,43,-170,-155,138\n  \
             reach ik planar3 --xyz 2,1,0 --free-angle -30 --all\n  \
-            reach ik planar3 --xyz 2.4,0.2,0 --scan 0.01 --from 60,-40,-30 --csv"
+            reach ik planar3 --xyz 2.4,0.2,0 --scan 0.01 --from 60,-40,-30 --csv table.csv"
     )]
     Ik(Box<IkArgs>),
 
@@ -182,9 +182,9 @@ pub enum Command {
             Exit status 3 when the motion exceeds a motor's rate or acceleration limit (the message \
             names the joint, the time and a slower duration that works).",
         after_help = "Examples:\n  \
-            reach drive planar3 --from 0 0 0 --to 3.6 -14.4 -7.2\n  \
+            reach drive planar3 --from 0,0,0 --to 3.6,-14.4,-7.2\n  \
             reach drive planar3 --from 0,0,0 --to 90,-45,-30 --format gcode -o move.gcode\n  \
-            reach drive log-loader --from 0 0 0 --to 90 45 -30 --duration 5 --format csv\n  \
+            reach drive log-loader --from 0,0,0 --to 90,45,-30 --duration 5 --format csv\n  \
             reach drive planar3 motion.json --format coils\n  \
             reach drive planar3 examples/drive_planar3.toml --format gcode -o cycle.gcode"
     )]
@@ -223,9 +223,9 @@ pub enum Command {
             with --weights; a single feasible side is reported as the only candidate. JSON adds \
             \"criteria\" and \"sides\": [{\"side\", \"outcome\", \"values\", \"score\", \"chosen\"}].",
         after_help = "Examples:\n  \
-            reach avoid planar3 --start 60,-40,-30 --to 2.4,0.2 --obstacle 2.0,0.7\n  \
-            reach avoid planar3 --from 2.4245,1.0344 --to 2.4,0.2 --obstacle 2.0,0.7 --json\n  \
-            reach avoid planar3 --start 60,-40,-30 --to 2.4,0.2 --obstacle 2.0,0.7 --choose topsis"
+            reach avoid planar3 --from 60,-40,-30 --to-xy 2.4,0.2 --obstacle 2.0,0.7\n  \
+            reach avoid planar3 --from-xy 2.4245,1.0344 --to-xy 2.4,0.2 --obstacle 2.0,0.7 --json\n  \
+            reach avoid planar3 --from 60,-40,-30 --to-xy 2.4,0.2 --obstacle 2.0,0.7 --choose topsis"
     )]
     Avoid(crate::commands::avoid::AvoidArgs),
 
@@ -246,8 +246,9 @@ pub enum Command {
     /// One motion between two joint vectors or two tool poses, in joint or tool space:
     /// samples (t, q, q̇, tool pose), intervals, events (K1–K14), J1, J2, feasibility.
     #[command(
-        long_about = "One motion between two joint vectors (--from/--to, degrees) or two tool \
-            poses (--from-pose/--to-pose x,y,z,roll,pitch,yaw in metres and degrees; IK at both \
+        long_about = "One motion between two joint vectors (--from/--to, degrees or radians with \
+            --rad) or two tool poses (--from-xyz with --from-rpy or --from-quat, or --from-matrix; \
+            the same with --to-; IK at both \
             ends, the solution with the least weighted joint change). --space joint interpolates \
             q(t) = q0 + λ(τ)(q1 − q0); --space tool moves the tool point on a straight line and \
             turns it about one fixed axis, tracked through IK with branch continuity (intervals \
@@ -264,7 +265,7 @@ pub enum Command {
             reach move spbu6 --from 0,0,0,0,0,0 --to 90,0,0,90,0,0 --duration 10 --dt 0.1\n  \
             reach move spbu6 --from 0,0,0,0,0,0 --to 90,0,0,90,0,0 --space tool --duration 10 --json\n  \
             reach move ur5 --from 0,-90,90,0,90,0 --to 45,-60,60,0,90,0 --profile quintic --duration 2 --csv m.csv\n  \
-            reach move ur5 --from-pose 0.4,-0.2,0.3,180,0,0 --to-pose 0.4,0.2,0.3,180,0,0 --space tool --duration 4 --dt 0.1 --choose topsis --criteria limits,manipulability"
+            reach move ur5 --from-xyz 0.4,-0.2,0.3 --from-rpy 180,0,0 --to-xyz 0.4,0.2,0.3 --to-rpy 180,0,0 --space tool --duration 4 --dt 0.1 --choose topsis --criteria limits,manipulability"
     )]
     Move(Box<crate::commands::move_cmd::MoveArgs>),
 
@@ -303,9 +304,9 @@ pub enum Command {
     /// A collision-free joint-space path through a scene (RRT-Connect), timed and re-checked.
     #[command(
         long_about = "Plans a collision-free joint-space path from --from to --to (degrees) or to a \
-            tool pose (--to-pose x,y,z,roll,pitch,yaw in metres and degrees; every feasible, \
+            tool pose (--to-xyz with --to-rpy or --to-quat, or --to-matrix; every feasible, \
             collision-free IK solution is a goal) with RRT-Connect and random shortcutting \
-            (seeded: the same --seed gives the same path unless the --budget-ms wall-time budget \
+            (seeded: the same --seed gives the same path unless the --time-budget wall-time budget \
             cuts the search). The waypoints are then timed with cycloidal segments that stop at \
             each waypoint (fastest within the speed limits, or --duration shared by length), \
             sampled, and every sample is re-checked for collisions: the report gives the \

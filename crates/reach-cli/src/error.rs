@@ -108,15 +108,18 @@ impl From<reach::Error> for CliError {
 /// `flags` maps field prefixes to flags (the longest matching prefix wins; `duration_s` →
 /// `--duration`), an index becomes ` value i` (`target.xyz_m[2]` → `--xyz value 2`) and a
 /// sub-field is dropped (`choose.method` → `--choose`). Other errors convert unchanged.
-pub fn flagged(e: reach::Error, flags: &[(&str, &str)]) -> CliError {
+pub fn flagged<K: AsRef<str>, F: AsRef<str>>(e: reach::Error, flags: &[(K, F)]) -> CliError {
     let reach::Error::Request { field, reason } = &e else { return e.into() };
     let hit = flags
         .iter()
         .filter(|(key, _)| {
-            field.strip_prefix(key).is_some_and(|rest| rest.is_empty() || rest.starts_with(['[', ' ', ':', '.']))
+            field
+                .strip_prefix(key.as_ref())
+                .is_some_and(|rest| rest.is_empty() || rest.starts_with(['[', ' ', ':', '.']))
         })
-        .max_by_key(|(key, _)| key.len());
+        .max_by_key(|(key, _)| key.as_ref().len());
     let Some((key, flag)) = hit else { return e.into() };
+    let (key, flag) = (key.as_ref(), flag.as_ref());
     let rest = &field[key.len()..];
     let rest = match rest.strip_prefix('[').and_then(|r| r.split_once(']')) {
         Some((index, tail)) => format!(" value {index}{tail}"),

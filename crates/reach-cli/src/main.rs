@@ -12,6 +12,7 @@ mod error;
 mod numbers;
 mod output;
 mod plot;
+mod pose_arg;
 mod robot_arg;
 
 use std::io::{BufWriter, Write};

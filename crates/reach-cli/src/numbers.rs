@@ -69,11 +69,23 @@ pub fn parse_finite(label: &str, text: &str) -> Result<f64, CliError> {
 /// # Errors
 /// [`CliError::BadInput`]: `--from value 2: expected a number, got "x"`, or an empty list.
 pub fn parse_list(option: &str, text: &str) -> Result<Vec<f64>, CliError> {
+    parse_items(option, text, "value")
+}
+
+/// [`parse_list`] for joint values: messages name the joint (`--from joint 2: …`).
+///
+/// # Errors
+/// As [`parse_list`].
+pub fn parse_joint_list(option: &str, text: &str) -> Result<Vec<f64>, CliError> {
+    parse_items(option, text, "joint")
+}
+
+fn parse_items(option: &str, text: &str, noun: &str) -> Result<Vec<f64>, CliError> {
     let values: Vec<f64> = text
         .split([',', ' ', '\t'])
         .filter(|s| !s.trim().is_empty())
         .enumerate()
-        .map(|(i, s)| parse_finite(&format!("{option} value {}", i + 1), s))
+        .map(|(i, s)| parse_finite(&format!("{option} {noun} {}", i + 1), s))
         .collect::<Result<_, _>>()?;
     if values.is_empty() {
         return Err(CliError::bad_input(format!("{option}: expected numbers, got {text:?}")));

@@ -45,6 +45,14 @@ pub fn limits_json(limits: &Limits) -> Option<[Option<f64>; 2]> {
     }
 }
 
+/// Writes `contents` to the file `path` given with `option` (`--csv`, `-o`, `--svg`).
+///
+/// # Errors
+/// [`CliError::BadInput`] naming the option and the path when the file cannot be written.
+pub fn write_file(option: &str, path: &std::path::Path, contents: impl AsRef<[u8]>) -> Result<(), CliError> {
+    std::fs::write(path, contents).map_err(|e| CliError::bad_input(format!("{option} {}: {e}", path.display())))
+}
+
 /// Writes `value` as indented JSON followed by a newline.
 ///
 /// Like `serde_json`'s pretty printer (fields in declaration order), except that arrays of

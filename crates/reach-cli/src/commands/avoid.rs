@@ -11,6 +11,7 @@ use reach::world::detour::DetourOutcome;
 use crate::error::CliError;
 use crate::numbers::{parse_exact, parse_finite, parse_list};
 use crate::output::{Table, fixed, write_json};
+use crate::pose_arg::joints_arg;
 use crate::robot_arg::RobotArgs;
 
 /// Arguments of `reach avoid`.
@@ -21,23 +22,27 @@ pub struct AvoidArgs {
     pub robot: RobotArgs,
 
     /// Current gripper position x,y [m]; the start configuration is the thesis's
-    /// minimum-change choice from the home pose (or give --start).
+    /// minimum-change choice from the home pose (or give --from).
     #[arg(
         long,
         value_name = "X,Y",
         allow_hyphen_values = true,
-        conflicts_with = "start",
-        required_unless_present = "start"
+        conflicts_with = "from",
+        required_unless_present = "from"
     )]
+    pub from_xy: Option<String>,
+
+    /// Start joint values q1,q2,q3 (degrees, radians with --rad) instead of --from-xy.
+    #[arg(long, value_name = "Q1,Q2,Q3", allow_hyphen_values = true)]
     pub from: Option<String>,
 
-    /// Start joint values q1,q2,q3 [deg] instead of --from.
-    #[arg(long, value_name = "Q1,Q2,Q3", allow_hyphen_values = true)]
-    pub start: Option<String>,
+    /// --from is in radians instead of degrees.
+    #[arg(long)]
+    pub rad: bool,
 
     /// Target gripper position x,y [m].
     #[arg(long, value_name = "X,Y", allow_hyphen_values = true)]
-    pub to: String,
+    pub to_xy: String,
 
     /// A point obstacle x,y [m] (repeatable).
     #[arg(long, value_name = "X,Y", allow_hyphen_values = true)]
@@ -91,13 +96,9 @@ impl AvoidArgs {
     /// [`CliError::BadInput`] for malformed numbers or lists.
     pub fn request(&self) -> Result<AvoidRequest, CliError> {
         Ok(AvoidRequest {
-            start: self
-                .start
-                .as_deref()
-                .map(|t| parse_exact("--start", t, 3, "q1,q2,q3 in degrees").map(reach::jobs::Joints::Deg))
-                .transpose()?,
-            from_xy_m: self.from.as_deref().map(|t| xy("--from", t)).transpose()?,
-            to_xy_m: xy("--to", &self.to)?,
+            start: self.from.as_deref().map(|t| joints_arg("--from", t, self.rad)).transpose()?,
+            from_xy_m: self.from_xy.as_deref().map(|t| xy("--from-xy", t)).transpose()?,
+            to_xy_m: xy("--to-xy", &self.to_xy)?,
             obstacles_xy_m: self.obstacle.iter().map(|o| xy("--obstacle", o)).collect::<Result<_, _>>()?,
             step_deg: parse_finite("--step", &self.step)?,
             literal_test: self.literal_test,
@@ -152,9 +153,9 @@ pub fn run(args: &AvoidArgs, out: &mut dyn Write) -> Result<(), CliError> {
         crate::error::flagged(
             e,
             &[
-                ("start", "--start"),
-                ("from_xy_m", "--from"),
-                ("to_xy_m", "--to"),
+                ("start", "--from"),
+                ("from_xy_m", "--from-xy"),
+                ("to_xy_m", "--to-xy"),
                 ("obstacles_xy_m", "--obstacle"),
                 ("step_deg", "--step"),
                 ("choose.criteria", "--criteria"),

@@ -8,7 +8,6 @@ use clap::{Args, ValueEnum};
 use reach::Robot;
 use reach::drive::DriveError;
 use reach::drive::output::GcodeDialect;
-use reach::jobs::Joints;
 use reach::jobs::drive::{
     DriveMotion, DriveMotionKind, DriveProgram, DriveReport, DriveRequest, PointToPointRequest, parse_motion_json,
 };
@@ -16,8 +15,9 @@ use reach::jobs::motion::Task;
 use reach::model::{JointKind, UrdfChain};
 
 use crate::error::{CliError, flagged, one_line};
-use crate::numbers::{display_unit, parse_finite, parse_list};
-use crate::output::{Align, Table, fixed, write_json};
+use crate::numbers::{display_unit, parse_finite};
+use crate::output::{Align, Table, fixed, write_file, write_json};
+use crate::pose_arg::joints_arg;
 use crate::robot_arg::{RobotArgs, load_robot};
 
 /// Output formats of `reach drive`.
@@ -96,7 +96,6 @@ pub struct DriveArgs {
 /// [`CliError::BadInput`] for an unreadable file, a task file for another robot, bad numbers,
 /// or neither/both of a file and `--from/--to`.
 fn request(args: &DriveArgs, robot: &Robot) -> Result<DriveRequest, CliError> {
-    let unit = |values: Vec<f64>| if args.rad { Joints::Rad(values) } else { Joints::Deg(values) };
     let motion = match (&args.motion, &args.from, &args.to) {
         (Some(path), None, None) => {
             let text = std::fs::read_to_string(path)
@@ -120,8 +119,8 @@ fn request(args: &DriveArgs, robot: &Robot) -> Result<DriveRequest, CliError> {
             }
         }
         (None, Some(from), Some(to)) => DriveMotion::PointToPoint(PointToPointRequest {
-            from: unit(parse_list("--from", from)?),
-            to: unit(parse_list("--to", to)?),
+            from: joints_arg("--from", from, args.rad)?,
+            to: joints_arg("--to", to, args.rad)?,
             duration_s: args.duration.as_deref().map(|d| parse_finite("--duration", d)).transpose()?,
         }),
         _ => {
@@ -179,8 +178,7 @@ pub fn run(args: &DriveArgs, out: &mut dyn Write) -> Result<(), CliError> {
     };
     match &args.output {
         Some(path) => {
-            std::fs::write(path, &text)
-                .map_err(|e| CliError::bad_input(format!("cannot write `{}`: {e}", path.display())))?;
+            write_file("--output", path, &text)?;
             writeln!(out, "wrote {} lines to {}", text.lines().count(), path.display())?;
         }
         None => out.write_all(text.as_bytes())?,

@@ -23,6 +23,7 @@ use super::ik_render::{write_report, write_scan, write_scan_csv};
 use crate::error::CliError;
 use crate::numbers::{parse_exact, parse_finite, parse_list};
 use crate::output::write_json;
+use crate::pose_arg::{PoseFlags, joints_arg};
 use crate::robot_arg::RobotArgs;
 
 /// Arguments of `reach ik`.
@@ -43,8 +44,8 @@ pub struct IkArgs {
     #[arg(long, value_name = "R,P,Y", allow_hyphen_values = true, requires = "xyz", conflicts_with = "matrix")]
     pub rpy: Option<String>,
 
-    /// --rpy is in radians instead of degrees.
-    #[arg(long, requires = "rpy")]
+    /// --rpy and --from are in radians instead of degrees.
+    #[arg(long)]
     pub rad: bool,
 
     /// Tool orientation as a unit quaternion w,x,y,z (normalised).
@@ -59,7 +60,8 @@ pub struct IkArgs {
     #[arg(long)]
     pub all: bool,
 
-    /// The current configuration q1,..,qn (degrees; prismatic in metres); default: home.
+    /// The current configuration q1,..,qn (degrees, radians with --rad; prismatic in metres);
+    /// default: home.
     /// The chosen solution is the one closest to it.
     #[arg(long, value_name = "Q1,..,QN", allow_hyphen_values = true)]
     pub from: Option<String>,
@@ -115,9 +117,9 @@ pub struct IkArgs {
     #[arg(long, value_name = "DEG", allow_hyphen_values = true, requires = "xyz", conflicts_with_all = ["rpy", "quat", "matrix", "all", "solver", "free_angle", "step", "restarts", "time_budget", "joint_weights", "choose"])]
     pub scan: Option<String>,
 
-    /// With --scan: print the full table as CSV.
-    #[arg(long, requires = "scan", conflicts_with = "json")]
-    pub csv: bool,
+    /// With --scan: also write the full table as CSV to FILE.
+    #[arg(long, value_name = "FILE", requires = "scan")]
+    pub csv: Option<std::path::PathBuf>,
 
     /// Print the report as JSON (docs/schemas/ik.report.schema.json; with --scan
     /// docs/schemas/ik_scan.report.schema.json).
@@ -154,16 +156,19 @@ const FLAGS: [(&str, &str); 16] = [
 pub fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let loaded = args.robot.load()?;
     let robot = &loaded.robot;
-    let from = args.from.as_deref().map(joints_of).transpose()?;
+    let from = args.from.as_deref().map(|t| joints_arg("--from", t, args.rad)).transpose()?;
     if let Some(step) = &args.scan {
         let xyz = parse_exact("--xyz", args.xyz.as_deref().unwrap_or_default(), 3, "x,y,z in metres")?;
         let request = IkScanRequest { xyz_m: [xyz[0], xyz[1], xyz[2]], step_deg: parse_finite("--scan", step)?, from };
         let scan_flags = [("step_deg", "--scan"), ("xyz_m", "--xyz"), ("from", "--from")];
         let report = reach::jobs::ik::ik_scan(robot, &request).map_err(|e| crate::error::flagged(e, &scan_flags))?;
+        if let Some(path) = &args.csv {
+            let mut table = Vec::new();
+            write_scan_csv(&mut table, &report)?;
+            crate::output::write_file("--csv", path, table)?;
+        }
         if args.json {
             write_json(out, &report)?;
-        } else if args.csv {
-            write_scan_csv(out, &report)?;
         } else {
             write_scan(out, robot, &report, args.from.is_some())?;
         }
@@ -193,41 +198,14 @@ fn finish(out: &mut dyn Write, reason: Option<String>) -> Result<(), CliError> {
 
 /// The target from `--xyz` (+ `--rpy`/`--rad` or `--quat`) or `--matrix`.
 fn pose_of(args: &IkArgs) -> Result<Pose, CliError> {
-    if let Some(text) = &args.matrix {
-        let m = parse_exact("--matrix", text, 16, "a 4x4 matrix, row-major")?;
-        return Ok(Pose {
-            matrix: Some(std::array::from_fn(|r| std::array::from_fn(|c| m[4 * r + c]))),
-            ..Pose::default()
-        });
+    PoseFlags {
+        prefix: "",
+        xyz: args.xyz.as_deref(),
+        rpy: args.rpy.as_deref(),
+        quat: args.quat.as_deref(),
+        matrix: args.matrix.as_deref(),
     }
-    let Some(text) = &args.xyz else {
-        return Err(CliError::bad_input("give the target with --xyz or --matrix"));
-    };
-    let p = parse_exact("--xyz", text, 3, "x,y,z in metres")?;
-    let mut pose = Pose { xyz_m: Some([p[0], p[1], p[2]]), ..Pose::default() };
-    if let Some(text) = &args.rpy {
-        let unit = if args.rad { "radians" } else { "degrees" };
-        let a = parse_exact("--rpy", text, 3, &format!("roll,pitch,yaw in {unit}"))?;
-        let a = [a[0], a[1], a[2]];
-        if args.rad {
-            pose.rpy_rad = Some(a);
-        } else {
-            pose.rpy_deg = Some(a);
-        }
-    }
-    if let Some(text) = &args.quat {
-        let q = parse_exact("--quat", text, 4, "w,x,y,z")?;
-        pose.quat_wxyz = Some([q[0], q[1], q[2], q[3]]);
-    }
-    Ok(pose)
-}
-
-/// `--from`: one finite number per joint, named `--from: joint 3` in messages (the count is
-/// checked by the library).
-fn joints_of(text: &str) -> Result<Joints, CliError> {
-    let parts = text.split([',', ' ', '\t']).filter(|s| !s.trim().is_empty());
-    let values = parts.enumerate().map(|(i, s)| parse_finite(&format!("--from: joint {}", i + 1), s));
-    Ok(Joints::Deg(values.collect::<Result<_, _>>()?))
+    .pose(args.rad)
 }
 
 /// The request from the arguments (`from` parsed already).

@@ -289,7 +289,7 @@ pub(super) fn write_scan(out: &mut dyn Write, robot: &Robot, r: &IkScanReport, f
         cells.push(if row.within_limits { "within limits" } else { "outside limits" }.to_string());
         t.row(cells);
     }
-    writeln!(out, "rows [deg] (chosen: least S = |α − α0| + |β − β0| + |γ − γ0|; --csv prints all):")?;
+    writeln!(out, "rows [deg] (chosen: least S = |α − α0| + |β − β0| + |γ − γ0|; --csv FILE writes all):")?;
     t.write(out, "  ")
 }
 

@@ -3,8 +3,9 @@
 //! [`MoveRequest`] → `reach::jobs::motion::move_motion` → render (`move_render.rs`: text, CSV,
 //! drawings). `--json` prints the report (docs/schemas/move.report.schema.json).
 //!
-//! Units on the command line: joint values in degrees (prismatic in metres), poses
-//! `x,y,z,roll,pitch,yaw` in metres and degrees with `R = Rz(yaw)·Ry(pitch)·Rx(roll)`.
+//! Units on the command line (`crate::pose_arg`): joint values in degrees (radians with
+//! `--rad`; prismatic in metres); poses `--from-xyz`/`--to-xyz` in metres with `--…-rpy` (degrees,
+//! radians with `--rad`, `R = Rz(yaw)·Ry(pitch)·Rx(roll)`) or `--…-quat`, or `--…-matrix`.
 //!
 //! Progress: a tool-space motion of at least [`PROGRESS_MIN_SAMPLES`] samples shows a progress
 //! bar of its tracking on stderr, only when stdout and stderr are terminals and not with
@@ -18,13 +19,13 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 use reach::jobs::motion::{ChoiceSpec, End, MoveRequest};
-use reach::jobs::{Joints, Pose};
 
 use crate::commands::move_render::{infeasible, move_drawing, write_csv, write_report};
 use crate::error::CliError;
-use crate::numbers::{parse_exact, parse_finite, parse_list};
+use crate::numbers::{parse_finite, parse_list};
 use crate::output::write_json;
 use crate::plot::progress::Progress;
+use crate::pose_arg::{FromPoseArgs, PoseFlags, ToPoseArgs, flag_table, joints_arg};
 use crate::robot_arg::RobotArgs;
 
 pub use reach::jobs::motion::ProfileName;
@@ -58,21 +59,25 @@ pub struct MoveArgs {
     #[command(flatten)]
     pub robot: RobotArgs,
 
-    /// Start joint values q1,..,qn (degrees; prismatic in metres).
-    #[arg(long, value_name = "Q1,..,QN", allow_hyphen_values = true, conflicts_with = "from_pose")]
+    /// Start joint values q1,..,qn (degrees, radians with --rad; prismatic in metres).
+    #[arg(long, value_name = "Q1,..,QN", allow_hyphen_values = true)]
     pub from: Option<String>,
 
     /// Target joint values q1,..,qn.
-    #[arg(long, value_name = "Q1,..,QN", allow_hyphen_values = true, conflicts_with = "to_pose")]
+    #[arg(long, value_name = "Q1,..,QN", allow_hyphen_values = true)]
     pub to: Option<String>,
 
-    /// Start pose x,y,z,roll,pitch,yaw (metres, degrees).
-    #[arg(long, value_name = "X,Y,Z,R,P,Y", allow_hyphen_values = true)]
-    pub from_pose: Option<String>,
+    /// Start pose (instead of --from).
+    #[command(flatten)]
+    pub from_pose: FromPoseArgs,
 
-    /// Target pose x,y,z,roll,pitch,yaw (metres, degrees).
-    #[arg(long, value_name = "X,Y,Z,R,P,Y", allow_hyphen_values = true)]
-    pub to_pose: Option<String>,
+    /// Target pose (instead of --to).
+    #[command(flatten)]
+    pub to_pose: ToPoseArgs,
+
+    /// Joint values and roll, pitch, yaw are in radians instead of degrees.
+    #[arg(long)]
+    pub rad: bool,
 
     /// Interpolate in joint space or in tool space.
     #[arg(long, value_enum, default_value = "joint")]
@@ -128,33 +133,27 @@ pub struct MoveArgs {
     pub draw: crate::plot::DrawArgs,
 }
 
-/// Parses `x,y,z,roll,pitch,yaw` (metres, degrees) given to `option`.
-///
-/// # Errors
-/// [`CliError::BadInput`] naming `option` for anything but 6 finite numbers.
-pub(crate) fn pose_arg(option: &str, text: &str) -> Result<Pose, CliError> {
-    let v = parse_exact(option, text, 6, "x,y,z,roll,pitch,yaw in metres and degrees")?;
-    Ok(Pose::xyz_rpy_deg([v[0], v[1], v[2]], [v[3], v[4], v[5]]))
-}
-
 impl MoveArgs {
     /// The request of these arguments (numbers parsed, nothing computed).
     ///
     /// # Errors
     /// [`CliError::BadInput`] naming the flag.
     pub fn request(&self) -> Result<MoveRequest, CliError> {
-        let end = |joints: &Option<String>, pose: &Option<String>, j: &str, p: &str| -> Result<End, CliError> {
-            match (joints, pose) {
-                (Some(t), None) => Ok(End::Joints(Joints::Deg(parse_list(j, t)?))),
-                (None, Some(t)) => Ok(End::Pose(pose_arg(p, t)?)),
-                _ => Err(CliError::bad_input(format!("give exactly one of {j} and {p}"))),
+        let end = |joints: &Option<String>, pose: PoseFlags, j: &str| -> Result<End, CliError> {
+            match (joints, pose.given()) {
+                (Some(t), false) => Ok(End::Joints(joints_arg(j, t, self.rad)?)),
+                (None, true) => Ok(End::Pose(pose.pose(self.rad)?)),
+                _ => Err(CliError::bad_input(format!(
+                    "give exactly one of {j} and --{}xyz/--{}matrix",
+                    pose.prefix, pose.prefix
+                ))),
             }
         };
         let number = |option: &str, text: &Option<String>| text.as_deref().map(|t| parse_finite(option, t)).transpose();
         Ok(MoveRequest {
             name: String::new(),
-            from: end(&self.from, &self.from_pose, "--from", "--from-pose")?,
-            to: end(&self.to, &self.to_pose, "--to", "--to-pose")?,
+            from: end(&self.from, self.from_pose.flags(), "--from")?,
+            to: end(&self.to, self.to_pose.flags(), "--to")?,
             space: match self.space {
                 SpaceArg::Joint => reach::jobs::motion::Space::Joint,
                 SpaceArg::Tool => reach::jobs::motion::Space::Tool,
@@ -183,28 +182,23 @@ impl MoveArgs {
 }
 
 /// The library's error with the request field named by its flag (`duration_s` → `--duration`,
-/// `from.joints` → `--from`, `from.pose…` → `--from-pose`, `choose.criteria` → `--criteria`).
-fn flag_error(request: &MoveRequest, e: reach::Error) -> CliError {
-    let end =
-        |end: &End, joints: &'static str, pose: &'static str| if matches!(end, End::Pose(_)) { pose } else { joints };
-    crate::error::flagged(
-        e,
-        &[
-            ("from.pose", "--from-pose"),
-            ("from.joints", "--from"),
-            ("from", end(&request.from, "--from", "--from-pose")),
-            ("to.pose", "--to-pose"),
-            ("to.joints", "--to"),
-            ("to", end(&request.to, "--to", "--to-pose")),
-            ("duration_s", "--duration"),
-            ("speed_m_s", "--speed"),
-            ("dt_s", "--dt"),
-            ("joint_weights", "--joint-weights"),
-            ("choose.criteria", "--criteria"),
-            ("choose.weights", "--weights"),
-            ("choose", "--choose"),
-        ],
-    )
+/// `from.joints` → `--from`, `to.pose.rpy_deg` → `--to-rpy`, `choose.criteria` → `--criteria`).
+fn flag_error(args: &MoveArgs, e: reach::Error) -> CliError {
+    let fixed = [
+        ("from.joints", "--from"),
+        ("from", if args.from.is_some() { "--from" } else { "--from-xyz" }),
+        ("to.joints", "--to"),
+        ("to", if args.to.is_some() { "--to" } else { "--to-xyz" }),
+        ("duration_s", "--duration"),
+        ("speed_m_s", "--speed"),
+        ("dt_s", "--dt"),
+        ("joint_weights", "--joint-weights"),
+        ("choose.criteria", "--criteria"),
+        ("choose.weights", "--weights"),
+        ("choose", "--choose"),
+    ];
+    let flags = flag_table(&fixed, &[(args.from_pose.flags(), "from.pose"), (args.to_pose.flags(), "to.pose")]);
+    crate::error::flagged(e, &flags)
 }
 
 /// Tool-space motions with at least this many samples show a progress bar while they are
@@ -248,7 +242,7 @@ pub fn run(args: &MoveArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let m = reach::jobs::motion::move_motion_with_progress(&robot, &request, &mut |done, total| {
         bars.report("", done, total);
     })
-    .map_err(|e| flag_error(&request, e))?;
+    .map_err(|e| flag_error(args, e))?;
     drop(bars);
     if args.draw.any() {
         args.draw.write(&move_drawing(&robot, &request, &m))?;

@@ -128,7 +128,7 @@ pub fn write_csv(path: &Path, m: &MoveReport) -> Result<(), CliError> {
         text.push_str(&cells.join(","));
         text.push('\n');
     }
-    std::fs::write(path, text).map_err(|e| CliError::bad_input(format!("--csv {}: {e}", path.display())))
+    crate::output::write_file("--csv", path, text)
 }
 
 /// The joint curves and tool path of one computed motion.

@@ -7,12 +7,12 @@ use std::io::Write;
 use clap::Args;
 use reach::Robot;
 use reach::jobs::world::{PathReport, PathRequest, PathRun, TimedPath, path_run};
-use reach::jobs::{Joints, Pose};
 
 use crate::commands::check::{read_scene, scene_error};
 use crate::error::CliError;
-use crate::numbers::{parse_exact, parse_finite, parse_list};
+use crate::numbers::parse_finite;
 use crate::output::{Table, fixed, fixeds, write_json};
+use crate::pose_arg::{ToPoseArgs, flag_table, joints_arg};
 use crate::robot_arg::RobotArgs;
 
 /// Arguments of `reach path`.
@@ -26,26 +26,31 @@ pub struct PathArgs {
     #[arg(value_name = "SCENE")]
     pub scene: String,
 
-    /// Start joint values q1,..,qn (degrees; prismatic in metres).
+    /// Start joint values q1,..,qn (degrees, radians with --rad; prismatic in metres).
     #[arg(long, value_name = "Q1,..,QN", allow_hyphen_values = true)]
     pub from: String,
 
-    /// Goal joint values q1,..,qn (degrees; prismatic in metres).
-    #[arg(long, value_name = "Q1,..,QN", allow_hyphen_values = true, conflicts_with = "to_pose")]
+    /// Goal joint values q1,..,qn.
+    #[arg(long, value_name = "Q1,..,QN", allow_hyphen_values = true)]
     pub to: Option<String>,
 
-    /// Goal tool pose x,y,z,roll,pitch,yaw (metres, degrees): every feasible, collision-free IK
-    /// solution is a goal; the nearest reachable one wins.
-    #[arg(long, value_name = "X,Y,Z,R,P,Y", allow_hyphen_values = true)]
-    pub to_pose: Option<String>,
+    /// Goal tool pose (instead of --to): every feasible, collision-free IK solution is a goal;
+    /// the nearest reachable one wins.
+    #[command(flatten)]
+    pub to_pose: ToPoseArgs,
+
+    /// Joint values and roll, pitch, yaw are in radians instead of degrees.
+    #[arg(long)]
+    pub rad: bool,
 
     /// Seed of the planner's random generator.
     #[arg(long, default_value = "1", value_name = "N")]
     pub seed: u64,
 
-    /// Wall-time budget of the search, milliseconds.
-    #[arg(long, default_value = "1000", value_name = "MS")]
-    pub budget_ms: u64,
+    /// Wall-time budget of the search, seconds (the result may depend on the machine's speed
+    /// when the budget runs out).
+    #[arg(long, default_value = "1", value_name = "S", allow_hyphen_values = true)]
+    pub time_budget: String,
 
     /// Total duration of the timed motion, seconds (default: the fastest synchronised
     /// motion within the joints' speed limits, segment by segment).
@@ -70,23 +75,17 @@ impl PathArgs {
     /// [`CliError::BadInput`] for an unreadable scene, malformed numbers, both or neither of
     /// `--to` and `--to-pose`.
     pub fn request(&self) -> Result<PathRequest, CliError> {
-        let to_pose = match &self.to_pose {
-            Some(t) => {
-                let v = parse_exact("--to-pose", t, 6, "x,y,z in metres, roll,pitch,yaw in degrees")?;
-                Some(Pose::xyz_rpy_deg([v[0], v[1], v[2]], [v[3], v[4], v[5]]))
-            }
-            None => None,
-        };
-        if self.to.is_some() == to_pose.is_some() {
-            return Err(CliError::bad_input("give exactly one of --to and --to-pose"));
+        let pose = self.to_pose.flags();
+        if self.to.is_some() == pose.given() {
+            return Err(CliError::bad_input("give exactly one of --to and --to-xyz/--to-matrix"));
         }
         Ok(PathRequest {
             scene: read_scene(&self.scene)?,
-            from: Joints::Deg(parse_list("--from", &self.from)?),
-            to: self.to.as_deref().map(|t| parse_list("--to", t).map(Joints::Deg)).transpose()?,
-            to_pose,
+            from: joints_arg("--from", &self.from, self.rad)?,
+            to: self.to.as_deref().map(|t| joints_arg("--to", t, self.rad)).transpose()?,
+            to_pose: if pose.given() { Some(pose.pose(self.rad)?) } else { None },
             seed: self.seed,
-            budget_ms: self.budget_ms,
+            time_budget_s: parse_finite("--time-budget", &self.time_budget)?,
             duration_s: self.duration.as_deref().map(|d| parse_finite("--duration", d)).transpose()?,
         })
     }
@@ -102,7 +101,19 @@ pub fn run(args: &PathArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let robot = args.robot.load()?.robot;
     let request = args.request()?;
     args.draw.check_files()?;
-    let run = path_run(&robot, &request).map_err(|e| scene_error(&args.scene, e))?;
+    let run = path_run(&robot, &request).map_err(|e| match e {
+        reach::Error::Request { .. } => {
+            let fixed = [
+                ("from", "--from"),
+                ("to", "--to"),
+                ("to_pose", "--to-xyz"),
+                ("duration_s", "--duration"),
+                ("time_budget_s", "--time-budget"),
+            ];
+            crate::error::flagged(e, &flag_table(&fixed, &[(args.to_pose.flags(), "to_pose")]))
+        }
+        e => scene_error(&args.scene, e),
+    })?;
     if let (true, Some(timed)) = (args.draw.any(), &run.timed) {
         args.draw.write(&drawing(&robot, &run, timed))?;
     }

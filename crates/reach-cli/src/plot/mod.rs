@@ -120,7 +120,7 @@ pub fn ensure_dir(option: &str, dir: &Path) -> Result<(), CliError> {
 /// # Errors
 /// [`CliError::BadInput`] naming `option` and the path when the file cannot be written.
 pub fn write_svg(option: &str, path: &Path, drawing: &Svg) -> Result<(), CliError> {
-    std::fs::write(path, drawing.finish()).map_err(|e| CliError::bad_input(format!("{option} {}: {e}", path.display())))
+    crate::output::write_file(option, path, drawing.finish())
 }
 
 /// The system fonts, loaded once; a note goes to stderr when none are found (the PNG is then
@@ -148,7 +148,7 @@ fn fonts() -> std::sync::Arc<resvg::usvg::fontdb::Database> {
 pub fn write_png(option: &str, path: &Path, drawing: &Svg, width: Option<u32>) -> Result<(), CliError> {
     check_png_width(width)?;
     let png = render_png(drawing, width)?;
-    std::fs::write(path, png).map_err(|e| CliError::bad_input(format!("{option} {}: {e}", path.display())))
+    crate::output::write_file(option, path, png)
 }
 
 /// The PNG bytes of a drawing (see [`write_png`]).

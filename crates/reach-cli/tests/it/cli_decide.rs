@@ -406,10 +406,14 @@ fn move_choose_flags_act_as_the_task_files_choose() {
     let line = [
         "move",
         "ur5",
-        "--from-pose",
-        "0.4,-0.2,0.3,180,0,0",
-        "--to-pose",
-        "0.4,0.2,0.3,180,0,0",
+        "--from-xyz",
+        "0.4,-0.2,0.3",
+        "--from-rpy",
+        "180,0,0",
+        "--to-xyz",
+        "0.4,0.2,0.3",
+        "--to-rpy",
+        "180,0,0",
         "--space",
         "tool",
         "--duration",
@@ -459,7 +463,7 @@ fn move_choose_flags_act_as_the_task_files_choose() {
 #[test]
 fn avoid_choose_plans_both_sides_and_says_when_only_one_is_feasible() {
     let args =
-        ["avoid", "planar3", "--start", "60,-40,-30", "--to", "2.4,0.2", "--obstacle", "2.0,0.7", "--step", "0.1"];
+        ["avoid", "planar3", "--from", "60,-40,-30", "--to-xy", "2.4,0.2", "--obstacle", "2.0,0.7", "--step", "0.1"];
     let mut with = args.to_vec();
     with.extend(["--choose", "topsis", "--json"]);
     let r = json(&with);

@@ -149,7 +149,7 @@ fn task_files() {
 fn bad_input() {
     fails(&["drive", "puma560", "--from", "0,0,0,0,0,0", "--to", "1,0,0,0,0,0"], 2, &["joint 1", "no drive data"]);
     fails(&["drive", "planar3", "--from", "0,0", "--to", "1,0,0"], 2, &["--from", "3 joints"]);
-    fails(&["drive", "planar3", "--from", "0,0,0", "--to", "1,x,0"], 2, &["--to value 2"]);
+    fails(&["drive", "planar3", "--from", "0,0,0", "--to", "1,x,0"], 2, &["--to joint 2"]);
     fails(&["drive", "planar3", "--from", "0,0,0", "--to", "90,0,0", "--duration", "1"], 3, &["too short", "joint 1"]);
     fails(&["drive", "planar3"], 2, &["--from"]);
     // A negative value may lead the list (here it is outside joint 1's range [0°, 180°]).

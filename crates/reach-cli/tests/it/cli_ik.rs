@@ -228,7 +228,21 @@ fn planar3_scan_reproduces_the_min_s_rows_of_notes_000() {
     // Notes 000 §6.3: start (α0, β0, γ0) = (150°, 140°, 60°), i.e. q = (γ, β − 180, α − 180)
     // = (60, −40, −30); target (2.4, 0.2), Δα = 0.01°: 7847 rows, the least S = 23.756601° at
     // row index 4846, α = 149.996959°, β = 121.048252°, γ = 55.198188°.
-    let csv = ok(&["ik", "planar3", "--xyz", "2.4,0.2,0", "--scan", "0.01", "--from", "60,-40,-30", "--csv"]);
+    let path = crate::common::temp_file("scan.csv", "");
+    let text = ok(&[
+        "ik",
+        "planar3",
+        "--xyz",
+        "2.4,0.2,0",
+        "--scan",
+        "0.01",
+        "--from",
+        "60,-40,-30",
+        "--csv",
+        path.to_str().unwrap(),
+    ]);
+    assert!(text.contains("23.756601"), "the text report is printed too: {text}");
+    let csv = std::fs::read_to_string(&path).unwrap();
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(lines[0], "alpha_deg,beta_deg,gamma_deg,q1_deg,q2_deg,q3_deg,S_deg,within_limits,chosen");
     assert_eq!(lines.len(), 1 + 7847);
@@ -262,8 +276,10 @@ fn planar3_scan_reproduces_the_min_s_rows_of_notes_000() {
 #[test]
 fn planar3_scan_of_an_unreachable_target_exits_3() {
     // Notes 000 §6.2: (0, 3.2) is beyond 3L.
-    let run = infeasible(&["ik", "planar3", "--xyz", "0,3.2,0", "--scan", "0.01", "--csv"]);
-    assert_eq!(run.stdout.lines().count(), 1, "header only: {}", run.stdout);
+    let path = crate::common::temp_file("unreachable.csv", "");
+    let run = infeasible(&["ik", "planar3", "--xyz", "0,3.2,0", "--scan", "0.01", "--csv", path.to_str().unwrap()]);
+    let csv = std::fs::read_to_string(&path).unwrap();
+    assert_eq!(csv.lines().count(), 1, "header only: {csv}");
     assert!(run.stderr.contains("out of reach"), "{}", run.stderr);
     let run = infeasible(&["ik", "planar3", "--xyz", "0,3.2,0", "--scan", "0.01"]);
     assert!(run.stdout.contains("unreachable"), "{}", run.stdout);
@@ -376,7 +392,7 @@ fn bad_input_exits_2_with_empty_stdout() {
         &["ik", "puma560"][..],
         &["ik", "puma560", "--xyz", "0,0,0", "--matrix", identity],
         &["ik", "puma560", "--matrix", identity, "--rpy", "0,0,0"],
-        &["ik", "planar3", "--xyz", "2,1,0", "--csv"],
+        &["ik", "planar3", "--xyz", "2,1,0", "--csv", "t.csv"],
         // --weights are criterion weights: they need --choose (joint weights are --joint-weights).
         &["ik", "puma560", "--matrix", identity, "--weights", "1,1,1,1,1,1"],
         &["ik", "puma560", "--matrix", identity, "--criteria", "change"],
@@ -521,6 +537,18 @@ fn scan_json_is_the_library_report() {
     let chosen = report["chosen"].as_u64().unwrap() as usize;
     assert!(rows.len() > 10 && rows.iter().all(|r| r["s_deg"].as_f64() >= rows[chosen]["s_deg"].as_f64()));
     // The CSV lists the same rows.
-    let csv = ok(&["ik", "planar3", "--xyz", "2.4,0.2,0", "--scan", "1", "--from", "60,-40,-30", "--csv"]);
-    assert_eq!(csv.lines().count(), rows.len() + 1);
+    let path = crate::common::temp_file("rows.csv", "");
+    ok(&[
+        "ik",
+        "planar3",
+        "--xyz",
+        "2.4,0.2,0",
+        "--scan",
+        "1",
+        "--from",
+        "60,-40,-30",
+        "--csv",
+        path.to_str().unwrap(),
+    ]);
+    assert_eq!(std::fs::read_to_string(&path).unwrap().lines().count(), rows.len() + 1);
 }

@@ -141,7 +141,7 @@ fn move_json_feeds_drive() {
     let drive = reach(&["drive", "planar3", path.to_str().unwrap(), "--format", "json"]);
     assert_eq!(drive.code, 0, "{}", drive.stderr);
     let d: Value = serde_json::from_str(&drive.stdout).unwrap();
-    assert!(d.to_string().contains("trajectory"), "{d}");
+    assert_eq!(d["motion"], "samples", "{d}");
 }
 
 /// CSV output: a header and one row per sample; the last row is the target.
@@ -174,7 +174,20 @@ fn bad_input_and_infeasible() {
         "--from: robot `spbu6` has 6 joints, got 3",
     );
     fails(
-        &["move", "spbu6", "--from-pose", "30,0,0,0,0,0", "--to-pose", "0,3,5,-90,0,0", "--duration", "1"],
+        &[
+            "move",
+            "spbu6",
+            "--from-xyz",
+            "30,0,0",
+            "--from-rpy",
+            "0,0,0",
+            "--to-xyz",
+            "0,3,5",
+            "--to-rpy",
+            "-90,0,0",
+            "--duration",
+            "1",
+        ],
         2,
         "start pose",
     );
@@ -221,10 +234,14 @@ fn long_tool_motions_show_no_progress_bar_when_not_on_a_terminal() {
     let weld = [
         "move",
         "welder6r",
-        "--from-pose",
-        "0.050,0.740,0.070,0,-41.86854343693031,-50.19442890773481",
-        "--to-pose",
-        "0.500,0.200,0.700,0,-41.86854343693031,-50.19442890773481",
+        "--from-xyz",
+        "0.050,0.740,0.070",
+        "--from-rpy",
+        "0,-41.86854343693031,-50.19442890773481",
+        "--to-xyz",
+        "0.500,0.200,0.700",
+        "--to-rpy",
+        "0,-41.86854343693031,-50.19442890773481",
         "--space",
         "tool",
         "--speed",
@@ -314,10 +331,14 @@ fn move_and_plan_json_are_the_library_reports() {
         &[
             "move",
             "welder6r",
-            "--from-pose",
-            "0.05,0.74,0.07,0,-41.86854343693031,-50.19442890773481",
-            "--to-pose",
-            "0.5,0.2,0.7,0,-41.86854343693031,-50.19442890773481",
+            "--from-xyz",
+            "0.05,0.74,0.07",
+            "--from-rpy",
+            "0,-41.86854343693031,-50.19442890773481",
+            "--to-xyz",
+            "0.5,0.2,0.7",
+            "--to-rpy",
+            "0,-41.86854343693031,-50.19442890773481",
             "--space",
             "tool",
             "--speed",
@@ -337,4 +358,62 @@ fn move_and_plan_json_are_the_library_reports() {
     let job = Job { robot: RobotInput::Preset("welder6r".into()), request: Request::Plan(PlanRequest { task }) };
     let v = crate::common::assert_report(&["plan", path, "--json"], &job, "plan.report");
     assert_eq!(v["motions"][0]["name"], "weld P -> M");
+}
+
+/// Joint vectors and poses are typed as in `reach ik`: `--rad` for radians, a pose by
+/// `--…-xyz` with `--…-rpy` or `--…-quat`, or `--…-matrix`; all give the same motion.
+#[test]
+fn move_takes_radians_and_every_pose_form() {
+    let run = |args: &[&str]| -> Value {
+        let all = [&["move", "ur5", "--duration", "2", "--dt", "0.5", "--json"][..], args].concat();
+        let r = reach(&all);
+        assert_eq!(r.code, 0, "{all:?}: {}", r.stderr);
+        json(&r)
+    };
+    let degrees = run(&["--from", "0,-90,90,0,90,0", "--to", "45,-60,60,0,90,0"]);
+    let radians = run(&[
+        "--rad",
+        "--from",
+        "0 -1.5707963267948966 1.5707963267948966 0 1.5707963267948966 0",
+        "--to",
+        "0.7853981633974483,-1.0471975511965976,1.0471975511965976,0,1.5707963267948966,0",
+    ]);
+    for (a, b) in degrees["samples"].as_array().unwrap().iter().zip(radians["samples"].as_array().unwrap()) {
+        for (x, y) in q(a).iter().zip(q(b)) {
+            assert!((x - y).abs() < 1e-9, "{a} vs {b}");
+        }
+    }
+    // Tool-space ends: rpy (180, 0, 0) is the quaternion (0, 1, 0, 0) and the matrix diag(1, −1, −1).
+    let tool = ["--space", "tool", "--from-xyz", "0.4,-0.2,0.3"];
+    let rpy = run(&[&tool[..], &["--from-rpy", "180,0,0", "--to-xyz", "0.4,0.2,0.3", "--to-rpy", "180,0,0"]].concat());
+    let quat =
+        run(&[&tool[..], &["--from-quat", "0,1,0,0", "--to-matrix", "1,0,0,0.4,0,-1,0,0.2,0,0,-1,0.3,0,0,0,1"]]
+            .concat());
+    let (a, b) = (rpy["samples"].as_array().unwrap(), quat["samples"].as_array().unwrap());
+    assert_eq!(a.len(), b.len());
+    for (x, y) in a.iter().zip(b) {
+        for (u, v) in nums(&x["xyz_m"]).iter().zip(nums(&y["xyz_m"])) {
+            assert!((u - v).abs() < 1e-9, "{x} vs {y}");
+        }
+    }
+    // Errors name the flag typed.
+    fails(
+        &[
+            "move",
+            "ur5",
+            "--space",
+            "tool",
+            "--from-xyz",
+            "0.4,-0.2,0.3",
+            "--from-rpy",
+            "180,0,0",
+            "--to-xyz",
+            "0.4,0.2,0.3",
+            "--to-quat",
+            "0,0,0,0",
+        ],
+        2,
+        "--to-quat",
+    );
+    fails(&["move", "ur5", "--from", "0,-90,x,0,90,0", "--to", "0,0,0,0,0,0"], 2, "--from joint 3");
 }

@@ -92,9 +92,9 @@ fn avoid_draws_the_detour_like_the_thesis_figure() {
     let run = reach(&[
         "avoid",
         "planar3",
-        "--start",
+        "--from",
         "60,-40,-30",
-        "--to",
+        "--to-xy",
         "2.4,0.2",
         "--obstacle",
         "2.0,0.7",
@@ -166,7 +166,7 @@ fn bad_drawing_paths_are_bad_input() {
         vec!["move", "ur5", "--from", "0,0,0,0,0,0", "--to", "10,0,0,0,0,0", "--duration", "1", "--png", s(&dir)],
         vec!["cspace", "varan4", "examples/seed004_free.toml", "--fix", "q1=0", "--svg", s(&file)],
         vec!["cspace", "varan4", "examples/seed004_free.toml", "--svg", s(&dir)],
-        vec!["avoid", "planar3", "--start", "60,-40,-30", "--to", "2.4,0.2", "--png", s(&missing)],
+        vec!["avoid", "planar3", "--from", "60,-40,-30", "--to-xy", "2.4,0.2", "--png", s(&missing)],
     ] {
         let run = reach(&args);
         assert_eq!(run.code, 2, "{args:?}: {}", run.stderr);
@@ -234,8 +234,8 @@ fn path_without_a_solution_exits_3_after_the_report() {
         "0,-30,-30",
         "--duration",
         "5",
-        "--budget-ms",
-        "0",
+        "--time-budget",
+        "0.000001",
         "--json",
     ]);
     assert_eq!(run.code, 3, "{}", run.stderr);
@@ -250,7 +250,7 @@ fn path_bad_input_exits_2_with_one_line() {
         vec!["path", "planar3", POST, "--from", "60,-40", "--to", "0,-30,-30"],
         vec!["path", "planar3", POST, "--from", "60,-40,-30"],
         vec!["path", "planar3", POST, "--from", "60,-40,nan", "--to", "0,-30,-30"],
-        vec!["path", "planar3", POST, "--from", "60,-40,-30", "--to-pose", "1,2,3"],
+        vec!["path", "planar3", POST, "--from", "60,-40,-30", "--to-xyz", "1,2"],
         vec!["path", "planar3", "no-such-scene.toml", "--from", "60,-40,-30", "--to", "0,-30,-30"],
         vec!["path", "planar3", POST, "--from", "60,-40,-30", "--to", "0,-30,-30", "--duration", "-1"],
     ] {
@@ -270,8 +270,18 @@ fn path_between_one_configuration_and_itself_is_bad_input() {
 
 #[test]
 fn path_to_a_pose_ends_at_the_pose() {
-    let run =
-        reach(&["path", "ur5", POST, "--from", "0,-90,90,-90,-90,0", "--to-pose", "0.4,-0.2,0.3,180,0,0", "--json"]);
+    let run = reach(&[
+        "path",
+        "ur5",
+        POST,
+        "--from",
+        "0,-90,90,-90,-90,0",
+        "--to-xyz",
+        "0.4,-0.2,0.3",
+        "--to-rpy",
+        "180,0,0",
+        "--json",
+    ]);
     assert_eq!(run.code, 0, "{}", run.stderr);
     let v: Value = serde_json::from_str(&run.stdout).unwrap();
     let last: Vec<String> = v["waypoints_deg"]

@@ -41,7 +41,8 @@ fn check_touching_node() {
 #[test]
 fn avoid_seed000_scenario() {
     // Notes 000 §6.3: start (α, β, γ) = (150, 140, 60) → q = (60, −40, −30) deg.
-    let v = json(&["avoid", "planar3", "--start", "60,-40,-30", "--to", "2.4,0.2", "--obstacle", "2.0,0.7", "--json"]);
+    let v =
+        json(&["avoid", "planar3", "--from", "60,-40,-30", "--to-xy", "2.4,0.2", "--obstacle", "2.0,0.7", "--json"]);
     assert_eq!(v["blocked"], true);
     let w = v["waypoints_m"].as_array().unwrap();
     assert_eq!(w.len(), 3);
@@ -51,21 +52,21 @@ fn avoid_seed000_scenario() {
     let c = v["min_clearance_m"].as_f64().unwrap();
     assert!((0.075..1.0 / 7.0).contains(&c), "{c}");
     // No obstacle: direct.
-    let v = json(&["avoid", "planar3", "--start", "60,-40,-30", "--to", "2.4,0.2", "--json"]);
+    let v = json(&["avoid", "planar3", "--from", "60,-40,-30", "--to-xy", "2.4,0.2", "--json"]);
     assert_eq!(v["blocked"], false);
     assert_eq!(v["outcome"]["outcome"], "direct");
 }
 
 #[test]
 fn avoid_failures_and_bad_input() {
-    let run = reach(&["avoid", "planar3", "--start", "60,-40,-30", "--to", "3.2,0", "--json"]);
+    let run = reach(&["avoid", "planar3", "--from", "60,-40,-30", "--to-xy", "3.2,0", "--json"]);
     assert_eq!(run.code, 3, "{}", run.stderr);
     assert!(run.stdout.contains("target_unreachable"));
     assert!(run.stderr.starts_with("error: target outside the workspace"));
-    let run = reach(&["avoid", "planar3", "--start", "60,-40,-30", "--to", "2.4,0.2", "--obstacle", "2.35,0.3"]);
+    let run = reach(&["avoid", "planar3", "--from", "60,-40,-30", "--to-xy", "2.4,0.2", "--obstacle", "2.35,0.3"]);
     assert_eq!(run.code, 3);
     assert!(run.stderr.contains("within the detour radius"), "{}", run.stderr);
-    fails(&["avoid", "planar3", "--start", "60,-40,-30", "--to", "nan,0.2"], 2, &["--to"]);
+    fails(&["avoid", "planar3", "--from", "60,-40,-30", "--to-xy", "nan,0.2"], 2, &["--to"]);
     fails(&["check", "varan4", "examples/no_such_scene.toml", "0", "0", "0", "0"], 2, &["no_such_scene"]);
 }
 
@@ -135,7 +136,7 @@ fn check_avoid_and_cspace_json_are_the_library_reports_and_match_their_schemas()
         }),
     };
     let v = crate::common::assert_report(
-        &["avoid", "planar3", "--start", "60,-40,-30", "--to", "2.4,0.2", "--obstacle", "2.0,0.7", "--json"],
+        &["avoid", "planar3", "--from", "60,-40,-30", "--to-xy", "2.4,0.2", "--obstacle", "2.0,0.7", "--json"],
         &avoid,
         "avoid.report",
     );
@@ -181,7 +182,7 @@ fn path_json_is_the_library_report_and_matches_its_schema() {
             to: Some(Joints::Deg(vec![0.0, -30.0, -30.0])),
             to_pose: None,
             seed: 1,
-            budget_ms: 1000,
+            time_budget_s: 1.0,
             duration_s: Some(10.0),
         }),
     };

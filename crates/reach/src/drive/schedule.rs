@@ -230,8 +230,7 @@ pub fn schedule_trajectory(axes: &[Axis], samples: &[JointSample]) -> Result<Ste
 /// Refuses a joint whose plan travels more than [`MAX_STEPS_PER_JOINT`] steps (`travel`, a
 /// bound on its step count: path length in steps).
 fn too_many_steps(axis: &Axis, travel: f64) -> Result<(), DriveError> {
-    // `!(≤)` also refuses a NaN travel.
-    if !(travel <= MAX_STEPS_PER_JOINT as f64) {
+    if travel.is_nan() || travel > MAX_STEPS_PER_JOINT as f64 {
         return Err(DriveError::TooManySteps {
             joint: axis.joint,
             name: axis.name.clone(),

@@ -6,8 +6,6 @@
 //! (`ok`, `unreachable`, `singular`, `outside_limits`, `orientation_unreachable`,
 //! `branch_absent`, `no_convergence`) and `reason` says it in words.
 
-use std::time::Duration;
-
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -640,8 +638,8 @@ fn options(request: &IkRequest, from: &[f64]) -> Result<IkOptions> {
     if let Some(m) = whole("numeric.max_iterations", n.max_iterations)? {
         options.max_iterations = m;
     }
-    if let Some(t) = super::input::positive("numeric.time_budget_s", n.time_budget_s)? {
-        options.numeric.time_budget = Some(Duration::from_secs_f64(t));
+    if let Some(t) = super::input::time_budget("numeric.time_budget_s", n.time_budget_s)? {
+        options.numeric.time_budget = Some(t);
     }
     if let Some(t) = super::input::positive("numeric.position_tolerance_m", n.position_tolerance_m)? {
         options.numeric.position_tolerance = t;

@@ -460,6 +460,24 @@ pub fn positive(field: &str, value: Option<f64>) -> Result<Option<f64>> {
     }
 }
 
+/// The longest wall-time budget a request may give, seconds (one day): a typo such as `1e300`
+/// is refused instead of overflowing a timer.
+pub const MAX_TIME_BUDGET_S: f64 = 86_400.0;
+
+/// A wall-time budget in seconds from an optional request field: positive, finite and at most
+/// [`MAX_TIME_BUDGET_S`].
+///
+/// # Errors
+/// [`Error::Request`] naming `field`.
+pub fn time_budget(field: &str, seconds: Option<f64>) -> Result<Option<std::time::Duration>> {
+    match positive(field, seconds)? {
+        Some(s) if s > MAX_TIME_BUDGET_S => {
+            Err(Error::request(field, format!("at most {MAX_TIME_BUDGET_S} s (one day), got {s} s")))
+        }
+        other => Ok(other.map(std::time::Duration::from_secs_f64)),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -8,15 +8,13 @@
 //! sampled and every sample re-checked with [`CollisionChecker::report`]: the smallest
 //! obstacle and self clearances are reported.
 
-use std::time::Duration;
-
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::parse_scene;
 use crate::Robot;
 use crate::error::{Error, Result};
-use crate::jobs::input::{Joints, Pose, positive, q_display};
+use crate::jobs::input::{Joints, Pose, positive, q_display, time_budget};
 use crate::motion::{JointMotion, JointPath, JointRates, Profile};
 use crate::world::planner::{Goal, PlanError, PlanOptions, PlanStats, path_length, plan};
 use crate::world::{CollisionChecker, Scene};
@@ -25,8 +23,8 @@ fn default_seed() -> u64 {
     1
 }
 
-fn default_budget_ms() -> u64 {
-    1000
+fn default_time_budget_s() -> f64 {
+    1.0
 }
 
 /// Joint-space distance (`path_length` units: rad and m mixed, Euclidean) at or below which
@@ -52,9 +50,9 @@ pub struct PathRequest {
     /// Seed of the planner's random generator (default 1).
     #[serde(default = "default_seed")]
     pub seed: u64,
-    /// Wall-time budget of the search, milliseconds (default 1000).
-    #[serde(default = "default_budget_ms")]
-    pub budget_ms: u64,
+    /// Wall-time budget of the search, seconds (default 1; at most one day).
+    #[serde(default = "default_time_budget_s")]
+    pub time_budget_s: f64,
     /// Total duration of the timed motion, seconds (default: the fastest synchronised motion
     /// within the joints' speed limits, segment by segment).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -91,8 +89,8 @@ pub struct PathReport {
     pub reason: Option<String>,
     /// Seed of the planner.
     pub seed: u64,
-    /// Wall-time budget of the search, ms.
-    pub budget_ms: u64,
+    /// Wall-time budget of the search, s.
+    pub time_budget_s: f64,
     /// Waypoints from start to goal (revolute degrees, prismatic metres).
     pub waypoints_deg: Vec<Vec<f64>>,
     /// Planning statistics.
@@ -162,6 +160,7 @@ pub fn path_run(robot: &Robot, request: &PathRequest) -> Result<PathRun> {
         _ => return Err(Error::request("to", "give exactly one of `to` and `to_pose`")),
     };
     let total = positive("duration_s", request.duration_s)?;
+    let budget = time_budget("time_budget_s", Some(request.time_budget_s))?;
     let same = || Error::request("to", "the same configuration as `from`: nothing to plan");
     // A joint goal is compared before planning; a pose goal only once IK has chosen its
     // configuration.
@@ -170,17 +169,13 @@ pub fn path_run(robot: &Robot, request: &PathRequest) -> Result<PathRun> {
     {
         return Err(same());
     }
-    let options = PlanOptions {
-        seed: request.seed,
-        max_time: Some(Duration::from_millis(request.budget_ms)),
-        ..PlanOptions::default()
-    };
+    let options = PlanOptions { seed: request.seed, max_time: budget, ..PlanOptions::default() };
     let mut report = PathReport {
         robot: robot.name().to_string(),
         found: false,
         reason: None,
         seed: request.seed,
-        budget_ms: request.budget_ms,
+        time_budget_s: request.time_budget_s,
         waypoints_deg: Vec::new(),
         stats: PathStatsReport {
             iterations: 0,
