@@ -11,39 +11,12 @@
 
 use std::io::Write;
 
-use nalgebra::Isometry3;
-use reach::model::Limits;
 use serde::Serialize;
 
 use crate::error::CliError;
 
-/// A 4×4 homogeneous matrix, row-major.
-pub type Matrix4Rows = [[f64; 4]; 4];
-
-/// The homogeneous matrix of a pose, row-major.
-#[must_use]
-pub fn matrix_rows(pose: &Isometry3<f64>) -> Matrix4Rows {
-    rows_of(&pose.to_homogeneous())
-}
-
-fn rows_of(m: &nalgebra::Matrix4<f64>) -> Matrix4Rows {
-    std::array::from_fn(|r| std::array::from_fn(|c| m[(r, c)]))
-}
-
 pub use reach::jobs::PoseReport;
 pub use reach::jobs::input::{rpy_deg, rpy_rad};
-
-/// Limits as JSON: `null` when unlimited, else `[lower, upper]` with `null` for an
-/// infinite bound (JSON has no infinity).
-#[must_use]
-pub fn limits_json(limits: &Limits) -> Option<[Option<f64>; 2]> {
-    let bound = |v: f64| v.is_finite().then_some(v);
-    if limits.lower.is_finite() || limits.upper.is_finite() {
-        Some([bound(limits.lower), bound(limits.upper)])
-    } else {
-        None
-    }
-}
 
 /// Writes `contents` to the file `path` given with `option` (`--csv`, `-o`, `--svg`).
 ///
@@ -358,12 +331,5 @@ mod tests {
         assert!(text.contains(r#""k": ["x,", "]"]"#), "{text}");
         let back: serde_json::Value = serde_json::from_str(&text).unwrap();
         assert_eq!(back, value);
-    }
-
-    #[test]
-    fn limits_json_uses_null_for_infinite_bounds() {
-        assert_eq!(limits_json(&Limits::UNLIMITED), None);
-        assert_eq!(limits_json(&Limits::new(-1.0, 2.0)), Some([Some(-1.0), Some(2.0)]));
-        assert_eq!(limits_json(&Limits::new(f64::NEG_INFINITY, 2.0)), Some([None, Some(2.0)]));
     }
 }

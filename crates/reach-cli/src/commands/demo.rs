@@ -8,7 +8,7 @@ use std::io::Write;
 use clap::Args;
 
 use crate::error::CliError;
-use crate::numbers::{q_display, q_text};
+use crate::numbers::q_text;
 use crate::output::write_pose;
 use crate::robot_arg::load_preset;
 
@@ -59,12 +59,12 @@ pub fn run(_args: &DemoArgs, out: &mut dyn Write) -> Result<(), CliError> {
 fn fk_at_home(out: &mut dyn Write) -> Result<(), CliError> {
     for name in reach::model::presets::names() {
         let robot = load_preset(name)?.robot;
-        let q = robot.home();
-        let pose = robot.fk(&q)?;
+        let fk =
+            reach::jobs::kinematics::fk(&robot, &reach::jobs::FkRequest { q: reach::jobs::Joints::Rad(robot.home()) })?;
         writeln!(out)?;
         writeln!(out, "{name} — {} ({} joints)", robot.description(), robot.dof())?;
-        writeln!(out, "  {:<12}  {}", "home q", q_text(&robot, &q_display(&robot, &q)))?;
-        write_pose(out, &crate::output::PoseReport::of(&pose), "  ")?;
+        writeln!(out, "  {:<12}  {}", "home q", q_text(&robot, &fk.q_deg))?;
+        write_pose(out, &fk.pose, "  ")?;
     }
     Ok(())
 }

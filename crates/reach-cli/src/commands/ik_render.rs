@@ -314,12 +314,12 @@ pub fn demo(out: &mut dyn Write) -> Result<(), CliError> {
     // M = (500, 200, 700) mm; tool x = n = (M − P)/|MP|, y = e6 = (y1 − y2, x2 − x1, 0)/|M1P1|,
     // z = l = n × e6 (n ≈ (0.476731, −0.572078, 0.667424), l ≈ (−0.427274, 0.512729, 0.744678)).
     let welder = load_preset("welder6r")?.robot;
-    let (p, m) = (nalgebra::Vector3::new(50.0, 740.0, 70.0), nalgebra::Vector3::new(500.0, 200.0, 700.0));
-    let n = (m - p).normalize();
-    let e6 = nalgebra::Vector3::new(p.y - m.y, m.x - p.x, 0.0).normalize();
-    let l = n.cross(&e6);
-    let row = |r: usize| [n[r], e6[r], l[r], p[r] / 1000.0];
-    let pose = Pose { matrix: Some([row(0), row(1), row(2), [0.0, 0.0, 0.0, 1.0]]), ..Pose::default() };
+    let seam = reach::motion::tool_space::seam_frame(
+        &nalgebra::Vector3::new(0.05, 0.74, 0.07),
+        &nalgebra::Vector3::new(0.5, 0.2, 0.7),
+    )
+    .map_err(|e| CliError::internal(e.to_string()))?;
+    let pose = Pose { matrix: Some(reach::jobs::input::matrix_rows(&seam)), ..Pose::default() };
     demo_case(out, &welder, "seed 003 weld start P = (50, 740, 70) mm, tool x = n, z = l", pose)?;
 
     // Seed 001 (notes 001 §5.1): goal pose T1.

@@ -180,8 +180,6 @@ fn write_report(out: &mut dyn Write, scene: &str, j: &PathReport) -> Result<(), 
 
 fn drawing(robot: &Robot, run: &PathRun, timed: &TimedPath) -> crate::plot::Svg {
     use crate::plot::drawings::{TrajectoryDrawing, joint_series_si, title, trajectory};
-    let tool =
-        |q: &Vec<f64>| robot.fk(q).map(|p| p.translation.vector).map(|v| [v.x, v.y, v.z]).unwrap_or([f64::NAN; 3]);
     trajectory(&TrajectoryDrawing {
         title: title(
             robot,
@@ -193,8 +191,8 @@ fn drawing(robot: &Robot, run: &PathRun, timed: &TimedPath) -> crate::plot::Svg 
         ),
         times: timed.times.clone(),
         joints: joint_series_si(robot, &timed.q, &timed.qd),
-        tool: timed.q.iter().map(tool).collect(),
-        tool_waypoints: run.waypoints.iter().map(tool).collect(),
+        tool: timed.tool_xyz_m.clone(),
+        tool_waypoints: run.waypoints_tool_xyz_m.clone(),
         obstacles: &run.scene.obstacles,
     })
 }

@@ -4,12 +4,12 @@ use std::io::Write;
 
 use clap::{Args, Subcommand};
 use nalgebra::Isometry3;
-use reach::Robot;
 use reach::model::{Convention, FileUnits, Joint, JointGeometry, JointKind};
-use serde::Serialize;
 
 use crate::error::CliError;
-use crate::output::{Align, Matrix4Rows, Table, limits_json, matrix_rows, num, nums, rpy_deg, rpy_rad, write_json};
+use reach::jobs::ModelRequest;
+
+use crate::output::{Align, Table, num, nums, rpy_deg, rpy_rad, write_json};
 use crate::robot_arg::{LoadedRobot, RobotArgs};
 
 /// Subcommands of `reach robot`.
@@ -20,12 +20,13 @@ pub enum RobotCommand {
         long_about = "Print a robot's parsed model.\n\n\
             DH/MDH robots are shown as a table in the units of their description file \
             (presets are TOML files, e.g. varan4 is in mm and deg); URDF robots as joint \
-            origins (xyz in m, rpy in deg) and axes. With --json, every number is SI \
-            (metres, radians, rad/s or m/s): {\"name\", \"description\", \"convention\", \
-            \"joints\": [{\"name\", \"kind\", \"a_m\", \"alpha_rad\", \"d_m\", \
-            \"theta_offset_rad\", \"limits\": [lo, hi] or null, \"max_velocity\", \"home\", \
-            \"flip\"}], \"base\": 4x4, \"tool\": 4x4} (URDF joints carry \"origin\": 4x4 and \
-            \"axis\": [x, y, z] instead of a/alpha/d/theta). Matrices are row-major.",
+            origins (xyz in m, rpy in deg) and axes. With --json, the model report \
+            (docs/schemas/model.report.schema.json), every number SI (metres, radians, rad/s \
+            or m/s): {\"name\", \"description\", \"convention\", \"joints\": [{\"name\", \
+            \"kind\", \"a_m\", \"alpha_rad\", \"d_m\", \"theta_offset_rad\", \"limits\": [lo, hi] \
+            or null, \"max_velocity\", \"home\", \"flip\"}], \"base\": 4x4, \"tool\": 4x4} (URDF \
+            joints carry \"origin\": 4x4 and \"axis\": [x, y, z] instead of a/alpha/d/theta). \
+            Matrices are row-major.",
         after_help = "Examples:\n  \
             reach robot show puma560\n  \
             reach robot show varan4 --json\n  \
@@ -58,109 +59,10 @@ pub fn run(command: &RobotCommand, out: &mut dyn Write) -> Result<(), CliError> 
 
 fn show(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let loaded = args.robot.load()?;
-    if args.json { write_json(out, &RobotJson::of(&loaded.robot)) } else { write_human(&loaded, out) }
-}
-
-/// The JSON form of a robot model (SI units).
-#[derive(Debug, Clone, Serialize)]
-pub struct RobotJson {
-    /// Robot name.
-    pub name: String,
-    /// One-line description.
-    pub description: String,
-    /// `dh`, `mdh` or `urdf`.
-    pub convention: &'static str,
-    /// Number of joints.
-    pub dof: usize,
-    /// The joints, base to tip.
-    pub joints: Vec<JointJson>,
-    /// Base transform (world ← first frame), row-major.
-    pub base: Matrix4Rows,
-    /// Tool transform (last frame ← tool point), row-major.
-    pub tool: Matrix4Rows,
-}
-
-/// One joint in [`RobotJson`].
-#[derive(Debug, Clone, Serialize)]
-pub struct JointJson {
-    /// Joint name.
-    pub name: String,
-    /// `revolute` or `prismatic`.
-    pub kind: &'static str,
-    /// DH parameters or URDF origin and axis.
-    #[serde(flatten)]
-    pub geometry: GeometryJson,
-    /// `[lower, upper]` (rad or m; `null` for an infinite bound), or `null` when unlimited.
-    pub limits: Option<[Option<f64>; 2]>,
-    /// Speed limit, rad/s or m/s, or `null`.
-    pub max_velocity: Option<f64>,
-    /// Home position, rad or m.
-    pub home: f64,
-    /// Whether the joint direction is reversed.
-    pub flip: bool,
-}
-
-/// Joint geometry in [`JointJson`].
-#[derive(Debug, Clone, Serialize)]
-#[serde(untagged)]
-pub enum GeometryJson {
-    /// DH or MDH parameters.
-    Dh {
-        /// Link length, metres.
-        a_m: f64,
-        /// Link twist, radians.
-        alpha_rad: f64,
-        /// Link offset, metres.
-        d_m: f64,
-        /// Joint angle offset, radians.
-        theta_offset_rad: f64,
-    },
-    /// URDF origin and axis.
-    Axis {
-        /// Joint frame in the previous joint frame, row-major.
-        origin: Matrix4Rows,
-        /// Unit axis in the joint frame.
-        axis: [f64; 3],
-    },
-}
-
-impl RobotJson {
-    /// The JSON form of `robot`.
-    #[must_use]
-    pub fn of(robot: &Robot) -> Self {
-        RobotJson {
-            name: robot.name().to_string(),
-            description: robot.description().to_string(),
-            convention: robot.convention().as_str(),
-            dof: robot.dof(),
-            joints: robot.joints().iter().map(JointJson::of).collect(),
-            base: matrix_rows(robot.base()),
-            tool: matrix_rows(robot.tool()),
-        }
-    }
-}
-
-impl JointJson {
-    /// The JSON form of `joint`.
-    #[must_use]
-    pub fn of(joint: &Joint) -> Self {
-        let geometry = match &joint.geometry {
-            JointGeometry::Dh(p) => {
-                GeometryJson::Dh { a_m: p.a, alpha_rad: p.alpha, d_m: p.d, theta_offset_rad: p.theta_offset }
-            }
-            JointGeometry::Axis { origin, axis } => {
-                GeometryJson::Axis { origin: matrix_rows(origin), axis: [axis.x, axis.y, axis.z] }
-            }
-        };
-        JointJson {
-            name: joint.name.clone(),
-            kind: joint.kind.as_str(),
-            geometry,
-            limits: limits_json(&joint.limits),
-            max_velocity: joint.max_velocity,
-            home: joint.home,
-            flip: joint.flip,
-        }
+    if args.json {
+        write_json(out, &reach::jobs::model::model(&loaded.robot, &ModelRequest {})?)
+    } else {
+        write_human(&loaded, out)
     }
 }
 

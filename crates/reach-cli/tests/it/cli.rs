@@ -163,6 +163,8 @@ fn robots_lists_every_preset_with_dof_and_description() {
         assert!(!entry["description"].as_str().unwrap().is_empty());
     }
     assert_eq!(list[7]["convention"], "mdh");
+    assert_eq!(serde_json::to_value(reach::jobs::model::preset_list().unwrap()).unwrap(), serde_json::json!(list));
+    crate::common::assert_valid("presets.report", &serde_json::json!(list));
 }
 
 // ---------------------------------------------------------------------------------------
@@ -190,7 +192,11 @@ fn robot_show_prints_the_dh_table_in_the_file_units() {
 
 #[test]
 fn robot_show_json_is_in_si_units() {
-    let v = json(&["robot", "show", "puma560", "--json"]);
+    let job = reach::jobs::Job {
+        robot: reach::jobs::RobotInput::Preset("puma560".into()),
+        request: reach::jobs::Request::Model(reach::jobs::ModelRequest {}),
+    };
+    let v = crate::common::assert_report(&["robot", "show", "puma560", "--json"], &job, "model.report");
     assert_eq!(v["name"], "puma560");
     assert_eq!(v["convention"], "dh");
     let joints = v["joints"].as_array().unwrap();

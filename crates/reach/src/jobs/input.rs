@@ -400,6 +400,13 @@ fn pose_from_matrix(field: &str, m: &Matrix4<f64>) -> Result<Isometry3<f64>> {
     Ok(Isometry3::from_parts(translation, rotation))
 }
 
+/// The homogeneous matrix of a pose, row-major (`matrix[row][column]`).
+#[must_use]
+pub fn matrix_rows(pose: &Isometry3<f64>) -> [[f64; 4]; 4] {
+    let m = pose.to_homogeneous();
+    std::array::from_fn(|r| std::array::from_fn(|c| m[(r, c)]))
+}
+
 /// A pose in a report: `{"matrix", "xyz_m", "rpy_deg", "quat_wxyz"}`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct PoseReport {
@@ -417,9 +424,8 @@ impl PoseReport {
     /// The report form of a pose.
     #[must_use]
     pub fn of(pose: &Isometry3<f64>) -> Self {
-        let m = pose.to_homogeneous();
         PoseReport {
-            matrix: std::array::from_fn(|r| std::array::from_fn(|c| m[(r, c)])),
+            matrix: matrix_rows(pose),
             xyz_m: pose.translation.vector.into(),
             rpy_deg: rpy_deg(&pose.rotation),
             quat_wxyz: quat_wxyz(&pose.rotation),

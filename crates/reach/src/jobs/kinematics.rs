@@ -4,7 +4,7 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use super::input::{Joints, PoseReport, joints_outside_limits};
+use super::input::{Joints, PoseReport, joints_outside_limits, matrix_rows};
 use crate::Robot;
 use crate::error::Result;
 use crate::kinematics::{JacobianAxes, Manipulability};
@@ -47,13 +47,7 @@ pub fn fk(robot: &Robot, request: &FkRequest) -> Result<FkReport> {
         q_deg: request.q.display(robot),
         outside_limits: joints_outside_limits(robot, &q),
         pose: PoseReport::of(&pose),
-        frames: frames
-            .iter()
-            .map(|f| {
-                let m = f.to_homogeneous();
-                std::array::from_fn(|r| std::array::from_fn(|c| m[(r, c)]))
-            })
-            .collect(),
+        frames: frames.iter().map(|f| matrix_rows(&nalgebra::convert(*f))).collect(),
         q_si: q,
     })
 }

@@ -21,6 +21,7 @@ pub mod drive;
 pub mod ik;
 pub mod input;
 pub mod kinematics;
+pub mod model;
 pub mod motion;
 pub mod tasks;
 pub mod world;
@@ -32,6 +33,7 @@ pub use drive::{DriveReport, DriveRequest};
 pub use ik::{IkReport, IkRequest, IkScanReport, IkScanRequest};
 pub use input::{AngleUnit, Joints, LoadedRobot, Pose, PoseReport, RobotInput};
 pub use kinematics::{FkReport, FkRequest, JacobianReport, JacobianRequest};
+pub use model::{ModelReport, ModelRequest, PresetEntry};
 pub use motion::{MoveReport, MoveRequest, PlanReport, PlanRequest};
 pub use tasks::{TasksReport, TasksRequest};
 pub use world::{
@@ -49,6 +51,8 @@ use crate::error::Result;
     reason = "a request is built once per job; boxing would only complicate its construction"
 )]
 pub enum Request {
+    /// The robot's parsed model.
+    Model(ModelRequest),
     /// Forward kinematics.
     Fk(FkRequest),
     /// The Jacobian and its measures.
@@ -79,6 +83,8 @@ pub enum Request {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum Report {
+    /// The robot's parsed model.
+    Model(ModelReport),
     /// Forward kinematics.
     Fk(FkReport),
     /// The Jacobian and its measures.
@@ -132,6 +138,7 @@ impl Job {
 /// are not errors: they are in the report.
 pub fn run(robot: &Robot, request: &Request) -> Result<Report> {
     Ok(match request {
+        Request::Model(r) => Report::Model(model::model(robot, r)?),
         Request::Fk(r) => Report::Fk(kinematics::fk(robot, r)?),
         Request::Jacobian(r) => Report::Jacobian(kinematics::jacobian(robot, r)?),
         Request::Move(r) => Report::Move(motion::move_motion(robot, r)?),
@@ -156,6 +163,9 @@ pub fn schemas() -> Vec<(&'static str, serde_json::Value)> {
     }
     vec![
         ("job", of::<Job>()),
+        ("model.request", of::<ModelRequest>()),
+        ("model.report", of::<ModelReport>()),
+        ("presets.report", of::<Vec<PresetEntry>>()),
         ("fk.request", of::<FkRequest>()),
         ("fk.report", of::<FkReport>()),
         ("jacobian.request", of::<JacobianRequest>()),

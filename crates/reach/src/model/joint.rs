@@ -2,7 +2,7 @@ use nalgebra::{Isometry3, Unit, Vector3};
 use serde::{Deserialize, Serialize};
 
 /// How the joint frames of a chain are described.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Convention {
     /// Standard (distal) Denavit–Hartenberg: `A_i = Rz(θ_i)·Tz(d_i)·Tx(a_i)·Rx(α_i)`; frame *i*

@@ -36,6 +36,29 @@ use super::sample::{PathSample, ToolPath, grid, sample_times};
 use super::{MotionError, Profile, check_number};
 use crate::tolerance::ROTATION_ANGLE_ZERO;
 
+/// The tool frame of a straight weld seam from `start` to `end` (seed 003 §5.1–5.2): tool
+/// x along the seam `n = (end − start)/|end − start|`, tool y horizontal and across it
+/// `e6 = (y₁ − y₂, x₂ − x₁, 0)/|…|`, tool z `l = n × e6`; origin at `start` (world frame).
+///
+/// # Errors
+/// [`MotionError::InvalidInput`] (field `seam`) for a non-finite point, a seam of zero length
+/// or a vertical seam (no horizontal direction across it).
+pub fn seam_frame(start: &Vector3<f64>, end: &Vector3<f64>) -> Result<Isometry3<f64>, MotionError> {
+    let invalid = |reason: &str| MotionError::InvalidInput { field: "seam".into(), reason: reason.into() };
+    if !(start.iter().chain(end.iter()).all(|v| v.is_finite())) {
+        return Err(invalid("must be finite"));
+    }
+    let along = end - start;
+    let across = Vector3::new(-along.y, along.x, 0.0);
+    if along.norm() == 0.0 || across.norm() <= along.norm() * 1e-12 {
+        return Err(invalid("needs two distinct points that are not on one vertical line"));
+    }
+    let n = along.normalize();
+    let e6 = across.normalize();
+    let rotation = Rotation3::from_basis_unchecked(&[n, e6, n.cross(&e6)]);
+    Ok(Isometry3::from_parts(Translation3::from(*start), UnitQuaternion::from_rotation_matrix(&rotation)))
+}
+
 /// Angle `φ ∈ [0, π]` and unit axis of a rotation matrix (see the module docs); the axis is z
 /// when the angle is below [`ROTATION_ANGLE_ZERO`].
 ///
@@ -345,5 +368,27 @@ mod tests {
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod seam_tests {
+    use super::*;
+
+    #[test]
+    fn seed_003_seam_frame() {
+        // Notes 003 §5.2: P = (50, 740, 70) mm to M = (500, 200, 700) mm gives
+        // n ≈ (0.476731, −0.572078, 0.667424) and l ≈ (−0.427274, 0.512729, 0.744678).
+        let f = seam_frame(&Vector3::new(0.05, 0.74, 0.07), &Vector3::new(0.5, 0.2, 0.7)).unwrap();
+        let r = f.rotation.to_rotation_matrix();
+        for (got, want) in r.matrix().column(0).iter().zip([0.476731, -0.572078, 0.667424]) {
+            assert!((got - want).abs() < 1e-6, "{r}");
+        }
+        for (got, want) in r.matrix().column(2).iter().zip([-0.427274, 0.512729, 0.744678]) {
+            assert!((got - want).abs() < 1e-6, "{r}");
+        }
+        assert!(r.matrix().column(1)[2].abs() < 1e-15, "tool y is horizontal");
+        assert!(seam_frame(&Vector3::zeros(), &Vector3::new(0.0, 0.0, 1.0)).is_err());
+        assert!(seam_frame(&Vector3::zeros(), &Vector3::new(f64::NAN, 0.0, 1.0)).is_err());
     }
 }

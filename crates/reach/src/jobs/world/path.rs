@@ -118,6 +118,8 @@ pub struct TimedPath {
     pub q: Vec<Vec<f64>>,
     /// Joint velocities at each time.
     pub qd: Vec<Vec<f64>>,
+    /// Tool point at each time, metres (world frame).
+    pub tool_xyz_m: Vec<[f64; 3]>,
 }
 
 /// The report with what a drawing needs.
@@ -129,6 +131,8 @@ pub struct PathRun {
     pub scene: Scene,
     /// The planner's waypoints, SI (empty when no path was found).
     pub waypoints: Vec<Vec<f64>>,
+    /// The tool point at each waypoint, metres (world frame).
+    pub waypoints_tool_xyz_m: Vec<[f64; 3]>,
     /// The timed path (`None` when no path was found).
     pub timed: Option<TimedPath>,
 }
@@ -216,7 +220,8 @@ pub fn path_run(robot: &Robot, request: &PathRequest) -> Result<PathRun> {
             report.collision_free = Some(check.free);
             report.min_clearance_m = check.min_clearance;
             report.min_self_clearance_m = check.min_self;
-            return Ok(PathRun { report, scene, waypoints: p.waypoints, timed: Some(timed) });
+            let waypoints_tool_xyz_m = tool_points(robot, &p.waypoints)?;
+            return Ok(PathRun { report, scene, waypoints: p.waypoints, waypoints_tool_xyz_m, timed: Some(timed) });
         }
         Err(e @ (PlanError::Input(_) | PlanError::World(_) | PlanError::Ik(_))) => return Err(e.into()),
         Err(e) => {
@@ -228,7 +233,7 @@ pub fn path_run(robot: &Robot, request: &PathRequest) -> Result<PathRun> {
             report.reason = Some(e.to_string().split_whitespace().collect::<Vec<_>>().join(" "));
         }
     }
-    Ok(PathRun { report, scene, waypoints: Vec::new(), timed: None })
+    Ok(PathRun { report, scene, waypoints: Vec::new(), waypoints_tool_xyz_m: Vec::new(), timed: None })
 }
 
 /// Segment durations: the synchronised minimum time per edge within the speed limits, or
@@ -287,5 +292,11 @@ fn time_and_check(
             check.min_self = Some(check.min_self.map_or(c, |m| m.min(c)));
         }
     }
-    Ok((durations, TimedPath { times, q, qd }, check))
+    let tool_xyz_m = tool_points(robot, &q)?;
+    Ok((durations, TimedPath { times, q, qd, tool_xyz_m }, check))
+}
+
+/// The tool point (world frame, metres) of each configuration.
+fn tool_points(robot: &Robot, q: &[Vec<f64>]) -> Result<Vec<[f64; 3]>> {
+    q.iter().map(|qk| Ok(robot.fk(qk)?.translation.vector.into())).collect()
 }
