@@ -17,7 +17,7 @@ use crate::decide::{Criterion, DecideError, Direction, IkCriterion, Method, ik_m
 use crate::error::{Error, Result};
 use crate::ik::planar::{PaperScan, PlanarRedundant, ScanRow};
 use crate::ik::{IkFailure, IkOptions, IkSolution, IkSolutions, IkTarget, SolverKind};
-use crate::model::seed000::PlanarPaperAngles;
+use crate::model::planar_angles::InteriorAngles;
 use crate::tolerance::IK_POSITION;
 
 /// The solver to use: `auto` (the default) picks the first closed form that fits the robot,
@@ -759,9 +759,9 @@ pub struct IkScanRequest {
     pub from: Option<Joints>,
 }
 
-/// The thesis's angles α, β, γ, degrees.
+/// The interior angles α, β, γ of seed 000's convention ([`InteriorAngles`]), degrees.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
-pub struct PaperAnglesReport {
+pub struct InteriorAnglesReport {
     /// Interior angle at joint A, degrees.
     pub alpha_deg: f64,
     /// Interior angle at joint B, degrees.
@@ -770,9 +770,9 @@ pub struct PaperAnglesReport {
     pub gamma_deg: f64,
 }
 
-impl PaperAnglesReport {
-    fn of(p: &PlanarPaperAngles) -> Self {
-        PaperAnglesReport {
+impl InteriorAnglesReport {
+    fn of(p: &InteriorAngles) -> Self {
+        InteriorAnglesReport {
             alpha_deg: p.alpha.to_degrees(),
             beta_deg: p.beta.to_degrees(),
             gamma_deg: p.gamma.to_degrees(),
@@ -784,7 +784,7 @@ impl PaperAnglesReport {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct IkScanRow {
     /// The thesis's angles.
-    pub paper: PaperAnglesReport,
+    pub paper: InteriorAnglesReport,
     /// Joint values, degrees.
     pub q_deg: [f64; 3],
     /// `S` from the current configuration, degrees.
@@ -807,7 +807,7 @@ pub struct IkScanReport {
     /// The current configuration, joint values in degrees.
     pub from_q_deg: Vec<f64>,
     /// The current configuration, the thesis's angles.
-    pub from_paper: PaperAnglesReport,
+    pub from_paper: InteriorAnglesReport,
     /// `ok`, or why there is no row: a code as in the `ik` report.
     pub status: String,
     /// The reason in words (`null` when the status is `ok`).
@@ -820,16 +820,8 @@ pub struct IkScanReport {
     pub chosen: Option<usize>,
 }
 
-/// The thesis's angles of configuration `q` of `arm` (notes 000 §2): `γ = φ1`,
-/// `β = φ2 − φ1 + 180°`, `α = φ3 − φ2 + 180°` from the absolute link angles `φ`.
-fn paper_angles(arm: &PlanarRedundant, q: &[f64]) -> PlanarPaperAngles {
-    let phi = arm.link_angles(&[q[0], q[1], q[2]]);
-    let pi = std::f64::consts::PI;
-    PlanarPaperAngles { gamma: phi[0], beta: phi[1] - phi[0] + pi, alpha: phi[2] - phi[1] + pi }
-}
-
 /// `S` of a row against the start (notes 000 §6.3), radians.
-fn s_of(row: &ScanRow, start: &PlanarPaperAngles) -> f64 {
+fn s_of(row: &ScanRow, start: &InteriorAngles) -> f64 {
     let p = &row.paper;
     (p.alpha - start.alpha).abs() + (p.beta - start.beta).abs() + (p.gamma - start.gamma).abs()
 }
@@ -862,7 +854,7 @@ pub fn ik_scan(robot: &Robot, request: &IkScanRequest) -> Result<IkScanReport> {
     } else {
         arm.paper_scan([x, y], step.to_radians())?
     };
-    let start = paper_angles(&arm, &from);
+    let start = InteriorAngles::from_link_angles(arm.link_angles(&[from[0], from[1], from[2]]));
     let (status, reason) = status(scan.failure.as_ref());
     Ok(IkScanReport {
         robot: robot.name().to_string(),
@@ -870,7 +862,7 @@ pub fn ik_scan(robot: &Robot, request: &IkScanRequest) -> Result<IkScanReport> {
         plane_xy_m: [x, y],
         alpha_min_deg: scan.alpha_min.map(f64::to_degrees),
         from_q_deg: q_display(robot, &from),
-        from_paper: PaperAnglesReport::of(&start),
+        from_paper: InteriorAnglesReport::of(&start),
         status,
         reason,
         within_limits: scan.rows.iter().filter(|r| r.within_limits).count(),
@@ -878,7 +870,7 @@ pub fn ik_scan(robot: &Robot, request: &IkScanRequest) -> Result<IkScanReport> {
             .rows
             .iter()
             .map(|row| IkScanRow {
-                paper: PaperAnglesReport::of(&row.paper),
+                paper: InteriorAnglesReport::of(&row.paper),
                 q_deg: row.q.map(f64::to_degrees),
                 s_deg: s_of(row, &start).to_degrees(),
                 within_limits: row.within_limits,
