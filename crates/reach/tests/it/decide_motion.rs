@@ -155,7 +155,7 @@ fn bad_motions_and_names_are_rejected() {
 /// log-loader (base yaw + two 1 m links), position-only path from (r, e) = (1.2, 60°)
 /// to (1.8, 80°) at yaw 30°: no singular position, elbow-up and elbow-down both feasible.
 fn loader_report(
-    criterion: Option<&dyn reach::motion::tracking::Criterion>,
+    criterion: Option<&dyn reach::motion::tracking::ConfigurationCriterion>,
 ) -> reach::motion::tracking::TrackingReport {
     let robot = presets::get("log-loader").unwrap();
     let pose = |s: f64| {

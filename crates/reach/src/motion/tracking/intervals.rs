@@ -123,12 +123,12 @@ pub struct TrajectoryPoint {
 /// A user criterion for choosing among feasible configurations (notes 003 §7 item 5: smaller
 /// accelerations, energy, stiffness, …): lower scores are better; `None` means the
 /// configuration does not satisfy the criterion.
-pub trait Criterion {
+pub trait ConfigurationCriterion {
     /// The score of one configuration's trajectory over an interval.
     fn score(&self, track: &ConfigurationTrack) -> Option<f64>;
 
     /// Index (into `feasible`) of the configuration to realise, or `None` when none satisfies
-    /// the criterion. Default: the lowest finite [`score`](Criterion::score) (first on a tie);
+    /// the criterion. Default: the lowest finite [`score`](ConfigurationCriterion::score) (first on a tie);
     /// criteria that compare the candidates with each other (multi-criteria rankings,
     /// [`crate::decide::TrackChooser`]) override it.
     fn choose(&self, feasible: &[&ConfigurationTrack]) -> Option<usize> {
@@ -141,7 +141,7 @@ pub trait Criterion {
     }
 }
 
-impl<F: Fn(&ConfigurationTrack) -> Option<f64>> Criterion for F {
+impl<F: Fn(&ConfigurationTrack) -> Option<f64>> ConfigurationCriterion for F {
     fn score(&self, track: &ConfigurationTrack) -> Option<f64> {
         self(track)
     }
@@ -297,7 +297,7 @@ impl Tracker<'_> {
         ((a, ka), (b, kb)): (Bound, Bound),
         scan: &Scan,
         budget: usize,
-        (default, criterion): (usize, Option<&dyn Criterion>),
+        (default, criterion): (usize, Option<&dyn ConfigurationCriterion>),
         log: &mut EventLog<'_>,
     ) -> Result<IntervalReport, TrackingError> {
         let path = self.path;
@@ -402,7 +402,7 @@ fn choose(
     tracks: &[ConfigurationTrack],
     feasible: &[usize],
     default: usize,
-    criterion: Option<&dyn Criterion>,
+    criterion: Option<&dyn ConfigurationCriterion>,
 ) -> (Option<usize>, Decision) {
     match feasible {
         [] => (None, Decision::NotRealizable),
