@@ -20,74 +20,20 @@ use crate::ik::{IkFailure, IkOptions, IkSolution, IkSolutions, IkTarget, SolverK
 use crate::model::planar_angles::InteriorAngles;
 use crate::tolerance::IK_POSITION;
 
-/// The solver to use: `auto` (the default) picks the first closed form that fits the robot,
-/// else the numeric solver.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "kebab-case")]
-pub enum IkSolverName {
-    /// Auto-detected ([`SolverKind::detect`]).
-    #[default]
-    Auto,
-    /// Planar redundant 3-link arm.
-    Planar,
-    /// Base yaw and a planar two-link arm.
-    YawTwoLink,
-    /// Base yaw and a planar three-link arm.
-    YawPlanar3,
-    /// Two links and a wrist.
-    TwoLinkWrist,
-    /// 6R arm with a spherical wrist.
-    SphericalWrist,
-    /// 6R arm with three parallel axes.
-    ParallelAxes,
-    /// Damped least squares with restarts, any serial chain.
-    Numeric,
-}
-
-impl IkSolverName {
-    /// The solver kind, `None` for `auto`.
-    #[must_use]
-    pub fn kind(self) -> Option<SolverKind> {
-        Some(match self {
-            IkSolverName::Auto => return None,
-            IkSolverName::Planar => SolverKind::Planar,
-            IkSolverName::YawTwoLink => SolverKind::YawTwoLink,
-            IkSolverName::YawPlanar3 => SolverKind::YawPlanar3,
-            IkSolverName::TwoLinkWrist => SolverKind::TwoLinkWrist,
-            IkSolverName::SphericalWrist => SolverKind::SphericalWrist,
-            IkSolverName::ParallelAxes => SolverKind::ParallelAxes,
-            IkSolverName::Numeric => SolverKind::Numeric,
-        })
+/// Parses a solver name as written on the command line: `auto` (`None`: the first closed
+/// form that fits the robot, else the numeric solver, [`SolverKind::detect`]) or a
+/// [`SolverKind`] name (`spherical-wrist`, …).
+///
+/// # Errors
+/// [`Error::Request`] naming `field` for an unknown name, listing the known ones.
+pub fn parse_solver(field: &str, name: &str) -> Result<Option<SolverKind>> {
+    if name == "auto" {
+        return Ok(None);
     }
-
-    /// Parses a name as written on the command line (`auto`, `spherical-wrist`, …).
-    ///
-    /// # Errors
-    /// [`Error::Request`] naming `field` for an unknown name, listing the known ones.
-    pub fn parse(field: &str, name: &str) -> Result<Self> {
-        if name == "auto" {
-            return Ok(IkSolverName::Auto);
-        }
-        SolverKind::parse(name)
-            .and_then(|k| {
-                [
-                    IkSolverName::Planar,
-                    IkSolverName::YawTwoLink,
-                    IkSolverName::YawPlanar3,
-                    IkSolverName::TwoLinkWrist,
-                    IkSolverName::SphericalWrist,
-                    IkSolverName::ParallelAxes,
-                    IkSolverName::Numeric,
-                ]
-                .into_iter()
-                .find(|n| n.kind() == Some(k))
-            })
-            .ok_or_else(|| {
-                let known: Vec<&str> =
-                    std::iter::once("auto").chain(SolverKind::ALL.iter().map(|k| k.as_str())).collect();
-                Error::request(field, format!("unknown solver `{name}` (known: {})", known.join(", ")))
-            })
-    }
+    SolverKind::parse(name).map(Some).ok_or_else(|| {
+        let known: Vec<&str> = std::iter::once("auto").chain(SolverKind::ALL.iter().map(|k| k.as_str())).collect();
+        Error::request(field, format!("unknown solver `{name}` (known: {})", known.join(", ")))
+    })
 }
 
 /// A multi-criteria method choosing among the solutions within limits.
@@ -376,9 +322,10 @@ pub struct IkNumericRequest {
 pub struct IkRequest {
     /// The target: a full pose, or a position alone (orientation free).
     pub target: Pose,
-    /// The solver (default `auto`).
+    /// The solver (default: the first closed form that fits the robot, else the numeric
+    /// solver, [`SolverKind::detect`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub solver: Option<IkSolverName>,
+    pub solver: Option<SolverKind>,
     /// List every solution, within the joint limits or not (otherwise only the chosen one,
     /// or every one when none is within limits).
     #[serde(default)]
@@ -701,7 +648,7 @@ pub fn ik(robot: &Robot, request: &IkRequest) -> Result<IkReport> {
         choice.check(CHOICE_FIELDS)?;
     }
     let options = options(request, &from)?;
-    let kind = request.solver.unwrap_or_default().kind().unwrap_or_else(|| SolverKind::detect(robot));
+    let kind = request.solver.unwrap_or_else(|| SolverKind::detect(robot));
     let mut all = kind.build(robot)?.solve(robot, &target, &options)?;
     all.express_near(robot, &from);
     let closest = all.closest_index(&from, &weights);
@@ -942,9 +889,20 @@ mod tests {
         let mut request = puma_request();
         request.numeric.restarts = Some(0);
         assert!(ik(&robot, &request).unwrap_err().to_string().starts_with("numeric.restarts:"));
-        assert!(IkSolverName::parse("solver", "foo").unwrap_err().to_string().contains("spherical-wrist"));
-        assert_eq!(IkSolverName::parse("solver", "yaw-planar3").unwrap(), IkSolverName::YawPlanar3);
-        let json = serde_json::to_value(IkSolverName::YawPlanar3).unwrap();
+        assert!(parse_solver("solver", "foo").unwrap_err().to_string().contains("spherical-wrist"));
+        assert_eq!(parse_solver("solver", "yaw-planar3").unwrap(), Some(SolverKind::YawPlanar3));
+        assert_eq!(parse_solver("solver", "auto").unwrap(), None);
+        // A request's solver reads and writes the command-line names.
+        for kind in SolverKind::ALL {
+            assert_eq!(serde_json::to_value(kind).unwrap(), serde_json::json!(kind.as_str()));
+        }
+        let request: IkRequest = serde_json::from_value(serde_json::json!({
+            "target": {"xyz_m": [0.5, 0.1, 0.2]},
+            "solver": "spherical-wrist"
+        }))
+        .unwrap();
+        assert_eq!(request.solver, Some(SolverKind::SphericalWrist));
+        let json = serde_json::to_value(SolverKind::YawPlanar3).unwrap();
         assert_eq!(json, "yaw-planar3");
     }
 
