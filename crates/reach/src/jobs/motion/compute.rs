@@ -274,14 +274,20 @@ fn tool_space(robot: &Robot, request: &MoveRequest, progress: &mut dyn FnMut(usi
                 configuration: iv.chosen.and_then(|c| report.configurations.get(c)).map(ToString::to_string),
                 feasible: iv.chosen.is_some(),
                 reasons,
-                decision: Some(iv.decision.into()),
+                decision: Some(iv.decision),
             }
         })
         .collect();
+    let degrees = request.angle_unit() == AngleUnit::Deg;
     let events = report
         .events
         .iter()
-        .map(|e| MoveEvent { t_s: e.t, code: e.code.as_str().into(), message: describe(e, robot, true) })
+        .map(|e| MoveEvent {
+            t_s: e.t,
+            code: e.code.as_str().into(),
+            message: describe(e, robot, degrees),
+            detail: e.detail.clone(),
+        })
         .collect();
     Ok(Computed { times, q, qd, intervals, events })
 }

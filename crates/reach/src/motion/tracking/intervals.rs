@@ -64,8 +64,9 @@ impl ConfigurationTrack {
     }
 }
 
-/// How an interval's configuration was chosen.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+/// How an interval's configuration was chosen (reported as is by the `move` and `plan`
+/// jobs, snake_case in JSON).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Decision {
     /// The default configuration (feasible, no criterion given).
@@ -75,7 +76,7 @@ pub enum Decision {
     /// Several were feasible but not the default, and no criterion was given: the first
     /// feasible one in the list.
     FirstFeasible,
-    /// Several were feasible; the criterion chose.
+    /// Several were feasible; the criterion chose (the `move`/`plan` request's `choose`).
     Criterion,
     /// Several were feasible and the criterion scored none: the default was kept (K14).
     CriterionRejected,
