@@ -8,7 +8,7 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use reach::effort::{Differences, DEFAULT_SIX_JOINT_WEIGHTS, j2};
+use reach::effort::{DEFAULT_SIX_JOINT_WEIGHTS, Differences, j2};
 use reach::model::presets;
 use reach::motion::sample::PerSampleIk;
 use reach::motion::{JointMotion, Profile, ToolMotion};

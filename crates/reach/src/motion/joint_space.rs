@@ -67,7 +67,11 @@ pub struct EndChoice {
 
 impl Default for EndChoice {
     fn default() -> Self {
-        EndChoice { weights: crate::effort::DEFAULT_SIX_JOINT_WEIGHTS.to_vec(), reference: None, ik: IkOptions::default() }
+        EndChoice {
+            weights: crate::effort::DEFAULT_SIX_JOINT_WEIGHTS.to_vec(),
+            reference: None,
+            ik: IkOptions::default(),
+        }
     }
 }
 

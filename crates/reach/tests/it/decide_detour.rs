@@ -5,8 +5,8 @@
 use reach::decide::detour_choice::{DetourCriterion, DetourRanking, choose_detour};
 use reach::decide::{DecideError, Method};
 use reach::ik::planar::PlanarRedundant;
-use reach::model::presets;
 use reach::model::planar_angles::InteriorAngles;
+use reach::model::presets;
 use reach::world::detour::{DetourOptions, DetourOutcome, WaypointRule, plan_detour};
 
 fn arm() -> PlanarRedundant {

@@ -5,7 +5,7 @@
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use reach::decide::motion_criteria::{MOTION_CRITERIA, Requirement, point_to_point_duration};
 use reach::decide::{DecideError, Direction, Method, MotionCriterion, SampledMotion, TrackChooser, choose_motion};
-use reach::effort::{Differences, DEFAULT_SIX_JOINT_WEIGHTS, j1};
+use reach::effort::{DEFAULT_SIX_JOINT_WEIGHTS, Differences, j1};
 use reach::ik::Branch;
 use reach::model::presets;
 use reach::motion::PathSample;

@@ -4,8 +4,8 @@
 //! corrected formulas (D1, D5, D6, D7).
 
 use reach::ik::planar::PlanarRedundant;
-use reach::model::presets;
 use reach::model::planar_angles::InteriorAngles;
+use reach::model::presets;
 use reach::world::detour::{
     DetourOptions, DetourOutcome, P2, SweepTest, WaypointRule, arm_points, in_polygon, leg_clearance,
     paper_literal_in_sweep, plan_detour, waypoint,

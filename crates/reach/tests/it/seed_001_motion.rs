@@ -47,7 +47,7 @@ use crate::common::{SPBU6_T0 as T0, SPBU6_T1 as T1, pose_from_rows as pose};
 use nalgebra::{Isometry3, Matrix3, Matrix4, Vector3};
 use reach::Robot;
 use reach::angle::wrap;
-use reach::effort::{Differences, DEFAULT_SIX_JOINT_WEIGHTS, j1, j1_of_delta, j2};
+use reach::effort::{DEFAULT_SIX_JOINT_WEIGHTS, Differences, j1, j1_of_delta, j2};
 use reach::ik::{self, IkOptions, IkTarget};
 use reach::model::presets;
 use reach::motion::joint_space::EndChoice;
@@ -274,9 +274,14 @@ fn j1_of_the_joint_space_motion_is_7pi_over_36() {
             .unwrap();
     let want = 7.0 * PI / 36.0;
     assert!((j1_of_delta(m.delta(), &DEFAULT_SIX_JOINT_WEIGHTS).unwrap() - want).abs() < 1e-12);
-    assert!((j1(m.start(), &m.end(), &DEFAULT_SIX_JOINT_WEIGHTS, &Differences::for_robot(&robot)).unwrap() - want).abs() < 1e-12);
+    assert!(
+        (j1(m.start(), &m.end(), &DEFAULT_SIX_JOINT_WEIGHTS, &Differences::for_robot(&robot)).unwrap() - want).abs()
+            < 1e-12
+    );
     let traj = m.sample(0.1).unwrap();
-    assert!((j2(&traj.rows(), &DEFAULT_SIX_JOINT_WEIGHTS, &Differences::for_robot(&robot)).unwrap() - want).abs() < 1e-12);
+    assert!(
+        (j2(&traj.rows(), &DEFAULT_SIX_JOINT_WEIGHTS, &Differences::for_robot(&robot)).unwrap() - want).abs() < 1e-12
+    );
     assert!((want - 0.6109).abs() < 5e-5);
 }
 

@@ -200,7 +200,8 @@ impl Tracker<'_> {
                     .map(|i| track.step_rates[i][j])
                     .max_by(|a, b| a.abs().total_cmp(&b.abs()))
                     .unwrap_or(f64::NAN);
-                let violation = self.joint_violation(ViolationKind::Velocity, j, (s_start, s_end), worst, (-vmax, vmax));
+                let violation =
+                    self.joint_violation(ViolationKind::Velocity, j, (s_start, s_end), worst, (-vmax, vmax));
                 track.violations.push(violation);
             }
         }
