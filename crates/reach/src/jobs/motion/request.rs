@@ -65,7 +65,7 @@ impl ProfileName {
     /// The time law.
     ///
     /// # Errors
-    /// None in practice (the trapezoid's fixed third is valid); a [`crate::MotionError`] would
+    /// None in practice (the trapezoid's fixed third is valid); a [`crate::motion::MotionError`] would
     /// be passed on.
     pub fn profile(self) -> Result<Profile> {
         Ok(match self {
