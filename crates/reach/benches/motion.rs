@@ -8,7 +8,7 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use reach::effort::{Differences, SEED001_WEIGHTS, j2};
+use reach::effort::{DEFAULT_SIX_JOINT_WEIGHTS, Differences, j2};
 use reach::model::presets;
 use reach::motion::sample::PerSampleIk;
 use reach::motion::{JointMotion, Profile, ToolMotion};
@@ -26,7 +26,7 @@ fn seed001(c: &mut Criterion) {
     let traj = path.to_joints(&spbu6, &options).unwrap();
     let rows = traj.rows();
     group.bench_function("j2_101", |b| {
-        b.iter(|| j2(black_box(&rows), &SEED001_WEIGHTS, &Differences::Wrapped).unwrap())
+        b.iter(|| j2(black_box(&rows), &DEFAULT_SIX_JOINT_WEIGHTS, &Differences::Wrapped).unwrap())
     });
     group.finish();
 }

@@ -15,7 +15,7 @@
 use std::io::Write;
 
 use clap::{ArgGroup, Args};
-use reach::jobs::ik::{CHOICE_FIELDS, IkChoice, IkChoiceMethod, IkCriterionName, IkSolverName};
+use reach::jobs::ik::{CHOICE_FIELDS, IkChoice, IkChoiceMethod, IkCriterionName, parse_solver};
 use reach::jobs::{IkRequest, IkScanRequest, Joints, Pose};
 
 pub use super::ik_render::demo;
@@ -217,9 +217,10 @@ fn request_of(args: &IkArgs, from: Option<Joints>) -> Result<IkRequest, CliError
     request.solver = args
         .solver
         .as_deref()
-        .map(|name| IkSolverName::parse("solver", name))
+        .map(|name| parse_solver("solver", name))
         .transpose()
-        .map_err(|e| crate::error::flagged(e, &FLAGS))?;
+        .map_err(|e| crate::error::flagged(e, &FLAGS))?
+        .flatten();
     if let Some(method) = &args.choose {
         let [method_field, criteria_field, _] = CHOICE_FIELDS;
         let parse = || -> Result<IkChoice, reach::Error> {

@@ -5,11 +5,18 @@ use std::io::Write;
 use std::path::Path;
 
 use reach::Robot;
-use reach::jobs::motion::{IntervalDecision, MoveReport, MoveRequest, ProfileName, Space};
+use reach::jobs::motion::{MoveInterval, MoveReport, MoveRequest, ProfileName, Space};
+use reach::motion::tracking::Decision;
 
 use crate::commands::plan::plan_task;
 use crate::error::CliError;
 use crate::output::{fixed, fixeds};
+
+/// `interval 0.000 .. 1.000 s` and the configuration realised in it.
+fn interval_head(iv: &MoveInterval) -> (String, &str) {
+    let span = format!("interval {} .. {} s", fixed(iv.start_s, 3), fixed(iv.end_s, 3));
+    (span, iv.configuration.as_deref().unwrap_or("no configuration"))
+}
 
 fn space_name(space: Space) -> &'static str {
     match space {
@@ -40,16 +47,14 @@ pub fn write_report(out: &mut dyn Write, m: &MoveReport, every: usize) -> Result
         }
     }
     for iv in &m.intervals {
+        let (span, configuration) = interval_head(iv);
         writeln!(
             out,
-            "  interval {} .. {} s: {} ({}){}",
-            fixed(iv.start_s, 3),
-            fixed(iv.end_s, 3),
+            "  {span}: {} ({configuration}){}",
             if iv.feasible { "feasible" } else { "NOT feasible" },
-            iv.configuration.as_deref().unwrap_or("no configuration"),
             match iv.decision {
-                Some(IntervalDecision::Criterion) => ", chosen by the criteria",
-                Some(IntervalDecision::CriterionRejected) => ", criteria not met: default kept (K14)",
+                Some(Decision::Criterion) => ", chosen by the criteria",
+                Some(Decision::CriterionRejected) => ", criteria not met: default kept (K14)",
                 _ => "",
             }
         )?;
@@ -221,13 +226,8 @@ pub fn demo_seed003(out: &mut dyn Write) -> Result<(), CliError> {
     writeln!(out, "{} (reach plan examples/seed003_welding.toml)", report.description)?;
     for m in &report.motions {
         for iv in &m.intervals {
-            writeln!(
-                out,
-                "  interval {} .. {} s: realised in {}",
-                fixed(iv.start_s, 3),
-                fixed(iv.end_s, 3),
-                iv.configuration.as_deref().unwrap_or("no configuration")
-            )?;
+            let (span, configuration) = interval_head(iv);
+            writeln!(out, "  {span}: realised in {configuration}")?;
             for r in &iv.reasons {
                 writeln!(out, "    {r}")?;
             }

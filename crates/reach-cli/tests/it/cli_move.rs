@@ -116,6 +116,15 @@ fn seed003_plan_tracks_both_configurations() {
         assert!(codes.contains(&c), "{codes:?}");
     }
     assert!(!codes.contains(&"K2"), "no singular position: {codes:?}");
+    // The events carry their data next to the text: K7 is θ4 (0-based joint 3) of −β leaving
+    // [−175°, 150°] (radians) on s ∈ (0.618, 0.882) m.
+    let k7 = m["events"].as_array().unwrap().iter().find(|e| e["code"] == "K7").expect("a K7 event");
+    let detail = &k7["detail"];
+    assert_eq!(detail["type"], "joint_limit", "{k7}");
+    assert_eq!(detail["joint"], 3, "{k7}");
+    assert!((f(&detail["lower"]) - (-175f64).to_radians()).abs() < 1e-9, "{k7}");
+    assert!((f(&detail["s_start"]) - 0.6181).abs() < 1e-3 && (f(&detail["s_end"]) - 0.8822).abs() < 1e-3, "{k7}");
+    assert!(k7["message"].as_str().unwrap().contains("[-175.00, 150.00] deg"), "{k7}");
     let samples = m["samples"].as_array().unwrap();
     let first = q(&samples[0]);
     for (got, want) in first.iter().zip([105.2482, -32.9417, 43.3392, -169.6025, -155.4427, 138.1315]) {

@@ -7,7 +7,7 @@
 //! candidates and [`choose_motion`] ranks them with any [`Method`].
 //!
 //! [`TrackChooser`] plugs these criteria into path tracking's per-interval choice of
-//! configuration ([`tracking::Criterion`]; seed 003's user criterion, notes 003 §7 item 5).
+//! configuration ([`tracking::ConfigurationCriterion`]; seed 003's user criterion, notes 003 §7 item 5).
 //!
 //! **Physical energy** (`energy`) needs link masses in the robot model: it is the mechanical
 //! work `∫ Σ|τᵢ q̇ᵢ| dt` of [`effort::dynamics::trajectory_energy`] (Newton–Euler torques with
@@ -362,7 +362,7 @@ pub fn choose_motion(
 }
 
 /// Per-interval configuration choice in path tracking by motion criteria
-/// ([`tracking::Criterion`]).
+/// ([`tracking::ConfigurationCriterion`]).
 ///
 /// Among the feasible configurations of an interval, their tracks are ranked like
 /// [`choose_motion`] and the best is realised. A track on which a criterion cannot be evaluated
@@ -452,11 +452,11 @@ impl<'r> TrackChooser<'r> {
     }
 }
 
-impl tracking::Criterion for TrackChooser<'_> {
+impl tracking::ConfigurationCriterion for TrackChooser<'_> {
     /// A single track's score (lower is better): the value of the most heavily weighted
     /// criterion (the first on a tie), signed so that less is better; `None` when the track
     /// does not satisfy the choice. The choice between tracks ranks all criteria together
-    /// ([`tracking::Criterion::choose`] below).
+    /// ([`tracking::ConfigurationCriterion::choose`] below).
     fn score(&self, track: &ConfigurationTrack) -> Option<f64> {
         let v = self.values(track)?;
         let main = (0..self.weights.len()).fold(0, |b, j| if self.weights[j] > self.weights[b] { j } else { b });

@@ -14,7 +14,7 @@
 //! * [`total_change`] — seed 000's `S = Σᵢ |Δqᵢ|` (unweighted; notes 000 §4.1 step 4), the
 //!   criterion its IK uses to choose among configurations (there in degrees, here radians).
 //!
-//! The weights default to seed 001's [`SEED001_WEIGHTS`] `(1/3, 1/3, 1/6, 1/18, 1/18, 1/18)`,
+//! The weights default to seed 001's [`DEFAULT_SIX_JOINT_WEIGHTS`] `(1/3, 1/3, 1/6, 1/18, 1/18, 1/18)`,
 //! "determined from the dynamic characteristics" (no derivation given): proximal joints,
 //! which move more mass, weigh more.
 //!
@@ -35,8 +35,9 @@ use thiserror::Error;
 
 use crate::model::Robot;
 
-/// Seed 001's joint weights `ω = (1/3, 1/3, 1/6, 1/18, 1/18, 1/18)` (notes 001 §3.8, §7).
-pub const SEED001_WEIGHTS: [f64; 6] = [1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0, 1.0 / 18.0, 1.0 / 18.0, 1.0 / 18.0];
+/// The default joint weights of a six-joint arm, `ω = (1/3, 1/3, 1/6, 1/18, 1/18, 1/18)`:
+/// seed 001's weights (notes 001 §3.8, §7), heavier on the base joints that move more mass.
+pub const DEFAULT_SIX_JOINT_WEIGHTS: [f64; 6] = [1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0, 1.0 / 18.0, 1.0 / 18.0, 1.0 / 18.0];
 
 /// Bad input to an effort functional.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -121,7 +122,7 @@ fn check_values(field: &str, values: &[f64], n: usize) -> Result<(), EffortError
 }
 
 /// The joint weights of `robot` for [`j1`]/[`j2`]: `weights` when given, checked, else the
-/// default — seed 001's [`SEED001_WEIGHTS`] for a six-joint robot, 1 for every joint otherwise.
+/// default — seed 001's [`DEFAULT_SIX_JOINT_WEIGHTS`] for a six-joint robot, 1 for every joint otherwise.
 ///
 /// # Errors
 /// [`EffortError::Length`] when `weights` does not have one value per joint;
@@ -134,7 +135,7 @@ pub fn joint_weights(robot: &Robot, weights: Option<&[f64]>) -> Result<Vec<f64>,
             check_weights(w, n)?;
             Ok(w.to_vec())
         }
-        None if n == 6 => Ok(SEED001_WEIGHTS.to_vec()),
+        None if n == 6 => Ok(DEFAULT_SIX_JOINT_WEIGHTS.to_vec()),
         None => Ok(vec![1.0; n]),
     }
 }
@@ -158,10 +159,10 @@ fn check_weights(weights: &[f64], n: usize) -> Result<(), EffortError> {
 /// # Example
 /// Seed 001's joint-space example: home → (90°, 0, 0, 90°, 0, 0), `J1 = π/6 + π/36 = 7π/36`.
 /// ```
-/// use reach::effort::{Differences, SEED001_WEIGHTS, j1};
+/// use reach::effort::{Differences, DEFAULT_SIX_JOINT_WEIGHTS, j1};
 /// use std::f64::consts::{FRAC_PI_2, PI};
 /// let q1 = [FRAC_PI_2, 0.0, 0.0, FRAC_PI_2, 0.0, 0.0];
-/// let j = j1(&[0.0; 6], &q1, &SEED001_WEIGHTS, &Differences::Literal).unwrap();
+/// let j = j1(&[0.0; 6], &q1, &DEFAULT_SIX_JOINT_WEIGHTS, &Differences::Literal).unwrap();
 /// assert!((j - 7.0 * PI / 36.0).abs() < 1e-15);
 /// ```
 pub fn j1(q0: &[f64], q1: &[f64], weights: &[f64], differences: &Differences) -> Result<f64, EffortError> {
@@ -238,7 +239,7 @@ mod tests {
     #[test]
     fn joint_weights_default_and_checks() {
         let six = presets::get("spbu6").unwrap();
-        assert_eq!(joint_weights(&six, None).unwrap(), SEED001_WEIGHTS.to_vec());
+        assert_eq!(joint_weights(&six, None).unwrap(), DEFAULT_SIX_JOINT_WEIGHTS.to_vec());
         let given = [1.0, 2.0, 0.0, 0.5, 0.5, 0.5];
         assert_eq!(joint_weights(&six, Some(&given)).unwrap(), given.to_vec());
         let other = presets::names().into_iter().map(|n| presets::get(n).unwrap()).find(|r| r.dof() != 6).unwrap();

@@ -244,22 +244,24 @@ pub trait SingularityMeasures {
     fn at(&self, robot: &Robot, pose: &Isometry3<f64>) -> Result<Vec<Option<f64>>, IkError>;
 }
 
-/// The solvers, by name.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+/// The solvers, by name. In JSON (requests and reports) a solver is its
+/// [`as_str`](SolverKind::as_str) name, e.g. `"spherical-wrist"`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "kebab-case")]
 pub enum SolverKind {
-    /// [`planar::PlanarRedundant`].
+    /// Planar redundant 3-link arm ([`planar::PlanarRedundant`]).
     Planar,
-    /// [`yaw_two_link::YawTwoLink`].
+    /// Base yaw and a planar two-link arm ([`yaw_two_link::YawTwoLink`]).
     YawTwoLink,
-    /// [`yaw_planar3::YawPlanar3`].
+    /// Base yaw and a planar three-link arm ([`yaw_planar3::YawPlanar3`]).
     YawPlanar3,
-    /// [`two_link_wrist::TwoLinkWrist`].
+    /// Two links and a wrist ([`two_link_wrist::TwoLinkWrist`]).
     TwoLinkWrist,
-    /// [`spherical_wrist::SphericalWrist`].
+    /// 6R arm with a spherical wrist ([`spherical_wrist::SphericalWrist`]).
     SphericalWrist,
-    /// [`parallel_axes::ParallelAxes`].
+    /// 6R arm with three parallel axes ([`parallel_axes::ParallelAxes`]).
     ParallelAxes,
-    /// [`numeric::Numeric`].
+    /// Damped least squares with restarts, any serial chain ([`numeric::Numeric`]).
     Numeric,
 }
 

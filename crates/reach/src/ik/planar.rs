@@ -29,7 +29,7 @@
 //! the interior angle `α` at joint A is stepped from `α_min` (eq. 3) to 180°, and `γ`, `β`
 //! follow from the law-of-cosines formulas (6)–(14) with the corrected `γ2 = atan2(y, x)`
 //! (notes 000 §6.1, D1). [`PaperScan::select_min_s`] picks the row of least total joint change
-//! `S` (notes 000 §6.3). The paper's angle convention is [`PlanarPaperAngles`].
+//! `S` (notes 000 §6.3). The paper's angle convention is [`InteriorAngles`].
 
 use std::f64::consts::{PI, TAU};
 
@@ -41,7 +41,7 @@ use super::{
 };
 use crate::kinematics::KinematicsError;
 use crate::model::chain::ChainLink;
-use crate::model::seed000::PlanarPaperAngles;
+use crate::model::planar_angles::InteriorAngles;
 use crate::model::{Limits, Robot};
 use crate::tolerance::{
     BOUNDARY, IK_AXIS_DISTANCE, IK_DUPLICATE, IK_POSITION, LIMIT_SLACK, SCAN_GRID, STRUCTURE_ANGLE, STRUCTURE_LENGTH,
@@ -573,7 +573,7 @@ impl PlanarRedundant {
             return None;
         }
         beta = beta.min(PI);
-        let paper = PlanarPaperAngles { alpha, beta, gamma };
+        let paper = InteriorAngles { alpha, beta, gamma };
         let phi1 = gamma;
         let phi2 = phi1 + beta - PI;
         let phi3 = phi2 + alpha - PI;
@@ -670,7 +670,7 @@ impl PlanarRedundant {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ScanRow {
     /// The thesis's angles `α, β, γ` (radians; `γ` not wrapped, it may leave [0, π], D11).
-    pub paper: PlanarPaperAngles,
+    pub paper: InteriorAngles,
     /// The robot's joint values for this row.
     pub q: [f64; 3],
     /// Whether `q` is within the robot's joint limits.
@@ -693,7 +693,7 @@ impl PaperScan {
     /// `S = |α − α0| + |β − β0| + |γ − γ0|` (radians, no wrapping, as in the thesis); the first
     /// minimum wins. Returns the row index and `S`.
     #[must_use]
-    pub fn select_min_s(&self, current: &PlanarPaperAngles) -> Option<(usize, f64)> {
+    pub fn select_min_s(&self, current: &InteriorAngles) -> Option<(usize, f64)> {
         let mut best: Option<(usize, f64)> = None;
         for (i, row) in self.rows.iter().enumerate() {
             let p = &row.paper;

@@ -4,7 +4,8 @@ use std::borrow::Cow;
 use std::fmt;
 
 use nalgebra::{Isometry3, Point3, Rotation3, Vector3};
-use serde::Serialize;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 
 use crate::angle::fit_into_limits;
 use crate::model::{JointKind, Robot};
@@ -13,7 +14,7 @@ use crate::tolerance::{IK_DUPLICATE, IK_ORIENTATION, IK_POSITION, LIMIT_SLACK};
 use super::{IkError, IkTarget};
 
 /// Kinds of singular configuration an IK solver reports.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 #[non_exhaustive]
 pub enum SingularityKind {
@@ -42,7 +43,7 @@ impl SingularityKind {
 
 /// One key or value of a [`Branch`] label: a static string (no allocation — the closed-form
 /// solvers' fixed names) or an owned one (labels built at run time).
-#[derive(Clone, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[derive(Clone, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, JsonSchema)]
 #[serde(transparent)]
 pub struct Label(Cow<'static, str>);
 
@@ -86,8 +87,9 @@ impl fmt::Display for Label {
 }
 
 /// A readable branch label: ordered `key=value` pairs, e.g. `shoulder=left elbow=up wrist=flip`
-/// or the paper's own names such as `config=+β`.
-#[derive(Debug, Clone, PartialEq, Eq, Hash, Default, Serialize)]
+/// or the paper's own names such as `config=+β`. In JSON: the pairs in order,
+/// `[["shoulder", "left"], ["elbow", "up"]]`.
+#[derive(Debug, Clone, PartialEq, Eq, Hash, Default, Serialize, Deserialize, JsonSchema)]
 pub struct Branch(pub Vec<(Label, Label)>);
 
 impl Branch {

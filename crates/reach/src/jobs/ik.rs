@@ -15,77 +15,23 @@ use crate::decide::{Criterion, DecideError, Direction, IkCriterion, Method, ik_m
 use crate::error::{Error, Result};
 use crate::ik::planar::{PaperScan, PlanarRedundant, ScanRow};
 use crate::ik::{IkFailure, IkOptions, IkSolution, IkSolutions, IkTarget, SolverKind};
-use crate::model::seed000::PlanarPaperAngles;
+use crate::model::planar_angles::InteriorAngles;
 use crate::tolerance::IK_POSITION;
 
-/// The solver to use: `auto` (the default) picks the first closed form that fits the robot,
-/// else the numeric solver.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "kebab-case")]
-pub enum IkSolverName {
-    /// Auto-detected ([`SolverKind::detect`]).
-    #[default]
-    Auto,
-    /// Planar redundant 3-link arm.
-    Planar,
-    /// Base yaw and a planar two-link arm.
-    YawTwoLink,
-    /// Base yaw and a planar three-link arm.
-    YawPlanar3,
-    /// Two links and a wrist.
-    TwoLinkWrist,
-    /// 6R arm with a spherical wrist.
-    SphericalWrist,
-    /// 6R arm with three parallel axes.
-    ParallelAxes,
-    /// Damped least squares with restarts, any serial chain.
-    Numeric,
-}
-
-impl IkSolverName {
-    /// The solver kind, `None` for `auto`.
-    #[must_use]
-    pub fn kind(self) -> Option<SolverKind> {
-        Some(match self {
-            IkSolverName::Auto => return None,
-            IkSolverName::Planar => SolverKind::Planar,
-            IkSolverName::YawTwoLink => SolverKind::YawTwoLink,
-            IkSolverName::YawPlanar3 => SolverKind::YawPlanar3,
-            IkSolverName::TwoLinkWrist => SolverKind::TwoLinkWrist,
-            IkSolverName::SphericalWrist => SolverKind::SphericalWrist,
-            IkSolverName::ParallelAxes => SolverKind::ParallelAxes,
-            IkSolverName::Numeric => SolverKind::Numeric,
-        })
+/// Parses a solver name as written on the command line: `auto` (`None`: the first closed
+/// form that fits the robot, else the numeric solver, [`SolverKind::detect`]) or a
+/// [`SolverKind`] name (`spherical-wrist`, …).
+///
+/// # Errors
+/// [`Error::Request`] naming `field` for an unknown name, listing the known ones.
+pub fn parse_solver(field: &str, name: &str) -> Result<Option<SolverKind>> {
+    if name == "auto" {
+        return Ok(None);
     }
-
-    /// Parses a name as written on the command line (`auto`, `spherical-wrist`, …).
-    ///
-    /// # Errors
-    /// [`Error::Request`] naming `field` for an unknown name, listing the known ones.
-    pub fn parse(field: &str, name: &str) -> Result<Self> {
-        if name == "auto" {
-            return Ok(IkSolverName::Auto);
-        }
-        SolverKind::parse(name)
-            .and_then(|k| {
-                [
-                    IkSolverName::Planar,
-                    IkSolverName::YawTwoLink,
-                    IkSolverName::YawPlanar3,
-                    IkSolverName::TwoLinkWrist,
-                    IkSolverName::SphericalWrist,
-                    IkSolverName::ParallelAxes,
-                    IkSolverName::Numeric,
-                ]
-                .into_iter()
-                .find(|n| n.kind() == Some(k))
-            })
-            .ok_or_else(|| {
-                let known: Vec<&str> =
-                    std::iter::once("auto").chain(SolverKind::ALL.iter().map(|k| k.as_str())).collect();
-                Error::request(field, format!("unknown solver `{name}` (known: {})", known.join(", ")))
-            })
-    }
+    SolverKind::parse(name).map(Some).ok_or_else(|| {
+        let known: Vec<&str> = std::iter::once("auto").chain(SolverKind::ALL.iter().map(|k| k.as_str())).collect();
+        Error::request(field, format!("unknown solver `{name}` (known: {})", known.join(", ")))
+    })
 }
 
 /// A multi-criteria method choosing among the solutions within limits.
@@ -374,9 +320,10 @@ pub struct IkNumericRequest {
 pub struct IkRequest {
     /// The target: a full pose, or a position alone (orientation free).
     pub target: Pose,
-    /// The solver (default `auto`).
+    /// The solver (default: the first closed form that fits the robot, else the numeric
+    /// solver, [`SolverKind::detect`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub solver: Option<IkSolverName>,
+    pub solver: Option<SolverKind>,
     /// List every solution, within the joint limits or not (otherwise only the chosen one,
     /// or every one when none is within limits).
     #[serde(default)]
@@ -699,7 +646,7 @@ pub fn ik(robot: &Robot, request: &IkRequest) -> Result<IkReport> {
         choice.check(CHOICE_FIELDS)?;
     }
     let options = options(request, &from)?;
-    let kind = request.solver.unwrap_or_default().kind().unwrap_or_else(|| SolverKind::detect(robot));
+    let kind = request.solver.unwrap_or_else(|| SolverKind::detect(robot));
     let mut all = kind.build(robot)?.solve(robot, &target, &options)?;
     all.express_near(robot, &from);
     let closest = all.closest_index(&from, &weights);
@@ -757,9 +704,9 @@ pub struct IkScanRequest {
     pub from: Option<Joints>,
 }
 
-/// The thesis's angles α, β, γ, degrees.
+/// The interior angles α, β, γ of seed 000's convention ([`InteriorAngles`]), degrees.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
-pub struct PaperAnglesReport {
+pub struct InteriorAnglesReport {
     /// Interior angle at joint A, degrees.
     pub alpha_deg: f64,
     /// Interior angle at joint B, degrees.
@@ -768,9 +715,9 @@ pub struct PaperAnglesReport {
     pub gamma_deg: f64,
 }
 
-impl PaperAnglesReport {
-    fn of(p: &PlanarPaperAngles) -> Self {
-        PaperAnglesReport {
+impl InteriorAnglesReport {
+    fn of(p: &InteriorAngles) -> Self {
+        InteriorAnglesReport {
             alpha_deg: p.alpha.to_degrees(),
             beta_deg: p.beta.to_degrees(),
             gamma_deg: p.gamma.to_degrees(),
@@ -782,7 +729,7 @@ impl PaperAnglesReport {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct IkScanRow {
     /// The thesis's angles.
-    pub paper: PaperAnglesReport,
+    pub paper: InteriorAnglesReport,
     /// Joint values, degrees.
     pub q_deg: [f64; 3],
     /// `S` from the current configuration, degrees.
@@ -805,7 +752,7 @@ pub struct IkScanReport {
     /// The current configuration, joint values in degrees.
     pub from_q_deg: Vec<f64>,
     /// The current configuration, the thesis's angles.
-    pub from_paper: PaperAnglesReport,
+    pub from_paper: InteriorAnglesReport,
     /// `ok`, or why there is no row: a code as in the `ik` report.
     pub status: String,
     /// The reason in words (`null` when the status is `ok`).
@@ -818,16 +765,8 @@ pub struct IkScanReport {
     pub chosen: Option<usize>,
 }
 
-/// The thesis's angles of configuration `q` of `arm` (notes 000 §2): `γ = φ1`,
-/// `β = φ2 − φ1 + 180°`, `α = φ3 − φ2 + 180°` from the absolute link angles `φ`.
-fn paper_angles(arm: &PlanarRedundant, q: &[f64]) -> PlanarPaperAngles {
-    let phi = arm.link_angles(&[q[0], q[1], q[2]]);
-    let pi = std::f64::consts::PI;
-    PlanarPaperAngles { gamma: phi[0], beta: phi[1] - phi[0] + pi, alpha: phi[2] - phi[1] + pi }
-}
-
 /// `S` of a row against the start (notes 000 §6.3), radians.
-fn s_of(row: &ScanRow, start: &PlanarPaperAngles) -> f64 {
+fn s_of(row: &ScanRow, start: &InteriorAngles) -> f64 {
     let p = &row.paper;
     (p.alpha - start.alpha).abs() + (p.beta - start.beta).abs() + (p.gamma - start.gamma).abs()
 }
@@ -860,7 +799,7 @@ pub fn ik_scan(robot: &Robot, request: &IkScanRequest) -> Result<IkScanReport> {
     } else {
         arm.paper_scan([x, y], step.to_radians())?
     };
-    let start = paper_angles(&arm, &from);
+    let start = InteriorAngles::from_link_angles(arm.link_angles(&[from[0], from[1], from[2]]));
     let (status, reason) = status(scan.failure.as_ref());
     Ok(IkScanReport {
         robot: robot.name().to_string(),
@@ -868,7 +807,7 @@ pub fn ik_scan(robot: &Robot, request: &IkScanRequest) -> Result<IkScanReport> {
         plane_xy_m: [x, y],
         alpha_min_deg: scan.alpha_min.map(f64::to_degrees),
         from_q_deg: q_display(robot, &from),
-        from_paper: PaperAnglesReport::of(&start),
+        from_paper: InteriorAnglesReport::of(&start),
         status,
         reason,
         within_limits: scan.rows.iter().filter(|r| r.within_limits).count(),
@@ -876,7 +815,7 @@ pub fn ik_scan(robot: &Robot, request: &IkScanRequest) -> Result<IkScanReport> {
             .rows
             .iter()
             .map(|row| IkScanRow {
-                paper: PaperAnglesReport::of(&row.paper),
+                paper: InteriorAnglesReport::of(&row.paper),
                 q_deg: row.q.map(f64::to_degrees),
                 s_deg: s_of(row, &start).to_degrees(),
                 within_limits: row.within_limits,
@@ -948,9 +887,20 @@ mod tests {
         let mut request = puma_request();
         request.numeric.restarts = Some(0);
         assert!(ik(&robot, &request).unwrap_err().to_string().starts_with("numeric.restarts:"));
-        assert!(IkSolverName::parse("solver", "foo").unwrap_err().to_string().contains("spherical-wrist"));
-        assert_eq!(IkSolverName::parse("solver", "yaw-planar3").unwrap(), IkSolverName::YawPlanar3);
-        let json = serde_json::to_value(IkSolverName::YawPlanar3).unwrap();
+        assert!(parse_solver("solver", "foo").unwrap_err().to_string().contains("spherical-wrist"));
+        assert_eq!(parse_solver("solver", "yaw-planar3").unwrap(), Some(SolverKind::YawPlanar3));
+        assert_eq!(parse_solver("solver", "auto").unwrap(), None);
+        // A request's solver reads and writes the command-line names.
+        for kind in SolverKind::ALL {
+            assert_eq!(serde_json::to_value(kind).unwrap(), serde_json::json!(kind.as_str()));
+        }
+        let request: IkRequest = serde_json::from_value(serde_json::json!({
+            "target": {"xyz_m": [0.5, 0.1, 0.2]},
+            "solver": "spherical-wrist"
+        }))
+        .unwrap();
+        assert_eq!(request.solver, Some(SolverKind::SphericalWrist));
+        let json = serde_json::to_value(SolverKind::YawPlanar3).unwrap();
         assert_eq!(json, "yaw-planar3");
     }
 

@@ -15,8 +15,8 @@ mod toml_format;
 mod urdf;
 
 pub(crate) mod chain;
+pub mod planar_angles;
 pub mod presets;
-pub mod seed000;
 
 pub use error::ModelError;
 pub use inertia::{LinkInertial, STANDARD_GRAVITY};

@@ -18,7 +18,7 @@
 //! solutions within limits, the one with the smallest weighted change
 //! ([`IkSolutions::closest_to`](crate::ik::IkSolutions::closest_to)): the start closest to a
 //! reference configuration (default: home), the end closest to the chosen start. The default
-//! weights are seed 001's [`SEED001_WEIGHTS`](crate::effort::SEED001_WEIGHTS).
+//! weights are seed 001's [`DEFAULT_SIX_JOINT_WEIGHTS`](crate::effort::DEFAULT_SIX_JOINT_WEIGHTS).
 
 use nalgebra::Isometry3;
 
@@ -67,7 +67,11 @@ pub struct EndChoice {
 
 impl Default for EndChoice {
     fn default() -> Self {
-        EndChoice { weights: crate::effort::SEED001_WEIGHTS.to_vec(), reference: None, ik: IkOptions::default() }
+        EndChoice {
+            weights: crate::effort::DEFAULT_SIX_JOINT_WEIGHTS.to_vec(),
+            reference: None,
+            ik: IkOptions::default(),
+        }
     }
 }
 

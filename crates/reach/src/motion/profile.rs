@@ -18,7 +18,7 @@
 //! [`Profile::trapezoidal_for`] builds the fastest trapezoid for a distance and velocity and
 //! acceleration limits.
 
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::TAU;
 
 use serde::Serialize;
 
@@ -268,14 +268,6 @@ pub(crate) fn trapezoid_shape(v_demand: f64, a_demand: f64) -> (f64, f64) {
     } else {
         (0.5, 2.0 * a_demand.sqrt())
     }
-}
-
-/// Seed 001's velocity profile written as the thesis does, `(2/T)·sin²(πτ)` in `1/s`
-/// (notes 001 §3.6), for comparison in tests: equals `λ'(τ)/T` of [`Profile::Cycloidal`].
-#[must_use]
-pub fn seed001_velocity(tau: f64, duration: f64) -> f64 {
-    let s = (PI * tau.clamp(0.0, 1.0)).sin();
-    2.0 / duration * s * s
 }
 
 #[cfg(test)]

@@ -124,7 +124,7 @@ impl Default for PerSampleIk {
     /// Seed 001's weights, start at home, strict limits, default IK options.
     fn default() -> Self {
         PerSampleIk {
-            weights: crate::effort::SEED001_WEIGHTS.to_vec(),
+            weights: crate::effort::DEFAULT_SIX_JOINT_WEIGHTS.to_vec(),
             start: None,
             allow_outside_limits: false,
             ik: IkOptions::default(),

@@ -22,7 +22,7 @@ use serde::Serialize;
 use super::WorldError;
 use super::distance::point_segment_sq;
 use crate::ik::planar::PlanarRedundant;
-use crate::model::seed000::PlanarPaperAngles;
+use crate::model::planar_angles::InteriorAngles;
 use crate::tolerance::CONTACT;
 
 /// A point of the arm's plane, metres (plane coordinates of [`PlanarRedundant`]).
@@ -140,7 +140,7 @@ pub struct DetourPlan {
     pub configurations: Vec<[f64; 3]>,
     /// The thesis's angles `(α, β, γ)` at each reached waypoint.
     #[serde(skip)]
-    pub paper_angles: Vec<PlanarPaperAngles>,
+    pub paper_angles: Vec<InteriorAngles>,
     /// `S = Σ|Δangle|` of each leg, radians.
     pub leg_s: Vec<f64>,
     /// Smallest distance between any link and any obstacle along the planned legs (joint
@@ -256,15 +256,6 @@ pub fn arm_points(arm: &PlanarRedundant, q: &[f64; 3]) -> [P2; 4] {
     pts
 }
 
-fn paper_angles(arm: &PlanarRedundant, q: &[f64; 3]) -> PlanarPaperAngles {
-    let phi = arm.link_angles(q);
-    PlanarPaperAngles {
-        gamma: phi[0],
-        beta: phi[1] - phi[0] + std::f64::consts::PI,
-        alpha: phi[2] - phi[1] + std::f64::consts::PI,
-    }
-}
-
 /// Smallest distance between the three links and the obstacles while the joints move
 /// linearly from `from` to `to` (`samples ≥ 2` evenly spaced poses, ends included).
 #[must_use]
@@ -304,9 +295,9 @@ fn select(
     current: &[f64; 3],
     target: P2,
     step: f64,
-) -> Result<Option<([f64; 3], PlanarPaperAngles, f64)>, WorldError> {
+) -> Result<Option<([f64; 3], InteriorAngles, f64)>, WorldError> {
     let scan = arm.paper_scan(target, step)?;
-    let now = paper_angles(arm, current);
+    let now = InteriorAngles::from_link_angles(arm.link_angles(current));
     Ok(scan.select_min_s(&now).map(|(i, s)| (scan.rows[i].q, scan.rows[i].paper, s)))
 }
 

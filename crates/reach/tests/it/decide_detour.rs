@@ -5,8 +5,8 @@
 use reach::decide::detour_choice::{DetourCriterion, DetourRanking, choose_detour};
 use reach::decide::{DecideError, Method};
 use reach::ik::planar::PlanarRedundant;
+use reach::model::planar_angles::InteriorAngles;
 use reach::model::presets;
-use reach::model::seed000::PlanarPaperAngles;
 use reach::world::detour::{DetourOptions, DetourOutcome, WaypointRule, plan_detour};
 
 fn arm() -> PlanarRedundant {
@@ -15,7 +15,7 @@ fn arm() -> PlanarRedundant {
 
 fn start() -> [f64; 3] {
     let d = f64::to_radians;
-    PlanarPaperAngles { alpha: d(150.0), beta: d(140.0), gamma: d(60.0) }.to_joints()
+    InteriorAngles { alpha: d(150.0), beta: d(140.0), gamma: d(60.0) }.to_joints()
 }
 
 /// A coarser IK scan than the thesis's 0.01° keeps the test fast; the choice logic is the same.

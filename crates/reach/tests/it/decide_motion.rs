@@ -5,7 +5,7 @@
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use reach::decide::motion_criteria::{MOTION_CRITERIA, Requirement, point_to_point_duration};
 use reach::decide::{DecideError, Direction, Method, MotionCriterion, SampledMotion, TrackChooser, choose_motion};
-use reach::effort::{Differences, SEED001_WEIGHTS, j1};
+use reach::effort::{DEFAULT_SIX_JOINT_WEIGHTS, Differences, j1};
 use reach::ik::Branch;
 use reach::model::presets;
 use reach::motion::PathSample;
@@ -25,7 +25,7 @@ fn values_match_hand_computations() {
     let q: Vec<Vec<f64>> = t.iter().map(|&s| vec![s * s, 0.0, 0.0, s, 0.0, 0.0]).collect();
     let m = SampledMotion::new(&t, &q);
     let v = |name: &str| c(name, &robot).evaluate(&robot, &m).unwrap();
-    let expected_j1 = j1(&q[0], &q[3], &SEED001_WEIGHTS, &Differences::Literal).unwrap();
+    let expected_j1 = j1(&q[0], &q[3], &DEFAULT_SIX_JOINT_WEIGHTS, &Differences::Literal).unwrap();
     assert!((v("j1") - expected_j1).abs() < 1e-12);
     // Monotone motion: J2 = J1.
     assert!((v("j2") - expected_j1).abs() < 1e-12);
@@ -155,7 +155,7 @@ fn bad_motions_and_names_are_rejected() {
 /// log-loader (base yaw + two 1 m links), position-only path from (r, e) = (1.2, 60°)
 /// to (1.8, 80°) at yaw 30°: no singular position, elbow-up and elbow-down both feasible.
 fn loader_report(
-    criterion: Option<&dyn reach::motion::tracking::Criterion>,
+    criterion: Option<&dyn reach::motion::tracking::ConfigurationCriterion>,
 ) -> reach::motion::tracking::TrackingReport {
     let robot = presets::get("log-loader").unwrap();
     let pose = |s: f64| {

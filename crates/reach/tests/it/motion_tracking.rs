@@ -65,7 +65,7 @@ fn options(detection: SingularityDetection) -> TrackingOptions {
     TrackingOptions { configurations: configurations(), position_only: true, detection, ..Default::default() }
 }
 
-fn run(robot: &Robot, criterion: Option<&dyn reach::motion::tracking::Criterion>) -> TrackingReport {
+fn run(robot: &Robot, criterion: Option<&dyn reach::motion::tracking::ConfigurationCriterion>) -> TrackingReport {
     let samples = grid(touch_pose, 2.0, 149); // s = 1 is not a sample
     let eval = |s: f64| touch_pose(s);
     let path = TrackedPath::with_evaluator(&samples, &eval).unwrap();

@@ -4,8 +4,8 @@
 //! corrected formulas (D1, D5, D6, D7).
 
 use reach::ik::planar::PlanarRedundant;
+use reach::model::planar_angles::InteriorAngles;
 use reach::model::presets;
-use reach::model::seed000::PlanarPaperAngles;
 use reach::world::detour::{
     DetourOptions, DetourOutcome, P2, SweepTest, WaypointRule, arm_points, in_polygon, leg_clearance,
     paper_literal_in_sweep, plan_detour, waypoint,
@@ -17,7 +17,7 @@ fn arm() -> PlanarRedundant {
 
 fn start() -> [f64; 3] {
     let d = f64::to_radians;
-    PlanarPaperAngles { alpha: d(150.0), beta: d(140.0), gamma: d(60.0) }.to_joints()
+    InteriorAngles { alpha: d(150.0), beta: d(140.0), gamma: d(60.0) }.to_joints()
 }
 
 fn close(a: P2, b: [f64; 2], eps: f64) {
@@ -105,7 +105,7 @@ fn scenario_obstacle_tests() {
     }
 }
 
-fn deg3(p: &PlanarPaperAngles) -> [f64; 3] {
+fn deg3(p: &InteriorAngles) -> [f64; 3] {
     [p.alpha.to_degrees(), p.beta.to_degrees(), p.gamma.to_degrees()]
 }
 

@@ -9,7 +9,7 @@ use proptest::prelude::*;
 use reach::angle::{deg, wrap};
 use reach::ik::yaw_two_link::{YawTwoLink, base_angle, shortest_base_rotation};
 use reach::ik::{IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, SolverKind};
-use reach::model::seed000::LogLoaderPaperAngles;
+use reach::model::planar_angles::LogLoaderAngles;
 use reach::model::{Convention, Joint, Robot, RobotSpec, presets};
 
 fn loader() -> (Robot, YawTwoLink) {
@@ -105,7 +105,7 @@ fn p2011_equations_3_and_4() {
     for ([x, y, z], beta, gamma) in [([1.0, 0.5, 0.8], 86.847141, 82.161732), ([1.2, 0.0, 0.3], 76.408377, 65.832055)] {
         let sols = solve(IkTarget::Position(Point3::new(x, y, z)), &IkOptions::default());
         let s = branch(&sols, "front", "up");
-        let p = LogLoaderPaperAngles::from_joints([s.q[0], s.q[1], s.q[2]]);
+        let p = LogLoaderAngles::from_joints([s.q[0], s.q[1], s.q[2]]);
         assert_relative_eq!(p.alpha, base_angle(x, y).unwrap(), epsilon = 1e-12);
         assert_relative_eq!(p.beta.to_degrees(), beta, epsilon = 1e-6);
         assert_relative_eq!(p.gamma.to_degrees(), gamma, epsilon = 1e-6);

@@ -13,7 +13,7 @@ use proptest::prelude::*;
 use reach::angle::{deg, wrap};
 use reach::ik::planar::{PlanarRedundant, ScanRow};
 use reach::ik::{IkFailure, IkOptions, IkSolver, IkTarget, SingularityKind};
-use reach::model::seed000::PlanarPaperAngles;
+use reach::model::planar_angles::InteriorAngles;
 use reach::model::{Convention, Joint, Robot, RobotSpec, presets};
 
 /// Notes' values are rounded to 6 decimals of a degree.
@@ -166,7 +166,7 @@ fn d1_printed_gamma2_mirrors_the_arm() {
     let (robot, arm) = planar3();
     let r = row(&arm, [2.0, 1.0], 90.0);
     let gamma1 = r.paper.gamma - 1f64.atan2(2.0);
-    let printed = PlanarPaperAngles { gamma: gamma1 + (2.0f64 / 1.0).atan(), ..r.paper };
+    let printed = InteriorAngles { gamma: gamma1 + (2.0f64 / 1.0).atan(), ..r.paper };
     assert_relative_eq!(printed.gamma.to_degrees(), 90.0, epsilon = 1e-9);
     let k = tip(&robot, &printed.to_joints());
     assert_relative_eq!(k[0], 1.0, epsilon = 1e-12);
@@ -238,8 +238,8 @@ fn workspace_test_is_strict() {
 // §6.3 selection by minimum S.
 // ---------------------------------------------------------------------------------------------
 
-fn paper_deg(alpha: f64, beta: f64, gamma: f64) -> PlanarPaperAngles {
-    PlanarPaperAngles { alpha: deg(alpha), beta: deg(beta), gamma: deg(gamma) }
+fn paper_deg(alpha: f64, beta: f64, gamma: f64) -> InteriorAngles {
+    InteriorAngles { alpha: deg(alpha), beta: deg(beta), gamma: deg(gamma) }
 }
 
 #[test]

@@ -47,7 +47,7 @@ use crate::common::{SPBU6_T0 as T0, SPBU6_T1 as T1, pose_from_rows as pose};
 use nalgebra::{Isometry3, Matrix3, Matrix4, Vector3};
 use reach::Robot;
 use reach::angle::wrap;
-use reach::effort::{Differences, SEED001_WEIGHTS, j1, j1_of_delta, j2};
+use reach::effort::{DEFAULT_SIX_JOINT_WEIGHTS, Differences, j1, j1_of_delta, j2};
 use reach::ik::{self, IkOptions, IkTarget};
 use reach::model::presets;
 use reach::motion::joint_space::EndChoice;
@@ -67,6 +67,13 @@ fn tool_motion() -> ToolMotion {
     ToolMotion::new(pose(T0), pose(T1), 0.0, 10.0, Profile::Cycloidal).unwrap()
 }
 
+/// Seed 001's velocity profile written as the thesis does, `(2/T)·sin²(πτ)` in `1/s`
+/// (notes 001 §3.6): it should equal `λ'(τ)/T` of [`Profile::Cycloidal`].
+fn thesis_velocity(tau: f64, duration: f64) -> f64 {
+    let s = (PI * tau.clamp(0.0, 1.0)).sin();
+    2.0 / duration * s * s
+}
+
 /// Notes §3.6: λ at t = 0..10.
 #[test]
 fn cycloidal_lambda_matches_the_notes() {
@@ -77,7 +84,7 @@ fn cycloidal_lambda_matches_the_notes() {
         assert!((lambda(t) - want).abs() < 5e-7);
         // The thesis's velocity profile (2/T)·sin²(πτ) is λ'/T.
         let v = Profile::Cycloidal.eval(t / 10.0).velocity / 10.0;
-        assert!((v - reach::motion::profile::seed001_velocity(t / 10.0, 10.0)).abs() < 1e-15);
+        assert!((v - thesis_velocity(t / 10.0, 10.0)).abs() < 1e-15);
     }
 }
 
@@ -255,7 +262,7 @@ fn plain_ik(t: &Isometry3<f64>, q6_keep: f64) -> Vec<[f64; 6]> {
 
 /// The weighted wrapped change Σ ωᵢ |wrap(bᵢ − aᵢ)|, written out.
 fn cost(a: &[f64], b: &[f64]) -> f64 {
-    (0..6).map(|i| SEED001_WEIGHTS[i] * wrap(b[i] - a[i]).abs()).sum()
+    (0..6).map(|i| DEFAULT_SIX_JOINT_WEIGHTS[i] * wrap(b[i] - a[i]).abs()).sum()
 }
 
 /// J1 of the joint-space motion = 7π/36; the sampled motion is monotone, so J2 = J1.
@@ -266,10 +273,15 @@ fn j1_of_the_joint_space_motion_is_7pi_over_36() {
         JointMotion::between_poses(&robot, &pose(T0), &pose(T1), 0.0, 10.0, Profile::Cycloidal, &EndChoice::default())
             .unwrap();
     let want = 7.0 * PI / 36.0;
-    assert!((j1_of_delta(m.delta(), &SEED001_WEIGHTS).unwrap() - want).abs() < 1e-12);
-    assert!((j1(m.start(), &m.end(), &SEED001_WEIGHTS, &Differences::for_robot(&robot)).unwrap() - want).abs() < 1e-12);
+    assert!((j1_of_delta(m.delta(), &DEFAULT_SIX_JOINT_WEIGHTS).unwrap() - want).abs() < 1e-12);
+    assert!(
+        (j1(m.start(), &m.end(), &DEFAULT_SIX_JOINT_WEIGHTS, &Differences::for_robot(&robot)).unwrap() - want).abs()
+            < 1e-12
+    );
     let traj = m.sample(0.1).unwrap();
-    assert!((j2(&traj.rows(), &SEED001_WEIGHTS, &Differences::for_robot(&robot)).unwrap() - want).abs() < 1e-12);
+    assert!(
+        (j2(&traj.rows(), &DEFAULT_SIX_JOINT_WEIGHTS, &Differences::for_robot(&robot)).unwrap() - want).abs() < 1e-12
+    );
     assert!((want - 0.6109).abs() < 5e-5);
 }
 
@@ -303,7 +315,7 @@ fn j2_of_the_tool_space_motion_closest_branch() {
         independent += cost(&previous, best);
         previous = *best;
     }
-    let got = j2(&traj.rows(), &SEED001_WEIGHTS, &Differences::for_robot(&robot)).unwrap();
+    let got = j2(&traj.rows(), &DEFAULT_SIX_JOINT_WEIGHTS, &Differences::for_robot(&robot)).unwrap();
     assert!((got - independent).abs() < 1e-9, "{got} vs {independent}");
     assert!((got - 0.876425).abs() < 1e-6, "{got}");
     assert!(got > 7.0 * PI / 36.0); // J_tool > J_joint, the thesis's claim
@@ -329,7 +341,7 @@ fn j2_of_the_tool_space_motion_thesis_branch() {
         independent += cost(&previous, &upper);
         previous = upper;
     }
-    let got = j2(&thesis, &SEED001_WEIGHTS, &Differences::Wrapped).unwrap();
+    let got = j2(&thesis, &DEFAULT_SIX_JOINT_WEIGHTS, &Differences::Wrapped).unwrap();
     assert!((got - independent).abs() < 1e-9, "{got} vs {independent}");
     assert!((got - 1.187423).abs() < 1e-6, "{got}");
     // Not the paper's 1.3307 (notes §6).

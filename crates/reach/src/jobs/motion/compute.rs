@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 use crate::jobs::input::{AngleUnit, from_si, joints_outside_limits, positive, q_display, rpy_deg, unit_name};
 use crate::motion::joint_space::EndChoice;
 use crate::motion::sample::PerSampleIk;
-use crate::motion::tracking::{Criterion, TrackedPath, TrackingOptions, describe, track_with_progress};
+use crate::motion::tracking::{ConfigurationCriterion, TrackedPath, TrackingOptions, describe, track_with_progress};
 use crate::motion::{JointMotion, JointRates, ToolMotion};
 
 use super::report::{MoveEffort, MoveEvent, MoveInterval, MoveReport, MoveSample};
@@ -216,7 +216,7 @@ fn tool_space(robot: &Robot, request: &MoveRequest, progress: &mut dyn FnMut(usi
     let path = motion.sample_time(dt)?;
     let tracked = TrackedPath::sampled(&path.samples)?;
     let chooser = request.choose.as_ref().map(|c| c.chooser(robot, request.joint_weights.as_deref())).transpose()?;
-    let criterion = chooser.as_ref().map(|c| c as &dyn Criterion);
+    let criterion = chooser.as_ref().map(|c| c as &dyn ConfigurationCriterion);
     let progress = RefCell::new(progress);
     let report = track_with_progress(robot, &tracked, &TrackingOptions::default(), criterion, &|done, total| {
         (progress.borrow_mut())(done, total);
@@ -274,14 +274,20 @@ fn tool_space(robot: &Robot, request: &MoveRequest, progress: &mut dyn FnMut(usi
                 configuration: iv.chosen.and_then(|c| report.configurations.get(c)).map(ToString::to_string),
                 feasible: iv.chosen.is_some(),
                 reasons,
-                decision: Some(iv.decision.into()),
+                decision: Some(iv.decision),
             }
         })
         .collect();
+    let degrees = request.angle_unit() == AngleUnit::Deg;
     let events = report
         .events
         .iter()
-        .map(|e| MoveEvent { t_s: e.t, code: e.code.as_str().into(), message: describe(e, robot, true) })
+        .map(|e| MoveEvent {
+            t_s: e.t,
+            code: e.code.as_str().into(),
+            message: describe(e, robot, degrees),
+            detail: e.detail.clone(),
+        })
         .collect();
     Ok(Computed { times, q, qd, intervals, events })
 }

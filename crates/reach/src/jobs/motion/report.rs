@@ -4,7 +4,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::request::Space;
-use crate::motion::tracking::Decision;
+use crate::motion::tracking::{Decision, EventDetail};
 
 /// One sample of a motion (what `reach drive` reads: `t_s`, `q_deg`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
@@ -19,37 +19,6 @@ pub struct MoveSample {
     pub xyz_m: [f64; 3],
     /// Tool orientation: roll, pitch, yaw in degrees, `R = Rz(yaw)·Ry(pitch)·Rx(roll)`.
     pub rpy_deg: [f64; 3],
-}
-
-/// How an interval's configuration was chosen (tool space).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum IntervalDecision {
-    /// The default configuration (feasible, no criterion given).
-    Default,
-    /// The only feasible configuration.
-    OnlyFeasible,
-    /// Several were feasible but not the default, and no criterion was given: the first.
-    FirstFeasible,
-    /// Several were feasible; the criteria chose (`choose`).
-    Criterion,
-    /// Several were feasible and none met the criteria: the default was kept (K14).
-    CriterionRejected,
-    /// Outside the reachable set, or no configuration feasible (K8).
-    NotRealizable,
-}
-
-impl From<Decision> for IntervalDecision {
-    fn from(d: Decision) -> Self {
-        match d {
-            Decision::Default => IntervalDecision::Default,
-            Decision::OnlyFeasible => IntervalDecision::OnlyFeasible,
-            Decision::FirstFeasible => IntervalDecision::FirstFeasible,
-            Decision::Criterion => IntervalDecision::Criterion,
-            Decision::CriterionRejected => IntervalDecision::CriterionRejected,
-            Decision::NotRealizable => IntervalDecision::NotRealizable,
-        }
-    }
 }
 
 /// One interval of a motion (joint space: the whole motion; tool space: between singular
@@ -69,7 +38,7 @@ pub struct MoveInterval {
     pub reasons: Vec<String>,
     /// How the configuration was chosen (tool space only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub decision: Option<IntervalDecision>,
+    pub decision: Option<Decision>,
 }
 
 /// One event of the tracking log (tool space).
@@ -79,8 +48,11 @@ pub struct MoveEvent {
     pub t_s: f64,
     /// `K1` … `K14`.
     pub code: String,
-    /// The text.
+    /// The text, angles in the request's unit ([`MoveRequest::angle_unit`](super::MoveRequest::angle_unit)).
     pub message: String,
+    /// What the event says as data: SI units and radians, 0-based joint indices, path
+    /// parameters `s` as the tool point's arc length from the start, metres.
+    pub detail: EventDetail,
 }
 
 /// Effort functionals of a motion.

@@ -11,7 +11,7 @@ use crate::Robot;
 use crate::decide::motion_criteria::Requirement;
 use crate::decide::{Method, MotionCriterion, TrackChooser};
 use crate::error::{Error, Result};
-use crate::jobs::input::{Joints, Pose};
+use crate::jobs::input::{AngleUnit, Joints, Pose};
 use crate::motion::Profile;
 
 /// Where a motion is interpolated.
@@ -65,7 +65,7 @@ impl ProfileName {
     /// The time law.
     ///
     /// # Errors
-    /// None in practice (the trapezoid's fixed third is valid); a [`crate::MotionError`] would
+    /// None in practice (the trapezoid's fixed third is valid); a [`crate::motion::MotionError`] would
     /// be passed on.
     pub fn profile(self) -> Result<Profile> {
         Ok(match self {
@@ -103,6 +103,18 @@ impl End {
         match self {
             End::Pose(p) => p.isometry(&format!("{field}.pose")),
             End::Joints(q) => Ok(robot.fk(&q.si(robot, &format!("{field}.joints"))?)?),
+        }
+    }
+
+    /// The angle unit this end is typed in: its joints' unit, `rad` for a pose given by
+    /// `rpy_rad`, `deg` for one given by `rpy_deg`; `None` otherwise (quaternion, matrix).
+    #[must_use]
+    pub fn angle_unit(&self) -> Option<AngleUnit> {
+        match self {
+            End::Joints(q) => Some(q.unit()),
+            End::Pose(p) if p.rpy_rad.is_some() => Some(AngleUnit::Rad),
+            End::Pose(p) if p.rpy_deg.is_some() => Some(AngleUnit::Deg),
+            End::Pose(_) => None,
         }
     }
 }
@@ -144,6 +156,13 @@ pub struct MoveRequest {
 }
 
 impl MoveRequest {
+    /// The angle unit of the request, the one its report's texts (events) use: that of the
+    /// `from` end, else of the `to` end ([`End::angle_unit`]), else degrees.
+    #[must_use]
+    pub fn angle_unit(&self) -> AngleUnit {
+        self.from.angle_unit().or_else(|| self.to.angle_unit()).unwrap_or_default()
+    }
+
     /// A joint-space motion between two joint vectors, every option at its default.
     #[must_use]
     pub fn joints(from: Joints, to: Joints) -> Self {

@@ -109,3 +109,45 @@ fn task_file_errors_give_line_and_column_or_name_the_motion() {
     assert_eq!(report.motions[0].name, "motion 1");
     assert!((report.motions[0].duration_s - 2.0).abs() < 1e-12);
 }
+
+/// The weld of seed 003 (notes 003 §5), ends given with `rpy_deg` or `rpy_rad`.
+fn weld(unit: crate::jobs::input::AngleUnit) -> MoveRequest {
+    use crate::jobs::input::{AngleUnit, Pose};
+    let rpy = [0.0, -41.86854343693031f64, -50.19442890773481];
+    let pose = |xyz_m: [f64; 3]| match unit {
+        AngleUnit::Deg => Pose::xyz_rpy_deg(xyz_m, rpy),
+        AngleUnit::Rad => Pose { xyz_m: Some(xyz_m), rpy_rad: Some(rpy.map(f64::to_radians)), ..Pose::default() },
+    };
+    MoveRequest {
+        from: End::Pose(pose([0.05, 0.74, 0.07])),
+        to: End::Pose(pose([0.5, 0.2, 0.7])),
+        space: Space::Tool,
+        speed_m_s: Some(0.001),
+        dt_s: Some(10.0),
+        ..MoveRequest::joints(Joints::Deg(Vec::new()), Joints::Deg(Vec::new()))
+    }
+}
+
+/// The event text follows the request's angle unit; the typed detail is the same SI data
+/// either way: θ4 of −β leaves [−175°, 150°] on s ∈ (0.618, 0.882) m (notes 003 §5.5).
+#[test]
+fn event_text_in_the_request_unit_and_typed_detail() {
+    use crate::jobs::input::AngleUnit;
+    use crate::motion::tracking::EventDetail;
+    let robot = presets::get("welder6r").unwrap();
+    assert_eq!(weld(AngleUnit::Rad).angle_unit(), AngleUnit::Rad);
+    assert_eq!(weld(AngleUnit::Deg).angle_unit(), AngleUnit::Deg);
+    let by_deg = move_motion(&robot, &weld(AngleUnit::Deg)).unwrap();
+    let by_rad = move_motion(&robot, &weld(AngleUnit::Rad)).unwrap();
+    let k7 = |r: &MoveReport| r.events.iter().find(|e| e.code == "K7").cloned().expect("a K7 event");
+    let (deg, rad) = (k7(&by_deg), k7(&by_rad));
+    assert!(deg.message.contains("[-175.00, 150.00] deg"), "{}", deg.message);
+    assert!(rad.message.contains("[-3.0543, 2.6180] rad"), "{}", rad.message);
+    let EventDetail::JointLimit { joint, lower, upper, s_start, s_end, .. } = deg.detail else {
+        panic!("K7 is a joint limit: {:?}", deg.detail)
+    };
+    assert_eq!(joint, 3);
+    assert!((lower - (-175f64).to_radians()).abs() < 1e-12 && (upper - 150f64.to_radians()).abs() < 1e-12);
+    assert!((s_start - 0.6181).abs() < 1e-3 && (s_end - 0.8822).abs() < 1e-3, "{s_start} {s_end}");
+    assert!(matches!(rad.detail, EventDetail::JointLimit { joint: 3, .. }));
+}

@@ -68,6 +68,30 @@ impl Tracker<'_> {
         self.solving.follow(&self.path.pose_at(s)?, lock, reference)
     }
 
+    /// A limit violation of joint `j` (0-based) over `s ∈ [s_start, s_end]`, with the worst
+    /// sampled value and the limits `(lower, upper)` it broke.
+    fn joint_violation(
+        &self,
+        kind: ViolationKind,
+        j: usize,
+        (s_start, s_end): (f64, f64),
+        worst: f64,
+        (lower, upper): (f64, f64),
+    ) -> Violation {
+        Violation {
+            kind,
+            joint: Some(j + 1),
+            name: self.robot().joints()[j].name.clone(),
+            s_start,
+            s_end,
+            t_start: self.path.time_at(s_start),
+            t_end: self.path.time_at(s_end),
+            worst,
+            lower,
+            upper,
+        }
+    }
+
     pub(super) fn lost(&self, a: f64, b: f64) -> Violation {
         Violation {
             kind: ViolationKind::BranchLost,
@@ -112,18 +136,9 @@ impl Tracker<'_> {
                     .unwrap_or(f64::NAN);
                 let worst =
                     if joint.kind == JointKind::Revolute && joint.limits.span() < TAU { wrap(worst) } else { worst };
-                track.violations.push(Violation {
-                    kind: ViolationKind::Position,
-                    joint: Some(j + 1),
-                    name: joint.name.clone(),
-                    s_start,
-                    s_end,
-                    t_start: self.path.time_at(s_start),
-                    t_end: self.path.time_at(s_end),
-                    worst,
-                    lower: joint.limits.lower,
-                    upper: joint.limits.upper,
-                });
+                let limits = (joint.limits.lower, joint.limits.upper);
+                let violation = self.joint_violation(ViolationKind::Position, j, (s_start, s_end), worst, limits);
+                track.violations.push(violation);
             }
         }
         Ok(())
@@ -185,18 +200,9 @@ impl Tracker<'_> {
                     .map(|i| track.step_rates[i][j])
                     .max_by(|a, b| a.abs().total_cmp(&b.abs()))
                     .unwrap_or(f64::NAN);
-                track.violations.push(Violation {
-                    kind: ViolationKind::Velocity,
-                    joint: Some(j + 1),
-                    name: joint.name.clone(),
-                    s_start,
-                    s_end,
-                    t_start: self.path.time_at(s_start),
-                    t_end: self.path.time_at(s_end),
-                    worst,
-                    lower: -vmax,
-                    upper: vmax,
-                });
+                let violation =
+                    self.joint_violation(ViolationKind::Velocity, j, (s_start, s_end), worst, (-vmax, vmax));
+                track.violations.push(violation);
             }
         }
         Ok(())

@@ -6,7 +6,8 @@
 
 use std::f64::consts::PI;
 
-use serde::Serialize;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 
 use crate::ik::{Branch, SingularityKind};
 use crate::model::{JointKind, Robot};
@@ -69,7 +70,10 @@ impl EventCode {
 
 /// What an event says, in SI units (metres, seconds) and radians; joint indices are 0-based.
 /// Path parameters are those of the [`TrackedPath`](super::TrackedPath).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+///
+/// In JSON (the `move` and `plan` reports' events): internally tagged by `type`
+/// (`{"type": "joint_limit", "configuration": [["elbow", "up"]], "joint": 3, …}`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(tag = "type", rename_all = "snake_case")]
 #[non_exhaustive]
 pub enum EventDetail {

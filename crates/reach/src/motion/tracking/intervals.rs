@@ -64,8 +64,9 @@ impl ConfigurationTrack {
     }
 }
 
-/// How an interval's configuration was chosen.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+/// How an interval's configuration was chosen (reported as is by the `move` and `plan`
+/// jobs, snake_case in JSON).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Decision {
     /// The default configuration (feasible, no criterion given).
@@ -75,7 +76,7 @@ pub enum Decision {
     /// Several were feasible but not the default, and no criterion was given: the first
     /// feasible one in the list.
     FirstFeasible,
-    /// Several were feasible; the criterion chose.
+    /// Several were feasible; the criterion chose (the `move`/`plan` request's `choose`).
     Criterion,
     /// Several were feasible and the criterion scored none: the default was kept (K14).
     CriterionRejected,
@@ -123,12 +124,12 @@ pub struct TrajectoryPoint {
 /// A user criterion for choosing among feasible configurations (notes 003 §7 item 5: smaller
 /// accelerations, energy, stiffness, …): lower scores are better; `None` means the
 /// configuration does not satisfy the criterion.
-pub trait Criterion {
+pub trait ConfigurationCriterion {
     /// The score of one configuration's trajectory over an interval.
     fn score(&self, track: &ConfigurationTrack) -> Option<f64>;
 
     /// Index (into `feasible`) of the configuration to realise, or `None` when none satisfies
-    /// the criterion. Default: the lowest finite [`score`](Criterion::score) (first on a tie);
+    /// the criterion. Default: the lowest finite [`score`](ConfigurationCriterion::score) (first on a tie);
     /// criteria that compare the candidates with each other (multi-criteria rankings,
     /// [`crate::decide::TrackChooser`]) override it.
     fn choose(&self, feasible: &[&ConfigurationTrack]) -> Option<usize> {
@@ -141,7 +142,7 @@ pub trait Criterion {
     }
 }
 
-impl<F: Fn(&ConfigurationTrack) -> Option<f64>> Criterion for F {
+impl<F: Fn(&ConfigurationTrack) -> Option<f64>> ConfigurationCriterion for F {
     fn score(&self, track: &ConfigurationTrack) -> Option<f64> {
         self(track)
     }
@@ -297,7 +298,7 @@ impl Tracker<'_> {
         ((a, ka), (b, kb)): (Bound, Bound),
         scan: &Scan,
         budget: usize,
-        (default, criterion): (usize, Option<&dyn Criterion>),
+        (default, criterion): (usize, Option<&dyn ConfigurationCriterion>),
         log: &mut EventLog<'_>,
     ) -> Result<IntervalReport, TrackingError> {
         let path = self.path;
@@ -402,7 +403,7 @@ fn choose(
     tracks: &[ConfigurationTrack],
     feasible: &[usize],
     default: usize,
-    criterion: Option<&dyn Criterion>,
+    criterion: Option<&dyn ConfigurationCriterion>,
 ) -> (Option<usize>, Decision) {
     match feasible {
         [] => (None, Decision::NotRealizable),

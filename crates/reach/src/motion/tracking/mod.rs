@@ -70,7 +70,7 @@
 //! continuous motion); a wider range is checked on the unwrapped, continuous trajectory.
 //! The interval is realised in the default configuration when it is feasible and no
 //! criterion is given, in the only feasible one, or in the feasible one with the lowest
-//! score of a user [`Criterion`]; when the criterion scores none, the default is kept (K14).
+//! score of a user [`ConfigurationCriterion`]; when the criterion scores none, the default is kept (K14).
 //! Intervals are separated by singular positions, so the configuration changes only there.
 //!
 //! The decisions are logged as [`TrackingEvent`]s equivalent to the paper's operator
@@ -81,7 +81,7 @@
 //!
 //! `path` (the [`TrackedPath`]), `branch` (following one configuration, [`step_rates`]),
 //! `singular` (the scan for split points), `checks` (limit violations), `intervals` (the
-//! per-interval tracking and choice, [`Criterion`]), `events` (the K1–K14 events, their data
+//! per-interval tracking and choice, [`ConfigurationCriterion`]), `events` (the K1–K14 events, their data
 //! and [`describe`], the one text renderer) and `log` (the log the tracker writes).
 
 mod branch;
@@ -105,7 +105,7 @@ use branch::Solving;
 pub use branch::{BranchTrack, step_rates, track_configuration};
 pub use checks::{Violation, ViolationKind, WrapCrossing};
 pub use events::{EventCode, EventDetail, TrackingEvent, describe};
-pub use intervals::{ConfigurationTrack, Criterion, Decision, IntervalReport, TrajectoryPoint};
+pub use intervals::{ConfigurationCriterion, ConfigurationTrack, Decision, IntervalReport, TrajectoryPoint};
 use log::EventLog;
 pub use path::TrackedPath;
 pub use singular::{SingularityDetection, SplitKind, SplitPoint};
@@ -273,7 +273,7 @@ pub fn track(
     robot: &Robot,
     path: &TrackedPath<'_>,
     options: &TrackingOptions,
-    criterion: Option<&dyn Criterion>,
+    criterion: Option<&dyn ConfigurationCriterion>,
 ) -> Result<TrackingReport, TrackingError> {
     track_with_progress(robot, path, options, criterion, &|_, _| {})
 }
@@ -333,7 +333,7 @@ pub fn track_with_progress(
     robot: &Robot,
     path: &TrackedPath<'_>,
     options: &TrackingOptions,
-    criterion: Option<&dyn Criterion>,
+    criterion: Option<&dyn ConfigurationCriterion>,
     progress: &dyn Fn(usize, usize),
 ) -> Result<TrackingReport, TrackingError> {
     let kind = options.solver.unwrap_or_else(|| SolverKind::detect(robot));
@@ -422,7 +422,7 @@ impl<'a> Tracker<'a> {
 fn track_with(
     tracker: Tracker<'_>,
     default: usize,
-    criterion: Option<&dyn Criterion>,
+    criterion: Option<&dyn ConfigurationCriterion>,
 ) -> Result<TrackingReport, TrackingError> {
     let path = tracker.path;
     let scan = tracker.split_points()?;
