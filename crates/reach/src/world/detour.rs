@@ -21,6 +21,7 @@ use serde::Serialize;
 
 use super::WorldError;
 use super::distance::point_segment_sq;
+use super::sweep::{Clearances, Sweep, segment_rate, sweep};
 use crate::ik::planar::PlanarRedundant;
 use crate::model::planar_angles::InteriorAngles;
 use crate::tolerance::CONTACT;
@@ -31,8 +32,8 @@ pub type P2 = [f64; 2];
 /// Which swept-area test decides whether an obstacle blocks a move.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
 pub enum SweepTest {
-    /// Orientation-free point-in-polygon on the swept quadrilaterals of all links (closed:
-    /// an obstacle on an edge counts as inside).
+    /// The continuous check of the joint-interpolated motion of all three links
+    /// ([`leg_sweep`]): blocked unless a positive clearance is proven over the whole move.
     #[default]
     Robust,
     /// The thesis's eqs. (24)–(36) for the last link only, as printed (`k < 1`, fixed
@@ -64,9 +65,6 @@ pub struct DetourOptions {
     pub waypoints: WaypointRule,
     /// Radius of the waypoint circle, metres (thesis: `L/7`; `None` = mean link length / 7).
     pub radius: Option<f64>,
-    /// Samples per leg for the clearance of the joint-interpolated motion (≥ 2). A leg whose
-    /// sampled clearance is within [`CONTACT`] of an obstacle also counts as blocked.
-    pub samples_per_leg: usize,
 }
 
 impl Default for DetourOptions {
@@ -76,7 +74,6 @@ impl Default for DetourOptions {
             sweep_test: SweepTest::Robust,
             waypoints: WaypointRule::Perpendicular,
             radius: None,
-            samples_per_leg: 200,
         }
     }
 }
@@ -146,6 +143,25 @@ pub struct DetourPlan {
     /// Smallest distance between any link and any obstacle along the planned legs (joint
     /// values interpolated linearly), metres; `None` without obstacles or legs.
     pub min_clearance: Option<f64>,
+    /// Where that smallest distance occurs, with its certified lower bound.
+    pub closest: Option<Closest>,
+}
+
+/// Where the arm comes closest to an obstacle along the planned legs.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
+pub struct Closest {
+    /// 1-based leg (1 for the direct move).
+    pub leg: usize,
+    /// Fraction `s ∈ [0, 1]` of the leg's joint-interpolated motion.
+    pub at: f64,
+    /// 1-based link: 1 = OB, 2 = BA, 3 = AK.
+    pub link: usize,
+    /// 0-based obstacle.
+    pub obstacle: usize,
+    /// The distance there, metres.
+    pub clearance_m: f64,
+    /// Certified lower bound of the distance over all legs, metres.
+    pub lower_bound_m: f64,
 }
 
 /// Cross product of `b − a` and `c − a`.
@@ -256,23 +272,47 @@ pub fn arm_points(arm: &PlanarRedundant, q: &[f64; 3]) -> [P2; 4] {
     pts
 }
 
-/// Smallest distance between the three links and the obstacles while the joints move
-/// linearly from `from` to `to` (`samples ≥ 2` evenly spaced poses, ends included).
-#[must_use]
-pub fn leg_clearance(arm: &PlanarRedundant, from: &[f64; 3], to: &[f64; 3], obstacles: &[P2], samples: usize) -> f64 {
-    let n = samples.max(2);
-    let mut best = f64::INFINITY;
-    for s in 0..n {
-        let t = s as f64 / (n - 1) as f64;
-        let q = [0, 1, 2].map(|i| from[i] + t * (to[i] - from[i]));
-        let p = arm_points(arm, &q);
-        for h in obstacles {
+/// The clearances of the three links of a planar arm to point obstacles, for [`sweep`]:
+/// constraint `3·o + i` is link `i` (0-based: OB, BA, AK) against obstacle `o`.
+pub struct PlanarClearances<'a> {
+    /// The arm.
+    pub arm: &'a PlanarRedundant,
+    /// The obstacles.
+    pub obstacles: &'a [P2],
+}
+
+impl Clearances for PlanarClearances<'_> {
+    fn count(&self) -> usize {
+        3 * self.obstacles.len()
+    }
+
+    fn rates(&mut self, a: &[f64], b: &[f64], rates: &mut [f64]) -> Result<(), WorldError> {
+        let delta = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        let lengths = self.arm.lengths();
+        for (c, r) in rates.iter_mut().enumerate() {
+            *r = segment_rate(&lengths, &[true; 3], &delta, c % 3, 0.0);
+        }
+        Ok(())
+    }
+
+    fn evaluate(&mut self, q: &[f64], out: &mut [f64]) -> Result<(), WorldError> {
+        let p = arm_points(self.arm, &[q[0], q[1], q[2]]);
+        for (o, h) in self.obstacles.iter().enumerate() {
             for i in 0..3 {
-                best = best.min(seg_dist(*h, p[i], p[i + 1]));
+                out[3 * o + i] = seg_dist(*h, p[i], p[i + 1]);
             }
         }
+        Ok(())
     }
-    best
+}
+
+/// The swept check of the joint-interpolated move `from → to` against `obstacles` (see
+/// [`super::sweep`]): proven clear, or the first obstacle and link it touches.
+///
+/// # Errors
+/// [`WorldError::Input`] for non-finite joint values.
+pub fn leg_sweep(arm: &PlanarRedundant, from: &[f64; 3], to: &[f64; 3], obstacles: &[P2]) -> Result<Sweep, WorldError> {
+    sweep(&mut PlanarClearances { arm, obstacles }, from, to)
 }
 
 /// Whether the move `from → to` is blocked by obstacle `h` under `test`.
@@ -308,9 +348,9 @@ fn select(
 /// 1. Target: minimum-change IK row ([`PlanarRedundant::paper_scan`] +
 ///    [`select_min_s`](crate::ik::planar::PaperScan::select_min_s)); outside `L < r < 3L`:
 ///    [`DetourOutcome::TargetUnreachable`].
-/// 2. The direct move is blocked by the first obstacle inside a swept area (per
-///    [`SweepTest`]) or, with the robust test, within [`CONTACT`] of the joint-interpolated
-///    motion. Not blocked: [`DetourOutcome::Direct`].
+/// 2. The direct move is blocked by the first obstacle the joint-interpolated motion cannot be
+///    proven to clear ([`leg_sweep`]; with [`SweepTest::PaperLiteral`], the thesis's printed
+///    test). Not blocked: [`DetourOutcome::Direct`].
 /// 3. Blocked by `H`: if `H` is within the circle radius of `K1` or `K`, no detour fits
 ///    ([`DetourOutcome::ObstacleTooClose`]). Otherwise `K2`, `K3` by the waypoint rule; a
 ///    waypoint outside the workspace gives [`DetourOutcome::WaypointUnreachable`].
@@ -344,34 +384,29 @@ pub fn plan_detour(
         paper_angles: Vec::new(),
         leg_s: Vec::new(),
         min_clearance: None,
+        closest: None,
     };
     let Some((q1, p1, s1)) = select(arm, start, target, options.step)? else { return Ok(plan) };
-    let blocker = |from: &[f64; 3], to: &[f64; 3]| -> Option<usize> {
-        obstacles.iter().position(|h| {
-            move_blocked(arm, from, to, *h, options.sweep_test)
-                || (options.sweep_test == SweepTest::Robust
-                    && leg_clearance(arm, from, to, std::slice::from_ref(h), options.samples_per_leg) <= CONTACT)
+    // The first obstacle the move runs into (the swept check), or the literal test's first.
+    let blocker = |from: &[f64; 3], to: &[f64; 3]| -> Result<Option<usize>, WorldError> {
+        Ok(match options.sweep_test {
+            SweepTest::Robust => {
+                let swept = leg_sweep(arm, from, to, obstacles)?;
+                (!swept.clear).then_some(swept.constraint / 3)
+            }
+            SweepTest::PaperLiteral => {
+                obstacles.iter().position(|h| move_blocked(arm, from, to, *h, SweepTest::PaperLiteral))
+            }
         })
     };
-    let clearance = |legs: &[[f64; 3]]| -> Option<f64> {
-        if obstacles.is_empty() {
-            return None;
-        }
-        let mut from = *start;
-        let mut best = f64::INFINITY;
-        for to in legs {
-            best = best.min(leg_clearance(arm, &from, to, obstacles, options.samples_per_leg));
-            from = *to;
-        }
-        Some(best)
-    };
-    let Some(hit) = blocker(start, &q1) else {
+    let Some(hit) = blocker(start, &q1)? else {
         plan.outcome = DetourOutcome::Direct;
         plan.waypoints = vec![target];
         plan.configurations = vec![q1];
         plan.paper_angles = vec![p1];
         plan.leg_s = vec![s1];
-        plan.min_clearance = clearance(&[q1]);
+        plan.closest = closest(arm, start, &plan.configurations, obstacles)?;
+        plan.min_clearance = plan.closest.map(|c| c.clearance_m);
         return Ok(plan);
     };
     plan.blocked = true;
@@ -395,7 +430,7 @@ pub fn plan_detour(
             plan.outcome = DetourOutcome::WaypointUnreachable { waypoint: leg + 2, obstacle: hit };
             return Ok(plan);
         };
-        if let Some(o) = blocker(&current, &q) {
+        if let Some(o) = blocker(&current, &q)? {
             plan.outcome = DetourOutcome::LegBlocked { leg: leg + 1, obstacle: o };
             return Ok(plan);
         }
@@ -405,6 +440,31 @@ pub fn plan_detour(
         current = q;
     }
     plan.outcome = DetourOutcome::Detour { obstacle: hit };
-    plan.min_clearance = clearance(&plan.configurations);
+    plan.closest = closest(arm, start, &plan.configurations, obstacles)?;
+    plan.min_clearance = plan.closest.map(|c| c.clearance_m);
     Ok(plan)
+}
+
+/// The closest approach over the legs `start → legs[0] → legs[1] …` (`None` without
+/// obstacles or legs).
+fn closest(arm: &PlanarRedundant, start: &[f64; 3], legs: &[[f64; 3]], obstacles: &[P2]) -> Result<Option<Closest>, WorldError> {
+    let mut best: Option<Closest> = None;
+    let mut from = *start;
+    for (leg, to) in legs.iter().enumerate() {
+        let swept = leg_sweep(arm, &from, to, obstacles)?;
+        if swept.evaluations > 0 && best.is_none_or(|b| swept.min_clearance < b.clearance_m) {
+            best = Some(Closest {
+                leg: leg + 1,
+                at: swept.at,
+                link: swept.constraint % 3 + 1,
+                obstacle: swept.constraint / 3,
+                clearance_m: swept.min_clearance,
+                lower_bound_m: swept.lower_bound.min(best.map_or(f64::INFINITY, |b| b.lower_bound_m)),
+            });
+        } else if let Some(b) = &mut best {
+            b.lower_bound_m = b.lower_bound_m.min(swept.lower_bound);
+        }
+        from = *to;
+    }
+    Ok(best)
 }

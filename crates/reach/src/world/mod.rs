@@ -33,6 +33,7 @@ pub mod planner;
 pub mod rfunction;
 mod scene;
 mod shape;
+pub mod sweep;
 
 pub use collision::{CollisionChecker, Contact, LinkClearance, PairSurvey, Report, SelfClearance, Verdict};
 pub use planner::{Blocked, Goal, Plan, PlanError, PlanOptions, PlanStats, plan};

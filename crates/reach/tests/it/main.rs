@@ -49,3 +49,4 @@ mod world_allowed_collisions;
 mod world_geometry;
 mod world_planner;
 mod world_rfunction;
+mod world_sweep;

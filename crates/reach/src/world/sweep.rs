@@ -1,0 +1,264 @@
+//! Continuous collision checking of straight joint-space motions: a motion is called clear
+//! only with a proven positive clearance, never because samples missed the obstacle.
+//!
+//! # Method: conservative advancement with certified rates
+//!
+//! Along the motion `q(s) = a + s·(b − a)`, `s ∈ [0, 1]`, every clearance `d_c(s)` (a link
+//! against an obstacle, two links, the tool point against its zone's boundary) changes no
+//! faster than a rate `B_c` fixed before the sweep: the most any point of the bodies involved
+//! can move per unit `s`. For a point of link `k` that is
+//! `Σ_j |Δq_j|·ρ_jk` — over the revolute joints `j` moving link `k`, `ρ_jk` bounding the
+//! point's distance from joint `j`'s axis (the chain length from the joint's frame to the far
+//! end of link `k`, plus the link's radius) — plus `|Δq_j|` for each prismatic joint. Since a
+//! distance between sets moves no faster than the points of the sets,
+//! `|d_c(s') − d_c(s)| ≤ B_c·|s' − s|`.
+//!
+//! From `s` the sweep advances by `Δs = min_c d_c(s)/B_c`: no clearance can reach zero inside
+//! the step. Between two evaluated points the clearance is at least
+//! `(d_c(s) + d_c(s + Δs) − B_c·Δs)/2` (the two Lipschitz cones meet there), so the sweep
+//! gives a **certified lower bound** of the clearance over the whole motion, positive when
+//! every evaluated clearance is. A clearance at or below [`SWEEP_FLOOR`] stops the sweep: the
+//! motion touches, penetrates, or comes too close to prove it does not. The step count is
+//! bounded by `B/floor`; [`MAX_SWEEP_EVALUATIONS`] caps it (not clear when reached).
+//!
+//! After a clear sweep, intervals whose bound is below the smallest evaluated clearance by
+//! more than a tolerance are bisected, so the reported minimum and its lower bound agree to
+//! about 0.1 % (or 1 µm).
+
+use serde::Serialize;
+
+use super::WorldError;
+
+/// Clearance (metres) at or below which a motion is not called clear: it touches, penetrates,
+/// or comes so close that clearing it would take steps of less than `floor/B`.
+pub const SWEEP_FLOOR: f64 = 1e-6;
+
+/// The most clearance evaluations one sweep may make (the resource cap; a sweep that needs
+/// more is not called clear).
+pub const MAX_SWEEP_EVALUATIONS: usize = 1_000_000;
+
+/// Clearances that change at a bounded rate along straight joint-space motions.
+pub trait Clearances {
+    /// Number of clearances (constraints).
+    fn count(&self) -> usize;
+
+    /// Prepares the motion `a → b`: the rate bound of every clearance per unit of `s`
+    /// (metres), into `rates` (length [`Clearances::count`]).
+    ///
+    /// # Errors
+    /// As [`Clearances::evaluate`].
+    fn rates(&mut self, a: &[f64], b: &[f64], rates: &mut [f64]) -> Result<(), WorldError>;
+
+    /// Every clearance at `q`, metres, into `out` (≤ 0: touching or penetrating).
+    ///
+    /// # Errors
+    /// [`WorldError`] for a configuration the model rejects (wrong length, NaN).
+    fn evaluate(&mut self, q: &[f64], out: &mut [f64]) -> Result<(), WorldError>;
+}
+
+/// The outcome of a swept check.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Sweep {
+    /// Whether the motion is proven clear: every clearance stays above [`SWEEP_FLOOR`] over
+    /// the whole motion.
+    pub clear: bool,
+    /// Certified lower bound of the smallest clearance over the motion (clear) or up to where
+    /// the sweep stopped, metres; `+∞` without constraints.
+    pub lower_bound: f64,
+    /// Smallest clearance evaluated, metres (the true minimum lies between `lower_bound` and
+    /// this); `+∞` without constraints.
+    pub min_clearance: f64,
+    /// Where the smallest clearance was found (or where the sweep stopped), as the fraction
+    /// `s ∈ [0, 1]` of the motion.
+    pub at: f64,
+    /// Which clearance (index into the [`Clearances`]) is smallest there.
+    pub constraint: usize,
+    /// Clearance evaluations made.
+    pub evaluations: usize,
+}
+
+/// One evaluated point of the sweep.
+struct Point {
+    s: f64,
+    d: Vec<f64>,
+}
+
+/// Sweeps the straight motion `a → b` (see the module docs).
+///
+/// # Errors
+/// [`WorldError::Input`] when `a` and `b` differ in length or hold a non-finite value; as
+/// [`Clearances::evaluate`].
+pub fn sweep<C: Clearances + ?Sized>(clearances: &mut C, a: &[f64], b: &[f64]) -> Result<Sweep, WorldError> {
+    if a.len() != b.len() || !a.iter().chain(b).all(|v| v.is_finite()) {
+        return Err(WorldError::Input(format!(
+            "swept check: the motion's ends must be finite joint vectors of one length, got {} and {} values",
+            a.len(),
+            b.len()
+        )));
+    }
+    let n = clearances.count();
+    let mut result = Sweep {
+        clear: true,
+        lower_bound: f64::INFINITY,
+        min_clearance: f64::INFINITY,
+        at: 0.0,
+        constraint: 0,
+        evaluations: 0,
+    };
+    if n == 0 {
+        return Ok(result);
+    }
+    let mut rates = vec![0.0; n];
+    clearances.rates(a, b, &mut rates)?;
+    let mut q = a.to_vec();
+    let mut eval = |s: f64, result: &mut Sweep, clearances: &mut C| -> Result<Point, WorldError> {
+        for ((o, x), y) in q.iter_mut().zip(a).zip(b) {
+            *o = x + s * (y - x);
+        }
+        let mut d = vec![0.0; n];
+        clearances.evaluate(&q, &mut d)?;
+        result.evaluations += 1;
+        let (c, &m) = d.iter().enumerate().min_by(|x, y| x.1.total_cmp(y.1)).unwrap_or((0, &f64::INFINITY));
+        if m < result.min_clearance {
+            result.min_clearance = m;
+            result.at = s;
+            result.constraint = c;
+        }
+        Ok(Point { s, d })
+    };
+    let mut points = vec![eval(0.0, &mut result, clearances)?];
+    loop {
+        let last = points.last().map_or(0.0, |p| p.s);
+        let d = &points[points.len() - 1].d;
+        if let Some((c, &v)) = d.iter().enumerate().find(|(_, v)| !(**v > SWEEP_FLOOR)) {
+            result.clear = false;
+            result.at = last;
+            result.constraint = c;
+            result.lower_bound = v.min(bounds_of(&points, &rates));
+            return Ok(result);
+        }
+        if last >= 1.0 {
+            break;
+        }
+        if result.evaluations >= MAX_SWEEP_EVALUATIONS {
+            result.clear = false;
+            result.at = last;
+            result.lower_bound = bounds_of(&points, &rates);
+            return Ok(result);
+        }
+        let step = d.iter().zip(&rates).map(|(v, r)| if *r > 0.0 { v / r } else { f64::INFINITY }).fold(1.0, f64::min);
+        let next = (last + step).min(1.0);
+        points.push(eval(next, &mut result, clearances)?);
+    }
+    refine(&mut points, &rates, &mut result, &mut eval, clearances)?;
+    result.lower_bound = bounds_of(&points, &rates);
+    Ok(result)
+}
+
+/// The certified lower bound of the clearance over the intervals between `points`.
+fn bounds_of(points: &[Point], rates: &[f64]) -> f64 {
+    let mut lb = points.iter().flat_map(|p| p.d.iter().copied()).fold(f64::INFINITY, f64::min);
+    for w in points.windows(2) {
+        lb = lb.min(interval_bound(&w[0], &w[1], rates));
+    }
+    lb
+}
+
+/// Lower bound of every clearance between two evaluated points.
+fn interval_bound(p: &Point, q: &Point, rates: &[f64]) -> f64 {
+    let ds = q.s - p.s;
+    p.d.iter().zip(&q.d).zip(rates).map(|((x, y), r)| 0.5 * (x + y - r * ds)).fold(f64::INFINITY, f64::min)
+}
+
+/// Bisects the intervals whose bound is below the smallest evaluated clearance by more than
+/// the tolerance, until the bound is tight (or the evaluation cap is reached).
+fn refine<C: Clearances + ?Sized>(
+    points: &mut Vec<Point>,
+    rates: &[f64],
+    result: &mut Sweep,
+    eval: &mut impl FnMut(f64, &mut Sweep, &mut C) -> Result<Point, WorldError>,
+    clearances: &mut C,
+) -> Result<(), WorldError> {
+    let mut i = 0;
+    while i + 1 < points.len() && result.evaluations < MAX_SWEEP_EVALUATIONS {
+        let tolerance = (1e-3 * result.min_clearance).max(1e-6);
+        let (p, q) = (&points[i], &points[i + 1]);
+        if interval_bound(p, q, rates) >= result.min_clearance - tolerance || q.s - p.s <= f64::EPSILON {
+            i += 1;
+            continue;
+        }
+        let mid = eval(0.5 * (p.s + q.s), result, clearances)?;
+        points.insert(i + 1, mid);
+    }
+    Ok(())
+}
+
+/// Rate bounds of the points of a serial chain's segments along a straight joint motion.
+///
+/// `lengths[i]` bounds the length of segment `i` (between chain points `i` and `i + 1`) over
+/// the motion; the axis of joint `j` passes through chain point `j` or `j + 1`; segment `k`
+/// is moved by joints `0..=min(k, joints − 1)`. A point within `radius` of segment `k` then
+/// moves at most `Σ_j |Δq_j|·(Σ_{i=j..=k} lengths[i] + radius)` over revolute joints plus
+/// `Σ |Δq_j|` over prismatic ones, per unit of `s`.
+#[must_use]
+pub fn segment_rate(lengths: &[f64], revolute: &[bool], delta: &[f64], k: usize, radius: f64) -> f64 {
+    let chain = &lengths[..=k.min(lengths.len().saturating_sub(1))];
+    delta
+        .iter()
+        .zip(revolute)
+        .take(k + 1)
+        .enumerate()
+        .map(|(j, (dq, &rev))| dq.abs() * if rev { chain.get(j..).map_or(0.0, |l| l.iter().sum::<f64>()) + radius } else { 1.0 })
+        .sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One clearance `d(s) = |s − c| − gap` along a one-joint motion, rate 1.
+    struct Line {
+        c: f64,
+        gap: f64,
+    }
+
+    impl Clearances for Line {
+        fn count(&self) -> usize {
+            1
+        }
+        fn rates(&mut self, a: &[f64], b: &[f64], rates: &mut [f64]) -> Result<(), WorldError> {
+            rates[0] = (b[0] - a[0]).abs();
+            Ok(())
+        }
+        fn evaluate(&mut self, q: &[f64], out: &mut [f64]) -> Result<(), WorldError> {
+            out[0] = (q[0] - self.c).abs() - self.gap;
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn a_crossing_between_any_samples_is_found() {
+        // The point 0.4137 is crossed: never clear, whatever a sampling grid would see.
+        let s = sweep(&mut Line { c: 0.4137, gap: 0.0 }, &[0.0], &[1.0]).unwrap();
+        assert!(!s.clear);
+        assert!((s.at - 0.4137).abs() < 1e-5, "{s:?}");
+        assert!(s.lower_bound <= SWEEP_FLOOR);
+    }
+
+    #[test]
+    fn a_near_miss_is_clear_with_a_tight_certified_bound() {
+        // Passing 0.01 beside the obstacle: d(s) = |s − 2| − 0.99, minimum 0.01 at s = 1.
+        let s = sweep(&mut Line { c: 2.0, gap: 0.99 }, &[0.0], &[1.0]).unwrap();
+        assert!(s.clear, "{s:?}");
+        assert!((s.min_clearance - 0.01).abs() < 1e-12, "{s:?}");
+        assert!(s.lower_bound > 0.0 && s.lower_bound <= 0.01 + 1e-12, "{s:?}");
+        assert!(s.lower_bound >= 0.01 * 0.998, "tight: {s:?}");
+    }
+
+    #[test]
+    fn without_motion_or_constraints_nothing_moves() {
+        let s = sweep(&mut Line { c: 2.0, gap: 0.5 }, &[0.0], &[0.0]).unwrap();
+        assert!(s.clear && s.evaluations == 2 && (s.min_clearance - 1.5).abs() < 1e-12, "{s:?}");
+        assert!(sweep(&mut Line { c: 2.0, gap: 0.5 }, &[0.0], &[f64::NAN]).is_err());
+    }
+}
