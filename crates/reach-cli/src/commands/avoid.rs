@@ -195,7 +195,20 @@ fn write_text(report: &AvoidReport, out: &mut dyn Write) -> Result<(), CliError>
     head.pair("outcome", outcome_text(&report.outcome));
     head.pair("direct move blocked", report.blocked.to_string());
     head.pair("start q [deg]", deg3(&report.start_deg));
-    head.pair("min clearance", report.min_clearance_m.map_or("-".into(), |c| format!("{} m", fixed(c, 6))));
+    head.pair(
+        "min clearance",
+        report.closest.map_or("-".into(), |c| {
+            format!(
+                "{} m (certified ≥ {} m): link {} to obstacle {} at {} % of leg {}",
+                fixed(c.clearance_m, 6),
+                fixed(c.lower_bound_m, 6),
+                c.link,
+                c.obstacle + 1,
+                fixed(100.0 * c.at, 1),
+                c.leg
+            )
+        }),
+    );
     head.write(out, "")?;
     for (i, w) in report.waypoints_m.iter().enumerate() {
         let q = report.configurations_deg.get(i).map_or("-".into(), deg3);

@@ -217,3 +217,21 @@ fn a_scene_that_does_not_parse_names_the_file_line_and_column() {
     let line = fails(&["check", "planar3", file.to_str().unwrap(), "0", "0", "0"], 2, &["broken_scene.toml", "line"]);
     assert!(line.contains("column"), "{line}");
 }
+
+/// The case: the chord test and sampled clearance called this move "direct"; link 3
+/// sweeps over the obstacle, so the continuous check blocks it.
+#[test]
+fn avoid_blocks_a_link_that_sweeps_over_the_obstacle() {
+    let run =
+        reach(&["avoid", "planar3", "--from-xy", "2.2,0.9", "--to-xy", "0.3,2.3", "--obstacle", "1.45,1.75", "--json"]);
+    let v: serde_json::Value = serde_json::from_str(&run.stdout).unwrap();
+    assert_eq!(v["blocked"], true, "{v}");
+    assert_ne!(v["outcome"]["outcome"], "direct", "{v}");
+    // A clear detour reports where it comes closest, with a certified bound below the minimum.
+    let v =
+        json(&["avoid", "planar3", "--from", "60,-40,-30", "--to-xy", "2.4,0.2", "--obstacle", "2.0,0.7", "--json"]);
+    let c = &v["closest"];
+    let (m, lb) = (c["clearance_m"].as_f64().unwrap(), c["lower_bound_m"].as_f64().unwrap());
+    assert!(lb > 0.0 && lb <= m && m == v["min_clearance_m"].as_f64().unwrap(), "{c}");
+    assert!((1..=3).contains(&c["link"].as_u64().unwrap()) && (1..=3).contains(&c["leg"].as_u64().unwrap()), "{c}");
+}

@@ -447,7 +447,12 @@ pub fn plan_detour(
 
 /// The closest approach over the legs `start → legs[0] → legs[1] …` (`None` without
 /// obstacles or legs).
-fn closest(arm: &PlanarRedundant, start: &[f64; 3], legs: &[[f64; 3]], obstacles: &[P2]) -> Result<Option<Closest>, WorldError> {
+fn closest(
+    arm: &PlanarRedundant,
+    start: &[f64; 3],
+    legs: &[[f64; 3]],
+    obstacles: &[P2],
+) -> Result<Option<Closest>, WorldError> {
     let mut best: Option<Closest> = None;
     let mut from = *start;
     for (leg, to) in legs.iter().enumerate() {

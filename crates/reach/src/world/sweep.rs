@@ -208,7 +208,9 @@ pub fn segment_rate(lengths: &[f64], revolute: &[bool], delta: &[f64], k: usize,
         .zip(revolute)
         .take(k + 1)
         .enumerate()
-        .map(|(j, (dq, &rev))| dq.abs() * if rev { chain.get(j..).map_or(0.0, |l| l.iter().sum::<f64>()) + radius } else { 1.0 })
+        .map(|(j, (dq, &rev))| {
+            dq.abs() * if rev { chain.get(j..).map_or(0.0, |l| l.iter().sum::<f64>()) + radius } else { 1.0 }
+        })
         .sum()
 }
 

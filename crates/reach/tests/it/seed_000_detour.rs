@@ -197,8 +197,7 @@ fn waypoint_out_of_reach_is_reported() {
     // here) must indeed fail L < r < 3L, and at least one such case must occur.
     let arm = arm();
     let mut found = 0;
-    let options =
-        DetourOptions { step: 0.2f64.to_radians(), radius: Some(0.4), ..DetourOptions::default() };
+    let options = DetourOptions { step: 0.2f64.to_radians(), radius: Some(0.4), ..DetourOptions::default() };
     for target in [[1.05, 0.35], [1.2, -0.5], [0.3, 1.2]] {
         for i in 0..40 {
             for j in 0..40 {

@@ -94,7 +94,8 @@ fn link_three_sweeping_over_a_point_is_not_clear() {
 fn from_gripper(arm: &PlanarRedundant, k: P2) -> [f64; 3] {
     let robot = presets::get("planar3").unwrap();
     let home = robot.home();
-    let now = reach::model::planar_angles::InteriorAngles::from_link_angles(arm.link_angles(&[home[0], home[1], home[2]]));
+    let now =
+        reach::model::planar_angles::InteriorAngles::from_link_angles(arm.link_angles(&[home[0], home[1], home[2]]));
     let scan = arm.paper_scan(k, 0.1f64.to_radians()).unwrap();
     let (i, _) = scan.select_min_s(&now).unwrap();
     scan.rows[i].q

@@ -10,7 +10,9 @@ use crate::decide::detour_choice::{DetourCriterion, DetourRanking, choose_detour
 use crate::error::{Error, Result};
 use crate::ik::planar::PlanarRedundant;
 use crate::jobs::input::{Joints, q_display};
-use crate::world::detour::{DetourOptions, DetourOutcome, DetourPlan, P2, SweepTest, WaypointRule, plan_detour};
+use crate::world::detour::{
+    Closest, DetourOptions, DetourOutcome, DetourPlan, P2, SweepTest, WaypointRule, plan_detour,
+};
 
 /// The thesis's IK scan step, degrees.
 const DEFAULT_STEP_DEG: f64 = 0.01;
@@ -99,6 +101,10 @@ pub struct AvoidReport {
     pub leg_s_deg: Vec<f64>,
     /// Smallest clearance of the arm to an obstacle over the motion, metres.
     pub min_clearance_m: Option<f64>,
+    /// Where the arm comes closest to an obstacle (leg, fraction of the leg's motion, link,
+    /// obstacle), with the certified lower bound of the clearance over every leg; `null`
+    /// without obstacles.
+    pub closest: Option<Closest>,
     /// With `choose`: the criteria ranked.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub criteria: Option<Vec<String>>,
@@ -217,6 +223,7 @@ pub fn avoid_run(robot: &Robot, request: &AvoidRequest) -> Result<AvoidRun> {
         configurations_deg: plan.configurations.iter().map(deg3).collect(),
         leg_s_deg: plan.leg_s.iter().map(|s| s.to_degrees()).collect(),
         min_clearance_m: plan.min_clearance,
+        closest: plan.closest,
         criteria,
         sides,
     };
