@@ -3,6 +3,7 @@
 use nalgebra::{IsometryMatrix3, Vector3};
 use serde::Serialize;
 
+use super::sweep::{Clearances, Sweep, SweepOptions, segment_rate, sweep};
 use super::{Scene, Touching, WorldError};
 use crate::model::Robot;
 use crate::tolerance::CONTACT;
@@ -10,6 +11,10 @@ use crate::tolerance::CONTACT;
 /// Below this length (metres) a segment between consecutive frame origins is skipped: it is
 /// a joint with coincident frames (e.g. a wrist centre), not a link.
 const MIN_SEGMENT: f64 = 1e-9;
+
+/// In a swept check, a box farther than this (metres, by its bounding sphere) is measured by
+/// the bounding sphere alone (a lower bound of its distance).
+const FAR_BOX: f64 = 0.1;
 
 /// The outcome of one collision check, in the order the checks run.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
@@ -131,6 +136,8 @@ pub struct CollisionChecker<'a> {
     exempt: Vec<u64>,
     /// An allowed-collision entry that names no link of the robot (reported by `check`).
     exempt_error: Option<WorldError>,
+    /// The link pairs of the swept check in progress ([`Clearances::prepare`]).
+    sweep_pairs: Vec<(usize, usize)>,
 }
 
 /// How often one pair of non-adjacent links collides over random configurations
@@ -254,6 +261,7 @@ impl<'a> CollisionChecker<'a> {
             max_radius: links.iter().map(|l| l.radius).fold(0.0, f64::max),
             exempt: exempt.as_ref().map_or_else(|_| vec![0; n + 1], Clone::clone),
             exempt_error: exempt.err(),
+            sweep_pairs: Vec::new(),
         }
     }
 
@@ -295,6 +303,22 @@ impl<'a> CollisionChecker<'a> {
         Ok(())
     }
 
+    /// Whether the pair of 0-based links `i`, `j` is on the scene's allowed-collision list.
+    #[inline]
+    fn exempt_pair(&self, i: usize, j: usize) -> bool {
+        // `checked_shr`: robots of 64 or more joints have no list (all masks 0).
+        self.exempt[i].checked_shr(u32::try_from(j).unwrap_or(u32::MAX)).is_some_and(|m| m & 1 == 1)
+    }
+
+    /// Every pair of links in the buffers that are not adjacent (not consecutive among the
+    /// segments of non-zero length), with whether it is exempt.
+    fn link_pairs(&self) -> impl Iterator<Item = (usize, usize, bool)> + '_ {
+        let act = &self.active;
+        act.iter()
+            .enumerate()
+            .flat_map(move |(x, &i)| act.iter().skip(x + 2).map(move |&j| (i, j, self.exempt_pair(i, j))))
+    }
+
     /// Clearance between the capsules of 0-based links `i` and `j` in the buffers, metres.
     #[inline]
     fn pair_clearance(&self, i: usize, j: usize) -> f64 {
@@ -330,18 +354,12 @@ impl<'a> CollisionChecker<'a> {
                 return Verdict::OutsideZone { zone: i };
             }
         }
-        let act = &self.active;
-        for (x, &i) in act.iter().enumerate() {
-            for &j in act.iter().skip(x + 2) {
-                // `checked_shr`: robots of 64 or more joints have no list (all masks 0).
-                if self.exempt[i].checked_shr(u32::try_from(j).unwrap_or(u32::MAX)).is_some_and(|m| m & 1 == 1) {
-                    continue;
-                }
-                if self.pair_clearance(i, j) <= self.margin {
-                    return Verdict::SelfCollision { link_a: i + 1, link_b: j + 1 };
-                }
+        for (i, j, exempt) in self.link_pairs() {
+            if !exempt && self.pair_clearance(i, j) <= self.margin {
+                return Verdict::SelfCollision { link_a: i + 1, link_b: j + 1 };
             }
         }
+        let act = &self.active;
         // Broad phase: a sphere around every link point (centre of their bounding box).
         let (mut lo, mut hi) = (self.points[0], self.points[0]);
         for p in &self.points[1..] {
@@ -460,22 +478,146 @@ impl<'a> CollisionChecker<'a> {
                 });
             }
         }
-        let mut self_pairs = Vec::new();
-        for (x, &i) in self.active.iter().enumerate() {
-            for &j in self.active.iter().skip(x + 2) {
+        let self_pairs: Vec<SelfClearance> = self
+            .link_pairs()
+            .map(|(i, j, exempt)| {
                 let d = self.pair_clearance(i, j);
-                let exempt = (self.exempt[i] >> j) & 1 == 1;
-                self_pairs.push(SelfClearance {
+                SelfClearance {
                     link_a: i + 1,
                     link_b: j + 1,
                     clearance_m: d,
                     colliding: !exempt && d <= self.margin,
                     exempt,
-                });
-            }
-        }
+                }
+            })
+            .collect();
         let min_obstacle_clearance_m = links.iter().map(|l| l.clearance_m).reduce(f64::min);
         let min_self_clearance_m = self_pairs.iter().map(|l| l.clearance_m).reduce(f64::min);
         Ok(Report { verdict, links, self_pairs, tool_zone, min_obstacle_clearance_m, min_self_clearance_m })
+    }
+}
+
+/// What one clearance of the checker's swept check measures (see [`CollisionChecker::swept`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum SweptPair {
+    /// The tool point inside tool-zone entry `zone` (0-based): its distance to the boundary.
+    ToolZone {
+        /// Index into [`Scene::tool_zone`].
+        zone: usize,
+    },
+    /// A link against an obstacle.
+    Obstacle {
+        /// 1-based link number (`dof + 1` is the tool segment).
+        link: usize,
+        /// Index into [`Scene::obstacles`].
+        obstacle: usize,
+    },
+    /// Two non-adjacent links.
+    SelfPair {
+        /// 1-based link number.
+        link_a: usize,
+        /// 1-based link number.
+        link_b: usize,
+    },
+}
+
+impl CollisionChecker<'_> {
+    /// The swept (continuous) check of the straight joint motion `a → b`
+    /// ([`super::sweep::sweep`]): the tool point stays inside every tool-zone entry, and every
+    /// link keeps a proven positive clearance to every obstacle and to every non-adjacent link
+    /// (pairs that are non-adjacent at both ends, allowed-collision pairs excepted). Returns
+    /// the sweep and what its smallest clearance measures.
+    ///
+    /// # Errors
+    /// As [`CollisionChecker::check`] at either end.
+    pub fn swept(&mut self, a: &[f64], b: &[f64], options: &SweepOptions) -> Result<(Sweep, SweptPair), WorldError> {
+        let result = sweep(self, a, b, options)?;
+        Ok((result, self.swept_pair(result.constraint)))
+    }
+
+    /// What clearance `c` of the last swept check measures.
+    fn swept_pair(&self, c: usize) -> SweptPair {
+        let zones = self.scene.tool_zone.len();
+        let obstacles = self.scene.obstacles.len();
+        let segments = self.points.len() - 1;
+        if c < zones {
+            SweptPair::ToolZone { zone: c }
+        } else if c < zones + segments * obstacles {
+            let k = (c - zones) / obstacles.max(1);
+            SweptPair::Obstacle { link: k + 1, obstacle: (c - zones) % obstacles.max(1) }
+        } else {
+            let (i, j) = self.sweep_pairs.get(c - zones - segments * obstacles).copied().unwrap_or((0, 0));
+            SweptPair::SelfPair { link_a: i + 1, link_b: j + 1 }
+        }
+    }
+
+    /// Lengths of the segments in the buffers, metres.
+    fn segment_lengths(&self) -> Vec<f64> {
+        self.points.windows(2).map(|w| (w[1] - w[0]).norm()).collect()
+    }
+}
+
+impl Clearances for CollisionChecker<'_> {
+    /// Rates from [`segment_rate`]: each segment's length is bounded by the larger of its
+    /// lengths at `a` and `b` (a segment vector is affine in a prismatic joint's value, so its
+    /// length is convex along the motion), and every revolute joint's axis passes through the
+    /// frame origin before or after it.
+    fn prepare(&mut self, a: &[f64], b: &[f64]) -> Result<Vec<f64>, WorldError> {
+        self.update(a)?;
+        let (lengths_a, pairs_a): (Vec<f64>, Vec<(usize, usize)>) =
+            (self.segment_lengths(), self.link_pairs().filter(|p| !p.2).map(|(i, j, _)| (i, j)).collect());
+        self.update(b)?;
+        let lengths: Vec<f64> = self.segment_lengths().iter().zip(&lengths_a).map(|(x, y)| x.max(*y)).collect();
+        let pairs_b: Vec<(usize, usize)> = self.link_pairs().filter(|p| !p.2).map(|(i, j, _)| (i, j)).collect();
+        self.sweep_pairs = pairs_a.into_iter().filter(|p| pairs_b.contains(p)).collect();
+        let revolute: Vec<bool> =
+            self.robot.joints().iter().map(|j| j.kind == crate::model::JointKind::Revolute).collect();
+        let delta: Vec<f64> = a.iter().zip(b).map(|(x, y)| y - x).collect();
+        let segments = lengths.len();
+        let rate = |k: usize| segment_rate(&lengths, &revolute, &delta, 0, k, self.radii[k]);
+        let tool = segment_rate(&lengths, &revolute, &delta, 0, segments - 1, 0.0);
+        let mut rates = vec![tool; self.scene.tool_zone.len()];
+        for k in 0..segments {
+            rates.extend(std::iter::repeat_n(rate(k), self.scene.obstacles.len()));
+        }
+        // Links i < j move relative to each other only by joints i..=j: the joints before i
+        // move both rigidly (joint i does too in standard DH, not in modified DH or URDF).
+        rates.extend(
+            self.sweep_pairs.iter().map(|&(i, j)| segment_rate(&lengths, &revolute, &delta, i, j, self.radii[j])),
+        );
+        Ok(rates)
+    }
+
+    fn evaluate(&mut self, q: &[f64], out: &mut [f64]) -> Result<(), WorldError> {
+        self.update(q)?;
+        let tool = self.points[self.points.len() - 1];
+        let mut c = 0;
+        for z in &self.scene.tool_zone {
+            out[c] = -z.shape.point_sdf(&tool);
+            c += 1;
+        }
+        for k in 0..self.points.len() - 1 {
+            let (a, b) = (&self.points[k], &self.points[k + 1]);
+            for (o, bound) in self.scene.obstacles.iter().zip(&self.bounds) {
+                // A far box: the distance to its bounding sphere is a lower bound, which keeps
+                // the sweep sound and spares the exact box distance (up to 14 point/edge
+                // distances). Other shapes have cheap closed forms.
+                let far = match (&o.shape, bound) {
+                    (super::Shape::Box { .. }, Some((centre, r))) => {
+                        Some(super::distance::point_segment_sq(centre, a, b).sqrt() - r - self.radii[k])
+                            .filter(|lb| *lb > FAR_BOX)
+                    }
+                    _ => None,
+                };
+                out[c] = far.unwrap_or_else(|| o.shape.segment_sdf(a, b) - self.radii[k]);
+                c += 1;
+            }
+        }
+        for &(i, j) in &self.sweep_pairs {
+            out[c] = self.pair_clearance(i, j);
+            c += 1;
+        }
+        Ok(())
     }
 }

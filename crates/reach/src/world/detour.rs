@@ -21,7 +21,7 @@ use serde::Serialize;
 
 use super::WorldError;
 use super::distance::point_segment_sq;
-use super::sweep::{Clearances, Sweep, segment_rate, sweep};
+use super::sweep::{Clearances, Sweep, SweepOptions, segment_rate, sweep};
 use crate::ik::planar::PlanarRedundant;
 use crate::model::planar_angles::InteriorAngles;
 use crate::tolerance::CONTACT;
@@ -282,17 +282,10 @@ pub struct PlanarClearances<'a> {
 }
 
 impl Clearances for PlanarClearances<'_> {
-    fn count(&self) -> usize {
-        3 * self.obstacles.len()
-    }
-
-    fn rates(&mut self, a: &[f64], b: &[f64], rates: &mut [f64]) -> Result<(), WorldError> {
+    fn prepare(&mut self, a: &[f64], b: &[f64]) -> Result<Vec<f64>, WorldError> {
         let delta = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
         let lengths = self.arm.lengths();
-        for (c, r) in rates.iter_mut().enumerate() {
-            *r = segment_rate(&lengths, &[true; 3], &delta, c % 3, 0.0);
-        }
-        Ok(())
+        Ok((0..3 * self.obstacles.len()).map(|c| segment_rate(&lengths, &[true; 3], &delta, 0, c % 3, 0.0)).collect())
     }
 
     fn evaluate(&mut self, q: &[f64], out: &mut [f64]) -> Result<(), WorldError> {
@@ -312,7 +305,7 @@ impl Clearances for PlanarClearances<'_> {
 /// # Errors
 /// [`WorldError::Input`] for non-finite joint values.
 pub fn leg_sweep(arm: &PlanarRedundant, from: &[f64; 3], to: &[f64; 3], obstacles: &[P2]) -> Result<Sweep, WorldError> {
-    sweep(&mut PlanarClearances { arm, obstacles }, from, to)
+    sweep(&mut PlanarClearances { arm, obstacles }, from, to, &SweepOptions::default())
 }
 
 /// Whether the move `from → to` is blocked by obstacle `h` under `test`.

@@ -6,13 +6,10 @@
 //!   the goal tree, nearest to the start first (so the nearest reachable one wins ties).
 //! * Samples are uniform within the joint limits; unbounded revolute joints are sampled in
 //!   `[−π, π]`.
-//! * Edges are straight lines in joint space, checked at a resolution tied to the arm's size:
-//!   a revolute joint step `Δq` moves no point of the arm by more than `R·|Δq|`, where `R` is
-//!   the sum of the segment lengths between consecutive link points (base, frame origins,
-//!   tool) plus the largest link radius; a prismatic step moves no point by more than `|Δq|`.
-//!   An edge is cut into `n = ⌈(R·Σ_rev|Δqᵢ| + Σ_pri|Δqᵢ|) / resolution⌉` pieces and each
-//!   piece end is checked, so no point of the arm moves more than `resolution` between two
-//!   checks.
+//! * Edges are straight lines in joint space, accepted only when the swept check
+//!   ([`CollisionChecker::swept`], conservative advancement with certified rates) proves a
+//!   positive clearance over the whole edge: no obstacle thinner than a sampling step can be
+//!   tunnelled through.
 //! * Randomness comes from a private SplitMix64 generator seeded by [`PlanOptions::seed`]:
 //!   the same problem and seed give the same path, unless the wall-time budget cuts the search.
 
@@ -21,6 +18,7 @@ use std::time::{Duration, Instant};
 use serde::Serialize;
 use thiserror::Error;
 
+use super::sweep::SweepOptions;
 use super::{CollisionChecker, Scene, Verdict, WorldError};
 use crate::ik::{self, IkError, IkOptions, IkTarget};
 use crate::model::{JointKind, Robot};
@@ -44,9 +42,6 @@ pub struct PlanOptions {
     pub max_iterations: usize,
     /// Wall-time budget of the search (IK and shortcutting excluded). Default 1 s.
     pub max_time: Option<Duration>,
-    /// Largest distance (metres) any point of the arm moves between two collision checks
-    /// along an edge. Default 1 cm.
-    pub resolution_m: f64,
     /// Largest tree extension, Euclidean norm in joint space (radians / metres). Default 0.5.
     pub step: f64,
     /// Random shortcut attempts on the found path. Default 100.
@@ -61,7 +56,6 @@ impl Default for PlanOptions {
             seed: 1,
             max_iterations: 20_000,
             max_time: Some(Duration::from_secs(1)),
-            resolution_m: 0.01,
             step: 0.5,
             shortcut_attempts: 100,
             ik: IkOptions::default(),
@@ -196,61 +190,54 @@ pub fn path_length(waypoints: &[Vec<f64>]) -> f64 {
     waypoints.windows(2).map(|w| w[0].iter().zip(&w[1]).map(|(a, b)| (b - a) * (b - a)).sum::<f64>().sqrt()).sum()
 }
 
-/// Straight-line edge checker with the arm-size bound of the module docs.
+/// Clearance evaluations one edge may take before it is rejected (safe: the search then
+/// goes around; an edge that hugs an obstacle for its whole length is not worth proving).
+pub const EDGE_EVALUATIONS: usize = 300;
+
+/// Configurations of an edge checked (cheaply, with the broad phase) before its swept proof:
+/// the far end, then the midpoints of a coarse-to-fine grid of this many intervals. A blocked
+/// edge is usually rejected here after a few checks.
+const EDGE_PROBES: usize = 8;
+
+/// Straight-line edge checker: cheap probes, then the swept check, counting evaluations.
 struct EdgeChecker<'c, 'a> {
     checker: &'c mut CollisionChecker<'a>,
-    revolute: Vec<bool>,
-    /// `R` in the module docs, metres per radian.
-    arm_reach: f64,
-    resolution: f64,
-    buf: Vec<f64>,
     checks: usize,
+    buf: Vec<f64>,
 }
 
 impl EdgeChecker<'_, '_> {
-    /// Upper bound of the distance any arm point moves from `a` to `b`, metres.
-    fn sweep(&self, a: &[f64], b: &[f64]) -> f64 {
-        a.iter()
-            .zip(b)
-            .zip(&self.revolute)
-            .map(|((x, y), &rev)| if rev { self.arm_reach * (y - x).abs() } else { (y - x).abs() })
-            .sum()
-    }
-
+    /// Whether `q` is free (one cheap check).
     fn is_free(&mut self, q: &[f64]) -> Result<bool, WorldError> {
         self.checks += 1;
         Ok(self.checker.check(q)?.is_free())
     }
 
-    /// Whether the edge `a → b` is free (`a` is assumed already checked).
+    /// Whether the edge `a → b` is proven free (`a` is assumed already checked).
     fn edge_free(&mut self, a: &[f64], b: &[f64]) -> Result<bool, WorldError> {
-        let n = (self.sweep(a, b) / self.resolution).ceil().max(1.0) as usize;
-        // Check the far end first (cheap rejection), then the inside points.
         if !self.is_free(b)? {
             return Ok(false);
         }
         let mut buf = std::mem::take(&mut self.buf);
-        let mut free = true;
-        // Coarse to fine (odd multiples of 2^j, largest j first): every k in 1..n once, and a
-        // blocked edge is usually found after a few checks.
-        let mut stride = n.next_power_of_two();
-        'levels: while stride >= 1 {
-            let mut k = stride;
-            while k < n {
-                let t = k as f64 / n as f64;
+        let mut stride = EDGE_PROBES / 2;
+        while stride >= 1 {
+            for k in (stride..EDGE_PROBES).step_by(2 * stride) {
+                let t = k as f64 / EDGE_PROBES as f64;
                 for ((o, x), y) in buf.iter_mut().zip(a).zip(b) {
                     *o = x + t * (y - x);
                 }
                 if !self.is_free(&buf)? {
-                    free = false;
-                    break 'levels;
+                    self.buf = buf;
+                    return Ok(false);
                 }
-                k += 2 * stride;
             }
             stride /= 2;
         }
         self.buf = buf;
-        Ok(free)
+        let options = SweepOptions { closest: false, max_evaluations: EDGE_EVALUATIONS };
+        let (swept, _) = self.checker.swept(a, b, &options)?;
+        self.checks += swept.evaluations;
+        Ok(swept.clear)
     }
 }
 
@@ -403,9 +390,6 @@ pub fn plan(
     options: &PlanOptions,
 ) -> Result<Plan, PlanError> {
     let t0 = Instant::now();
-    if !(options.resolution_m.is_finite() && options.resolution_m > 0.0) {
-        return Err(PlanError::Input(format!("resolution_m must be positive, got {}", options.resolution_m)));
-    }
     if !(options.step.is_finite() && options.step > 0.0) {
         return Err(PlanError::Input(format!("step must be positive, got {}", options.step)));
     }
@@ -416,11 +400,6 @@ pub fn plan(
     if let Some(b) = Blocked::from_verdict(checker.check(start)?, scene) {
         return Err(PlanError::StartInCollision(b));
     }
-    // Arm size R: segment lengths between consecutive link points plus the largest radius.
-    checker.check(&robot.home())?;
-    let pts = checker.points();
-    let arm_reach = pts.windows(2).map(|w| (w[1] - w[0]).norm()).sum::<f64>()
-        + robot.links().iter().map(|l| l.radius).fold(0.0, f64::max);
 
     // Goals: the joint vector, or the free feasible IK solutions nearest first.
     let goals: Vec<Vec<f64>> = match goal {
@@ -461,14 +440,7 @@ pub fn plan(
         }
     };
 
-    let mut edges = EdgeChecker {
-        checker: &mut checker,
-        revolute: robot.joints().iter().map(|j| j.kind == JointKind::Revolute).collect(),
-        arm_reach,
-        resolution: options.resolution_m,
-        buf: vec![0.0; dof],
-        checks: 0,
-    };
+    let mut edges = EdgeChecker { checker: &mut checker, checks: 0, buf: vec![0.0; dof] };
     let mut rng = SplitMix64(options.seed);
 
     // The straight edge first, nearest goal first.

@@ -21,9 +21,9 @@
 //! motion touches, penetrates, or comes too close to prove it does not. The step count is
 //! bounded by `B/floor`; [`MAX_SWEEP_EVALUATIONS`] caps it (not clear when reached).
 //!
-//! After a clear sweep, intervals whose bound is below the smallest evaluated clearance by
-//! more than a tolerance are bisected, so the reported minimum and its lower bound agree to
-//! about 0.1 % (or 1 µm).
+//! For reports ([`SweepOptions::closest`]), after a clear sweep the intervals whose bound is below the
+//! smallest evaluated clearance by more than a tolerance are bisected, so the reported minimum
+//! and its lower bound agree to about 0.1 % (or 1 µm).
 
 use serde::Serialize;
 
@@ -39,15 +39,12 @@ pub const MAX_SWEEP_EVALUATIONS: usize = 1_000_000;
 
 /// Clearances that change at a bounded rate along straight joint-space motions.
 pub trait Clearances {
-    /// Number of clearances (constraints).
-    fn count(&self) -> usize;
-
-    /// Prepares the motion `a → b`: the rate bound of every clearance per unit of `s`
-    /// (metres), into `rates` (length [`Clearances::count`]).
+    /// Prepares the motion `a → b` and returns the rate bound of every clearance per unit of
+    /// `s` (metres); its length is the number of clearances [`Clearances::evaluate`] fills.
     ///
     /// # Errors
     /// As [`Clearances::evaluate`].
-    fn rates(&mut self, a: &[f64], b: &[f64], rates: &mut [f64]) -> Result<(), WorldError>;
+    fn prepare(&mut self, a: &[f64], b: &[f64]) -> Result<Vec<f64>, WorldError>;
 
     /// Every clearance at `q`, metres, into `out` (≤ 0: touching or penetrating).
     ///
@@ -83,12 +80,37 @@ struct Point {
     d: Vec<f64>,
 }
 
+/// How a sweep runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SweepOptions {
+    /// After a clear sweep, bisect until the reported minimum and its certified lower bound
+    /// agree to about 0.1 % (what reports need; planners only need the verdict).
+    pub closest: bool,
+    /// Evaluations after which the sweep stops, not clear (at most
+    /// [`MAX_SWEEP_EVALUATIONS`]). A planner may set a small budget per edge: an edge that
+    /// needs more is rejected, which is safe.
+    pub max_evaluations: usize,
+}
+
+impl Default for SweepOptions {
+    fn default() -> Self {
+        SweepOptions { closest: true, max_evaluations: MAX_SWEEP_EVALUATIONS }
+    }
+}
+
 /// Sweeps the straight motion `a → b` (see the module docs).
 ///
 /// # Errors
 /// [`WorldError::Input`] when `a` and `b` differ in length or hold a non-finite value; as
 /// [`Clearances::evaluate`].
-pub fn sweep<C: Clearances + ?Sized>(clearances: &mut C, a: &[f64], b: &[f64]) -> Result<Sweep, WorldError> {
+pub fn sweep<C: Clearances + ?Sized>(
+    clearances: &mut C,
+    a: &[f64],
+    b: &[f64],
+    options: &SweepOptions,
+) -> Result<Sweep, WorldError> {
+    let cap = options.max_evaluations.min(MAX_SWEEP_EVALUATIONS);
+    let closest = options.closest;
     if a.len() != b.len() || !a.iter().chain(b).all(|v| v.is_finite()) {
         return Err(WorldError::Input(format!(
             "swept check: the motion's ends must be finite joint vectors of one length, got {} and {} values",
@@ -96,7 +118,8 @@ pub fn sweep<C: Clearances + ?Sized>(clearances: &mut C, a: &[f64], b: &[f64]) -
             b.len()
         )));
     }
-    let n = clearances.count();
+    let rates = clearances.prepare(a, b)?;
+    let n = rates.len();
     let mut result = Sweep {
         clear: true,
         lower_bound: f64::INFINITY,
@@ -108,8 +131,6 @@ pub fn sweep<C: Clearances + ?Sized>(clearances: &mut C, a: &[f64], b: &[f64]) -
     if n == 0 {
         return Ok(result);
     }
-    let mut rates = vec![0.0; n];
-    clearances.rates(a, b, &mut rates)?;
     let mut q = a.to_vec();
     let mut eval = |s: f64, result: &mut Sweep, clearances: &mut C| -> Result<Point, WorldError> {
         for ((o, x), y) in q.iter_mut().zip(a).zip(b) {
@@ -140,7 +161,7 @@ pub fn sweep<C: Clearances + ?Sized>(clearances: &mut C, a: &[f64], b: &[f64]) -
         if last >= 1.0 {
             break;
         }
-        if result.evaluations >= MAX_SWEEP_EVALUATIONS {
+        if result.evaluations >= cap {
             result.clear = false;
             result.at = last;
             result.lower_bound = bounds_of(&points, &rates);
@@ -150,7 +171,9 @@ pub fn sweep<C: Clearances + ?Sized>(clearances: &mut C, a: &[f64], b: &[f64]) -
         let next = (last + step).min(1.0);
         points.push(eval(next, &mut result, clearances)?);
     }
-    refine(&mut points, &rates, &mut result, &mut eval, clearances)?;
+    if closest {
+        refine(&mut points, &rates, &mut result, &mut eval, clearances, cap)?;
+    }
     result.lower_bound = bounds_of(&points, &rates);
     Ok(result)
 }
@@ -178,9 +201,10 @@ fn refine<C: Clearances + ?Sized>(
     result: &mut Sweep,
     eval: &mut impl FnMut(f64, &mut Sweep, &mut C) -> Result<Point, WorldError>,
     clearances: &mut C,
+    cap: usize,
 ) -> Result<(), WorldError> {
     let mut i = 0;
-    while i + 1 < points.len() && result.evaluations < MAX_SWEEP_EVALUATIONS {
+    while i + 1 < points.len() && result.evaluations < cap {
         let tolerance = (1e-3 * result.min_clearance).max(1e-6);
         let (p, q) = (&points[i], &points[i + 1]);
         if interval_bound(p, q, rates) >= result.min_clearance - tolerance || q.s - p.s <= f64::EPSILON {
@@ -193,21 +217,24 @@ fn refine<C: Clearances + ?Sized>(
     Ok(())
 }
 
-/// Rate bounds of the points of a serial chain's segments along a straight joint motion.
+/// Rate bound of the points of a serial chain's segment along a straight joint motion.
 ///
 /// `lengths[i]` bounds the length of segment `i` (between chain points `i` and `i + 1`) over
 /// the motion; the axis of joint `j` passes through chain point `j` or `j + 1`; segment `k`
-/// is moved by joints `0..=min(k, joints − 1)`. A point within `radius` of segment `k` then
-/// moves at most `Σ_j |Δq_j|·(Σ_{i=j..=k} lengths[i] + radius)` over revolute joints plus
-/// `Σ |Δq_j|` over prismatic ones, per unit of `s`.
+/// is moved by joints `0..=min(k, joints − 1)`. Relative to a segment that the joints before
+/// `first` move rigidly together with segment `k`, a point within `radius` of segment `k`
+/// moves at most `Σ_j |Δq_j|·(Σ_{i=j..=k} lengths[i] + radius)` over the revolute
+/// joints `j ∈ first..=k`, plus `Σ |Δq_j|` over the prismatic ones, per unit of `s`
+/// (`first = 0`: relative to the base).
 #[must_use]
-pub fn segment_rate(lengths: &[f64], revolute: &[bool], delta: &[f64], k: usize, radius: f64) -> f64 {
+pub fn segment_rate(lengths: &[f64], revolute: &[bool], delta: &[f64], first: usize, k: usize, radius: f64) -> f64 {
     let chain = &lengths[..=k.min(lengths.len().saturating_sub(1))];
     delta
         .iter()
         .zip(revolute)
-        .take(k + 1)
         .enumerate()
+        .take(k + 1)
+        .skip(first)
         .map(|(j, (dq, &rev))| {
             dq.abs() * if rev { chain.get(j..).map_or(0.0, |l| l.iter().sum::<f64>()) + radius } else { 1.0 }
         })
@@ -225,12 +252,8 @@ mod tests {
     }
 
     impl Clearances for Line {
-        fn count(&self) -> usize {
-            1
-        }
-        fn rates(&mut self, a: &[f64], b: &[f64], rates: &mut [f64]) -> Result<(), WorldError> {
-            rates[0] = (b[0] - a[0]).abs();
-            Ok(())
+        fn prepare(&mut self, a: &[f64], b: &[f64]) -> Result<Vec<f64>, WorldError> {
+            Ok(vec![(b[0] - a[0]).abs()])
         }
         fn evaluate(&mut self, q: &[f64], out: &mut [f64]) -> Result<(), WorldError> {
             out[0] = (q[0] - self.c).abs() - self.gap;
@@ -241,7 +264,7 @@ mod tests {
     #[test]
     fn a_crossing_between_any_samples_is_found() {
         // The point 0.4137 is crossed: never clear, whatever a sampling grid would see.
-        let s = sweep(&mut Line { c: 0.4137, gap: 0.0 }, &[0.0], &[1.0]).unwrap();
+        let s = sweep(&mut Line { c: 0.4137, gap: 0.0 }, &[0.0], &[1.0], &SweepOptions::default()).unwrap();
         assert!(!s.clear);
         assert!((s.at - 0.4137).abs() < 1e-5, "{s:?}");
         assert!(s.lower_bound <= SWEEP_FLOOR);
@@ -250,7 +273,7 @@ mod tests {
     #[test]
     fn a_near_miss_is_clear_with_a_tight_certified_bound() {
         // Passing 0.01 beside the obstacle: d(s) = |s − 2| − 0.99, minimum 0.01 at s = 1.
-        let s = sweep(&mut Line { c: 2.0, gap: 0.99 }, &[0.0], &[1.0]).unwrap();
+        let s = sweep(&mut Line { c: 2.0, gap: 0.99 }, &[0.0], &[1.0], &SweepOptions::default()).unwrap();
         assert!(s.clear, "{s:?}");
         assert!((s.min_clearance - 0.01).abs() < 1e-12, "{s:?}");
         assert!(s.lower_bound > 0.0 && s.lower_bound <= 0.01 + 1e-12, "{s:?}");
@@ -259,8 +282,8 @@ mod tests {
 
     #[test]
     fn without_motion_or_constraints_nothing_moves() {
-        let s = sweep(&mut Line { c: 2.0, gap: 0.5 }, &[0.0], &[0.0]).unwrap();
+        let s = sweep(&mut Line { c: 2.0, gap: 0.5 }, &[0.0], &[0.0], &SweepOptions::default()).unwrap();
         assert!(s.clear && s.evaluations == 2 && (s.min_clearance - 1.5).abs() < 1e-12, "{s:?}");
-        assert!(sweep(&mut Line { c: 2.0, gap: 0.5 }, &[0.0], &[f64::NAN]).is_err());
+        assert!(sweep(&mut Line { c: 2.0, gap: 0.5 }, &[0.0], &[f64::NAN], &SweepOptions::default()).is_err());
     }
 }
