@@ -12,7 +12,8 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::parse_scene;
-use crate::Robot;
+use crate::ik::IkOptions;
+use crate::{Cancel, Robot};
 use crate::error::{Error, Result};
 use crate::jobs::input::{Joints, Pose, positive, q_display, time_budget};
 use crate::motion::{JointMotion, JointPath, JointRates, Profile};
@@ -156,6 +157,14 @@ pub fn path(robot: &Robot, request: &PathRequest) -> Result<PathReport> {
 /// [`Error::Motion`] when the path cannot be timed (a joint without a speed limit and no
 /// `duration_s`).
 pub fn path_run(robot: &Robot, request: &PathRequest) -> Result<PathRun> {
+    path_run_with_cancel(robot, request, &Cancel::default())
+}
+
+/// [`path_run`] whose planner stops when `cancel` is set (as if its time budget were spent).
+///
+/// # Errors
+/// As [`path_run`].
+pub fn path_run_with_cancel(robot: &Robot, request: &PathRequest, cancel: &Cancel) -> Result<PathRun> {
     let scene = parse_scene(&request.scene)?;
     let start = request.from.si(robot, "from")?;
     let goal = match (&request.to, &request.to_pose) {
@@ -173,7 +182,8 @@ pub fn path_run(robot: &Robot, request: &PathRequest) -> Result<PathRun> {
     {
         return Err(same());
     }
-    let options = PlanOptions { seed: request.seed, max_time: budget, ..PlanOptions::default() };
+    let ik = IkOptions { cancel: cancel.clone(), ..IkOptions::default() };
+    let options = PlanOptions { seed: request.seed, max_time: budget, ik, ..PlanOptions::default() };
     let mut report = PathReport {
         robot: robot.name().to_string(),
         found: false,
