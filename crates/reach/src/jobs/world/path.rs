@@ -15,7 +15,7 @@ use super::parse_scene;
 use crate::ik::IkOptions;
 use crate::{Cancel, Robot};
 use crate::error::{Error, Result};
-use crate::jobs::input::{Joints, Pose, positive, q_display, time_budget};
+use crate::jobs::input::{Joints, Pose, positive, q_display, require_within_limits, time_budget};
 use crate::motion::{JointMotion, JointPath, JointRates, Profile};
 use crate::world::planner::{Goal, PlanError, PlanOptions, PlanStats, path_length, plan};
 use crate::world::{CollisionChecker, Scene};
@@ -167,8 +167,13 @@ pub fn path_run(robot: &Robot, request: &PathRequest) -> Result<PathRun> {
 pub fn path_run_with_cancel(robot: &Robot, request: &PathRequest, cancel: &Cancel) -> Result<PathRun> {
     let scene = parse_scene(&request.scene)?;
     let start = request.from.si(robot, "from")?;
+    require_within_limits(robot, &start, request.from.unit(), "from")?;
     let goal = match (&request.to, &request.to_pose) {
-        (Some(q), None) => Goal::Joints(q.si(robot, "to")?),
+        (Some(q), None) => {
+            let goal = q.si(robot, "to")?;
+            require_within_limits(robot, &goal, q.unit(), "to")?;
+            Goal::Joints(goal)
+        }
         (None, Some(p)) => Goal::Target(p.target("to_pose")?),
         _ => return Err(Error::request("to", "give exactly one of `to` and `to_pose`")),
     };
