@@ -76,9 +76,9 @@ impl CspaceArgs {
                 .max_nodes
                 .as_deref()
                 .map(|t| {
-                    t.trim()
-                        .parse::<usize>()
-                        .map_err(|_| CliError::bad_input(format!("--max-nodes: expected a whole number ≥ 1, got {t:?}")))
+                    t.trim().parse::<usize>().map_err(|_| {
+                        CliError::bad_input(format!("--max-nodes: expected a whole number ≥ 1, got {t:?}"))
+                    })
                 })
                 .transpose()?,
         })

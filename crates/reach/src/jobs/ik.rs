@@ -10,14 +10,14 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::input::{Joints, Pose, q_display, rpy_deg};
-use crate::{Cancel, Robot};
 use crate::decide::{Criterion, DecideError, Direction, IkCriterion, Method, ik_matrix, rank};
 use crate::error::{Error, Result};
-use crate::ik::planar::{PaperScan, PlanarRedundant, ScanRow};
 use crate::ik::numeric::MAX_UNTIMED_ITERATIONS;
+use crate::ik::planar::{PaperScan, PlanarRedundant, ScanRow};
 use crate::ik::{IkFailure, IkOptions, IkSolution, IkSolutions, IkTarget, SolverKind};
 use crate::model::planar_angles::InteriorAngles;
 use crate::tolerance::IK_POSITION;
+use crate::{Cancel, Robot};
 
 /// Parses a solver name as written on the command line: `auto` (`None`: the first closed
 /// form that fits the robot, else the numeric solver, [`SolverKind::detect`]) or a

@@ -8,7 +8,6 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::parse_scene;
-use crate::{Cancel, Robot};
 use crate::error::{Error, Result};
 use crate::jobs::input::{AngleUnit, to_si};
 use crate::world::WorldError;
@@ -18,6 +17,7 @@ use crate::world::cspace::{
 };
 use crate::world::fit::{Confusion, FitOptions, fit_region};
 use crate::world::rfunction::{Parabola, Primitive};
+use crate::{Cancel, Robot};
 
 fn default_step_deg() -> f64 {
     15.0

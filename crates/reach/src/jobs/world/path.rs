@@ -12,13 +12,13 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::parse_scene;
-use crate::ik::IkOptions;
-use crate::{Cancel, Robot};
 use crate::error::{Error, Result};
+use crate::ik::IkOptions;
 use crate::jobs::input::{Joints, Pose, positive, q_display, require_within_limits, time_budget};
 use crate::motion::{JointMotion, JointPath, JointRates, Profile};
 use crate::world::planner::{Goal, PlanError, PlanOptions, PlanStats, path_length, plan};
 use crate::world::{CollisionChecker, Scene};
+use crate::{Cancel, Robot};
 
 fn default_seed() -> u64 {
     1
