@@ -13,6 +13,7 @@ mod decide_mcdm;
 mod decide_motion;
 mod decide_sequence;
 mod drive_model;
+mod fuzz;
 mod drive_output;
 mod drive_schedule;
 mod dynamics_energy;
