@@ -40,14 +40,55 @@ const TASKS: [&str; 3] = [
     repo_file!("examples/seed003_welding.toml"),
     repo_file!("examples/choose_tracking.toml"),
 ];
-const TASK_LISTS: [&str; 2] = [repo_file!("examples/tasks_collection.toml"), repo_file!("examples/tasks_visiting.toml")];
+const TASK_LISTS: [&str; 2] =
+    [repo_file!("examples/tasks_collection.toml"), repo_file!("examples/tasks_visiting.toml")];
 
 /// Numbers and tokens that reach the edges of the parsers and the arithmetic behind them.
 const TOKENS: &[&str] = &[
-    "nan", "inf", "-inf", "1e308", "-1e308", "1e-308", "-0", "0", "-0.0", "1", "-1", "2", "360", "-720", "1e9",
-    "18446744073709551615", "9999999999999999999999", "1e-9", "0.5", "\"\"", "\"x\"", "[]", "[1, 2]", "[[1]]", "{}",
-    "=", "[", "]", "\"deg\"", "\"rad\"", "\"mm\"", "\"revolute\"", "\"prismatic\"", "true", "false", "\n", "#",
-    "<", ">", "/>", "<joint", "<link", "name=\"a\"", "\"",
+    "nan",
+    "inf",
+    "-inf",
+    "1e308",
+    "-1e308",
+    "1e-308",
+    "-0",
+    "0",
+    "-0.0",
+    "1",
+    "-1",
+    "2",
+    "360",
+    "-720",
+    "1e9",
+    "18446744073709551615",
+    "9999999999999999999999",
+    "1e-9",
+    "0.5",
+    "\"\"",
+    "\"x\"",
+    "[]",
+    "[1, 2]",
+    "[[1]]",
+    "{}",
+    "=",
+    "[",
+    "]",
+    "\"deg\"",
+    "\"rad\"",
+    "\"mm\"",
+    "\"revolute\"",
+    "\"prismatic\"",
+    "true",
+    "false",
+    "\n",
+    "#",
+    "<",
+    ">",
+    "/>",
+    "<joint",
+    "<link",
+    "name=\"a\"",
+    "\"",
 ];
 
 /// One edit of a text's lines or tokens.
@@ -95,7 +136,8 @@ fn number_spans(text: &str) -> Vec<(usize, usize)> {
         if bytes[i].is_ascii_digit() {
             let start = if i > 0 && bytes[i - 1] == b'-' { i - 1 } else { i };
             let mut end = i;
-            while end < bytes.len() && (bytes[end].is_ascii_digit() || matches!(bytes[end], b'.' | b'e' | b'E' | b'_')) {
+            while end < bytes.len() && (bytes[end].is_ascii_digit() || matches!(bytes[end], b'.' | b'e' | b'E' | b'_'))
+            {
                 end += 1;
             }
             spans.push((start, end));
