@@ -1,7 +1,8 @@
 //! Fuzzing the command line: random argument vectors from a grammar of commands, robots,
 //! flags and edge-case values (NaN, infinities, 1e308, −0, huge counts, malformed lists) run
 //! through the real binary. Whatever the arguments, `reach` exits with 0, 2 or 3 — never a
-//! panic (status 1, "internal error") or a signal — and a failure is one `error:` line.
+//! panic (status 1, "internal error") or a signal — and a failure is one `error:` line
+//! (bad input: with nothing on stdout; no solution: the report may precede it, as `ik`'s).
 //! Long computations are kept short by the caps (`--max-nodes`, the untimed IK iteration
 //! cap) and a time budget, so every case ends quickly.
 //!
@@ -103,9 +104,18 @@ fn fuzz_command_lines() {
             let refs: Vec<&str> = args.iter().map(String::as_str).collect();
             let run = reach(&refs);
             prop_assert!([0, 2, 3].contains(&run.code), "reach {refs:?}: exit {}: {}", run.code, run.stderr);
-            if run.code == 3 || (run.code == 2 && run.stderr.starts_with("error: ") && !run.stderr.contains("Usage")) {
-                let line = one_error_line(&run);
-                prop_assert!(!line.contains("internal error"), "reach {refs:?}: {line}");
+            prop_assert!(
+                !run.stderr.contains("internal error") && !run.stderr.contains("panicked"),
+                "reach {refs:?}: {}",
+                run.stderr
+            );
+            if run.code == 2 && !run.stderr.contains("Usage:") {
+                // Bad input: nothing on stdout, one line on stderr.
+                one_error_line(&run);
+            } else if run.code == 3 {
+                // No solution: the report may be on stdout (`ik`), the verdict is one line.
+                prop_assert_eq!(run.stderr.lines().count(), 1, "reach {:?}: {}", refs, run.stderr);
+                prop_assert!(run.stderr.starts_with("error: "), "reach {refs:?}: {}", run.stderr);
             }
             Ok(())
         })

@@ -7,6 +7,8 @@
 
 mod common;
 
+mod bounds;
+
 mod decide_detour;
 mod decide_ik;
 mod decide_mcdm;
