@@ -6,6 +6,7 @@
 //! | 1 | internal error (a bug, or stdout could not be written) |
 //! | 2 | bad input: arguments, numbers, robot names, robot files (also clap's usage errors) |
 //! | 3 | no solution / infeasible (reserved for `ik`, `motion`, …) |
+//! | 130 | interrupted by Ctrl-C (`error: interrupted`) |
 //!
 //! Every error is reported as **one line** on stderr, `error: <message>`, and nothing is
 //! printed on stdout: commands check and compute everything before they write.
@@ -21,6 +22,8 @@ pub const EXIT_INTERNAL: i32 = 1;
 pub const EXIT_BAD_INPUT: i32 = 2;
 /// Exit status: the input is valid but has no solution / is infeasible (reserved).
 pub const EXIT_NO_SOLUTION: i32 = 3;
+/// Exit status: interrupted by Ctrl-C (128 + SIGINT, the shells' convention).
+pub const EXIT_INTERRUPTED: i32 = 130;
 
 /// Why a command failed.
 #[derive(Debug)]
@@ -32,6 +35,8 @@ pub enum CliError {
     NoSolution(String),
     /// Something that should not happen (exit status 1).
     Internal(String),
+    /// The user pressed Ctrl-C (exit status 130).
+    Interrupted,
     /// Writing the output failed (a broken pipe is not reported, see [`CliError::exit_code`]).
     Output(io::Error),
 }
@@ -61,6 +66,7 @@ impl CliError {
             CliError::BadInput(_) => EXIT_BAD_INPUT,
             CliError::NoSolution(_) => EXIT_NO_SOLUTION,
             CliError::Internal(_) => EXIT_INTERNAL,
+            CliError::Interrupted => EXIT_INTERRUPTED,
             CliError::Output(_) if self.is_broken_pipe() => EXIT_OK,
             CliError::Output(_) => EXIT_INTERNAL,
         }
@@ -72,6 +78,7 @@ impl fmt::Display for CliError {
         match self {
             CliError::BadInput(m) | CliError::NoSolution(m) => f.write_str(m),
             CliError::Internal(m) => write!(f, "internal error: {m}"),
+            CliError::Interrupted => f.write_str("interrupted"),
             CliError::Output(e) => write!(f, "cannot write the output: {e}"),
         }
     }

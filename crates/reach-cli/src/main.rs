@@ -9,6 +9,7 @@ mod argv;
 mod cli;
 mod commands;
 mod error;
+mod interrupt;
 mod numbers;
 mod output;
 mod plot;
@@ -24,11 +25,16 @@ use crate::error::{CliError, EXIT_INTERNAL, EXIT_OK, one_line};
 
 fn main() {
     install_panic_hook();
+    interrupt::install();
     let args = argv::protect_hyphen_values(&Cli::command(), std::env::args_os().collect());
     let cli = Cli::parse_from(args); // usage errors: clap prints them and exits with status 2
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(stdout.lock());
-    let result = run(&cli.command, &mut out).and_then(|()| out.flush().map_err(CliError::from));
+    // Work stopped by Ctrl-C reports the interruption, whatever it returned.
+    let result = run(&cli.command, &mut out)
+        .and_then(|()| interrupt::check())
+        .or_else(|e| interrupt::check().and(Err(e)))
+        .and_then(|()| out.flush().map_err(CliError::from));
     let code = match result {
         Ok(()) => EXIT_OK,
         Err(e) => {

@@ -46,6 +46,24 @@
 //! * [`Error`] — the one error type, with stable failure codes.
 //! * [`angle`] — wrapping and angle differences.
 //! * [`tolerance`] — the numeric tolerances.
+//! * [`Cancel`] — a flag a front end sets to stop long work (Ctrl-C).
+//!
+//! ## Bounded resources
+//!
+//! Every size a request sets is computed and checked against a cap before anything is
+//! allocated or run; an input over a cap is an [`Error::Request`] naming the field, the size
+//! and the cap. The caps:
+//!
+//! | size | cap | raised by |
+//! | --- | --- | --- |
+//! | configuration-space grid nodes | [`world::cspace::DEFAULT_MAX_NODES`] (20 million) | `max_nodes` (CLI `--max-nodes`), up to [`world::cspace::MAX_NODES`] (200 million) |
+//! | numeric IK `restarts × max_iterations` without a time budget | [`ik::numeric::MAX_UNTIMED_ITERATIONS`] (1 million) | a time budget (`numeric.time_budget_s`, CLI `--time-budget`) |
+//! | motion samples (`duration / dt`, tool-path arc-length grids) | [`motion::sample::MAX_SAMPLES`] (10 million) | — |
+//! | seed-000 IK scan rows (`scan`, `step_deg`) | [`ik::planar::MAX_SCAN_ROWS`] (1 million) | — |
+//! | self-motion samples per turn | [`ik::planar::MAX_SELF_MOTION_SAMPLES`] (3600) | — |
+//! | path planner iterations (two trees, one node each at most) | [`world::planner::PlanOptions::max_iterations`] (20 000) and its time budget | — |
+//! | stepper steps per joint (`drive`) | [`drive::MAX_STEPS_PER_JOINT`] (20 million) | — |
+//! | wall-time budgets | [`jobs::input::MAX_TIME_BUDGET_S`] (one day) | — |
 //!
 //! ## Example
 //!
@@ -61,6 +79,7 @@
 #![warn(missing_docs)]
 
 pub mod angle;
+mod cancel;
 pub mod decide;
 pub mod drive;
 pub mod effort;
@@ -74,6 +93,7 @@ mod rng;
 pub mod tolerance;
 pub mod world;
 
+pub use cancel::Cancel;
 pub use error::{Error, Result, one_line};
 pub use kinematics::{Jacobian, KinematicsError, Manipulability};
 pub use model::{ModelError, Robot, RobotSpec};

@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use std::io::Write;
 
 use clap::Args;
-use reach::jobs::world::{CspaceReport, CspaceRequest, cspace_axes, cspace_with_grid};
+use reach::jobs::world::{CspaceReport, CspaceRequest, cspace_axes, cspace_with_cancel};
 use reach::world::WorldError;
 
 use crate::commands::check::{read_scene, scene_error};
@@ -37,6 +37,11 @@ pub struct CspaceArgs {
     #[arg(long, value_name = "qI=VALUE")]
     pub fix: Vec<String>,
 
+    /// Largest number of grid nodes to classify (default 20000000, at most 200000000): a
+    /// finer grid is refused before anything is allocated.
+    #[arg(long, value_name = "N")]
+    pub max_nodes: Option<String>,
+
     /// Print the report as JSON (docs/schemas/cspace.report.schema.json).
     #[arg(long)]
     pub json: bool,
@@ -67,6 +72,15 @@ impl CspaceArgs {
             step_deg: parse_finite("--step", &self.step)?,
             fix,
             fit: self.fit,
+            max_nodes: self
+                .max_nodes
+                .as_deref()
+                .map(|t| {
+                    t.trim().parse::<usize>().map_err(|_| {
+                        CliError::bad_input(format!("--max-nodes: expected a whole number ≥ 1, got {t:?}"))
+                    })
+                })
+                .transpose()?,
         })
     }
 }
@@ -81,7 +95,11 @@ pub fn run(args: &CspaceArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let loaded = args.robot.load()?;
     let robot = &loaded.robot;
     let request = args.request()?;
-    let axes = cspace_axes(robot, &request).map_err(|e| scene_error(&args.scene, e))?;
+    let flags = [("step_deg", "--step"), ("max_nodes", "--max-nodes"), ("fix", "--fix")];
+    let axes = cspace_axes(robot, &request).map_err(|e| match e {
+        e @ reach::Error::Request { .. } => crate::error::flagged(e, &flags),
+        e => scene_error(&args.scene, e),
+    })?;
     let swept: Vec<usize> = (0..axes.len()).filter(|&j| axes[j].len() > 1).collect();
     if args.sections.any() && !(2..=3).contains(&swept.len()) {
         return Err(CliError::bad_input(format!(
@@ -92,10 +110,11 @@ pub fn run(args: &CspaceArgs, out: &mut dyn Write) -> Result<(), CliError> {
     args.sections.prepare()?;
     let total = axes.iter().map(Vec::len).product::<usize>();
     let bar = Progress::new(total as u64, "classifying", args.json);
-    let result = cspace_with_grid(robot, &request, &|done, _| bar.set(done as u64));
+    let result = cspace_with_cancel(robot, &request, &|done, _| bar.set(done as u64), crate::interrupt::cancel());
     bar.finish();
     let (report, grid) = result.map_err(|e| match e {
         reach::Error::World(w @ WorldError::NoAllowedNode) => CliError::NoSolution(format!("--fit: {w}")),
+        reach::Error::World(WorldError::Cancelled) => CliError::Interrupted,
         reach::Error::Request { field, reason } if field == "fit" => CliError::bad_input(format!("--fit: {reason}")),
         e => scene_error(&args.scene, e),
     })?;

@@ -175,7 +175,8 @@ pub fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
         return finish(out, report.reason);
     }
     let request = request_of(args, from)?;
-    let report = reach::jobs::ik::ik(robot, &request).map_err(|e| crate::error::flagged(e, &FLAGS))?;
+    let report = reach::jobs::ik::ik_with_cancel(robot, &request, crate::interrupt::cancel())
+        .map_err(|e| crate::error::flagged(e, &FLAGS))?;
     if args.json {
         write_json(out, &report)?;
     } else {

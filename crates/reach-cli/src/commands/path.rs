@@ -6,7 +6,7 @@ use std::io::Write;
 
 use clap::Args;
 use reach::Robot;
-use reach::jobs::world::{PathReport, PathRequest, PathRun, TimedPath, path_run};
+use reach::jobs::world::{PathReport, PathRequest, PathRun, TimedPath, path_run_with_cancel};
 
 use crate::commands::check::{read_scene, scene_error};
 use crate::error::CliError;
@@ -101,7 +101,7 @@ pub fn run(args: &PathArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let robot = args.robot.load()?.robot;
     let request = args.request()?;
     args.draw.check_files()?;
-    let run = path_run(&robot, &request).map_err(|e| match e {
+    let run = path_run_with_cancel(&robot, &request, crate::interrupt::cancel()).map_err(|e| match e {
         reach::Error::Request { .. } => {
             let fixed = [
                 ("from", "--from"),

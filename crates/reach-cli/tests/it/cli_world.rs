@@ -148,6 +148,7 @@ fn check_avoid_and_cspace_json_are_the_library_reports_and_match_their_schemas()
             step_deg: 15.0,
             fix: [("q1".to_string(), 0.0)].into(),
             fit: false,
+            max_nodes: None,
         }),
     };
     let v = crate::common::assert_report(

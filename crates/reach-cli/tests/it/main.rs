@@ -4,8 +4,10 @@
 mod common;
 
 mod cli;
+mod cli_bounds;
 mod cli_decide;
 mod cli_drive;
+mod cli_fuzz;
 mod cli_ik;
 mod cli_move;
 mod cli_plot;

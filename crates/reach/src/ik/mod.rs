@@ -101,6 +101,9 @@ pub struct IkOptions {
     /// search mode ([`numeric::NumericOptions`]). Default: full pose (position only for a
     /// position target), 1e-6 m / 1e-6 rad, no time limit, every distinct solution found.
     pub numeric: numeric::NumericOptions,
+    /// Stops the numeric solver early, as if its time budget were spent ([`crate::Cancel`]).
+    /// Default: never.
+    pub cancel: crate::Cancel,
 }
 
 impl Default for IkOptions {
@@ -112,6 +115,7 @@ impl Default for IkOptions {
             max_iterations: 200,
             restarts: 16,
             numeric: numeric::NumericOptions::default(),
+            cancel: crate::Cancel::default(),
         }
     }
 }

@@ -137,6 +137,12 @@ pub enum SearchMode {
     FirstFound,
 }
 
+/// Largest iteration budget (`restarts × max_iterations` tried steps) of one solve without a
+/// wall-time budget: a few seconds of work for a 7-joint arm. A request asking for more
+/// without a time budget is refused before the solve (the job layer's
+/// `numeric.restarts`); with a time budget the budget ends the solve.
+pub const MAX_UNTIMED_ITERATIONS: usize = 1_000_000;
+
 /// Options of the numeric solver only (the field [`IkOptions::numeric`]); the iteration budget
 /// per start and the number of starts are [`IkOptions::max_iterations`] and
 /// [`IkOptions::restarts`].
@@ -294,6 +300,7 @@ impl IkSolver for Numeric {
             accept_position: opts.position_tolerance,
             accept_orientation: opts.orientation_tolerance,
             deadline: opts.time_budget.and_then(|b| started.checked_add(b)),
+            cancel: options.cancel.clone(),
         };
         let axes = match target {
             IkTarget::Position(_) => TaskAxes::Position,
@@ -460,6 +467,8 @@ struct Criteria {
     accept_position: f64,
     accept_orientation: f64,
     deadline: Option<Instant>,
+    /// Set: stop as if the deadline had passed.
+    cancel: crate::Cancel,
 }
 
 impl Criteria {
@@ -654,7 +663,7 @@ impl Work {
             if iterations >= max_iterations || stall >= STALL_STEPS {
                 break;
             }
-            if criteria.deadline.is_some_and(|d| Instant::now() >= d) {
+            if criteria.deadline.is_some_and(|d| Instant::now() >= d) || criteria.cancel.is_cancelled() {
                 timed_out = true;
                 break;
             }

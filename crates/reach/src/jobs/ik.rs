@@ -10,13 +10,14 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::input::{Joints, Pose, q_display, rpy_deg};
-use crate::Robot;
 use crate::decide::{Criterion, DecideError, Direction, IkCriterion, Method, ik_matrix, rank};
 use crate::error::{Error, Result};
+use crate::ik::numeric::MAX_UNTIMED_ITERATIONS;
 use crate::ik::planar::{PaperScan, PlanarRedundant, ScanRow};
 use crate::ik::{IkFailure, IkOptions, IkSolution, IkSolutions, IkTarget, SolverKind};
 use crate::model::planar_angles::InteriorAngles;
 use crate::tolerance::IK_POSITION;
+use crate::{Cancel, Robot};
 
 /// Parses a solver name as written on the command line: `auto` (`None`: the first closed
 /// form that fits the robot, else the numeric solver, [`SolverKind::detect`]) or a
@@ -296,7 +297,9 @@ impl IkChoice {
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct IkNumericRequest {
-    /// Number of starts, ≥ 1 (default 16).
+    /// Number of starts, ≥ 1 (default 16). Without `time_budget_s`, `restarts ×
+    /// max_iterations` is at most [`MAX_UNTIMED_ITERATIONS`]; with it, the budget ends the
+    /// solve.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub restarts: Option<usize>,
     /// Iterations per start, ≥ 1 (default 200).
@@ -588,6 +591,20 @@ fn options(request: &IkRequest, from: &[f64]) -> Result<IkOptions> {
     if let Some(t) = super::input::time_budget("numeric.time_budget_s", n.time_budget_s)? {
         options.numeric.time_budget = Some(t);
     }
+    let budget = options.restarts.saturating_mul(options.max_iterations);
+    if options.numeric.time_budget.is_none() && budget > MAX_UNTIMED_ITERATIONS {
+        let field = if n.restarts.is_some() { "numeric.restarts" } else { "numeric.max_iterations" };
+        return Err(Error::request(
+            field,
+            format!(
+                "{} starts × {} iterations is {:.3e} solver iterations, more than the cap of {MAX_UNTIMED_ITERATIONS} \
+                 without a time budget (use fewer starts or iterations, or give a time budget)",
+                options.restarts,
+                options.max_iterations,
+                options.restarts as f64 * options.max_iterations as f64
+            ),
+        ));
+    }
     if let Some(t) = super::input::positive("numeric.position_tolerance_m", n.position_tolerance_m)? {
         options.numeric.position_tolerance = t;
     }
@@ -636,6 +653,15 @@ pub fn solution_report(robot: &Robot, s: &IkSolution) -> IkSolutionReport {
 /// `choose.weights`, `numeric.restarts`, …); [`Error::Ik`] for a solver that does not fit the
 /// robot. No solution within limits is not an error: see the report's `status`.
 pub fn ik(robot: &Robot, request: &IkRequest) -> Result<IkReport> {
+    ik_with_cancel(robot, request, &Cancel::default())
+}
+
+/// [`ik`] whose numeric solver stops when `cancel` is set (the report then holds what was
+/// found so far, like a spent time budget).
+///
+/// # Errors
+/// As [`ik`].
+pub fn ik_with_cancel(robot: &Robot, request: &IkRequest, cancel: &Cancel) -> Result<IkReport> {
     let target = request.target.target("target")?;
     let from = match &request.from {
         Some(q) => q.si(robot, "from")?,
@@ -645,7 +671,7 @@ pub fn ik(robot: &Robot, request: &IkRequest) -> Result<IkReport> {
     if let Some(choice) = &request.choose {
         choice.check(CHOICE_FIELDS)?;
     }
-    let options = options(request, &from)?;
+    let options = IkOptions { cancel: cancel.clone(), ..options(request, &from)? };
     let kind = request.solver.unwrap_or_else(|| SolverKind::detect(robot));
     let mut all = kind.build(robot)?.solve(robot, &target, &options)?;
     all.express_near(robot, &from);

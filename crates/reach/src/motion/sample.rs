@@ -198,6 +198,11 @@ fn closest_any<'a>(solutions: &'a [IkSolution], from: &[f64], weights: &[f64]) -
     solutions.iter().min_by(|a, b| cost(a).total_cmp(&cost(b)))
 }
 
+/// Largest number of steps of one sampling grid (time or arc length): `duration / dt`
+/// above this is refused before the grid is built (every sample of a motion holds a joint
+/// vector, its rates and a tool pose, and is printed).
+pub const MAX_SAMPLES: f64 = 1e7;
+
 /// Sample times `t0, t0 + dt, …, t0 + duration` (see the module docs).
 ///
 /// The end is always included exactly; a grid point within [`SAMPLE_GRID`]·`dt` of the end
@@ -205,7 +210,7 @@ fn closest_any<'a>(solutions: &'a [IkSolution], from: &[f64], weights: &[f64]) -
 ///
 /// # Errors
 /// [`MotionError::InvalidInput`] when a number is not finite, `duration` is negative, `dt` is
-/// not positive, or the grid would exceed 10 million samples.
+/// not positive, or the grid would exceed [`MAX_SAMPLES`] (10 million) samples.
 ///
 /// # Example
 /// ```
@@ -236,7 +241,7 @@ pub(crate) fn grid(
         });
     }
     let steps = span / step;
-    if steps > 1e7 {
+    if steps > MAX_SAMPLES {
         return Err(MotionError::InvalidInput {
             field: step_name.into(),
             reason: format!("{step} gives {steps:.0} samples over {span} (more than 10 million)"),

@@ -6,11 +6,19 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use serde::Serialize;
 
 use super::{CollisionChecker, Scene, Verdict, WorldError};
+use crate::Cancel;
 use crate::model::Robot;
 use crate::tolerance::{LIMIT_SLACK, SCAN_GRID};
 
-/// Largest number of grid nodes accepted (≈ 1.1e9 would not fit in memory as classes).
+/// Largest number of grid nodes accepted at all, whatever a request asks (one byte of class
+/// per node: 200 MB; more would not fit beside the rest in memory). Checked before anything
+/// is allocated, from the axis lengths alone.
 pub const MAX_NODES: usize = 200_000_000;
+
+/// Default cap on the grid nodes of one request (`cspace`'s `max_nodes`, CLI
+/// `--max-nodes`): a grid this size is classified in about a minute; a request may raise it
+/// up to [`MAX_NODES`].
+pub const DEFAULT_MAX_NODES: usize = 20_000_000;
 
 /// What a grid node is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
@@ -133,8 +141,26 @@ impl CspaceGrid {
     }
 }
 
+/// Whole steps of `step` in `[lo, hi]` plus one, as a float (no overflow: a tiny step gives a
+/// huge number, compared with the caps before anything is allocated).
+fn axis_steps(lo: f64, hi: f64, step: f64) -> f64 {
+    ((hi - lo) / step + SCAN_GRID).floor() + 1.0
+}
+
+/// The number of values [`axis_values`] gives, computed without building them; saturates
+/// at `usize::MAX`.
+fn axis_len(lo: f64, hi: f64, step: f64) -> usize {
+    let n = axis_steps(lo, hi, step);
+    if n >= usize::MAX as f64 {
+        return usize::MAX;
+    }
+    let n = n as usize;
+    let last = lo + (n - 1) as f64 * step;
+    if hi - last > SCAN_GRID * step { n + 1 } else { n }
+}
+
 fn axis_values(lo: f64, hi: f64, step: f64) -> Vec<f64> {
-    let n = ((hi - lo) / step + SCAN_GRID).floor() as usize + 1;
+    let n = axis_steps(lo, hi, step) as usize;
     let mut v: Vec<f64> = (0..n).map(|i| lo + i as f64 * step).collect();
     if let Some(&last) = v.last()
         && hi - last > SCAN_GRID * step
@@ -144,12 +170,34 @@ fn axis_values(lo: f64, hi: f64, step: f64) -> Vec<f64> {
     v
 }
 
-/// The grid axes of `spec` for `robot`.
+/// The number of nodes of the grid of `spec` for `robot`, computed from the axis lengths
+/// without allocating them (saturating at `usize::MAX`): what a caller compares with its cap
+/// before [`grid_axes`] or [`classify_grid`].
 ///
 /// # Errors
 /// [`WorldError::Input`] for a step that is not positive and finite, a spec of the wrong
-/// length, a NaN value, a swept joint without finite limits or range, or too many nodes.
-pub fn grid_axes(robot: &Robot, spec: &GridSpec) -> Result<Vec<Vec<f64>>, WorldError> {
+/// length, a NaN value, or a swept joint without finite limits or range.
+///
+/// # Example
+/// ```
+/// use reach::world::cspace::{GridSpec, grid_node_count};
+/// let varan = reach::model::presets::get("varan4").unwrap();
+/// let spec = GridSpec::new(4, 15f64.to_radians()).fix(0, 0.0);
+/// assert_eq!(grid_node_count(&varan, &spec).unwrap(), 9 * 17 * 17);
+/// // A step of 1e-9° is counted, not built.
+/// let tiny = GridSpec::new(4, 1e-9f64.to_radians()).fix(0, 0.0);
+/// assert!(grid_node_count(&varan, &tiny).unwrap() > 1_000_000_000_000);
+/// ```
+pub fn grid_node_count(robot: &Robot, spec: &GridSpec) -> Result<usize, WorldError> {
+    let mut total: usize = 1;
+    for range in swept_ranges(robot, spec)? {
+        total = total.saturating_mul(range.map_or(1, |(lo, hi)| axis_len(lo, hi, spec.step)));
+    }
+    Ok(total)
+}
+
+/// Per joint: `None` for a fixed joint, else its finite swept range (validated).
+fn swept_ranges(robot: &Robot, spec: &GridSpec) -> Result<Vec<Option<(f64, f64)>>, WorldError> {
     let n = robot.dof();
     if !(spec.step.is_finite() && spec.step > 0.0) {
         return Err(WorldError::Input(format!("grid step must be positive and finite, got {}", spec.step)));
@@ -157,14 +205,13 @@ pub fn grid_axes(robot: &Robot, spec: &GridSpec) -> Result<Vec<Vec<f64>>, WorldE
     if spec.fixed.len() != n || spec.ranges.len() != n {
         return Err(WorldError::Input(format!("grid spec needs one entry per joint ({n})")));
     }
-    let mut axes = Vec::with_capacity(n);
-    let mut total: usize = 1;
+    let mut out = Vec::with_capacity(n);
     for (j, joint) in robot.joints().iter().enumerate() {
-        let values = if let Some(v) = spec.fixed[j] {
+        if let Some(v) = spec.fixed[j] {
             if !v.is_finite() {
                 return Err(WorldError::Input(format!("joint {} ({}): fixed value must be finite", j + 1, joint.name)));
             }
-            vec![v]
+            out.push(None);
         } else {
             let (lo, hi) = spec.ranges[j].unwrap_or((joint.limits.lower, joint.limits.upper));
             if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
@@ -174,15 +221,41 @@ pub fn grid_axes(robot: &Robot, spec: &GridSpec) -> Result<Vec<Vec<f64>>, WorldE
                     joint.name
                 )));
             }
-            axis_values(lo, hi, spec.step)
-        };
-        total = total.saturating_mul(values.len());
-        axes.push(values);
+            out.push(Some((lo, hi)));
+        }
     }
+    Ok(out)
+}
+
+/// The grid axes of `spec` for `robot`.
+///
+/// The node count is checked against [`MAX_NODES`] from the axis lengths
+/// ([`grid_node_count`]) before any axis is built.
+///
+/// # Errors
+/// [`WorldError::Input`] for a step that is not positive and finite, a spec of the wrong
+/// length, a NaN value, a swept joint without finite limits or range, or more than
+/// [`MAX_NODES`] nodes.
+pub fn grid_axes(robot: &Robot, spec: &GridSpec) -> Result<Vec<Vec<f64>>, WorldError> {
+    let total = grid_node_count(robot, spec)?;
     if total > MAX_NODES {
-        return Err(WorldError::Input(format!("the grid has {total} nodes, more than {MAX_NODES}")));
+        return Err(WorldError::Input(format!("the grid has {} nodes, more than {MAX_NODES}", count_text(total))));
     }
-    Ok(axes)
+    let ranges = swept_ranges(robot, spec)?;
+    Ok(ranges
+        .into_iter()
+        .zip(&spec.fixed)
+        .map(|(range, fixed)| match (range, fixed) {
+            (Some((lo, hi)), _) => axis_values(lo, hi, spec.step),
+            (None, v) => vec![v.unwrap_or(0.0)],
+        })
+        .collect())
+}
+
+/// A node count for a message (`usize::MAX` is "more than 1.8e19").
+#[must_use]
+pub fn count_text(n: usize) -> String {
+    if n == usize::MAX { format!("more than {:.1e}", usize::MAX as f64) } else { n.to_string() }
 }
 
 /// Classifies one configuration (the classification order of notes 004 §4 A: limits, tool
@@ -205,7 +278,11 @@ fn classify_range(
     axes: &[Vec<f64>],
     start: usize,
     out: &mut [NodeClass],
+    cancel: &Cancel,
 ) -> Result<(), WorldError> {
+    if cancel.is_cancelled() {
+        return Err(WorldError::Cancelled);
+    }
     let mut checker = CollisionChecker::new(robot, scene);
     let mut q = vec![0.0; axes.len()];
     for (offset, slot) in out.iter_mut().enumerate() {
@@ -269,6 +346,32 @@ pub fn classify_grid_with_progress(
     spec: &GridSpec,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<CspaceGrid, WorldError> {
+    classify_grid_with_cancel(robot, scene, spec, progress, &Cancel::default())
+}
+
+/// [`classify_grid_with_progress`] that stops when `cancel` is set (looked at before every
+/// chunk of [`PROGRESS_CHUNK`] nodes).
+///
+/// # Errors
+/// See [`grid_axes`]; [`WorldError::Cancelled`] once `cancel` is set.
+///
+/// # Example
+/// ```
+/// use reach::world::{Scene, WorldError, cspace::{GridSpec, classify_grid_with_cancel}};
+/// let varan = reach::model::presets::get("varan4").unwrap();
+/// let spec = GridSpec::new(4, 15f64.to_radians()).fix(0, 0.0);
+/// let cancel = reach::Cancel::new();
+/// cancel.cancel();
+/// let e = classify_grid_with_cancel(&varan, &Scene::new(), &spec, &|_, _| {}, &cancel);
+/// assert_eq!(e.unwrap_err(), WorldError::Cancelled);
+/// ```
+pub fn classify_grid_with_cancel(
+    robot: &Robot,
+    scene: &Scene,
+    spec: &GridSpec,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    cancel: &Cancel,
+) -> Result<CspaceGrid, WorldError> {
     let axes = grid_axes(robot, spec)?;
     let total: usize = axes.iter().map(Vec::len).product();
     let mut classes = vec![NodeClass::Allowed; total];
@@ -278,14 +381,14 @@ pub fn classify_grid_with_progress(
     {
         use rayon::prelude::*;
         classes.par_chunks_mut(PROGRESS_CHUNK).enumerate().try_for_each(|(c, chunk)| {
-            classify_range(robot, scene, &axes, c * PROGRESS_CHUNK, chunk)?;
+            classify_range(robot, scene, &axes, c * PROGRESS_CHUNK, chunk, cancel)?;
             chunk_done(chunk.len());
             Ok::<(), WorldError>(())
         })?;
     }
     #[cfg(not(feature = "parallel"))]
     for (c, chunk) in classes.chunks_mut(PROGRESS_CHUNK).enumerate() {
-        classify_range(robot, scene, &axes, c * PROGRESS_CHUNK, chunk)?;
+        classify_range(robot, scene, &axes, c * PROGRESS_CHUNK, chunk, cancel)?;
         chunk_done(chunk.len());
     }
     let mut counts = GridCounts::default();

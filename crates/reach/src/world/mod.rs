@@ -75,6 +75,9 @@ pub enum WorldError {
     /// ([`fit::fit_region`]). The input is valid; the answer is empty.
     #[error("the grid has no allowed node to fit a region to")]
     NoAllowedNode,
+    /// The computation was stopped through its [`crate::Cancel`] flag.
+    #[error("interrupted")]
+    Cancelled,
     /// A kinematics error from the robot model.
     #[error(transparent)]
     Kinematics(#[from] crate::kinematics::KinematicsError),

@@ -464,7 +464,10 @@ pub fn plan(
         let mut a_is_start = true;
         while raw.is_none() {
             let nodes = start_tree.len() + goal_tree.len();
-            if iterations >= options.max_iterations || options.max_time.is_some_and(|t| t0.elapsed() > t) {
+            if iterations >= options.max_iterations
+                || options.max_time.is_some_and(|t| t0.elapsed() > t)
+                || options.ik.cancel.is_cancelled()
+            {
                 return Err(PlanError::BudgetExhausted { iterations, nodes, time_s: t0.elapsed().as_secs_f64() });
             }
             iterations += 1;

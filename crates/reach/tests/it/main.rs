@@ -7,6 +7,8 @@
 
 mod common;
 
+mod bounds;
+
 mod decide_detour;
 mod decide_ik;
 mod decide_mcdm;
@@ -19,6 +21,7 @@ mod dynamics_energy;
 mod dynamics_input;
 mod dynamics_model;
 mod dynamics_reference;
+mod fuzz;
 mod ik_branch;
 mod ik_detect;
 mod ik_numeric;

@@ -9,7 +9,7 @@ use crate::decide::Method;
 use crate::decide::detour_choice::{DetourCriterion, DetourRanking, choose_detour};
 use crate::error::{Error, Result};
 use crate::ik::planar::PlanarRedundant;
-use crate::jobs::input::{Joints, q_display};
+use crate::jobs::input::{Joints, q_display, require_within_limits};
 use crate::world::detour::{
     Closest, DetourOptions, DetourOutcome, DetourPlan, P2, SweepTest, WaypointRule, plan_detour,
 };
@@ -176,6 +176,7 @@ pub fn avoid_run(robot: &Robot, request: &AvoidRequest) -> Result<AvoidRun> {
     let (start, start_deg) = match (&request.start, request.from_xy_m) {
         (Some(q), None) => {
             let si = q.si(robot, "start")?;
+            require_within_limits(robot, &si, q.unit(), "start")?;
             let display = q.display(robot);
             ([si[0], si[1], si[2]], [display[0], display[1], display[2]])
         }

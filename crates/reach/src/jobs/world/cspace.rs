@@ -8,13 +8,16 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::parse_scene;
-use crate::Robot;
 use crate::error::{Error, Result};
 use crate::jobs::input::{AngleUnit, to_si};
 use crate::world::WorldError;
-use crate::world::cspace::{CspaceGrid, GridCounts, GridSpec, classify_grid_with_progress, grid_axes};
+use crate::world::cspace::{
+    CspaceGrid, DEFAULT_MAX_NODES, GridCounts, GridSpec, MAX_NODES, classify_grid_with_cancel, count_text, grid_axes,
+    grid_node_count,
+};
 use crate::world::fit::{Confusion, FitOptions, fit_region};
 use crate::world::rfunction::{Parabola, Primitive};
+use crate::{Cancel, Robot};
 
 fn default_step_deg() -> f64 {
     15.0
@@ -37,6 +40,10 @@ pub struct CspaceRequest {
     /// Fit seed 004's R-function region to the grid (exactly three swept joints).
     #[serde(default)]
     pub fit: bool,
+    /// Largest number of grid nodes to classify (default [`DEFAULT_MAX_NODES`], at most
+    /// [`MAX_NODES`]); a finer grid is refused before anything is allocated.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_nodes: Option<usize>,
 }
 
 /// Counts of the nodes at one value of the first swept joint.
@@ -120,6 +127,24 @@ fn spec(robot: &Robot, request: &CspaceRequest) -> Result<GridSpec> {
         }
         spec = spec.fix(index - 1, to_si(robot.joints()[index - 1].kind, value, AngleUnit::Deg));
     }
+    let cap = match request.max_nodes {
+        None => DEFAULT_MAX_NODES,
+        Some(m) if (1..=MAX_NODES).contains(&m) => m,
+        Some(m) => return Err(Error::request("max_nodes", format!("must be between 1 and {MAX_NODES}, got {m}"))),
+    };
+    // Counted from the axis lengths, before any axis or class is allocated.
+    let nodes = grid_node_count(robot, &spec)?;
+    if nodes > cap {
+        let raise = if cap < MAX_NODES { format!(", or raise the node cap up to {MAX_NODES}") } else { String::new() };
+        return Err(Error::request(
+            "step_deg",
+            format!(
+                "a step of {}° gives a grid of {} nodes, more than the cap of {cap} (use a coarser step, fix joints{raise})",
+                request.step_deg,
+                count_text(nodes)
+            ),
+        ));
+    }
     Ok(spec)
 }
 
@@ -127,8 +152,8 @@ fn spec(robot: &Robot, request: &CspaceRequest) -> Result<GridSpec> {
 /// before the classification (node count, swept joints).
 ///
 /// # Errors
-/// [`Error::Request`] for a bad step or `fix`; [`Error::World`] for infinite limits of a
-/// swept joint or too many nodes.
+/// [`Error::Request`] for a bad step or `fix`, or a grid of more nodes than the cap
+/// (`max_nodes`); [`Error::World`] for infinite limits of a swept joint.
 pub fn cspace_axes(robot: &Robot, request: &CspaceRequest) -> Result<Vec<Vec<f64>>> {
     Ok(grid_axes(robot, &spec(robot, request)?)?)
 }
@@ -154,9 +179,23 @@ pub fn cspace_with_grid(
     request: &CspaceRequest,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<(CspaceReport, CspaceGrid)> {
+    cspace_with_cancel(robot, request, progress, &Cancel::default())
+}
+
+/// [`cspace_with_grid`] that stops when `cancel` is set.
+///
+/// # Errors
+/// As [`cspace_with_grid`]; [`Error::World`] with [`WorldError::Cancelled`] once `cancel`
+/// is set.
+pub fn cspace_with_cancel(
+    robot: &Robot,
+    request: &CspaceRequest,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    cancel: &Cancel,
+) -> Result<(CspaceReport, CspaceGrid)> {
     let scene = parse_scene(&request.scene)?;
     let spec = spec(robot, request)?;
-    let grid = classify_grid_with_progress(robot, &scene, &spec, progress)?;
+    let grid = classify_grid_with_cancel(robot, &scene, &spec, progress, cancel)?;
     let first = grid.axes.iter().position(|a| a.len() > 1);
     let sections: Vec<CspaceSection> = first.map_or_else(Vec::new, |j| {
         grid.counts_by(j)

@@ -14,9 +14,10 @@ pub mod path;
 pub use avoid::{AvoidChoice, AvoidReport, AvoidRequest, AvoidRun, AvoidSide, avoid, avoid_run};
 pub use check::{CheckReport, CheckRequest, check};
 pub use cspace::{
-    CspaceReport, CspaceRequest, CspaceSection, FitPrimitive, FitReport, cspace, cspace_axes, cspace_with_grid,
+    CspaceReport, CspaceRequest, CspaceSection, FitPrimitive, FitReport, cspace, cspace_axes, cspace_with_cancel,
+    cspace_with_grid,
 };
-pub use path::{PathReport, PathRequest, PathRun, PathStatsReport, TimedPath, path, path_run};
+pub use path::{PathReport, PathRequest, PathRun, PathStatsReport, TimedPath, path, path_run, path_run_with_cancel};
 
 use crate::error::Result;
 use crate::world::Scene;

@@ -12,12 +12,13 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::parse_scene;
-use crate::Robot;
 use crate::error::{Error, Result};
-use crate::jobs::input::{Joints, Pose, positive, q_display, time_budget};
+use crate::ik::IkOptions;
+use crate::jobs::input::{Joints, Pose, positive, q_display, require_within_limits, time_budget};
 use crate::motion::{JointMotion, JointPath, JointRates, Profile};
 use crate::world::planner::{Goal, PlanError, PlanOptions, PlanStats, path_length, plan};
 use crate::world::{CollisionChecker, Scene};
+use crate::{Cancel, Robot};
 
 fn default_seed() -> u64 {
     1
@@ -156,10 +157,23 @@ pub fn path(robot: &Robot, request: &PathRequest) -> Result<PathReport> {
 /// [`Error::Motion`] when the path cannot be timed (a joint without a speed limit and no
 /// `duration_s`).
 pub fn path_run(robot: &Robot, request: &PathRequest) -> Result<PathRun> {
+    path_run_with_cancel(robot, request, &Cancel::default())
+}
+
+/// [`path_run`] whose planner stops when `cancel` is set (as if its time budget were spent).
+///
+/// # Errors
+/// As [`path_run`].
+pub fn path_run_with_cancel(robot: &Robot, request: &PathRequest, cancel: &Cancel) -> Result<PathRun> {
     let scene = parse_scene(&request.scene)?;
     let start = request.from.si(robot, "from")?;
+    require_within_limits(robot, &start, request.from.unit(), "from")?;
     let goal = match (&request.to, &request.to_pose) {
-        (Some(q), None) => Goal::Joints(q.si(robot, "to")?),
+        (Some(q), None) => {
+            let goal = q.si(robot, "to")?;
+            require_within_limits(robot, &goal, q.unit(), "to")?;
+            Goal::Joints(goal)
+        }
         (None, Some(p)) => Goal::Target(p.target("to_pose")?),
         _ => return Err(Error::request("to", "give exactly one of `to` and `to_pose`")),
     };
@@ -173,7 +187,8 @@ pub fn path_run(robot: &Robot, request: &PathRequest) -> Result<PathRun> {
     {
         return Err(same());
     }
-    let options = PlanOptions { seed: request.seed, max_time: budget, ..PlanOptions::default() };
+    let ik = IkOptions { cancel: cancel.clone(), ..IkOptions::default() };
+    let options = PlanOptions { seed: request.seed, max_time: budget, ik, ..PlanOptions::default() };
     let mut report = PathReport {
         robot: robot.name().to_string(),
         found: false,
