@@ -9,5 +9,6 @@ mod cli_drive;
 mod cli_ik;
 mod cli_move;
 mod cli_plot;
+mod cli_urdf;
 mod cli_world;
 mod readme_tour;
