@@ -11,5 +11,6 @@ mod cli_fuzz;
 mod cli_ik;
 mod cli_move;
 mod cli_plot;
+mod cli_urdf;
 mod cli_world;
 mod readme_tour;

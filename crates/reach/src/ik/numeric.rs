@@ -241,6 +241,17 @@ impl Numeric {
                 reach += joint.limits.lower.abs().max(joint.limits.upper.abs());
             }
         }
+        // Mimic joints: their constant offsets, and a prismatic one's travel bounded through
+        // its master's limits.
+        for m in robot.chain.first_mimics.iter().chain(robot.chain.links.iter().flat_map(|l| &l.mimics)) {
+            let offset = m.after.translation.vector.norm();
+            fixed += offset;
+            reach += offset;
+            if m.prismatic {
+                let master = robot.joints()[m.master].limits;
+                reach += m.multiplier.abs() * master.lower.abs().max(master.upper.abs()) + m.offset.abs();
+            }
+        }
         let length_scale = if reach.is_finite() && reach > 1e-6 {
             reach
         } else if fixed > 1e-6 {

@@ -441,6 +441,9 @@ impl PlanarRedundant {
         if robot.dof() != 3 {
             return Err(unsupported(format!("needs exactly 3 joints, the robot has {}", robot.dof())));
         }
+        if robot.chain.has_mimics() {
+            return Err(unsupported("the chain has mimic joints".into()));
+        }
         let chain = PlanarChain::<3>::from_chain(&robot.chain.links, 1).map_err(unsupported)?;
         for (i, l) in chain.links.iter().take(2).enumerate() {
             if l.length <= STRUCTURE_LENGTH {

@@ -237,6 +237,9 @@ pub(crate) fn read_yaw_arm<const N: usize>(
     if robot.dof() != N + 1 {
         return Err(unsupported(format!("needs exactly {} joints, the robot has {}", N + 1, robot.dof())));
     }
+    if robot.chain.has_mimics() {
+        return Err(unsupported("the chain has mimic joints".into()));
+    }
     let links = &robot.chain.links;
     let chain = PlanarChain::<N>::from_chain(&links[1..], 2).map_err(unsupported)?;
     let yaw = YawFrame::from_chain(&links[0], robot.chain.first, chain.height).map_err(unsupported)?;

@@ -2,7 +2,7 @@ use nalgebra::{Isometry3, IsometryMatrix3, UnitQuaternion};
 
 use super::{KinematicsError, check_q};
 use crate::model::Robot;
-use crate::model::chain::apply_motion;
+use crate::model::chain::{Chain, apply_motion};
 
 impl Robot {
     /// Tool pose in the world frame for joint values `q` (radians / metres).
@@ -26,15 +26,18 @@ impl Robot {
     pub fn fk_matrix(&self, q: &[f64]) -> Result<IsometryMatrix3<f64>, KinematicsError> {
         check_q(self.dof(), q)?;
         let mut t = self.chain.first;
+        Chain::apply_mimics(&mut t, &self.chain.first_mimics, q);
         for (link, &v) in self.chain.links.iter().zip(q) {
             apply_motion(&mut t, link.prismatic, link.sign * v);
             t *= link.after;
+            Chain::apply_mimics(&mut t, &link.mimics, q);
         }
         Ok(t)
     }
 
     /// Every link frame in the world frame: `out[i]` is the frame of link `i + 1`
-    /// (standard DH: frame *i*; MDH: frame *i*; URDF: the joint's child link frame).
+    /// (standard DH: frame *i*; MDH: frame *i*; URDF: the joint's child link frame). Mimic
+    /// joints (see [`MimicJoint`](crate::model::MimicJoint)) have no entry.
     /// Returns the tool pose.
     ///
     /// # Errors
@@ -49,10 +52,12 @@ impl Robot {
             return Err(KinematicsError::BufferSize { buffer: "frames", expected: self.dof(), found: out.len() });
         }
         let mut t = self.chain.first;
+        Chain::apply_mimics(&mut t, &self.chain.first_mimics, q);
         for ((link, &v), slot) in self.chain.links.iter().zip(q).zip(out.iter_mut()) {
             apply_motion(&mut t, link.prismatic, link.sign * v);
             *slot = t * link.to_frame;
             t *= link.after;
+            Chain::apply_mimics(&mut t, &link.mimics, q);
         }
         Ok(t)
     }

@@ -2,7 +2,7 @@ use nalgebra::{Matrix6xX, Vector3};
 
 use super::{KinematicsError, check_q};
 use crate::model::Robot;
-use crate::model::chain::apply_motion;
+use crate::model::chain::{Chain, MimicStep, apply_motion};
 
 /// The 6×n geometric Jacobian: rows `vx vy vz ωx ωy ωz` in the world frame, one column per joint.
 pub type Jacobian = Matrix6xX<f64>;
@@ -12,7 +12,8 @@ impl Robot {
     ///
     /// Column *i* is `[zᵢ × (p − oᵢ); zᵢ]` for a revolute joint and `[zᵢ; 0]` for a
     /// prismatic one, where `zᵢ` is the joint axis and `oᵢ` a point on it (negated for
-    /// flipped joints).
+    /// flipped joints). A mimic joint following joint *m* with `multiplier` adds
+    /// `multiplier ×` its own column to column *m* (chain rule).
     ///
     /// # Errors
     /// [`KinematicsError`] when `q` has the wrong length or a non-finite value.
@@ -36,6 +37,7 @@ impl Robot {
             });
         }
         let mut t = self.chain.first;
+        Chain::apply_mimics(&mut t, &self.chain.first_mimics, q);
         // First pass: store the axis in the angular rows and the axis point in the linear rows.
         for (i, (link, &v)) in self.chain.links.iter().zip(q).enumerate() {
             let z: Vector3<f64> = t.rotation.matrix().column(2).into_owned();
@@ -45,6 +47,7 @@ impl Robot {
             col.fixed_rows_mut::<3>(3).copy_from(&z);
             apply_motion(&mut t, link.prismatic, link.sign * v);
             t *= link.after;
+            Chain::apply_mimics(&mut t, &link.mimics, q);
         }
         let p = t.translation.vector;
         for (i, link) in self.chain.links.iter().enumerate() {
@@ -59,6 +62,42 @@ impl Robot {
                 col.fixed_rows_mut::<3>(3).copy_from(&(z * link.sign));
             }
         }
+        if self.chain.has_mimics() {
+            self.add_mimic_columns(q, &p, out);
+        }
         Ok(())
+    }
+
+    /// Second pass for robots with mimic joints: adds `multiplier ×` each mimic joint's column
+    /// to its master's column. `p` is the tool point.
+    fn add_mimic_columns(&self, q: &[f64], p: &Vector3<f64>, out: &mut Jacobian) {
+        let add = |t: &nalgebra::IsometryMatrix3<f64>, m: &MimicStep, out: &mut Jacobian| {
+            let z: Vector3<f64> = t.rotation.matrix().column(2).into_owned();
+            let mut col = out.column_mut(m.master);
+            if m.prismatic {
+                let v = z * m.multiplier;
+                col.fixed_rows_mut::<3>(0).zip_apply(&v, |a, b| *a += b);
+            } else {
+                let v = z.cross(&(p - t.translation.vector)) * m.multiplier;
+                let w = z * m.multiplier;
+                col.fixed_rows_mut::<3>(0).zip_apply(&v, |a, b| *a += b);
+                col.fixed_rows_mut::<3>(3).zip_apply(&w, |a, b| *a += b);
+            }
+        };
+        let mut t = self.chain.first;
+        for m in &self.chain.first_mimics {
+            add(&t, m, out);
+            apply_motion(&mut t, m.prismatic, m.value(q));
+            t *= m.after;
+        }
+        for (link, &v) in self.chain.links.iter().zip(q) {
+            apply_motion(&mut t, link.prismatic, link.sign * v);
+            t *= link.after;
+            for m in &link.mimics {
+                add(&t, m, out);
+                apply_motion(&mut t, m.prismatic, m.value(q));
+                t *= m.after;
+            }
+        }
     }
 }

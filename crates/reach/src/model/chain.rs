@@ -20,6 +20,11 @@
 //! The frame reported for joint *i* (the frame of link *i*) is the running product after
 //! `Mi` times a constant `Gi` (the DH fixed part for standard DH, identity for MDH, `Raᵀ`
 //! for URDF). Base and tool fold into `F0` and `Fn`.
+//!
+//! A mimic joint (URDF `<mimic>`, see [`MimicJoint`](super::MimicJoint)) adds a motion
+//! `Rz(multiplier·q_master + offset)` (or `Tz`) with its own constant after it. The mimic
+//! motions that sit after independent joint *i* are in that joint's `mimics` (its `after` then
+//! leads to the first of them), those before the first joint in [`Chain::first_mimics`].
 
 use nalgebra::{Isometry3, IsometryMatrix3, Matrix3, Rotation3, Translation3, Unit, Vector3};
 
@@ -34,15 +39,43 @@ pub(crate) struct ChainLink {
     pub sign: f64,
     /// Constant from the frame after the motion to the reported link frame (`Gi`).
     pub to_frame: IsometryMatrix3<f64>,
-    /// Constant from the frame after the motion to the next joint's motion frame (`Fi`);
-    /// for the last joint it includes the tool transform.
+    /// Constant from the frame after the motion to the next motion frame (`Fi`: the next
+    /// joint's, or the first of `mimics`); for the last motion it includes the tool transform.
+    pub after: IsometryMatrix3<f64>,
+    /// Mimic-joint motions between this joint and the next (empty for most robots).
+    pub mimics: Vec<MimicStep>,
+}
+
+/// One mimic-joint motion: `M(multiplier·q[master] + offset) · after`.
+#[derive(Debug, Clone)]
+pub(crate) struct MimicStep {
+    /// Translation along z instead of rotation about z.
+    pub prismatic: bool,
+    /// 0-based index of the master joint in `q`.
+    pub master: usize,
+    /// Factor on the master's value.
+    pub multiplier: f64,
+    /// Added to the scaled value.
+    pub offset: f64,
+    /// Constant from the frame after the motion to the next motion frame (tool included for
+    /// the last motion of the chain).
     pub after: IsometryMatrix3<f64>,
 }
 
-/// `T(q) = first · Π (Mi · after_i)`.
+impl MimicStep {
+    /// The motion value for joint values `q`.
+    #[inline]
+    pub fn value(&self, q: &[f64]) -> f64 {
+        self.multiplier * q[self.master] + self.offset
+    }
+}
+
+/// `T(q) = first · Π(first_mimics) · Π (Mi · after_i · Π(mimics_i))`.
 #[derive(Debug, Clone)]
 pub(crate) struct Chain {
     pub first: IsometryMatrix3<f64>,
+    /// Mimic motions before the first joint (empty for most robots).
+    pub first_mimics: Vec<MimicStep>,
     pub links: Vec<ChainLink>,
 }
 
@@ -89,14 +122,31 @@ impl Chain {
     pub fn compile(spec: &RobotSpec) -> Chain {
         let n = spec.joints.len();
         let tool = matrix(&spec.tool);
-        let mut first = matrix(&spec.base);
-        let mut links = Vec::with_capacity(n);
-        // For MDH and URDF the fixed part of joint i+1 sits before its motion; it is appended
-        // to `after` of joint i (or to `first` for joint 1).
-        let mut before_next: Vec<IsometryMatrix3<f64>> = Vec::with_capacity(n);
+        // Every motion in chain order: independent joints interleaved with mimic joints.
+        // For MDH and URDF the fixed part of motion k+1 sits before it; it is appended to
+        // `after` of motion k (or to `first` for the first motion).
+        let mut before_next: Vec<IsometryMatrix3<f64>> = Vec::with_capacity(n + spec.mimics.len());
         let mut to_frames: Vec<IsometryMatrix3<f64>> = Vec::with_capacity(n);
-        let mut dh_after: Vec<IsometryMatrix3<f64>> = Vec::with_capacity(n);
-        for joint in &spec.joints {
+        let mut dh_after: Vec<IsometryMatrix3<f64>> = Vec::with_capacity(n + spec.mimics.len());
+        // `Ok(i)`: independent joint i; `Err(k)`: mimic joint k.
+        let mut order: Vec<Result<usize, usize>> = Vec::with_capacity(n + spec.mimics.len());
+        let mut mimics = spec.mimics.iter().enumerate().peekable();
+        let urdf_motion = |origin: &nalgebra::Isometry3<f64>, axis: &Unit<Vector3<f64>>| {
+            let ra = z_onto(axis);
+            (
+                matrix(origin) * IsometryMatrix3::from_parts(Translation3::identity(), ra),
+                IsometryMatrix3::from_parts(Translation3::identity(), ra.inverse()),
+            )
+        };
+        for i in 0..=n {
+            while let Some((k, m)) = mimics.next_if(|(_, m)| m.position <= i) {
+                let (before, back) = urdf_motion(&m.origin, &m.axis);
+                before_next.push(before);
+                dh_after.push(back);
+                order.push(Err(k));
+            }
+            let Some(joint) = spec.joints.get(i) else { break };
+            order.push(Ok(i));
             match (&joint.geometry, spec.convention) {
                 (JointGeometry::Dh(p), Convention::Dh) => {
                     let fixed = rot_z(p.theta_offset) * trans(0.0, 0.0, p.d) * trans(p.a, 0.0, 0.0) * rot_x(p.alpha);
@@ -111,25 +161,57 @@ impl Chain {
                     dh_after.push(IsometryMatrix3::identity());
                 }
                 (JointGeometry::Axis { origin, axis }, _) => {
-                    let ra = z_onto(axis);
-                    before_next.push(matrix(origin) * IsometryMatrix3::from_parts(Translation3::identity(), ra));
-                    let back = IsometryMatrix3::from_parts(Translation3::identity(), ra.inverse());
+                    let (before, back) = urdf_motion(origin, axis);
+                    before_next.push(before);
                     to_frames.push(back);
                     dh_after.push(back);
                 }
             }
         }
-        first *= before_next[0];
-        for i in 0..n {
-            let next = if i + 1 < n { before_next[i + 1] } else { tool };
-            links.push(ChainLink {
-                prismatic: spec.joints[i].kind == JointKind::Prismatic,
-                sign: if spec.joints[i].flip { -1.0 } else { 1.0 },
-                to_frame: to_frames[i],
-                after: dh_after[i] * next,
-            });
+        let first = matrix(&spec.base) * before_next[0];
+        let mut first_mimics = Vec::new();
+        let mut links: Vec<ChainLink> = Vec::with_capacity(n);
+        for (k, step) in order.iter().enumerate() {
+            let after = dh_after[k] * before_next.get(k + 1).copied().unwrap_or(tool);
+            match *step {
+                Ok(i) => links.push(ChainLink {
+                    prismatic: spec.joints[i].kind == JointKind::Prismatic,
+                    sign: if spec.joints[i].flip { -1.0 } else { 1.0 },
+                    to_frame: to_frames[i],
+                    after,
+                    mimics: Vec::new(),
+                }),
+                Err(m) => {
+                    let mimic = &spec.mimics[m];
+                    let step = MimicStep {
+                        prismatic: mimic.kind == JointKind::Prismatic,
+                        master: mimic.master,
+                        multiplier: mimic.multiplier,
+                        offset: mimic.offset,
+                        after,
+                    };
+                    match links.last_mut() {
+                        Some(link) => link.mimics.push(step),
+                        None => first_mimics.push(step),
+                    }
+                }
+            }
         }
-        Chain { first, links }
+        Chain { first, first_mimics, links }
+    }
+
+    /// Whether any mimic joint moves on the chain.
+    pub fn has_mimics(&self) -> bool {
+        !self.first_mimics.is_empty() || self.links.iter().any(|l| !l.mimics.is_empty())
+    }
+
+    /// Applies the mimic motions `steps` to `t` in place.
+    #[inline(always)]
+    pub fn apply_mimics(t: &mut IsometryMatrix3<f64>, steps: &[MimicStep], q: &[f64]) {
+        for m in steps {
+            apply_motion(t, m.prismatic, m.value(q));
+            *t *= m.after;
+        }
     }
 }
 

@@ -71,6 +71,14 @@ pub enum ModelError {
         /// What is wrong with it.
         reason: String,
     },
+    /// A mimic joint (URDF `<mimic>`) is inconsistent with the robot.
+    #[error("mimic joint `{name}`: {message}")]
+    Mimic {
+        /// The mimic joint's name.
+        name: String,
+        /// What is wrong.
+        message: String,
+    },
     /// A link geometry entry is invalid or their number does not match the joints.
     #[error("links: {0}")]
     Links(String),

@@ -139,6 +139,36 @@ pub enum JointGeometry {
     },
 }
 
+/// A URDF joint that follows another joint of the chain (`<mimic>`): its value is
+/// `multiplier · q[master] + offset`, with `q[master]` the master's value as the user gives it.
+///
+/// A mimic joint is not a degree of freedom: it has no entry in the joint vector, no limits
+/// (the URDF `<limit>` of a mimic joint is a consequence of its master's and is not checked)
+/// and no reported link frame. It sits on the chain between the independent joints: the
+/// geometry of whatever comes next on the chain (the next joint's `origin`, another mimic
+/// joint's, or the tool transform) is given relative to its child frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MimicJoint {
+    /// Joint name (from the file).
+    pub name: String,
+    /// Revolute or prismatic.
+    pub kind: JointKind,
+    /// Where it sits on the chain: the number of independent joints before it (0 = before the
+    /// first joint). Mimic joints are listed in chain order, so positions never decrease.
+    pub position: usize,
+    /// Joint frame relative to the previous movable joint's child frame (the base frame for
+    /// the first one), fixed joints in between folded in.
+    pub origin: Isometry3<f64>,
+    /// Unit axis of rotation or translation in the joint frame.
+    pub axis: Unit<Vector3<f64>>,
+    /// 0-based index of the master among the robot's (independent) joints.
+    pub master: usize,
+    /// Factor on the master's value (URDF default 1).
+    pub multiplier: f64,
+    /// Added to the scaled value, radians or metres (URDF default 0).
+    pub offset: f64,
+}
+
 /// One movable joint of a serial chain.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Joint {

@@ -21,7 +21,8 @@ pub mod presets;
 pub use error::ModelError;
 pub use inertia::{LinkInertial, STANDARD_GRAVITY};
 pub use joint::{
-    Convention, DhParams, Joint, JointDrive, JointGeometry, JointKind, Limits, LinkGeometry, StepMode, Wiring,
+    Convention, DhParams, Joint, JointDrive, JointGeometry, JointKind, Limits, LinkGeometry, MimicJoint, StepMode,
+    Wiring,
 };
 pub use robot::{Robot, RobotSpec};
 pub use toml_format::{AngleUnit, FileUnits, LengthUnit};

@@ -2,8 +2,8 @@ use nalgebra::{Isometry3, Vector3};
 
 use super::chain::Chain;
 use super::{
-    Convention, Joint, JointDrive, JointGeometry, JointKind, LinkGeometry, LinkInertial, ModelError, STANDARD_GRAVITY,
-    StepMode,
+    Convention, Joint, JointDrive, JointGeometry, JointKind, LinkGeometry, LinkInertial, MimicJoint, ModelError,
+    STANDARD_GRAVITY, StepMode,
 };
 
 /// Plain-data description of a robot, SI units and radians, before validation.
@@ -28,6 +28,9 @@ pub struct RobotSpec {
     pub inertials: Vec<LinkInertial>,
     /// Gravitational acceleration in the world frame, m/s² (default `(0, 0, −9.80665)`).
     pub gravity: Vector3<f64>,
+    /// Joints that follow another joint (URDF `<mimic>`), in chain order; empty for most
+    /// robots. Only in the URDF convention, and not together with mass properties.
+    pub mimics: Vec<MimicJoint>,
 }
 
 impl RobotSpec {
@@ -44,6 +47,7 @@ impl RobotSpec {
             links: Vec::new(),
             inertials: Vec::new(),
             gravity: Vector3::new(0.0, 0.0, -STANDARD_GRAVITY),
+            mimics: Vec::new(),
         }
     }
 }
@@ -83,7 +87,9 @@ impl Robot {
     /// a transform is not finite, link geometry does not match the joints, or there are no joints;
     /// [`ModelError::Joint`] naming the `inertial.…` field for a bad mass, centre of mass or
     /// inertia; [`ModelError::Dynamics`] for a non-finite gravity or a wrong number of
-    /// inertial entries.
+    /// inertial entries; [`ModelError::Mimic`] for a mimic joint outside the URDF convention,
+    /// with a master that does not exist, a non-finite number, mimic joints out of chain
+    /// order, or mimic joints together with mass properties.
     pub fn new(mut spec: RobotSpec) -> Result<Self, ModelError> {
         if spec.joints.is_empty() {
             return Err(ModelError::NoJoints);
@@ -113,6 +119,7 @@ impl Robot {
             }
         }
         check_inertials(&spec)?;
+        check_mimics(&spec)?;
         let chain = Chain::compile(&spec);
         Ok(Robot { spec, chain })
     }
@@ -193,6 +200,12 @@ impl Robot {
     /// not valid (the error names the joint and the `inertial.…` field).
     pub fn with_inertials(&self, inertials: Vec<LinkInertial>) -> Result<Robot, ModelError> {
         Robot::new(RobotSpec { inertials, ..self.spec.clone() })
+    }
+
+    /// Joints that follow another joint (URDF `<mimic>`); they are not degrees of freedom.
+    #[must_use]
+    pub fn mimics(&self) -> &[MimicJoint] {
+        &self.spec.mimics
     }
 
     /// The validated plain data.
@@ -352,6 +365,49 @@ fn check_inertials(spec: &RobotSpec) -> Result<(), ModelError> {
             name: joint.name.clone(),
             message: format!("`{field}` {message}"),
         })?;
+    }
+    Ok(())
+}
+
+fn check_mimics(spec: &RobotSpec) -> Result<(), ModelError> {
+    let mut previous = 0;
+    for m in &spec.mimics {
+        let fail = |message: String| ModelError::Mimic { name: m.name.clone(), message };
+        if spec.convention != Convention::Urdf {
+            return Err(fail(format!(
+                "mimic joints exist only in the `urdf` convention, the robot is `{}`",
+                spec.convention.as_str()
+            )));
+        }
+        if m.master >= spec.joints.len() {
+            return Err(fail(format!(
+                "master joint {} does not exist (the robot has {})",
+                m.master + 1,
+                spec.joints.len()
+            )));
+        }
+        for (field, value) in [("multiplier", m.multiplier), ("offset", m.offset)] {
+            if !value.is_finite() {
+                return Err(fail(format!("`{field}` must be a finite number, got {value}")));
+            }
+        }
+        for (field, value) in [("axis.x", m.axis.x), ("axis.y", m.axis.y), ("axis.z", m.axis.z)] {
+            if !value.is_finite() {
+                return Err(fail(format!("`{field}` must be a finite number, got {value}")));
+            }
+        }
+        check_transform(&format!("mimic joint {} origin", m.name), &m.origin)?;
+        if m.position > spec.joints.len() || m.position < previous {
+            return Err(fail(format!(
+                "position {} is out of chain order (after {previous}, at most {})",
+                m.position,
+                spec.joints.len()
+            )));
+        }
+        previous = m.position;
+        if !spec.inertials.is_empty() {
+            return Err(fail("the dynamics model does not support mimic joints; give no mass properties".into()));
+        }
     }
     Ok(())
 }

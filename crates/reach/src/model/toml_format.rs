@@ -322,6 +322,7 @@ impl Robot {
             links: file.links.into_iter().map(|l| LinkGeometry { radius: l.radius * ls }).collect(),
             inertials,
             gravity: file.gravity.map_or(Vector3::new(0.0, 0.0, -STANDARD_GRAVITY), Vector3::from),
+            mimics: Vec::new(),
         };
         Ok((Robot::new(spec)?, units))
     }

@@ -8,7 +8,7 @@ use nalgebra::{Isometry3, Unit, Vector3};
 use super::LinkInertial;
 
 use super::toml_format::xyz_rpy;
-use super::{Convention, Joint, JointGeometry, JointKind, Limits, ModelError, Robot, RobotSpec};
+use super::{Convention, Joint, JointGeometry, JointKind, Limits, MimicJoint, ModelError, Robot, RobotSpec};
 use crate::tolerance::AXIS_MIN_NORM;
 
 /// Which serial chain of a URDF tree to import.
@@ -30,6 +30,18 @@ impl Robot {
     /// fixed joints fold into the next joint's origin, or into the tool transform after the
     /// last movable joint. The base link frame is the world frame.
     ///
+    /// A joint with `<mimic joint=".." multiplier=".." offset="..">` (defaults 1 and 0) is not a
+    /// joint of the robot: when its master is on the chain it becomes a [`MimicJoint`] that
+    /// follows the master (`q = multiplier·q_master + offset`, its own `<limit>` ignored); when
+    /// its master is elsewhere in the tree it is fixed at `offset`, and the robot's
+    /// description says so. A chain with moving mimic joints has no dynamics (the description
+    /// says so when the links have mass).
+    ///
+    /// The whole tree is checked: every joint's parent and child link must be declared, and
+    /// the links must form a tree (no cycle). Joints of the chosen chain must be revolute,
+    /// continuous, prismatic or fixed (floating, planar and spherical joints are refused) with
+    /// a non-zero axis; joints off the chain are not looked at further.
+    ///
     /// Each link's `<inertial>` (mass, origin, inertia about the centre of mass in the origin's
     /// axes) becomes the [`LinkInertial`] of the movable joint whose child it is, expressed in
     /// that child link frame; links hanging below it on the chain by fixed joints are folded in
@@ -39,20 +51,31 @@ impl Robot {
     /// no dynamics (empty [`RobotSpec::inertials`]). Gravity is the default `(0, 0, −9.80665)`.
     ///
     /// # Errors
-    /// [`ModelError::Urdf`] for XML errors, unknown link names, a branched tree without a
-    /// chosen tip, a tip not below the base, floating/planar/spherical or mimic joints, a
-    /// zero axis; plus the validation errors of [`Robot::new`].
+    /// [`ModelError::Urdf`] for XML errors, unknown link names, a joint whose parent or child
+    /// link is not declared, a link with two parent joints, a cycle, a branched tree without a
+    /// chosen tip, a tip not below the base, a floating/planar/spherical joint on the chain, a
+    /// zero axis, a mimic joint whose master does not exist, is fixed or is itself a mimic
+    /// joint — each naming the joint; plus the validation errors of [`Robot::new`].
     pub fn from_urdf_str(text: &str, chain: &UrdfChain) -> Result<Robot, ModelError> {
         let urdf = urdf_rs::read_from_string(text).map_err(|e| ModelError::Urdf(one_line(&e.to_string())))?;
         let links: BTreeSet<&str> = urdf.links.iter().map(|l| l.name.as_str()).collect();
         let mut parent_joint: BTreeMap<&str, &urdf_rs::Joint> = BTreeMap::new();
         let mut children: BTreeMap<&str, Vec<&str>> = BTreeMap::new();
         for j in &urdf.joints {
+            for (role, link) in [("parent", &j.parent.link), ("child", &j.child.link)] {
+                if !links.contains(link.as_str()) {
+                    return Err(ModelError::Urdf(format!(
+                        "joint `{}`: its {role} link `{link}` is not declared (no <link name=\"{link}\">)",
+                        j.name
+                    )));
+                }
+            }
             if parent_joint.insert(j.child.link.as_str(), j).is_some() {
                 return Err(ModelError::Urdf(format!("link `{}` has two parent joints", j.child.link)));
             }
             children.entry(j.parent.link.as_str()).or_default().push(j.child.link.as_str());
         }
+        check_acyclic(&links, &parent_joint)?;
         let known = |name: &str| -> Result<(), ModelError> {
             if links.contains(name) {
                 Ok(())
@@ -135,40 +158,85 @@ impl Robot {
                     .transformed(&xyz_rpy(b.origin.xyz.0, b.origin.rpy.0, 1.0, 1.0))
             })
         };
+        // The independent movable joints of the chain, by name: the masters mimic joints may follow.
+        let independent: BTreeMap<&str, usize> = path
+            .iter()
+            .filter(|j| movable(j) && j.mimic.is_none())
+            .enumerate()
+            .map(|(i, j)| (j.name.as_str(), i))
+            .collect();
+        let chain_has_mass = path.iter().any(|j| {
+            let b = link_inertial(&j.child.link);
+            b.mass != 0.0 || b.inertia.amax() != 0.0
+        });
+        let mut notes: Vec<String> = Vec::new();
         let mut joints = Vec::new();
+        let mut mimics: Vec<MimicJoint> = Vec::new();
         let mut inertials: Vec<LinkInertial> = Vec::new();
         let mut pending = Isometry3::identity();
         for j in path {
-            let origin = pending * xyz_rpy(j.origin.xyz.0, j.origin.rpy.0, 1.0, 1.0);
+            let mut origin = pending * xyz_rpy(j.origin.xyz.0, j.origin.rpy.0, 1.0, 1.0);
             let kind = match j.joint_type {
-                urdf_rs::JointType::Fixed => {
-                    // `origin` places the fixed child in the last movable joint's child frame.
-                    if let Some(last) = inertials.last_mut() {
-                        *last = last.combined(&link_inertial(&j.child.link).transformed(&origin));
-                    }
-                    pending = origin;
-                    continue;
-                }
-                urdf_rs::JointType::Revolute | urdf_rs::JointType::Continuous => JointKind::Revolute,
-                urdf_rs::JointType::Prismatic => JointKind::Prismatic,
+                urdf_rs::JointType::Fixed => None,
+                urdf_rs::JointType::Revolute | urdf_rs::JointType::Continuous => Some(JointKind::Revolute),
+                urdf_rs::JointType::Prismatic => Some(JointKind::Prismatic),
                 ref other => {
                     return Err(ModelError::Urdf(format!(
-                        "joint `{}` is of type {other:?}; only revolute, continuous, prismatic and fixed joints form a serial chain",
-                        j.name
+                        "joint `{}` is a {} joint; only revolute, continuous, prismatic and fixed joints form a serial chain",
+                        j.name,
+                        format!("{other:?}").to_lowercase()
                     )));
                 }
             };
-            if j.mimic.is_some() {
-                return Err(ModelError::Urdf(format!(
-                    "joint `{}` mimics another joint; mimic joints are not supported",
-                    j.name
-                )));
-            }
             let axis = Vector3::from(j.axis.xyz.0);
             let norm = axis.norm();
-            if norm.is_nan() || norm <= AXIS_MIN_NORM {
+            if kind.is_some() && (!norm.is_finite() || norm <= AXIS_MIN_NORM) {
                 return Err(ModelError::Urdf(format!("joint `{}`: axis {:?} has no direction", j.name, j.axis.xyz.0)));
             }
+            let axis = Unit::new_normalize(axis);
+            let kind = match (kind, &j.mimic) {
+                (None, _) => None,
+                (Some(kind), None) => Some(kind),
+                (Some(kind), Some(mimic)) => {
+                    let multiplier = mimic.multiplier.unwrap_or(1.0);
+                    let offset = mimic.offset.unwrap_or(0.0);
+                    check_master(&urdf, j, &mimic.joint)?;
+                    if let Some(&master) = independent.get(mimic.joint.as_str()) {
+                        mimics.push(MimicJoint {
+                            name: j.name.clone(),
+                            kind,
+                            position: joints.len(),
+                            origin,
+                            axis,
+                            master,
+                            multiplier,
+                            offset,
+                        });
+                        pending = Isometry3::identity();
+                        continue;
+                    }
+                    let unit = if kind == JointKind::Revolute { "rad" } else { "m" };
+                    notes.push(format!(
+                        "joint `{}` mimics `{}`, which is off the chain: fixed at its offset {offset} {unit}",
+                        j.name, mimic.joint
+                    ));
+                    origin *= match kind {
+                        JointKind::Revolute => Isometry3::rotation(axis.into_inner() * offset),
+                        JointKind::Prismatic => {
+                            Isometry3::translation(axis.x * offset, axis.y * offset, axis.z * offset)
+                        }
+                    };
+                    None
+                }
+            };
+            let Some(kind) = kind else {
+                // `origin` places the fixed child in the last movable joint's child frame.
+                if let Some(last) = inertials.last_mut() {
+                    *last = last.combined(&link_inertial(&j.child.link).transformed(&origin));
+                }
+                pending = origin;
+                continue;
+            };
             let limits = if j.joint_type == urdf_rs::JointType::Continuous {
                 Limits::UNLIMITED
             } else if j.limit.lower == 0.0 && j.limit.upper == 0.0 {
@@ -185,7 +253,7 @@ impl Robot {
             joints.push(Joint {
                 name: j.name.clone(),
                 kind,
-                geometry: JointGeometry::Axis { origin, axis: Unit::new_normalize(axis) },
+                geometry: JointGeometry::Axis { origin, axis },
                 limits,
                 max_velocity,
                 drive: None,
@@ -195,19 +263,25 @@ impl Robot {
             inertials.push(link_inertial(&j.child.link));
             pending = Isometry3::identity();
         }
+        let massless = inertials.iter().all(|b| b.mass == 0.0 && b.inertia.amax() == 0.0);
+        if !mimics.is_empty() && chain_has_mass {
+            notes.push("no dynamics: the dynamics model does not support mimic joints".into());
+        }
+        let mut description = format!("imported from URDF, chain {base} → {tip}");
+        for note in &notes {
+            description.push_str("; ");
+            description.push_str(note);
+        }
         let spec = RobotSpec {
             name: urdf.name.clone(),
-            description: format!("imported from URDF, chain {base} → {tip}"),
+            description,
             convention: Convention::Urdf,
             joints,
             base: Isometry3::identity(),
             tool: pending,
             links: Vec::new(),
-            inertials: if inertials.iter().all(|b| b.mass == 0.0 && b.inertia.amax() == 0.0) {
-                Vec::new()
-            } else {
-                inertials
-            },
+            inertials: if massless || !mimics.is_empty() { Vec::new() } else { inertials },
+            mimics,
             ..RobotSpec::new("", Convention::Urdf, Vec::new())
         };
         Robot::new(spec)
@@ -216,4 +290,56 @@ impl Robot {
 
 fn cycle(link: &str) -> ModelError {
     ModelError::Urdf(format!("the link tree has a cycle through link `{link}`"))
+}
+
+fn movable(j: &urdf_rs::Joint) -> bool {
+    matches!(
+        j.joint_type,
+        urdf_rs::JointType::Revolute | urdf_rs::JointType::Continuous | urdf_rs::JointType::Prismatic
+    )
+}
+
+/// Checks that the master of mimic joint `j` exists, moves and is not itself a mimic joint.
+fn check_master(urdf: &urdf_rs::Robot, j: &urdf_rs::Joint, master: &str) -> Result<(), ModelError> {
+    let fail = |why: &str| ModelError::Urdf(format!("joint `{}` mimics joint `{master}`, {why}", j.name));
+    match urdf.joints.iter().find(|m| m.name == master) {
+        None => Err(fail("which does not exist")),
+        Some(m) if m.mimic.is_some() => Err(fail("which is itself a mimic joint")),
+        Some(m) if !movable(m) => {
+            Err(fail(&format!("which is a {} joint", format!("{:?}", m.joint_type).to_lowercase())))
+        }
+        Some(_) => Ok(()),
+    }
+}
+
+/// Rejects a cycle of parent joints, naming a joint on it. Each link is walked up at most once.
+fn check_acyclic(links: &BTreeSet<&str>, parent_joint: &BTreeMap<&str, &urdf_rs::Joint>) -> Result<(), ModelError> {
+    // 1: on the current walk; 2: known to reach a root.
+    let mut state: BTreeMap<&str, u8> = BTreeMap::new();
+    for &start in links {
+        let mut walk: Vec<&str> = Vec::new();
+        let mut link = start;
+        loop {
+            match state.get(link) {
+                Some(2) => break,
+                Some(_) => {
+                    let joint = &parent_joint[link].name;
+                    return Err(ModelError::Urdf(format!(
+                        "joint `{joint}` closes a cycle of links through link `{link}` (a URDF must be a tree)"
+                    )));
+                }
+                None => {}
+            }
+            state.insert(link, 1);
+            walk.push(link);
+            match parent_joint.get(link) {
+                Some(j) => link = j.parent.link.as_str(),
+                None => break,
+            }
+        }
+        for l in walk {
+            state.insert(l, 2);
+        }
+    }
+    Ok(())
 }

@@ -48,6 +48,7 @@ mod seed_004_cspace;
 mod seed_004_fit;
 mod seed_004_ik_varan4;
 mod urdf_import;
+mod urdf_panda;
 mod world_allowed_collisions;
 mod world_geometry;
 mod world_planner;
