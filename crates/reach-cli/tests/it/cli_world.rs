@@ -210,6 +210,15 @@ fn path_json_is_the_library_report_and_matches_its_schema() {
     }
     assert_eq!(output, expected);
     assert_eq!(output["found"], true);
+    // Every segment is proven clear; the certified bound lies below every sampled clearance.
+    let swept = &output["swept"];
+    assert_eq!(swept["clear"], true, "{swept}");
+    let lb = swept["lower_bound_m"].as_f64().unwrap();
+    let sampled = [&output["min_clearance_m"], &output["min_self_clearance_m"]]
+        .iter()
+        .filter_map(|v| v.as_f64())
+        .fold(f64::INFINITY, f64::min);
+    assert!(lb > 0.0 && lb <= swept["min_clearance_m"].as_f64().unwrap() && lb <= sampled, "{swept} vs {sampled}");
 }
 
 #[test]

@@ -151,7 +151,7 @@ pub fn sweep<C: Clearances + ?Sized>(
     loop {
         let last = points.last().map_or(0.0, |p| p.s);
         let d = &points[points.len() - 1].d;
-        if let Some((c, &v)) = d.iter().enumerate().find(|(_, v)| !(**v > SWEEP_FLOOR)) {
+        if let Some((c, &v)) = d.iter().enumerate().find(|(_, v)| v.is_nan() || **v <= SWEEP_FLOOR) {
             result.clear = false;
             result.at = last;
             result.constraint = c;

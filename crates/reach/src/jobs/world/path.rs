@@ -17,7 +17,8 @@ use crate::ik::IkOptions;
 use crate::jobs::input::{Joints, Pose, positive, q_display, require_within_limits, time_budget};
 use crate::motion::{JointMotion, JointPath, JointRates, Profile};
 use crate::world::planner::{Goal, PlanError, PlanOptions, PlanStats, path_length, plan};
-use crate::world::{CollisionChecker, Scene};
+use crate::world::sweep::SweepOptions;
+use crate::world::{CollisionChecker, Scene, SweptPair};
 use crate::{Cancel, Robot};
 
 fn default_seed() -> u64 {
@@ -108,6 +109,27 @@ pub struct PathReport {
     pub min_clearance_m: Option<f64>,
     /// Smallest link–link clearance over the samples, m.
     pub min_self_clearance_m: Option<f64>,
+    /// The swept (continuous) check of every segment between waypoints: where the path comes
+    /// closest and the certified lower bound of its clearance over the whole path (`null`
+    /// when no path was found or nothing is checked: no obstacle, zone or link pair).
+    pub swept: Option<PathSweepReport>,
+}
+
+/// The closest approach of a path by the swept check ([`CollisionChecker::swept`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct PathSweepReport {
+    /// Whether every segment is proven clear.
+    pub clear: bool,
+    /// Certified lower bound of the clearance over the whole path, m.
+    pub lower_bound_m: f64,
+    /// The smallest clearance found, m.
+    pub min_clearance_m: f64,
+    /// 1-based segment (between waypoints `segment` and `segment + 1`) where it occurs.
+    pub segment: usize,
+    /// Fraction of that segment, `[0, 1]`.
+    pub at: f64,
+    /// What the smallest clearance measures.
+    pub pair: SweptPair,
 }
 
 /// The timed path's samples (SI).
@@ -211,6 +233,7 @@ pub fn path_run_with_cancel(robot: &Robot, request: &PathRequest, cancel: &Cance
         collision_free: None,
         min_clearance_m: None,
         min_self_clearance_m: None,
+        swept: None,
     };
     match plan(robot, &scene, &start, &goal, &options) {
         Ok(p) => {
@@ -235,6 +258,7 @@ pub fn path_run_with_cancel(robot: &Robot, request: &PathRequest, cancel: &Cance
             report.collision_free = Some(check.free);
             report.min_clearance_m = check.min_clearance;
             report.min_self_clearance_m = check.min_self;
+            report.swept = swept_path(robot, &scene, &p.waypoints)?;
             let waypoints_tool_xyz_m = tool_points(robot, &p.waypoints)?;
             return Ok(PathRun { report, scene, waypoints: p.waypoints, waypoints_tool_xyz_m, timed: Some(timed) });
         }
@@ -309,6 +333,37 @@ fn time_and_check(
     }
     let tool_xyz_m = tool_points(robot, &q)?;
     Ok((durations, TimedPath { times, q, qd, tool_xyz_m }, check))
+}
+
+/// The swept check of every segment of `waypoints`, refined to the closest approach.
+fn swept_path(robot: &Robot, scene: &Scene, waypoints: &[Vec<f64>]) -> Result<Option<PathSweepReport>> {
+    let mut checker = CollisionChecker::new(robot, scene);
+    let mut out: Option<PathSweepReport> = None;
+    for (k, w) in waypoints.windows(2).enumerate() {
+        let (sweep, pair) = checker.swept(&w[0], &w[1], &SweepOptions::default())?;
+        if sweep.evaluations == 0 {
+            continue;
+        }
+        let lower = sweep.lower_bound.min(out.as_ref().map_or(f64::INFINITY, |o| o.lower_bound_m));
+        let clear = sweep.clear && out.as_ref().is_none_or(|o| o.clear);
+        match &mut out {
+            Some(o) if o.min_clearance_m <= sweep.min_clearance => {
+                o.lower_bound_m = lower;
+                o.clear = clear;
+            }
+            _ => {
+                out = Some(PathSweepReport {
+                    clear,
+                    lower_bound_m: lower,
+                    min_clearance_m: sweep.min_clearance,
+                    segment: k + 1,
+                    at: sweep.at,
+                    pair,
+                });
+            }
+        }
+    }
+    Ok(out)
 }
 
 /// The tool point (world frame, metres) of each configuration.
