@@ -6,17 +6,14 @@
 //! Timing is printed with `cargo test -p reach --test world_planner -- --nocapture`.
 
 use reach::ik::IkTarget;
-use reach::model::{LinkGeometry, Robot, RobotSpec, presets};
+use reach::model::Robot;
 use reach::world::planner::{Blocked, Goal, PlanError, PlanOptions, plan};
 use reach::world::{CollisionChecker, Scene};
 
+use crate::common::ur5_with_capsules as ur5;
+
 /// Largest arm-point motion between two checks of the independent re-check, metres.
 const CHECK_STEP: f64 = 0.001;
-
-fn ur5() -> Robot {
-    let ur5 = presets::get("ur5").unwrap();
-    Robot::new(RobotSpec { links: vec![LinkGeometry { radius: 0.03 }; 6], ..ur5.spec().clone() }).unwrap()
-}
 
 fn scene() -> Scene {
     Scene::from_toml_str(

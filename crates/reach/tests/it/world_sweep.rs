@@ -6,10 +6,11 @@
 use proptest::prelude::*;
 use reach::ik::planar::PlanarRedundant;
 use reach::model::presets;
-use reach::model::{LinkGeometry, Robot, RobotSpec};
 use reach::world::detour::{P2, arm_points, leg_sweep};
 use reach::world::sweep::{SWEEP_FLOOR, SweepOptions};
 use reach::world::{CollisionChecker, Scene};
+
+use crate::common::ur5_with_capsules;
 
 fn arm() -> PlanarRedundant {
     PlanarRedundant::from_robot(&presets::get("planar3").unwrap()).unwrap()
@@ -129,11 +130,6 @@ proptest! {
             prop_assert!(swept.min_clearance - swept.lower_bound <= 1e-3 * swept.min_clearance + 1.1e-6, "{swept:?}");
         }
     }
-}
-
-fn ur5_with_capsules() -> Robot {
-    let ur5 = presets::get("ur5").unwrap();
-    Robot::new(RobotSpec { links: vec![LinkGeometry { radius: 0.03 }; 6], ..ur5.spec().clone() }).unwrap()
 }
 
 fn cluttered() -> Scene {
