@@ -34,8 +34,9 @@ use super::WorldError;
 pub const SWEEP_FLOOR: f64 = 1e-6;
 
 /// The most clearance evaluations one sweep may make (the resource cap; a sweep that needs
-/// more is not called clear).
-pub const MAX_SWEEP_EVALUATIONS: usize = 1_000_000;
+/// more is not called clear). A refining sweep keeps every evaluated point: at most this many
+/// vectors of clearances.
+pub const MAX_SWEEP_EVALUATIONS: usize = 100_000;
 
 /// Clearances that change at a bounded rate along straight joint-space motions.
 pub trait Clearances {
@@ -148,6 +149,8 @@ pub fn sweep<C: Clearances + ?Sized>(
         Ok(Point { s, d })
     };
     let mut points = vec![eval(0.0, &mut result, clearances)?];
+    // Without refinement only the last point is kept; the bound of what was dropped is here.
+    let mut dropped = f64::INFINITY;
     loop {
         let last = points.last().map_or(0.0, |p| p.s);
         let d = &points[points.len() - 1].d;
@@ -155,7 +158,7 @@ pub fn sweep<C: Clearances + ?Sized>(
             result.clear = false;
             result.at = last;
             result.constraint = c;
-            result.lower_bound = v.min(bounds_of(&points, &rates));
+            result.lower_bound = v.min(dropped).min(bounds_of(&points, &rates));
             return Ok(result);
         }
         if last >= 1.0 {
@@ -164,17 +167,21 @@ pub fn sweep<C: Clearances + ?Sized>(
         if result.evaluations >= cap {
             result.clear = false;
             result.at = last;
-            result.lower_bound = bounds_of(&points, &rates);
+            result.lower_bound = dropped.min(bounds_of(&points, &rates));
             return Ok(result);
         }
         let step = d.iter().zip(&rates).map(|(v, r)| if *r > 0.0 { v / r } else { f64::INFINITY }).fold(1.0, f64::min);
         let next = (last + step).min(1.0);
         points.push(eval(next, &mut result, clearances)?);
+        if !closest {
+            dropped = dropped.min(bounds_of(&points, &rates));
+            points.remove(0);
+        }
     }
     if closest {
         refine(&mut points, &rates, &mut result, &mut eval, clearances, cap)?;
     }
-    result.lower_bound = bounds_of(&points, &rates);
+    result.lower_bound = dropped.min(bounds_of(&points, &rates));
     Ok(result)
 }
 
