@@ -1,4 +1,5 @@
-//! `reach check` — collisions and clearances of one configuration in a scene
+//! `reach check` — collisions and clearances of one configuration in a scene, and with
+//! `--to` the swept (continuous) check of the straight joint motion to a second one
 //! (`reach::jobs::world::check`; `--json` prints its report).
 
 use std::io::Write;
@@ -9,6 +10,7 @@ use reach::jobs::{CheckReport, CheckRequest};
 use crate::error::{CliError, one_line};
 use crate::numbers::{JointArgs, q_text};
 use crate::output::{Align, Table, fixed, write_json};
+use crate::pose_arg::joints_arg;
 use crate::robot_arg::RobotArgs;
 
 /// Arguments of `reach check`.
@@ -25,6 +27,11 @@ pub struct CheckArgs {
     /// The joint values.
     #[command(flatten)]
     pub joints: JointArgs,
+
+    /// Also check the straight joint-space motion to these joint values q1,..,qn, continuously:
+    /// proven clear or not, the certified clearance bound and where it comes closest.
+    #[arg(long, value_name = "Q1,..,QN", allow_hyphen_values = true)]
+    pub to: Option<String>,
 
     /// Print the report as JSON (docs/schemas/check.report.schema.json).
     #[arg(long)]
@@ -59,8 +66,15 @@ pub fn scene_error(path: &str, e: reach::Error) -> CliError {
 pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let loaded = args.robot.load()?;
     let robot = &loaded.robot;
-    let request = CheckRequest { scene: read_scene(&args.scene)?, q: args.joints.joints()? };
-    let report = reach::jobs::world::check(robot, &request).map_err(|e| scene_error(&args.scene, e))?;
+    let request = CheckRequest {
+        scene: read_scene(&args.scene)?,
+        q: args.joints.joints()?,
+        to: args.to.as_deref().map(|t| joints_arg("--to", t, args.joints.rad)).transpose()?,
+    };
+    let report = reach::jobs::world::check(robot, &request).map_err(|e| match e {
+        reach::Error::Request { .. } => crate::error::flagged(e, &[("q", "joint values"), ("to", "--to")]),
+        e => scene_error(&args.scene, e),
+    })?;
     if args.json {
         return write_json(out, &report);
     }
@@ -75,6 +89,25 @@ fn write_text(robot: &reach::Robot, report: &CheckReport, out: &mut dyn Write) -
     let mm = |v: Option<f64>| v.map_or("-".to_string(), |c| format!("{} m", fixed(c, 6)));
     head.pair("min obstacle clearance", mm(report.min_obstacle_clearance_m));
     head.pair("min self clearance", mm(report.min_self_clearance_m));
+    if let Some(m) = &report.motion {
+        head.pair("motion to", q_text(robot, &m.to_deg));
+        let verdict = match (m.clear, &m.pair_text, m.lower_bound_m, m.min_clearance_m) {
+            (true, None, ..) => "proven clear (nothing to collide with)".to_string(),
+            (true, Some(pair), Some(lb), Some(min)) => format!(
+                "proven clear: clearance ≥ {} m over the whole motion (closest {} m, {pair}, at {} %)",
+                fixed(lb, 6),
+                fixed(min, 6),
+                fixed(100.0 * m.at, 1)
+            ),
+            (_, pair, _, min) => format!(
+                "NOT proven clear: {} at {} % of the motion (clearance {})",
+                pair.as_deref().unwrap_or("-"),
+                fixed(100.0 * m.at, 1),
+                mm(min)
+            ),
+        };
+        head.pair("swept check", verdict);
+    }
     head.write(out, "")?;
     if !report.tool_zone.is_empty() {
         writeln!(out, "tool zone (signed distance, negative = inside):")?;

@@ -162,6 +162,7 @@ fn check_avoid_and_cspace_json_are_the_library_reports_and_match_their_schemas()
         request: Request::Check(CheckRequest {
             scene: repo_text("examples/seed004_two_planes.toml"),
             q: Joints::Deg(vec![0.0, 60.0, -30.0, -30.0]),
+            to: None,
         }),
     };
     let v = crate::common::assert_report(
@@ -244,4 +245,37 @@ fn avoid_blocks_a_link_that_sweeps_over_the_obstacle() {
     let (m, lb) = (c["clearance_m"].as_f64().unwrap(), c["lower_bound_m"].as_f64().unwrap());
     assert!(lb > 0.0 && lb <= m && m == v["min_clearance_m"].as_f64().unwrap(), "{c}");
     assert!((1..=3).contains(&c["link"].as_u64().unwrap()) && (1..=3).contains(&c["leg"].as_u64().unwrap()), "{c}");
+}
+
+/// `reach check --to`: the straight joint motion between two free configurations is checked
+/// continuously. Through the post: not clear, naming link 3 and the post; around it: proven
+/// clear with a certified bound. The JSON is the library report.
+#[test]
+fn check_to_sweeps_the_joint_motion() {
+    use reach::jobs::{CheckRequest, Job, Joints, Request, RobotInput};
+    let scene = "examples/path_planar3_post.toml";
+    let v = json(&["check", "planar3", scene, "60", "-40", "-30", "--to", "0,-30,-30", "--json"]);
+    let m = &v["motion"];
+    assert_eq!(m["clear"], false, "{m}");
+    assert_eq!(m["pair"]["kind"], "obstacle");
+    assert_eq!(m["pair"]["link"], 3);
+    assert!(m["pair_text"].as_str().unwrap().contains("post"), "{m}");
+    let job = Job {
+        robot: RobotInput::Preset("planar3".into()),
+        request: Request::Check(CheckRequest {
+            scene: repo_text(scene),
+            q: Joints::Deg(vec![60.0, -40.0, -30.0]),
+            to: Some(Joints::Deg(vec![99.381, -51.972, -38.454])),
+        }),
+    };
+    let v = crate::common::assert_report(
+        &["check", "planar3", scene, "60", "-40", "-30", "--to", "99.381,-51.972,-38.454", "--json"],
+        &job,
+        "check.report",
+    );
+    let m = &v["motion"];
+    assert_eq!(m["clear"], true, "{m}");
+    let (lb, min) = (m["lower_bound_m"].as_f64().unwrap(), m["min_clearance_m"].as_f64().unwrap());
+    assert!(lb > 0.0 && lb <= min, "{m}");
+    fails(&["check", "planar3", scene, "60", "-40", "-30", "--to", "0,x,-30"], 2, &["--to joint 2"]);
 }

@@ -1,4 +1,6 @@
-//! The `check` workflow: collisions and clearances of one configuration in a scene.
+//! The `check` workflow: collisions and clearances of one configuration in a scene, and, with
+//! a second configuration, the swept (continuous) check of the straight joint motion between
+//! them.
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -7,7 +9,8 @@ use super::parse_scene;
 use crate::Robot;
 use crate::error::Result;
 use crate::jobs::input::Joints;
-use crate::world::{CollisionChecker, Contact, LinkClearance, Scene, SelfClearance, Verdict};
+use crate::world::sweep::SweepOptions;
+use crate::world::{CollisionChecker, Contact, LinkClearance, Scene, SelfClearance, SweptPair, Verdict};
 
 /// One configuration checked against a scene.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
@@ -17,6 +20,32 @@ pub struct CheckRequest {
     pub scene: String,
     /// The joint values.
     pub q: Joints,
+    /// With a target: the straight joint-space motion from `q` to `to` is checked
+    /// continuously ([`CollisionChecker::swept`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub to: Option<Joints>,
+}
+
+/// The swept check of the motion `q → to`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct MotionCheckReport {
+    /// Target joint values: revolute joints in degrees, prismatic joints in metres.
+    pub to_deg: Vec<f64>,
+    /// Whether the whole motion is proven clear (every clearance above 1 µm).
+    pub clear: bool,
+    /// Certified lower bound of the clearance over the motion (up to where the check stopped
+    /// when not clear), metres; `null` when nothing is checked (no obstacle, zone or pair).
+    pub lower_bound_m: Option<f64>,
+    /// The smallest clearance found, metres (`null` as above).
+    pub min_clearance_m: Option<f64>,
+    /// Where, as the fraction of the motion (where it stopped when not clear).
+    pub at: f64,
+    /// What that clearance measures (`null` as above).
+    pub pair: Option<SweptPair>,
+    /// The same in words, with the names of the obstacle or zone.
+    pub pair_text: Option<String>,
+    /// Clearance evaluations made.
+    pub evaluations: usize,
 }
 
 /// Collisions and clearances of one configuration (`reach check --json`).
@@ -40,6 +69,9 @@ pub struct CheckReport {
     pub min_obstacle_clearance_m: Option<f64>,
     /// Smallest link–link clearance (`null` without non-adjacent pairs), metres.
     pub min_self_clearance_m: Option<f64>,
+    /// With a target: the swept check of the motion.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub motion: Option<MotionCheckReport>,
 }
 
 /// The verdict in words, naming the obstacle or zone.
@@ -55,15 +87,46 @@ pub fn verdict_text(verdict: &Verdict, scene: &Scene) -> String {
     }
 }
 
+/// What a swept clearance measures, in words, naming the obstacle or zone.
+#[must_use]
+pub fn swept_pair_text(pair: &SweptPair, scene: &Scene) -> String {
+    match pair {
+        SweptPair::ToolZone { zone } => {
+            format!("tool point and the boundary of zone `{}`", scene.tool_zone[*zone].name)
+        }
+        SweptPair::Obstacle { link, obstacle } => format!("link {link} and `{}`", scene.obstacles[*obstacle].name),
+        SweptPair::SelfPair { link_a, link_b } => format!("links {link_a} and {link_b}"),
+    }
+}
+
 /// Checks the configuration: whatever the verdict, it is in the report.
 ///
 /// # Errors
 /// [`crate::Error::World`] for a malformed scene (line and column); [`crate::Error::Request`]
-/// for a wrong joint count or a non-finite value (field `q`).
+/// for a wrong joint count or a non-finite value (field `q` or `to`).
 pub fn check(robot: &Robot, request: &CheckRequest) -> Result<CheckReport> {
     let scene = parse_scene(&request.scene)?;
     let q = request.q.si(robot, "q")?;
-    let report = CollisionChecker::new(robot, &scene).report(&q)?;
+    let mut checker = CollisionChecker::new(robot, &scene);
+    let motion = match &request.to {
+        None => None,
+        Some(to) => {
+            let target = to.si(robot, "to")?;
+            let (swept, pair) = checker.swept(&q, &target, &SweepOptions::default())?;
+            let checked = swept.evaluations > 0 && swept.min_clearance.is_finite();
+            Some(MotionCheckReport {
+                to_deg: to.display(robot),
+                clear: swept.clear,
+                lower_bound_m: checked.then_some(swept.lower_bound),
+                min_clearance_m: checked.then_some(swept.min_clearance),
+                at: swept.at,
+                pair_text: checked.then(|| swept_pair_text(&pair, &scene)),
+                pair: checked.then_some(pair),
+                evaluations: swept.evaluations,
+            })
+        }
+    };
+    let report = checker.report(&q)?;
     Ok(CheckReport {
         robot: robot.name().to_string(),
         q_deg: request.q.display(robot),
@@ -74,5 +137,6 @@ pub fn check(robot: &Robot, request: &CheckRequest) -> Result<CheckReport> {
         tool_zone: report.tool_zone,
         min_obstacle_clearance_m: report.min_obstacle_clearance_m,
         min_self_clearance_m: report.min_self_clearance_m,
+        motion,
     })
 }
