@@ -201,3 +201,23 @@ fn a_joint_without_limits_cannot_ask_for_unbounded_steps() {
     );
     fails(&["drive", robot.to_str().unwrap(), "--from", "0", "--to", "1e12"], 2, &["joint 1", "motor steps"]);
 }
+
+#[test]
+fn a_joint_faster_than_its_speed_limit_is_refused() {
+    // One joint limited to 30 deg/s driven by a motor that could step much faster: 90° in
+    // 1 s is refused naming the joint, its speed and its limit in degrees per second; in 3 s
+    // (30 deg/s) it is driven.
+    let robot = temp_file(
+        "slow.toml",
+        "name = \"slow\"\nlength_unit = \"m\"\nangle_unit = \"deg\"\n[[joints]]\nname = \"j\"\na = 1\n\
+         max_velocity = 30\n\
+         drive = { steps_per_rev = 200, max_step_rate = 20000, wiring = \"bipolar\" }\n",
+    );
+    let path = robot.to_str().unwrap();
+    fails(
+        &["drive", path, "--from", "0", "--to", "90", "--duration", "1", "--format", "gcode"],
+        2,
+        &["joint 1 `j`", "deg/s", "above its limit of 30 deg/s"],
+    );
+    ok(&["drive", path, "--from", "0", "--to", "90", "--duration", "3.2"]);
+}

@@ -3,12 +3,14 @@
 //! (CSV step list, coil table, step/direction events, G-code).
 //!
 //! Every joint value the motors are asked to reach is checked against the joint's position
-//! limits first: a motion that leaves them is refused before any schedule or program is made.
+//! limits, and every interval of the plan against the joint's speed limit (`max_velocity`,
+//! where the robot gives one): a motion that breaks them is refused before any schedule or
+//! program is made.
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use super::input::{AngleUnit, Joints, require_within_limits};
+use super::input::{AngleUnit, Joints, from_si, number_text, require_within_limits, unit_name};
 use super::motion::{PlanRequest, plan};
 use crate::Robot;
 use crate::drive::output::{GcodeDialect, StepRow, coil_table_csv, gcode, step_dir_text, step_rows, to_csv};
@@ -171,6 +173,10 @@ const JOIN_TOLERANCE: f64 = 1e-6;
 /// step-count limits; [`Error::File`] for a bad task file.
 pub fn drive(robot: &Robot, request: &DriveRequest) -> Result<DriveReport> {
     let axes = axes(robot)?;
+    let unit = match &request.motion {
+        DriveMotion::PointToPoint(p) => p.from.unit(),
+        DriveMotion::Samples(_) | DriveMotion::Task(_) => AngleUnit::Deg,
+    };
     let (kind, schedule, plan_samples, target_grid_error) = match &request.motion {
         DriveMotion::Samples(samples) => {
             let samples = samples_si(robot, samples, "motion")?;
@@ -193,6 +199,7 @@ pub fn drive(robot: &Robot, request: &DriveRequest) -> Result<DriveReport> {
             (DriveMotionKind::PointToPoint, p2p.schedule, samples, Some(grid))
         }
     };
+    require_within_speed(robot, &plan_samples, unit)?;
     let check = verify(robot, &schedule, &plan_samples)?;
     let program = match request.program {
         None => None,
@@ -208,6 +215,39 @@ pub fn drive(robot: &Robot, request: &DriveRequest) -> Result<DriveReport> {
         }
     };
     Ok(report(robot, kind, &schedule, check, target_grid_error, program))
+}
+
+/// Relative slack on joint speed limits (rounding of the sample times and values).
+const SPEED_SLACK: f64 = 1e-9;
+
+/// Refuses a plan in which a joint moves faster than its speed limit (`max_velocity`). The
+/// motors follow the samples' piecewise-linear interpolation, so the speed of an interval is
+/// exactly its joint difference over its duration.
+fn require_within_speed(robot: &Robot, samples: &[JointSample], unit: AngleUnit) -> Result<()> {
+    for (i, joint) in robot.joints().iter().enumerate() {
+        let Some(limit) = joint.max_velocity else { continue };
+        for w in samples.windows(2) {
+            let dt = w[1].t - w[0].t;
+            let speed = robot.joint_difference(i, w[0].q[i], w[1].q[i]).abs() / dt;
+            if dt > 0.0 && speed > limit * (1.0 + SPEED_SLACK) {
+                let shown = |v: f64| number_text(from_si(joint.kind, v, unit));
+                let name = unit_name(joint.kind, unit);
+                return Err(Error::request(
+                    "motion",
+                    format!(
+                        "joint {} `{}` moves at {} {name}/s from t = {:.4} s, above its limit of {} {name}/s; \
+                         make the motion slower",
+                        i + 1,
+                        joint.name,
+                        shown(speed),
+                        w[0].t,
+                        shown(limit)
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Samples as typed (degrees, metres) in SI, checked for length, finiteness and limits.

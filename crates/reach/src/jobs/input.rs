@@ -245,6 +245,19 @@ pub fn joints_outside_limits(robot: &Robot, q: &[f64]) -> Vec<usize> {
         .collect()
 }
 
+/// A number for a message, in the user's units: at most 6 decimals, trailing zeros dropped
+/// (`180`, not `179.99999999999997` after a round trip through radians); huge values in
+/// exponent form (`1e308`).
+#[must_use]
+pub fn number_text(v: f64) -> String {
+    if !v.is_finite() || v.abs() >= 1e9 {
+        return format!("{v:e}");
+    }
+    let text = format!("{v:.6}");
+    let text = if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.') } else { &text };
+    if text == "-0" { "0".to_string() } else { text.to_string() }
+}
+
 /// Refuses joint values (SI) outside their position limits, naming the first such joint, its
 /// value and its limits in `unit` (prismatic joints in metres):
 /// `to: joint 1 `q1` = 270 deg is outside its limits [-180, 180] deg`.
@@ -256,7 +269,7 @@ pub fn require_within_limits(robot: &Robot, q: &[f64], unit: AngleUnit, field: &
         return Ok(());
     };
     let joint = &robot.joints()[i];
-    let shown = |v: f64| from_si(joint.kind, v, unit);
+    let shown = |v: f64| number_text(from_si(joint.kind, v, unit));
     let name = unit_name(joint.kind, unit);
     Err(Error::request(
         field,
@@ -487,6 +500,16 @@ pub fn time_budget(field: &str, seconds: Option<f64>) -> Result<Option<std::time
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn numbers_in_messages_are_short() {
+        assert_eq!(number_text(std::f64::consts::PI.to_degrees()), "180");
+        assert_eq!(number_text(-0.0), "0");
+        assert_eq!(number_text(2.5e-7), "0");
+        assert_eq!(number_text(-45.125), "-45.125");
+        assert_eq!(number_text(1e308), "1e308");
+        assert_eq!(number_text(f64::NEG_INFINITY), "-inf");
+    }
 
     #[test]
     fn rpy_follows_fixed_axis_convention() {
