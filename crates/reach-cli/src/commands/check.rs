@@ -91,18 +91,19 @@ fn write_text(robot: &reach::Robot, report: &CheckReport, out: &mut dyn Write) -
     head.pair("min self clearance", mm(report.min_self_clearance_m));
     if let Some(m) = &report.motion {
         head.pair("motion to", q_text(robot, &m.to_deg));
-        let verdict = match (m.clear, &m.pair_text, m.lower_bound_m, m.min_clearance_m) {
+        let w = &m.swept;
+        let verdict = match (w.clear, &w.pair_text, w.lower_bound_m, w.min_clearance_m) {
             (true, None, ..) => "proven clear (nothing to collide with)".to_string(),
             (true, Some(pair), Some(lb), Some(min)) => format!(
                 "proven clear: clearance ≥ {} m over the whole motion (closest {} m, {pair}, at {} %)",
                 fixed(lb, 6),
                 fixed(min, 6),
-                fixed(100.0 * m.at, 1)
+                fixed(100.0 * w.at, 1)
             ),
             (_, pair, _, min) => format!(
                 "NOT proven clear: {} at {} % of the motion (clearance {})",
                 pair.as_deref().unwrap_or("-"),
-                fixed(100.0 * m.at, 1),
+                fixed(100.0 * w.at, 1),
                 mm(min)
             ),
         };

@@ -167,15 +167,17 @@ fn write_report(out: &mut dyn Write, scene: &str, j: &PathReport) -> Result<(), 
             "min self clearance",
             j.min_self_clearance_m.map_or_else(|| "-".into(), |c| format!("{} m", fixed(c, 4))),
         );
-        if let Some(w) = &j.swept {
+        if let Some(p) = &j.swept {
+            let w = &p.swept;
             head.pair(
                 "swept check",
                 format!(
-                    "{}: clearance ≥ {} m over the whole path (closest {} m, segment {} at {} %)",
+                    "{}: clearance ≥ {} m over the whole path (closest {} m, {}, segment {} at {} %)",
                     if w.clear { "proven clear" } else { "NOT proven clear" },
-                    fixed(w.lower_bound_m, 4),
-                    fixed(w.min_clearance_m, 4),
-                    w.segment,
+                    fixed(w.lower_bound_m.unwrap_or(f64::NAN), 4),
+                    fixed(w.min_clearance_m.unwrap_or(f64::NAN), 4),
+                    w.pair_text.as_deref().unwrap_or("-"),
+                    p.segment,
                     fixed(100.0 * w.at, 1)
                 ),
             );

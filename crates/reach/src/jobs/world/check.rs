@@ -9,7 +9,7 @@ use super::parse_scene;
 use crate::Robot;
 use crate::error::Result;
 use crate::jobs::input::Joints;
-use crate::world::sweep::SweepOptions;
+use crate::world::sweep::{Sweep, SweepOptions};
 use crate::world::{CollisionChecker, Contact, LinkClearance, Scene, SelfClearance, SweptPair, Verdict};
 
 /// One configuration checked against a scene.
@@ -26,11 +26,9 @@ pub struct CheckRequest {
     pub to: Option<Joints>,
 }
 
-/// The swept check of the motion `q → to`.
+/// A swept (continuous) check in a report ([`CollisionChecker::swept`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
-pub struct MotionCheckReport {
-    /// Target joint values: revolute joints in degrees, prismatic joints in metres.
-    pub to_deg: Vec<f64>,
+pub struct SweptReport {
     /// Whether the whole motion is proven clear (every clearance above 1 µm).
     pub clear: bool,
     /// Certified lower bound of the clearance over the motion (up to where the check stopped
@@ -46,6 +44,33 @@ pub struct MotionCheckReport {
     pub pair_text: Option<String>,
     /// Clearance evaluations made.
     pub evaluations: usize,
+}
+
+impl SweptReport {
+    /// The report of a sweep in `scene`.
+    #[must_use]
+    pub fn of(sweep: &Sweep, pair: SweptPair, scene: &Scene) -> Self {
+        let checked = sweep.evaluations > 0 && sweep.min_clearance.is_finite();
+        SweptReport {
+            clear: sweep.clear,
+            lower_bound_m: checked.then_some(sweep.lower_bound),
+            min_clearance_m: checked.then_some(sweep.min_clearance),
+            at: sweep.at,
+            pair: checked.then_some(pair),
+            pair_text: checked.then(|| swept_pair_text(&pair, scene)),
+            evaluations: sweep.evaluations,
+        }
+    }
+}
+
+/// The swept check of the motion `q → to`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct MotionCheckReport {
+    /// Target joint values: revolute joints in degrees, prismatic joints in metres.
+    pub to_deg: Vec<f64>,
+    /// The check.
+    #[serde(flatten)]
+    pub swept: SweptReport,
 }
 
 /// Collisions and clearances of one configuration (`reach check --json`).
@@ -113,17 +138,7 @@ pub fn check(robot: &Robot, request: &CheckRequest) -> Result<CheckReport> {
         Some(to) => {
             let target = to.si(robot, "to")?;
             let (swept, pair) = checker.swept(&q, &target, &SweepOptions::default())?;
-            let checked = swept.evaluations > 0 && swept.min_clearance.is_finite();
-            Some(MotionCheckReport {
-                to_deg: to.display(robot),
-                clear: swept.clear,
-                lower_bound_m: checked.then_some(swept.lower_bound),
-                min_clearance_m: checked.then_some(swept.min_clearance),
-                at: swept.at,
-                pair_text: checked.then(|| swept_pair_text(&pair, &scene)),
-                pair: checked.then_some(pair),
-                evaluations: swept.evaluations,
-            })
+            Some(MotionCheckReport { to_deg: to.display(robot), swept: SweptReport::of(&swept, pair, &scene) })
         }
     };
     let report = checker.report(&q)?;

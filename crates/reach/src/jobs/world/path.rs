@@ -11,6 +11,7 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::check::SweptReport;
 use super::parse_scene;
 use crate::error::{Error, Result};
 use crate::ik::IkOptions;
@@ -18,7 +19,7 @@ use crate::jobs::input::{Joints, Pose, positive, q_display, require_within_limit
 use crate::motion::{JointMotion, JointPath, JointRates, Profile};
 use crate::world::planner::{Goal, PlanError, PlanOptions, PlanStats, path_length, plan};
 use crate::world::sweep::SweepOptions;
-use crate::world::{CollisionChecker, Scene, SweptPair};
+use crate::world::{CollisionChecker, Scene};
 use crate::{Cancel, Robot};
 
 fn default_seed() -> u64 {
@@ -115,21 +116,17 @@ pub struct PathReport {
     pub swept: Option<PathSweepReport>,
 }
 
-/// The closest approach of a path by the swept check ([`CollisionChecker::swept`]).
+/// The swept check of a path: the closest segment's check, with the verdict and the
+/// certified lower bound over every segment.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct PathSweepReport {
-    /// Whether every segment is proven clear.
-    pub clear: bool,
-    /// Certified lower bound of the clearance over the whole path, m.
-    pub lower_bound_m: f64,
-    /// The smallest clearance found, m.
-    pub min_clearance_m: f64,
-    /// 1-based segment (between waypoints `segment` and `segment + 1`) where it occurs.
+    /// 1-based segment (between waypoints `segment` and `segment + 1`) where the path comes
+    /// closest; `at` is the fraction of that segment.
     pub segment: usize,
-    /// Fraction of that segment, `[0, 1]`.
-    pub at: f64,
-    /// What the smallest clearance measures.
-    pub pair: SweptPair,
+    /// The check: `clear` and `lower_bound_m` over the whole path, the rest of the closest
+    /// segment; `evaluations` over all segments.
+    #[serde(flatten)]
+    pub swept: SweptReport,
 }
 
 /// The timed path's samples (SI).
@@ -338,32 +335,23 @@ fn time_and_check(
 /// The swept check of every segment of `waypoints`, refined to the closest approach.
 fn swept_path(robot: &Robot, scene: &Scene, waypoints: &[Vec<f64>]) -> Result<Option<PathSweepReport>> {
     let mut checker = CollisionChecker::new(robot, scene);
-    let mut out: Option<PathSweepReport> = None;
+    let (mut closest, mut clear, mut lower, mut evaluations) = (None::<PathSweepReport>, true, f64::INFINITY, 0);
     for (k, w) in waypoints.windows(2).enumerate() {
         let (sweep, pair) = checker.swept(&w[0], &w[1], &SweepOptions::default())?;
-        if sweep.evaluations == 0 {
-            continue;
-        }
-        let lower = sweep.lower_bound.min(out.as_ref().map_or(f64::INFINITY, |o| o.lower_bound_m));
-        let clear = sweep.clear && out.as_ref().is_none_or(|o| o.clear);
-        match &mut out {
-            Some(o) if o.min_clearance_m <= sweep.min_clearance => {
-                o.lower_bound_m = lower;
-                o.clear = clear;
-            }
-            _ => {
-                out = Some(PathSweepReport {
-                    clear,
-                    lower_bound_m: lower,
-                    min_clearance_m: sweep.min_clearance,
-                    segment: k + 1,
-                    at: sweep.at,
-                    pair,
-                });
-            }
+        let report = SweptReport::of(&sweep, pair, scene);
+        let Some(min) = report.min_clearance_m else { continue };
+        (clear, lower, evaluations) =
+            (clear && sweep.clear, lower.min(sweep.lower_bound), evaluations + sweep.evaluations);
+        if closest.as_ref().is_none_or(|c| c.swept.min_clearance_m.is_some_and(|m| min < m)) {
+            closest = Some(PathSweepReport { segment: k + 1, swept: report });
         }
     }
-    Ok(out)
+    Ok(closest.map(|mut c| {
+        c.swept.clear = clear;
+        c.swept.lower_bound_m = Some(lower);
+        c.swept.evaluations = evaluations;
+        c
+    }))
 }
 
 /// The tool point (world frame, metres) of each configuration.
