@@ -26,6 +26,24 @@ pub fn write_file(option: &str, path: &std::path::Path, contents: impl AsRef<[u8
     std::fs::write(path, contents).map_err(|e| CliError::bad_input(format!("{option} {}: {e}", path.display())))
 }
 
+/// Reads the text of the input file `path`.
+///
+/// # Errors
+/// [`CliError::BadInput`] naming the path when the file cannot be read.
+pub fn read_file(path: &std::path::Path) -> Result<String, CliError> {
+    std::fs::read_to_string(path).map_err(|e| CliError::bad_input(format!("cannot read `{}`: {e}", path.display())))
+}
+
+/// Reads a motion file (`reach move --json`'s output, or any JSON `{"samples": [{"t_s",
+/// "q_deg"}, ...]}`).
+///
+/// # Errors
+/// [`CliError::BadInput`] naming the path when it cannot be read or is not such JSON.
+pub fn read_motion_file(path: &std::path::Path) -> Result<Vec<reach::jobs::input::MotionSample>, CliError> {
+    reach::jobs::input::parse_motion_json(&read_file(path)?)
+        .map_err(|e| CliError::bad_input(format!("{}: {}", path.display(), reach::one_line(&e.to_string()))))
+}
+
 /// Writes `value` as indented JSON followed by a newline.
 ///
 /// Like `serde_json`'s pretty printer (fields in declaration order), except that arrays of

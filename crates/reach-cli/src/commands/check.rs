@@ -1,15 +1,18 @@
-//! `reach check` — collisions and clearances of one configuration in a scene, and with
-//! `--to` the swept (continuous) check of the straight joint motion to a second one
-//! (`reach::jobs::world::check`; `--json` prints its report).
+//! `reach check` — collisions and clearances of one configuration in a scene, and the swept
+//! (continuous) check of a motion from it: with `--to` the straight joint motion to a second
+//! configuration, with `--motion FILE` a sampled motion (`reach::jobs::world::check`;
+//! `--json` prints its report).
 
 use std::io::Write;
 
 use clap::Args;
+use reach::jobs::world::SweptReport;
 use reach::jobs::{CheckReport, CheckRequest};
+use reach::world::sweep::SWEEP_FLOOR;
 
 use crate::error::{CliError, one_line};
 use crate::numbers::{JointArgs, q_text};
-use crate::output::{Align, Table, fixed, write_json};
+use crate::output::{Align, Table, fixed, read_motion_file, write_json};
 use crate::pose_arg::joints_arg;
 use crate::robot_arg::RobotArgs;
 
@@ -33,6 +36,12 @@ pub struct CheckArgs {
     #[arg(long, value_name = "Q1,..,QN", allow_hyphen_values = true)]
     pub to: Option<String>,
 
+    /// Instead of --to: check a sampled motion continuously, the piecewise-linear joint path
+    /// from the joint values through its samples (the path `reach drive` steps along). FILE is
+    /// `reach move --json`'s output or any JSON {"samples": [{"t_s", "q_deg"}, ...]}.
+    #[arg(long, value_name = "FILE", conflicts_with = "to")]
+    pub motion: Option<std::path::PathBuf>,
+
     /// Print the report as JSON (docs/schemas/check.report.schema.json).
     #[arg(long)]
     pub json: bool,
@@ -44,6 +53,18 @@ pub struct CheckArgs {
 /// [`CliError::BadInput`] naming the file when it cannot be read.
 pub fn read_scene(path: &str) -> Result<String, CliError> {
     std::fs::read_to_string(path).map_err(|e| CliError::bad_input(format!("cannot read scene `{path}`: {e}")))
+}
+
+/// Reads a scene file's text and validates it, for requests that carry a scene beside other
+/// input (`reach move --scene`, `reach plan --scene`): a scene that does not parse is
+/// reported with the file's name.
+///
+/// # Errors
+/// [`CliError::BadInput`] naming the file.
+pub fn read_valid_scene(path: &str) -> Result<String, CliError> {
+    let text = read_scene(path)?;
+    reach::jobs::world::parse_scene(&text).map_err(|e| scene_error(path, e))?;
+    Ok(text)
 }
 
 /// A library error of a request with the scene of file `path`: a scene that does not parse is
@@ -70,15 +91,44 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<(), CliError> {
         scene: read_scene(&args.scene)?,
         q: args.joints.joints()?,
         to: args.to.as_deref().map(|t| joints_arg("--to", t, args.joints.rad)).transpose()?,
+        samples: args.motion.as_deref().map(read_motion_file).transpose()?,
     };
     let report = reach::jobs::world::check(robot, &request).map_err(|e| match e {
-        reach::Error::Request { .. } => crate::error::flagged(e, &[("q", "joint values"), ("to", "--to")]),
+        reach::Error::Request { .. } => {
+            crate::error::flagged(e, &[("q", "joint values"), ("to", "--to"), ("samples", "--motion")])
+        }
         e => scene_error(&args.scene, e),
     })?;
     if args.json {
         return write_json(out, &report);
     }
     write_text(robot, &report, out)
+}
+
+/// A swept check in words: proven clear with its certified bound and closest approach, or
+/// where it is not. `segment`: the 1-based segment of a path's check.
+#[must_use]
+pub fn swept_text(w: &SweptReport, segment: Option<usize>) -> String {
+    let at = match segment {
+        Some(k) => format!("{} % of segment {k}", fixed(100.0 * w.at, 1)),
+        None => format!("{} % of the motion", fixed(100.0 * w.at, 1)),
+    };
+    match (w.clear, &w.pair_text, w.lower_bound_m, w.min_clearance_m) {
+        (true, None, ..) => "proven clear (nothing to collide with)".to_string(),
+        (true, Some(pair), Some(lb), Some(min)) => format!(
+            "proven clear: clearance ≥ {} m over the whole motion (closest {} m, {pair}, at {at})",
+            fixed(lb, 6),
+            fixed(min, 6)
+        ),
+        (_, pair, _, min) => format!(
+            "NOT proven clear: {} at {at} ({})",
+            pair.as_deref().unwrap_or("-"),
+            match min {
+                Some(c) if c > SWEEP_FLOOR => format!("clearance {} m", fixed(c, 6)),
+                _ => "touching or colliding".to_string(),
+            }
+        ),
+    }
 }
 
 fn write_text(robot: &reach::Robot, report: &CheckReport, out: &mut dyn Write) -> Result<(), CliError> {
@@ -91,23 +141,10 @@ fn write_text(robot: &reach::Robot, report: &CheckReport, out: &mut dyn Write) -
     head.pair("min self clearance", mm(report.min_self_clearance_m));
     if let Some(m) = &report.motion {
         head.pair("motion to", q_text(robot, &m.to_deg));
-        let w = &m.swept;
-        let verdict = match (w.clear, &w.pair_text, w.lower_bound_m, w.min_clearance_m) {
-            (true, None, ..) => "proven clear (nothing to collide with)".to_string(),
-            (true, Some(pair), Some(lb), Some(min)) => format!(
-                "proven clear: clearance ≥ {} m over the whole motion (closest {} m, {pair}, at {} %)",
-                fixed(lb, 6),
-                fixed(min, 6),
-                fixed(100.0 * w.at, 1)
-            ),
-            (_, pair, _, min) => format!(
-                "NOT proven clear: {} at {} % of the motion (clearance {})",
-                pair.as_deref().unwrap_or("-"),
-                fixed(100.0 * w.at, 1),
-                mm(min)
-            ),
-        };
-        head.pair("swept check", verdict);
+        head.pair("swept check", swept_text(&m.swept, None));
+    }
+    if let Some(p) = &report.samples {
+        head.pair("motion (samples)", swept_text(&p.swept, Some(p.segment)));
     }
     head.write(out, "")?;
     if !report.tool_zone.is_empty() {

@@ -8,15 +8,13 @@ use clap::{Args, ValueEnum};
 use reach::Robot;
 use reach::drive::DriveError;
 use reach::drive::output::GcodeDialect;
-use reach::jobs::drive::{
-    DriveMotion, DriveMotionKind, DriveProgram, DriveReport, DriveRequest, PointToPointRequest, parse_motion_json,
-};
+use reach::jobs::drive::{DriveMotion, DriveMotionKind, DriveProgram, DriveReport, DriveRequest, PointToPointRequest};
 use reach::jobs::motion::Task;
 use reach::model::{JointKind, UrdfChain};
 
 use crate::error::{CliError, flagged, one_line};
 use crate::numbers::{display_unit, parse_finite};
-use crate::output::{Align, Table, fixed, write_file, write_json};
+use crate::output::{Align, Table, fixed, read_file, read_motion_file, write_file, write_json};
 use crate::pose_arg::joints_arg;
 use crate::robot_arg::{RobotArgs, load_robot};
 
@@ -98,12 +96,10 @@ pub struct DriveArgs {
 fn request(args: &DriveArgs, robot: &Robot) -> Result<DriveRequest, CliError> {
     let motion = match (&args.motion, &args.from, &args.to) {
         (Some(path), None, None) => {
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| CliError::bad_input(format!("cannot read `{}`: {e}", path.display())))?;
-            let origin =
-                |e: reach::Error| CliError::bad_input(format!("{}: {}", path.display(), one_line(&e.to_string())));
             if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml")) {
-                let task = Task::parse(&text).map_err(origin)?;
+                let text = read_file(path)?;
+                let task = Task::parse(&text)
+                    .map_err(|e| CliError::bad_input(format!("{}: {}", path.display(), one_line(&e.to_string()))))?;
                 let task_robot = load_robot(&task.robot, &UrdfChain { base: None, tip: None })?.robot;
                 if task_robot.name() != robot.name() || task_robot.dof() != robot.dof() {
                     return Err(CliError::bad_input(format!(
@@ -115,7 +111,7 @@ fn request(args: &DriveArgs, robot: &Robot) -> Result<DriveRequest, CliError> {
                 }
                 DriveMotion::Task(text)
             } else {
-                DriveMotion::Samples(parse_motion_json(&text).map_err(origin)?)
+                DriveMotion::Samples(read_motion_file(path)?)
             }
         }
         (None, Some(from), Some(to)) => DriveMotion::PointToPoint(PointToPointRequest {

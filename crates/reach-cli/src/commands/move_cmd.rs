@@ -11,8 +11,10 @@
 //! bar of its tracking on stderr, only when stdout and stderr are terminals and not with
 //! `--json` (`crate::plot::progress`).
 //!
-//! Exit status: 0 feasible; 3 infeasible (a joint outside its limits, an unrealisable
-//! interval) after printing the report, with one line on stderr; 2 for bad input.
+//! Exit status: 0 feasible; 3 infeasible (a joint outside its limits or above its speed limit,
+//! an unrealisable interval, a collision in `--scene`) after printing the report, with one
+//! line on stderr, and without writing `--csv` (a sample table could be driven); 2 for bad
+//! input.
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -20,6 +22,7 @@ use std::path::PathBuf;
 use clap::{Args, ValueEnum};
 use reach::jobs::motion::{ChoiceSpec, End, MoveRequest};
 
+use crate::commands::check::read_valid_scene;
 use crate::commands::move_render::{infeasible, move_drawing, write_csv, write_report};
 use crate::error::CliError;
 use crate::numbers::{parse_finite, parse_list};
@@ -118,7 +121,13 @@ pub struct MoveArgs {
     #[arg(long, value_name = "W1,..,WK", allow_hyphen_values = true, requires = "choose")]
     pub weights: Option<String>,
 
-    /// Also write the samples as CSV to FILE.
+    /// Scene file (TOML: obstacles, tool zone): the motion is checked continuously against it
+    /// (the joint path through the samples, as `reach drive` steps it); a motion not proven
+    /// clear is infeasible.
+    #[arg(long, value_name = "SCENE")]
+    pub scene: Option<String>,
+
+    /// Also write the samples as CSV to FILE (only for a feasible motion).
     #[arg(long, value_name = "FILE")]
     pub csv: Option<PathBuf>,
 
@@ -177,6 +186,7 @@ impl MoveArgs {
                     require: Default::default(),
                 }),
             },
+            scene: self.scene.as_deref().map(read_valid_scene).transpose()?,
         })
     }
 }
@@ -239,15 +249,20 @@ pub fn run(args: &MoveArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let request = args.request()?;
     args.draw.check_files()?;
     let mut bars = Bars { json: args.json, current: None };
-    let m = reach::jobs::motion::move_motion_with_progress(&robot, &request, &mut |done, total| {
-        bars.report("", done, total);
-    })
+    let m = reach::jobs::motion::move_motion_with_progress(
+        &robot,
+        &request,
+        &mut |done, total| bars.report("", done, total),
+        crate::interrupt::cancel(),
+    )
     .map_err(|e| flag_error(args, e))?;
     drop(bars);
     if args.draw.any() {
         args.draw.write(&move_drawing(&robot, &request, &m))?;
     }
-    if let Some(path) = &args.csv {
+    // A sample table can be driven (`reach drive --motion`): an infeasible motion's is not
+    // written. The report and drawings still show why it is infeasible.
+    if let (Some(path), true) = (&args.csv, m.feasible) {
         write_csv(path, &m)?;
     }
     if args.json {

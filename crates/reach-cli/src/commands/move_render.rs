@@ -65,6 +65,9 @@ pub fn write_report(out: &mut dyn Write, m: &MoveReport, every: usize) -> Result
     for e in &m.events {
         writeln!(out, "  {} [t = {} s] {}", e.code, fixed(e.t_s, 3), e.message)?;
     }
+    if let Some(p) = &m.swept {
+        writeln!(out, "  swept check: {}", crate::commands::check::swept_text(&p.swept, Some(p.segment)))?;
+    }
     let energy = match (m.effort.energy_j, &m.effort.energy_note) {
         (Some(e), _) => format!("{} J", fixed(e, 3)),
         (None, note) => format!("n/a ({})", note.as_deref().unwrap_or("not computed")),
@@ -198,7 +201,7 @@ const SEED003_TASK: &str = include_str!("../../../../examples/seed003_welding.to
 /// # Errors
 /// Output errors; [`CliError::Internal`] if the embedded example breaks.
 pub fn demo_seed001(out: &mut dyn Write) -> Result<(), CliError> {
-    let (_, _, report) = plan_task(SEED001_TASK, "examples/seed001_tool_vs_joint.toml", true)
+    let (_, _, report) = plan_task(SEED001_TASK, "examples/seed001_tool_vs_joint.toml", None, true)
         .map_err(|e| CliError::internal(e.to_string()))?;
     writeln!(out)?;
     writeln!(out, "{} (reach plan examples/seed001_tool_vs_joint.toml)", report.description)?;
@@ -220,7 +223,7 @@ pub fn demo_seed001(out: &mut dyn Write) -> Result<(), CliError> {
 /// # Errors
 /// Output errors; [`CliError::Internal`] if the embedded example breaks.
 pub fn demo_seed003(out: &mut dyn Write) -> Result<(), CliError> {
-    let (_, _, report) = plan_task(SEED003_TASK, "examples/seed003_welding.toml", true)
+    let (_, _, report) = plan_task(SEED003_TASK, "examples/seed003_welding.toml", None, true)
         .map_err(|e| CliError::internal(e.to_string()))?;
     writeln!(out)?;
     writeln!(out, "{} (reach plan examples/seed003_welding.toml)", report.description)?;

@@ -128,7 +128,9 @@ pub fn run(args: &PathArgs, out: &mut dyn Write) -> Result<(), CliError> {
             out.flush()?;
             Err(CliError::NoSolution(format!("no path: {r}")))
         }
-        (None, Some(false)) => Err(CliError::internal("the timed path collides although its edges were checked")),
+        (None, Some(false)) => {
+            Err(CliError::internal("the path is not proven clear although the planner proved its edges clear"))
+        }
         _ => Ok(()),
     }
 }
@@ -158,29 +160,8 @@ fn write_report(out: &mut dyn Write, scene: &str, j: &PathReport) -> Result<(), 
             ),
         );
         head.pair("duration", format!("{} s (cycloidal, stops at waypoints)", fixed(j.duration_s.unwrap_or(0.0), 3)));
-        head.pair(
-            "min clearance",
-            j.min_clearance_m
-                .map_or_else(|| "- (no obstacles)".into(), |c| format!("{} m over {} samples", fixed(c, 4), j.samples)),
-        );
-        head.pair(
-            "min self clearance",
-            j.min_self_clearance_m.map_or_else(|| "-".into(), |c| format!("{} m", fixed(c, 4))),
-        );
         if let Some(p) = &j.swept {
-            let w = &p.swept;
-            head.pair(
-                "swept check",
-                format!(
-                    "{}: clearance ≥ {} m over the whole path (closest {} m, {}, segment {} at {} %)",
-                    if w.clear { "proven clear" } else { "NOT proven clear" },
-                    fixed(w.lower_bound_m.unwrap_or(f64::NAN), 4),
-                    fixed(w.min_clearance_m.unwrap_or(f64::NAN), 4),
-                    w.pair_text.as_deref().unwrap_or("-"),
-                    p.segment,
-                    fixed(100.0 * w.at, 1)
-                ),
-            );
+            head.pair("swept check", crate::commands::check::swept_text(&p.swept, Some(p.segment)));
         }
     }
     head.write(out, "")?;

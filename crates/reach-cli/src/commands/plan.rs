@@ -14,10 +14,11 @@ use reach::Robot;
 use reach::jobs::motion::{PlanReport, PlanRequest, Task};
 use reach::model::UrdfChain;
 
+use crate::commands::check::read_valid_scene;
 use crate::commands::move_cmd::Bars;
 use crate::commands::move_render::{infeasible, write_comparison, write_plan, write_report};
 use crate::error::CliError;
-use crate::output::write_json;
+use crate::output::{read_file, write_json};
 use crate::robot_arg::load_robot;
 
 /// Arguments of `reach plan`.
@@ -26,6 +27,11 @@ pub struct PlanArgs {
     /// Task file (TOML, docs/task-format.md).
     #[arg(value_name = "TASK")]
     pub task: PathBuf,
+
+    /// Scene file (TOML: obstacles, tool zone): every motion is checked continuously against
+    /// it (as `reach move --scene`).
+    #[arg(long, value_name = "SCENE")]
+    pub scene: Option<String>,
 
     /// Print the report as JSON (docs/schemas/plan.report.schema.json): robot, description,
     /// motions (each as `reach move --json`).
@@ -38,12 +44,17 @@ pub struct PlanArgs {
 }
 
 /// Parses a task file's text, loads the robot its `robot` key names and plans every motion
-/// (with progress bars unless `json`).
+/// (with progress bars unless `json`), checked against `scene` (its text) when given.
 ///
 /// # Errors
 /// [`CliError::BadInput`] for a malformed file (prefixed with `origin`), an unknown robot, a
 /// bad motion.
-pub fn plan_task(text: &str, origin: &str, json: bool) -> Result<(Robot, Task, PlanReport), CliError> {
+pub fn plan_task(
+    text: &str,
+    origin: &str,
+    scene: Option<String>,
+    json: bool,
+) -> Result<(Robot, Task, PlanReport), CliError> {
     let prefixed =
         |e: reach::Error| CliError::bad_input(format!("{origin}: {}", crate::error::one_line(&e.to_string())));
     let task = Task::parse(text).map_err(prefixed)?;
@@ -51,8 +62,9 @@ pub fn plan_task(text: &str, origin: &str, json: bool) -> Result<(Robot, Task, P
     let mut bars = Bars { json, current: None };
     let report = reach::jobs::motion::plan_with_progress(
         &robot,
-        &PlanRequest { task: text.to_string() },
+        &PlanRequest { task: text.to_string(), scene },
         &mut |name, done, total| bars.report(name, done, total),
+        crate::interrupt::cancel(),
     )
     .map_err(prefixed)?;
     Ok((robot, task, report))
@@ -63,9 +75,9 @@ pub fn plan_task(text: &str, origin: &str, json: bool) -> Result<(Robot, Task, P
 /// # Errors
 /// See the module docs.
 pub fn run_plan(args: &PlanArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let text = std::fs::read_to_string(&args.task)
-        .map_err(|e| CliError::bad_input(format!("{}: {e}", args.task.display())))?;
-    let (robot, task, report) = plan_task(&text, &args.task.display().to_string(), args.json)?;
+    let text = read_file(&args.task)?;
+    let scene = args.scene.as_deref().map(read_valid_scene).transpose()?;
+    let (robot, task, report) = plan_task(&text, &args.task.display().to_string(), scene, args.json)?;
     write_plan(&args.draw, &robot, &task.motions, &report.motions)?;
     if args.json {
         write_json(out, &report)?;

@@ -88,12 +88,30 @@ fn path_refuses_a_start_or_goal_outside_the_joint_limits() {
     fails(&["path", "planar3", scene, "--from", "60,-40,-300", "--to", "0,-30,-30"], 2, &["--from", "joint 3 `A`"]);
 }
 
+/// Runs `reach ARGS`, sends it SIGINT (Ctrl-C) after half a second, and checks that it ends
+/// with one line and exit status 130.
+#[cfg(unix)]
+fn interrupted_after_half_a_second(args: &[&str]) {
+    use std::process::Stdio;
+    let child = reach_command(args)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run reach");
+    std::thread::sleep(std::time::Duration::from_millis(500));
+    let status = std::process::Command::new("kill").args(["-INT", &child.id().to_string()]).status().expect("kill");
+    assert!(status.success());
+    let run = crate::common::Run::from_output(child.wait_with_output().expect("wait for reach"));
+    assert_eq!(run.code, 130, "stderr: {}", run.stderr);
+    assert_eq!(one_error_line(&run), "error: interrupted");
+}
+
 #[cfg(unix)]
 #[test]
 fn ctrl_c_stops_a_long_grid_with_one_line_and_status_130() {
-    use std::process::Stdio;
     // 55 758 001 nodes: far longer than the half second before Ctrl-C.
-    let child = reach_command(&[
+    interrupted_after_half_a_second(&[
         "cspace",
         "varan4",
         CEILING,
@@ -104,16 +122,30 @@ fn ctrl_c_stops_a_long_grid_with_one_line_and_status_130() {
         "--max-nodes",
         "60000000",
         "--json",
-    ])
-    .stdin(Stdio::null())
-    .stdout(Stdio::piped())
-    .stderr(Stdio::piped())
-    .spawn()
-    .expect("run reach");
-    std::thread::sleep(std::time::Duration::from_millis(500));
-    let status = std::process::Command::new("kill").args(["-INT", &child.id().to_string()]).status().expect("kill");
-    assert!(status.success());
-    let run = crate::common::Run::from_output(child.wait_with_output().expect("wait for reach"));
-    assert_eq!(run.code, 130, "stderr: {}", run.stderr);
-    assert_eq!(one_error_line(&run), "error: interrupted");
+    ]);
+}
+
+#[cfg(unix)]
+#[test]
+fn ctrl_c_stops_a_long_tool_space_tracking() {
+    // Seed 003's weld at 1 mm/s sampled every 2 ms: about 435 000 samples to track.
+    interrupted_after_half_a_second(&[
+        "move",
+        "welder6r",
+        "--from-xyz",
+        "0.05,0.74,0.07",
+        "--from-rpy",
+        "0,-41.86854343693031,-50.19442890773481",
+        "--to-xyz",
+        "0.5,0.2,0.7",
+        "--to-rpy",
+        "0,-41.86854343693031,-50.19442890773481",
+        "--space",
+        "tool",
+        "--speed",
+        "0.001",
+        "--dt",
+        "0.002",
+        "--json",
+    ]);
 }

@@ -3,8 +3,8 @@
 //! through the real binary. Whatever the arguments, `reach` exits with 0, 2 or 3 — never a
 //! panic (status 1, "internal error") or a signal — and a failure is one `error:` line
 //! (bad input: with nothing on stdout; no solution: the report may precede it, as `ik`'s).
-//! Long computations are kept short by the caps (`--max-nodes`, the untimed IK iteration
-//! cap) and a time budget, so every case ends quickly.
+//! Long computations are kept short by the caps (`--max-nodes`, the motion sample cap, the
+//! untimed IK iteration cap) and a time budget, so every case ends quickly.
 //!
 //! Cases: 24 by default; `REACH_FUZZ_CASES=N` for a long run (docs/fuzzing.md).
 
@@ -57,6 +57,9 @@ const COMMANDS: &[(&str, &[&str], &[&str])] = &[
     ("check", &[], &["--json", "--rad"]),
     ("avoid", &["--from", "--to-xy", "--obstacle", "--step"], &["--json", "--rad"]),
     ("cspace", &["--step", "--fix"], &["--json", "--fit"]),
+    ("move", &["--from", "--to", "--duration", "--dt", "--speed", "--from-xyz", "--to-xyz"], &["--json", "--rad"]),
+    ("drive", &["--from", "--to", "--duration"], &["--json", "--rad"]),
+    ("path", &["--from", "--to", "--duration"], &["--json", "--rad"]),
 ];
 
 /// One argument vector: command, robot, positional values and flags.
@@ -72,8 +75,10 @@ fn argv() -> impl Strategy<Value = Vec<String>> {
         .prop_map(|(c, robot, positional, flags, switches)| {
             let (name, valued, bare) = COMMANDS[c];
             let mut args = vec![name.to_string(), robot.to_string()];
-            if name == "check" || name == "cspace" {
-                args.push("examples/seed004_ceiling.toml".into());
+            match name {
+                "check" | "cspace" => args.push("examples/seed004_ceiling.toml".into()),
+                "path" => args.push("examples/path_planar3_post.toml".into()),
+                _ => {}
             }
             args.extend(positional);
             if !valued.is_empty() {
@@ -88,7 +93,7 @@ fn argv() -> impl Strategy<Value = Vec<String>> {
             // Keep every case short: a small grid cap, a time budget for the numeric solver.
             match name {
                 "cspace" => args.extend(["--max-nodes".into(), "20000".into()]),
-                "ik" => args.extend(["--time-budget".into(), "0.2".into()]),
+                "ik" | "path" => args.extend(["--time-budget".into(), "0.2".into()]),
                 _ => {}
             }
             args

@@ -364,7 +364,8 @@ fn move_and_plan_json_are_the_library_reports() {
     let path = "examples/seed003_welding.toml";
     let task =
         std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/seed003_welding.toml")).unwrap();
-    let job = Job { robot: RobotInput::Preset("welder6r".into()), request: Request::Plan(PlanRequest { task }) };
+    let job =
+        Job { robot: RobotInput::Preset("welder6r".into()), request: Request::Plan(PlanRequest { task, scene: None }) };
     let v = crate::common::assert_report(&["plan", path, "--json"], &job, "plan.report");
     assert_eq!(v["motions"][0]["name"], "weld P -> M");
 }

@@ -206,7 +206,7 @@ fn path_goes_around_an_obstacle_that_blocks_the_straight_line() {
     let w = v["waypoints_deg"].as_array().unwrap();
     assert!(w.len() >= 3, "a detour needs an intermediate waypoint: {w:?}");
     assert_eq!(w[0], serde_json::json!([60.0, -40.0, -30.0]));
-    assert!(v["min_clearance_m"].as_f64().unwrap() > 0.0);
+    assert!(v["swept"]["lower_bound_m"].as_f64().unwrap() > 0.0);
     assert!((v["duration_s"].as_f64().unwrap() - 10.0).abs() < 1e-9);
     let stats = &v["stats"];
     assert!(stats["length"].as_f64().unwrap() <= stats["raw_length"].as_f64().unwrap() + 1e-12);

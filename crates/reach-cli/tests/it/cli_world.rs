@@ -163,6 +163,7 @@ fn check_avoid_and_cspace_json_are_the_library_reports_and_match_their_schemas()
             scene: repo_text("examples/seed004_two_planes.toml"),
             q: Joints::Deg(vec![0.0, 60.0, -30.0, -30.0]),
             to: None,
+            samples: None,
         }),
     };
     let v = crate::common::assert_report(
@@ -211,15 +212,14 @@ fn path_json_is_the_library_report_and_matches_its_schema() {
     }
     assert_eq!(output, expected);
     assert_eq!(output["found"], true);
-    // Every segment is proven clear; the certified bound lies below every sampled clearance.
+    // Every segment is proven clear, with a certified bound below the closest clearance found.
     let swept = &output["swept"];
     assert_eq!(swept["clear"], true, "{swept}");
+    assert_eq!(output["collision_free"], true);
     let lb = swept["lower_bound_m"].as_f64().unwrap();
-    let sampled = [&output["min_clearance_m"], &output["min_self_clearance_m"]]
-        .iter()
-        .filter_map(|v| v.as_f64())
-        .fold(f64::INFINITY, f64::min);
-    assert!(lb > 0.0 && lb <= swept["min_clearance_m"].as_f64().unwrap() && lb <= sampled, "{swept} vs {sampled}");
+    assert!(lb > 0.0 && lb <= swept["min_clearance_m"].as_f64().unwrap(), "{swept}");
+    let segments = output["waypoints_deg"].as_array().unwrap().len() - 1;
+    assert!((1..=segments).contains(&(swept["segment"].as_u64().unwrap() as usize)), "{swept}");
 }
 
 #[test]
@@ -266,6 +266,7 @@ fn check_to_sweeps_the_joint_motion() {
             scene: repo_text(scene),
             q: Joints::Deg(vec![60.0, -40.0, -30.0]),
             to: Some(Joints::Deg(vec![99.381, -51.972, -38.454])),
+            samples: None,
         }),
     };
     let v = crate::common::assert_report(
@@ -278,4 +279,66 @@ fn check_to_sweeps_the_joint_motion() {
     let (lb, min) = (m["lower_bound_m"].as_f64().unwrap(), m["min_clearance_m"].as_f64().unwrap());
     assert!(lb > 0.0 && lb <= min, "{m}");
     fails(&["check", "planar3", scene, "60", "-40", "-30", "--to", "0,x,-30"], 2, &["--to joint 2"]);
+}
+
+/// `reach move --scene`: swinging through the post is infeasible (exit 3, one line naming link
+/// 3, the post and the time) and its `--csv` is not written; around the post the move is
+/// proven clear and the CSV is written. `reach check --motion` checks the sampled motion of
+/// `reach move --json` the same way, and `reach plan --scene` every motion of a task file.
+#[test]
+fn moves_and_sampled_motions_are_checked_against_a_scene() {
+    let dir = common::scratch("scene-move");
+    let scene = "examples/path_planar3_post.toml";
+    let csv = dir.join("through.csv");
+    let through = ["move", "planar3", "--from", "60,-40,-30", "--to", "0,-30,-30", "--duration", "2"];
+    let run = reach(&[&through[..], &["--scene", scene, "--csv", csv.to_str().unwrap()]].concat());
+    assert_eq!(run.code, 3, "{}", run.stderr);
+    assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
+    assert!(run.stderr.contains("not proven clear of the scene: link 3 and `post` at t = "), "{}", run.stderr);
+    assert!(!csv.exists(), "an infeasible motion's samples are not written");
+    assert!(run.stdout.contains("swept check: NOT proven clear: link 3 and `post`"), "{}", run.stdout);
+    let around = dir.join("around.csv");
+    let text = ok(&[
+        "move",
+        "planar3",
+        "--from",
+        "60,-40,-30",
+        "--to",
+        "99.381,-51.972,-38.454",
+        "--duration",
+        "2",
+        "--scene",
+        scene,
+        "--csv",
+        around.to_str().unwrap(),
+    ]);
+    assert!(text.contains("swept check: proven clear: clearance ≥ "), "{text}");
+    assert!(around.exists());
+    // The sampled motion without the scene, checked by `reach check --motion`.
+    let motion = dir.join("through.json");
+    std::fs::write(&motion, ok(&[&through[..], &["--json"]].concat())).unwrap();
+    let v = json(&["check", "planar3", scene, "60", "-40", "-30", "--motion", motion.to_str().unwrap(), "--json"]);
+    common::assert_valid("check.report", &v);
+    let s = &v["samples"];
+    assert_eq!(s["clear"], false, "{s}");
+    assert_eq!(s["pair"]["link"], 3);
+    assert!(s["segment"].as_u64().unwrap() > 1, "{s}");
+    fails(&["check", "planar3", scene, "60", "-40", "-30", "--motion", "/nonexistent.json"], 2, &["/nonexistent.json"]);
+    let bad = common::temp_file("motion_outside.json", r#"{"samples": [{"t_s": 0, "q_deg": [0, 0, 400]}]}"#);
+    fails(
+        &["check", "planar3", scene, "0", "0", "0", "--motion", bad.to_str().unwrap()],
+        2,
+        &["--motion: sample 0", "joint 3"],
+    );
+    // A task file with the scene.
+    let task = common::temp_file(
+        "swing_task.toml",
+        "robot = \"planar3\"\n[[motion]]\nname = \"swing\"\nfrom = [60, -40, -30]\nto = [0, -30, -30]\nduration = 2\n",
+    );
+    let run = reach(&["plan", task.to_str().unwrap(), "--scene", scene, "--json"]);
+    assert_eq!(run.code, 3, "{}", run.stderr);
+    let v: serde_json::Value = serde_json::from_str(&run.stdout).unwrap();
+    assert_eq!(v["motions"][0]["swept"]["clear"], false);
+    let broken = common::temp_file("broken_post.toml", "[[obstacles]]\nshape = 1\n");
+    fails(&[&through[..], &["--scene", broken.to_str().unwrap()]].concat(), 2, &["broken_post.toml"]);
 }

@@ -10,7 +10,9 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use super::input::{AngleUnit, Joints, from_si, number_text, require_within_limits, unit_name};
+use super::input::{
+    AngleUnit, Joints, MotionSample, from_si, number_text, require_within_limits, samples_si, unit_name,
+};
 use super::motion::{PlanRequest, plan};
 use crate::Robot;
 use crate::drive::output::{GcodeDialect, StepRow, coil_table_csv, gcode, step_dir_text, step_rows, to_csv};
@@ -18,7 +20,7 @@ use crate::drive::{
     DriveError, GridError, Step, StepSchedule, Verification, axes, grid_error, point_to_point, schedule_trajectory,
     verify,
 };
-use crate::error::{Error, Result, one_line};
+use crate::error::{Error, Result};
 use crate::model::JointKind;
 use crate::motion::JointSample;
 
@@ -38,22 +40,13 @@ pub struct DriveRequest {
 #[serde(rename_all = "snake_case")]
 pub enum DriveMotion {
     /// A sampled motion: `reach move --json`'s `samples` (other fields are ignored); see
-    /// [`parse_motion_json`].
-    Samples(Vec<DriveSample>),
+    /// [`super::input::parse_motion_json`].
+    Samples(Vec<MotionSample>),
     /// The text of a task file (TOML, `reach plan` format): its motions are planned and driven
     /// one after the other; each must start where the previous one ended.
     Task(String),
     /// A synchronised point-to-point move.
     PointToPoint(PointToPointRequest),
-}
-
-/// One sample of a motion to drive.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
-pub struct DriveSample {
-    /// Time, seconds.
-    pub t_s: f64,
-    /// Joint values: revolute joints in degrees, prismatic joints in metres.
-    pub q_deg: Vec<f64>,
 }
 
 /// A synchronised point-to-point move: all motors start and stop together.
@@ -146,21 +139,6 @@ pub struct DriveReport {
     pub program: Option<String>,
 }
 
-/// A motion file's samples: the JSON `reach move --json` prints (`{"samples": [{"t_s",
-/// "q_deg"}, ...]}`; other fields are ignored).
-///
-/// # Errors
-/// [`Error::File`] for text that is not such JSON.
-pub fn parse_motion_json(text: &str) -> Result<Vec<DriveSample>> {
-    #[derive(Deserialize)]
-    struct MotionFile {
-        samples: Vec<DriveSample>,
-    }
-    serde_json::from_str::<MotionFile>(text)
-        .map(|f| f.samples)
-        .map_err(|e| Error::File { what: "motion file", message: one_line(&e.to_string()) })
-}
-
 /// How far (rad or m) a task's motion may start from where the previous one ended.
 const JOIN_TOLERANCE: f64 = 1e-6;
 
@@ -251,23 +229,10 @@ fn require_within_speed(robot: &Robot, samples: &[JointSample], unit: AngleUnit)
 }
 
 /// Samples as typed (degrees, metres) in SI, checked for length, finiteness and limits.
-fn samples_si(robot: &Robot, samples: &[DriveSample], field: &str) -> Result<Vec<JointSample>> {
-    samples
-        .iter()
-        .enumerate()
-        .map(|(k, s)| {
-            let field = format!("{field}: sample {k}");
-            let q = Joints::Deg(s.q_deg.clone()).si(robot, &field)?;
-            require_within_limits(robot, &q, AngleUnit::Deg, &field)?;
-            Ok(JointSample::of(robot, s.t_s, q))
-        })
-        .collect()
-}
-
 /// Plans every motion of a task file and joins them into one trajectory: each motion starts
 /// where the previous one ended, in time and in joint space.
 fn task_samples(robot: &Robot, text: &str) -> Result<Vec<JointSample>> {
-    let report = plan(robot, &PlanRequest { task: text.to_string() })?;
+    let report = plan(robot, &PlanRequest { task: text.to_string(), scene: None })?;
     let mut samples: Vec<JointSample> = Vec::new();
     for m in &report.motions {
         if !m.feasible {
@@ -280,8 +245,8 @@ fn task_samples(robot: &Robot, text: &str) -> Result<Vec<JointSample>> {
         let field = format!("motion `{}`", m.name);
         let Some(first) = m.samples.first() else { continue };
         let offset = samples.last().map_or(0.0, |s| s.t) - first.t_s;
-        let typed: Vec<DriveSample> =
-            m.samples.iter().map(|s| DriveSample { t_s: offset + s.t_s, q_deg: s.q_deg.clone() }).collect();
+        let typed: Vec<MotionSample> =
+            m.samples.iter().map(|s| MotionSample { t_s: offset + s.t_s, q_deg: s.q_deg.clone() }).collect();
         let mut motion = samples_si(robot, &typed, &field)?;
         if let (Some(last), Some(start)) = (samples.last(), motion.first()) {
             // The one joint-difference rule: what a joint-space move from `a` to `b` travels.

@@ -15,9 +15,10 @@ use nalgebra::{Isometry3, Matrix3, Matrix4, Point3, Rotation3, Translation3, Uni
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, one_line};
 use crate::ik::IkTarget;
 use crate::model::{FileUnits, JointKind, Robot, UrdfChain, presets};
+use crate::motion::JointSample;
 use crate::tolerance::{LIMIT_SLACK, ROTATION_ORTHONORMALITY};
 
 /// Where a request's robot comes from: a preset name, or the text of a description file.
@@ -579,4 +580,46 @@ mod tests {
         let text = presets::source("planar3").unwrap().to_string();
         assert_eq!(RobotInput::Toml { text }.load().unwrap().robot.dof(), 3);
     }
+}
+
+/// One sample of a sampled motion (`reach move --json`'s `samples`), as a request gives it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct MotionSample {
+    /// Time, seconds.
+    pub t_s: f64,
+    /// Joint values: revolute joints in degrees, prismatic joints in metres.
+    pub q_deg: Vec<f64>,
+}
+
+/// A motion file's samples: the JSON `reach move --json` prints (`{"samples": [{"t_s",
+/// "q_deg"}, ...]}`; other fields are ignored).
+///
+/// # Errors
+/// [`Error::File`] for text that is not such JSON.
+pub fn parse_motion_json(text: &str) -> Result<Vec<MotionSample>> {
+    #[derive(Deserialize)]
+    struct MotionFile {
+        samples: Vec<MotionSample>,
+    }
+    serde_json::from_str::<MotionFile>(text)
+        .map(|f| f.samples)
+        .map_err(|e| Error::File { what: "motion file", message: one_line(&e.to_string()) })
+}
+
+/// A sampled motion in SI, every sample within the joints' position limits.
+///
+/// # Errors
+/// [`Error::Request`] naming `field` and the sample (0-based) for a wrong joint count, a
+/// non-finite value or a joint outside its limits.
+pub fn samples_si(robot: &Robot, samples: &[MotionSample], field: &str) -> Result<Vec<JointSample>> {
+    samples
+        .iter()
+        .enumerate()
+        .map(|(k, s)| {
+            let field = format!("{field}: sample {k}");
+            let q = Joints::Deg(s.q_deg.clone()).si(robot, &field)?;
+            require_within_limits(robot, &q, AngleUnit::Deg, &field)?;
+            Ok(JointSample::of(robot, s.t_s, q))
+        })
+        .collect()
 }

@@ -522,6 +522,25 @@ pub enum SweptPair {
     },
 }
 
+/// The swept check of a piecewise-straight joint path ([`CollisionChecker::swept_path`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PathSweep {
+    /// Whether every segment is proven clear.
+    pub clear: bool,
+    /// Certified lower bound of the clearance over the path (up to where the check stopped
+    /// when not clear), metres; `+∞` without constraints.
+    pub lower_bound: f64,
+    /// Clearance evaluations over all segments checked.
+    pub evaluations: usize,
+    /// 0-based segment (between points `segment` and `segment + 1`) of `closest`.
+    pub segment: usize,
+    /// That segment's sweep: the closest approach of the path, or the first segment not
+    /// proven clear.
+    pub closest: Sweep,
+    /// What `closest`'s smallest clearance measures.
+    pub pair: SweptPair,
+}
+
 impl CollisionChecker<'_> {
     /// The swept (continuous) check of the straight joint motion `a → b`
     /// ([`super::sweep::sweep`]): the tool point stays inside every tool-zone entry, and every
@@ -534,6 +553,41 @@ impl CollisionChecker<'_> {
     pub fn swept(&mut self, a: &[f64], b: &[f64], options: &SweepOptions) -> Result<(Sweep, SweptPair), WorldError> {
         let result = sweep(self, a, b, options)?;
         Ok((result, self.swept_pair(result.constraint)))
+    }
+
+    /// The swept check of the piecewise-straight joint path through `points` (the path a
+    /// drive schedule follows between samples, [`crate::drive::schedule_trajectory`]): each
+    /// segment as [`CollisionChecker::swept`], stopping at the first segment not proven clear.
+    ///
+    /// # Returns
+    /// `None` for fewer than two points; otherwise the verdict over the whole path and the
+    /// segment that comes closest (or the first not proven clear).
+    ///
+    /// # Errors
+    /// As [`CollisionChecker::swept`].
+    pub fn swept_path(&mut self, points: &[Vec<f64>], options: &SweepOptions) -> Result<Option<PathSweep>, WorldError> {
+        let mut path: Option<PathSweep> = None;
+        for (k, w) in points.windows(2).enumerate() {
+            let (sweep, pair) = self.swept(&w[0], &w[1], options)?;
+            let p = path.get_or_insert(PathSweep {
+                clear: true,
+                lower_bound: f64::INFINITY,
+                evaluations: 0,
+                segment: k,
+                closest: sweep,
+                pair,
+            });
+            p.clear &= sweep.clear;
+            p.lower_bound = p.lower_bound.min(sweep.lower_bound);
+            p.evaluations += sweep.evaluations;
+            if !sweep.clear || sweep.min_clearance < p.closest.min_clearance {
+                (p.segment, p.closest, p.pair) = (k, sweep, pair);
+            }
+            if !sweep.clear {
+                break;
+            }
+        }
+        Ok(path)
     }
 
     /// What clearance `c` of the last swept check measures.

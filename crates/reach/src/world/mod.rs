@@ -35,7 +35,9 @@ mod scene;
 mod shape;
 pub mod sweep;
 
-pub use collision::{CollisionChecker, Contact, LinkClearance, PairSurvey, Report, SelfClearance, SweptPair, Verdict};
+pub use collision::{
+    CollisionChecker, Contact, LinkClearance, PairSurvey, PathSweep, Report, SelfClearance, SweptPair, Verdict,
+};
 pub use planner::{Blocked, Goal, Plan, PlanError, PlanOptions, PlanStats, plan};
 pub use scene::{Obstacle, Scene, Touching};
 pub use shape::Shape;

@@ -391,3 +391,32 @@ fn progress_reaches_the_total_once_and_leaves_the_report_unchanged() {
     let total = 2 * 21 * r.configurations.len();
     assert_eq!(calls.into_inner(), [(total, total)]);
 }
+
+/// A set cancel flag stops the tracking between samples (Ctrl-C in the CLI): the tracker
+/// returns `Cancelled`, and so does a tool-space move of the jobs layer given the flag.
+#[test]
+fn a_cancelled_tracking_stops() {
+    let robot = loader(100.0);
+    let samples = grid(touch_pose, 2.0, 149);
+    let eval = |s: f64| touch_pose(s);
+    let path = TrackedPath::with_evaluator(&samples, &eval).unwrap();
+    let cancel = reach::Cancel::new();
+    let opts = TrackingOptions { cancel: cancel.clone(), ..options(SingularityDetection::Auto) };
+    assert!(track(&robot, &path, &opts, None).is_ok(), "not cancelled yet");
+    cancel.cancel();
+    assert!(matches!(track(&robot, &path, &opts, None), Err(TrackingError::Cancelled)));
+
+    use reach::jobs::motion::{End, MoveRequest, Space, move_motion_with_progress};
+    use reach::jobs::{Joints, Pose};
+    let weld = MoveRequest {
+        from: End::Pose(Pose::xyz_rpy_deg([0.05, 0.74, 0.07], [0.0, -41.86854343693031, -50.19442890773481])),
+        to: End::Pose(Pose::xyz_rpy_deg([0.5, 0.2, 0.7], [0.0, -41.86854343693031, -50.19442890773481])),
+        space: Space::Tool,
+        duration_s: Some(10.0),
+        ..MoveRequest::joints(Joints::Deg(Vec::new()), Joints::Deg(Vec::new()))
+    };
+    let welder = presets::get("welder6r").unwrap();
+    let e = move_motion_with_progress(&welder, &weld, &mut |_, _| {}, &cancel).unwrap_err();
+    assert!(matches!(e, reach::Error::Tracking(TrackingError::Cancelled)), "{e}");
+    assert!(move_motion_with_progress(&welder, &weld, &mut |_, _| {}, &reach::Cancel::default()).is_ok());
+}

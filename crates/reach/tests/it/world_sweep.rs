@@ -198,3 +198,96 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(16))]
+
+    /// The swept check of a path is its segments' checks: clear when every segment is, the
+    /// certified bound their smallest, the closest segment the one with the smallest
+    /// clearance, and it stops at the first segment not proven clear.
+    #[test]
+    fn a_path_sweep_is_its_segments_sweeps(
+        a in prop::array::uniform6(-3.1f64..3.1),
+        b in prop::array::uniform6(-3.1f64..3.1),
+        c in prop::array::uniform6(-3.1f64..3.1),
+    ) {
+        let robot = ur5_with_capsules();
+        let scene = cluttered();
+        let mut checker = CollisionChecker::new(&robot, &scene);
+        let points = vec![a.to_vec(), b.to_vec(), c.to_vec()];
+        let path = checker.swept_path(&points, &SweepOptions::default()).unwrap().unwrap();
+        let (first, _) = checker.swept(&a, &b, &SweepOptions::default()).unwrap();
+        let (second, _) = checker.swept(&b, &c, &SweepOptions::default()).unwrap();
+        if !first.clear {
+            prop_assert!(!path.clear && path.segment == 0 && path.closest == first, "{path:?}");
+            prop_assert_eq!(path.evaluations, first.evaluations);
+        } else {
+            prop_assert_eq!(path.clear, second.clear);
+            prop_assert_eq!(path.lower_bound, first.lower_bound.min(second.lower_bound));
+            prop_assert_eq!(path.evaluations, first.evaluations + second.evaluations);
+            let (segment, closest) =
+                if !second.clear || second.min_clearance < first.min_clearance { (1, second) } else { (0, first) };
+            prop_assert!(path.segment == segment && path.closest == closest, "{path:?}");
+        }
+    }
+}
+
+/// Fewer than two points are no path to check.
+#[test]
+fn a_path_of_one_point_is_not_checked() {
+    let robot = ur5_with_capsules();
+    let scene = cluttered();
+    let mut checker = CollisionChecker::new(&robot, &scene);
+    assert!(checker.swept_path(&[vec![0.0; 6]], &SweepOptions::default()).unwrap().is_none());
+    assert!(checker.swept_path(&[], &SweepOptions::default()).unwrap().is_none());
+}
+
+fn post_scene() -> String {
+    std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/path_planar3_post.toml")).unwrap()
+}
+
+/// A move with a scene is checked continuously along its samples: swinging straight through
+/// the post (seed 000's planar arm) is infeasible, naming link 3, the post and the time; the
+/// detour's first leg around it is feasible with a certified clearance. A task file's motions
+/// are checked the same way, and a bad scene is refused before anything is computed.
+#[test]
+fn a_move_through_a_scene_is_checked_continuously() {
+    use reach::jobs::motion::{MoveRequest, PlanRequest, move_motion, plan};
+    use reach::jobs::{Joints, world::SweptPathReport};
+    let robot = presets::get("planar3").unwrap();
+    let request = |to: Vec<f64>| MoveRequest {
+        duration_s: Some(2.0),
+        scene: Some(post_scene()),
+        ..MoveRequest::joints(Joints::Deg(vec![60.0, -40.0, -30.0]), Joints::Deg(to))
+    };
+    let through = move_motion(&robot, &request(vec![0.0, -30.0, -30.0])).unwrap();
+    assert!(!through.feasible);
+    let swept = through.swept.as_ref().unwrap();
+    assert!(!swept.swept.clear);
+    assert_eq!(swept.swept.pair_text.as_deref(), Some("link 3 and `post`"));
+    let reason = through.reasons.last().unwrap();
+    assert!(reason.starts_with("not proven clear of the scene: link 3 and `post` at t = "), "{reason}");
+    // The report is the swept check of the samples' joint path, recomputed independently.
+    let scene = Scene::from_toml_str(&post_scene()).unwrap();
+    let q: Vec<Vec<f64>> = through.samples.iter().map(|s| s.q_deg.iter().map(|d| d.to_radians()).collect()).collect();
+    let again = SweptPathReport::check(&robot, &scene, &q).unwrap().unwrap();
+    assert_eq!(again.segment, swept.segment);
+    assert!((again.swept.at - swept.swept.at).abs() < 1e-9);
+    // Around the post: feasible, proven clear.
+    let around = move_motion(&robot, &request(vec![99.381, -51.972, -38.454])).unwrap();
+    assert!(around.feasible, "{:?}", around.reasons);
+    let clear = &around.swept.as_ref().unwrap().swept;
+    assert!(clear.clear && clear.lower_bound_m.unwrap() > 0.0);
+    assert!(clear.lower_bound_m.unwrap() <= clear.min_clearance_m.unwrap());
+    // Without a scene nothing is checked.
+    assert!(
+        move_motion(&robot, &MoveRequest { scene: None, ..request(vec![0.0, -30.0, -30.0]) }).unwrap().swept.is_none()
+    );
+    // A task file with the scene.
+    let task =
+        "robot = \"planar3\"\n[[motion]]\nname = \"swing\"\nfrom = [60, -40, -30]\nto = [0, -30, -30]\nduration = 2\n";
+    let report = plan(&robot, &PlanRequest { task: task.into(), scene: Some(post_scene()) }).unwrap();
+    assert!(!report.motions[0].feasible && report.motions[0].swept.is_some());
+    let bad = PlanRequest { task: task.into(), scene: Some("[[obstacles]]\nshape = 1\n".into()) };
+    assert_eq!(plan(&robot, &bad).unwrap_err().code(), "world");
+}

@@ -2,15 +2,18 @@
 
 use std::cell::RefCell;
 
-use crate::Robot;
 use crate::effort::dynamics::{joint_rates, trajectory_energy_with_rates};
 use crate::effort::{Differences, j1, j2, joint_weights};
 use crate::error::{Error, Result};
-use crate::jobs::input::{AngleUnit, from_si, joints_outside_limits, positive, q_display, rpy_deg, unit_name};
+use crate::jobs::input::{
+    AngleUnit, from_si, joints_outside_limits, number_text, positive, q_display, rpy_deg, unit_name,
+};
+use crate::jobs::world::{SweptPathReport, parse_scene};
 use crate::motion::joint_space::EndChoice;
 use crate::motion::sample::PerSampleIk;
 use crate::motion::tracking::{ConfigurationCriterion, TrackedPath, TrackingOptions, describe, track_with_progress};
 use crate::motion::{JointMotion, JointRates, ToolMotion};
+use crate::{Cancel, Robot};
 
 use super::report::{MoveEffort, MoveEvent, MoveInterval, MoveReport, MoveSample};
 use super::request::{End, MoveRequest, ProfileName, Space};
@@ -26,27 +29,31 @@ const SPEED_SLACK: f64 = 1e-9;
 /// where one is needed, mixed ends in joint space), bad `joint_weights` or `choose`;
 /// [`Error::Motion`] or [`Error::Tracking`] for unreachable end poses and the like.
 pub fn move_motion(robot: &Robot, request: &MoveRequest) -> Result<MoveReport> {
-    move_motion_with_progress(robot, request, &mut |_, _| {})
+    move_motion_with_progress(robot, request, &mut |_, _| {}, &Cancel::default())
 }
 
 /// [`move_motion`] that reports the tracking's progress of a tool-space motion as
-/// `progress(samples done, samples in all)` (a joint-space motion reports nothing).
+/// `progress(samples done, samples in all)` (a joint-space motion reports nothing), and stops
+/// a tool-space motion's tracking once `cancel` is set.
 ///
 /// # Errors
-/// As [`move_motion`].
+/// As [`move_motion`]; [`Error::Tracking`] with [`crate::motion::tracking::TrackingError::Cancelled`] once `cancel`
+/// is set.
 pub fn move_motion_with_progress(
     robot: &Robot,
     request: &MoveRequest,
     progress: &mut dyn FnMut(usize, usize),
+    cancel: &Cancel,
 ) -> Result<MoveReport> {
     positive("duration_s", request.duration_s)?;
     positive("speed_m_s", request.speed_m_s)?;
     positive("dt_s", request.dt_s)?;
+    let scene = request.scene.as_deref().map(parse_scene).transpose()?;
     let weights = joint_weights(robot, request.joint_weights.as_deref())
         .map_err(|e| Error::request("joint_weights", e.to_string()))?;
     let computed = match request.space {
         Space::Joint => joint_space(robot, request)?,
-        Space::Tool => tool_space(robot, request, progress)?,
+        Space::Tool => tool_space(robot, request, progress, cancel)?,
     };
     let Computed { times, q, qd, intervals, events } = computed;
     let differences = Differences::for_robot(robot);
@@ -69,9 +76,23 @@ pub fn move_motion_with_progress(
             rpy_deg: rpy_deg(&pose.rotation),
         });
     }
-    let reasons: Vec<String> =
+    let mut reasons: Vec<String> =
         intervals.iter().filter(|i| !i.feasible).flat_map(|i| i.reasons.iter().cloned()).collect();
-    let feasible = intervals.iter().all(|i| i.feasible) && !samples.is_empty();
+    let swept = match &scene {
+        Some(scene) => SweptPathReport::check(robot, scene, &q)?,
+        None => None,
+    };
+    if let Some(s) = swept.as_ref().filter(|s| !s.swept.clear) {
+        // Segment k (1-based) runs from sample k to sample k + 1.
+        let (a, b) = (times[s.segment - 1], times[s.segment]);
+        reasons.push(format!(
+            "not proven clear of the scene: {} at t = {} s",
+            s.swept.pair_text.as_deref().unwrap_or("-"),
+            number_text(a + s.swept.at * (b - a))
+        ));
+    }
+    let feasible =
+        intervals.iter().all(|i| i.feasible) && !samples.is_empty() && swept.as_ref().is_none_or(|s| s.swept.clear);
     Ok(MoveReport {
         name: request.name.clone(),
         robot: robot.name().to_string(),
@@ -83,6 +104,7 @@ pub fn move_motion_with_progress(
         effort: MoveEffort { j1: j1v, j2: j2v, energy_j, energy_note, weights },
         feasible,
         reasons,
+        swept,
     })
 }
 
@@ -196,7 +218,12 @@ fn limit_reasons(robot: &Robot, times: &[f64], q: &[Vec<f64>], qd: &[Vec<f64>]) 
     out
 }
 
-fn tool_space(robot: &Robot, request: &MoveRequest, progress: &mut dyn FnMut(usize, usize)) -> Result<Computed> {
+fn tool_space(
+    robot: &Robot,
+    request: &MoveRequest,
+    progress: &mut dyn FnMut(usize, usize),
+    cancel: &Cancel,
+) -> Result<Computed> {
     let (start, end) = (request.from.pose(robot, "from")?, request.to.pose(robot, "to")?);
     let motion = match (request.duration_s, request.speed_m_s) {
         (Some(d), None) => {
@@ -218,7 +245,8 @@ fn tool_space(robot: &Robot, request: &MoveRequest, progress: &mut dyn FnMut(usi
     let chooser = request.choose.as_ref().map(|c| c.chooser(robot, request.joint_weights.as_deref())).transpose()?;
     let criterion = chooser.as_ref().map(|c| c as &dyn ConfigurationCriterion);
     let progress = RefCell::new(progress);
-    let report = track_with_progress(robot, &tracked, &TrackingOptions::default(), criterion, &|done, total| {
+    let options = TrackingOptions { cancel: cancel.clone(), ..TrackingOptions::default() };
+    let report = track_with_progress(robot, &tracked, &options, criterion, &|done, total| {
         (progress.borrow_mut())(done, total);
     })?;
     // Samples: the realised trajectory when every interval is realised; otherwise the per-sample

@@ -4,6 +4,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::request::Space;
+use crate::jobs::world::SweptPathReport;
 use crate::motion::tracking::{Decision, EventDetail};
 
 /// One sample of a motion (what `reach drive` reads: `t_s`, `q_deg`).
@@ -91,10 +92,14 @@ pub struct MoveReport {
     pub events: Vec<MoveEvent>,
     /// J1, J2, energy.
     pub effort: MoveEffort,
-    /// Whether the whole motion respects every limit.
+    /// Whether the whole motion respects every limit (and, with a scene, is proven clear).
     pub feasible: bool,
     /// Why not, one line each.
     pub reasons: Vec<String>,
+    /// With a scene: the swept (continuous) check of the motion, segment `k` running from
+    /// sample `k` to sample `k + 1` (1-based).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub swept: Option<SweptPathReport>,
 }
 
 /// Every motion of a task file (`reach plan --json`).

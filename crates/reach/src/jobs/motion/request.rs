@@ -153,6 +153,12 @@ pub struct MoveRequest {
     /// Tool space: rank the feasible configurations of each path interval by motion criteria.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub choose: Option<ChoiceSpec>,
+    /// The text of a scene file (TOML: obstacles, tool zone, touching policy). The motion is
+    /// checked continuously against it — the piecewise-linear joint path through its samples,
+    /// the path a drive schedule follows ([`crate::jobs::world::SweptPathReport`]); a motion
+    /// not proven clear is infeasible.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scene: Option<String>,
 }
 
 impl MoveRequest {
@@ -177,6 +183,7 @@ impl MoveRequest {
             dt_s: None,
             joint_weights: None,
             choose: None,
+            scene: None,
         }
     }
 }

@@ -18,6 +18,10 @@ pub struct PlanRequest {
     /// The task file's text (TOML, docs/task-format.md). Its `robot` key is for front ends
     /// that load the robot from it; the robot given beside the request is the one planned for.
     pub task: String,
+    /// The text of a scene file every motion is checked against continuously (as
+    /// [`MoveRequest::scene`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scene: Option<String>,
 }
 
 /// A parsed task file.
@@ -123,6 +127,7 @@ impl Task {
                 joint_weights: m.weights.or(d.weights.clone()),
                 // `[choose]` applies to every tool-space motion of the file.
                 choose: if space == Space::Tool { file.choose.clone() } else { None },
+                scene: None,
                 name,
             });
         }
@@ -155,25 +160,30 @@ fn in_motion(name: &str, e: Error) -> Error {
 /// As [`Task::parse`], and as [`super::move_motion`] for each motion with the field named in
 /// the file's keys and prefixed with the motion's name (`motion `weld`: duration: …`).
 pub fn plan(robot: &Robot, request: &PlanRequest) -> Result<PlanReport> {
-    plan_with_progress(robot, request, &mut |_, _, _| {})
+    plan_with_progress(robot, request, &mut |_, _, _| {}, &crate::Cancel::default())
 }
 
 /// [`plan`] that reports each tool-space motion's tracking progress as
-/// `progress(motion name, samples done, samples in all)`.
+/// `progress(motion name, samples done, samples in all)` and stops once `cancel` is set.
 ///
 /// # Errors
-/// As [`plan`].
+/// As [`plan`] and [`super::move_motion_with_progress`].
 pub fn plan_with_progress(
     robot: &Robot,
     request: &PlanRequest,
     progress: &mut dyn FnMut(&str, usize, usize),
+    cancel: &crate::Cancel,
 ) -> Result<PlanReport> {
     let task = Task::parse(&request.task)?;
+    if let Some(scene) = &request.scene {
+        crate::jobs::world::parse_scene(scene)?;
+    }
     let motions = task
         .motions
         .iter()
         .map(|m| {
-            move_motion_with_progress(robot, m, &mut |done, total| progress(&m.name, done, total))
+            let m = MoveRequest { scene: request.scene.clone(), ..m.clone() };
+            move_motion_with_progress(robot, &m, &mut |done, total| progress(&m.name, done, total), cancel)
                 .map_err(|e| in_motion(&m.name, e))
         })
         .collect::<Result<Vec<_>>>()?;

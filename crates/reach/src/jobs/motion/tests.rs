@@ -88,7 +88,8 @@ fn a_move_request_round_trips_through_json() {
 #[test]
 fn task_file_errors_give_line_and_column_or_name_the_motion() {
     let robot = presets::get("planar3").unwrap();
-    let bad = PlanRequest { task: "robot = \"planar3\"\n[[motion]]\nfrom = [0, 0, 0]\nspeeed = 1\n".into() };
+    let bad =
+        PlanRequest { task: "robot = \"planar3\"\n[[motion]]\nfrom = [0, 0, 0]\nspeeed = 1\n".into(), scene: None };
     match plan(&robot, &bad).unwrap_err() {
         Error::File { message, .. } => assert!(message.starts_with("line 4, column 1:"), "{message}"),
         other => panic!("{other}"),
@@ -97,12 +98,14 @@ fn task_file_errors_give_line_and_column_or_name_the_motion() {
         task:
             "robot = \"planar3\"\n[[motion]]\nname = \"m\"\nfrom = [10, -20, -30]\nto = [20, -20, -30]\nduration = -1\n"
                 .into(),
+        scene: None,
     };
     assert_eq!(plan(&robot, &nodur).unwrap_err().to_string(), "motion `m`: duration: must be > 0, got -1");
     let ok = PlanRequest {
         task:
             "robot = \"planar3\"\n[defaults]\nduration = 2.0\n[[motion]]\nfrom = [10, -20, -30]\nto = [20, -20, -30]\n"
                 .into(),
+        scene: None,
     };
     let report = plan(&robot, &ok).unwrap();
     assert_eq!(report.motions.len(), 1);

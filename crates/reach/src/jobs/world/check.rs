@@ -1,16 +1,18 @@
-//! The `check` workflow: collisions and clearances of one configuration in a scene, and, with
-//! a second configuration, the swept (continuous) check of the straight joint motion between
-//! them.
+//! The `check` workflow: collisions and clearances of one configuration in a scene, and the
+//! swept (continuous) check of a motion from it: the straight joint motion to a second
+//! configuration, or a sampled motion (the piecewise-linear joint path through its samples,
+//! the path a drive schedule follows).
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::parse_scene;
 use crate::Robot;
+use crate::error::Error;
 use crate::error::Result;
-use crate::jobs::input::Joints;
+use crate::jobs::input::{Joints, MotionSample, samples_si};
 use crate::world::sweep::{Sweep, SweepOptions};
-use crate::world::{CollisionChecker, Contact, LinkClearance, Scene, SelfClearance, SweptPair, Verdict};
+use crate::world::{CollisionChecker, Contact, LinkClearance, PathSweep, Scene, SelfClearance, SweptPair, Verdict};
 
 /// One configuration checked against a scene.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
@@ -24,6 +26,11 @@ pub struct CheckRequest {
     /// continuously ([`CollisionChecker::swept`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub to: Option<Joints>,
+    /// Instead of `to`: a sampled motion (`reach move --json`'s `samples`, every sample within
+    /// the joints' limits). The piecewise-linear joint path from `q` through the samples is
+    /// checked continuously ([`CollisionChecker::swept_path`]); `q` is usually the first sample.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub samples: Option<Vec<MotionSample>>,
 }
 
 /// A swept (continuous) check in a report ([`CollisionChecker::swept`]).
@@ -63,6 +70,44 @@ impl SweptReport {
     }
 }
 
+/// The swept check of a piecewise-straight joint path ([`CollisionChecker::swept_path`]):
+/// the verdict over the whole path and the segment where it comes closest.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct SweptPathReport {
+    /// 1-based segment (between points `segment` and `segment + 1` of the path) where the
+    /// path comes closest, or the first segment not proven clear; `at` is the fraction of that
+    /// segment.
+    pub segment: usize,
+    /// The check: `clear`, `lower_bound_m` and `evaluations` over the whole path (up to the
+    /// first segment not proven clear), the rest of the closest segment.
+    #[serde(flatten)]
+    pub swept: SweptReport,
+}
+
+impl SweptPathReport {
+    /// The swept check of the path through `points` in `scene` (`None` for fewer than two
+    /// points).
+    ///
+    /// # Errors
+    /// As [`CollisionChecker::swept_path`].
+    pub fn check(robot: &Robot, scene: &Scene, points: &[Vec<f64>]) -> Result<Option<Self>> {
+        let mut checker = CollisionChecker::new(robot, scene);
+        Ok(checker.swept_path(points, &SweepOptions::default())?.map(|p| Self::of(&p, scene)))
+    }
+
+    /// The report of a path sweep in `scene`.
+    #[must_use]
+    pub fn of(path: &PathSweep, scene: &Scene) -> Self {
+        let mut swept = SweptReport::of(&path.closest, path.pair, scene);
+        swept.clear = path.clear;
+        if swept.lower_bound_m.is_some() {
+            swept.lower_bound_m = Some(path.lower_bound);
+        }
+        swept.evaluations = path.evaluations;
+        SweptPathReport { segment: path.segment + 1, swept }
+    }
+}
+
 /// The swept check of the motion `q → to`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct MotionCheckReport {
@@ -97,6 +142,10 @@ pub struct CheckReport {
     /// With a target: the swept check of the motion.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub motion: Option<MotionCheckReport>,
+    /// With samples: the swept check of the sampled motion (segment 1 runs from `q` to the
+    /// first sample).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub samples: Option<SweptPathReport>,
 }
 
 /// The verdict in words, naming the obstacle or zone.
@@ -128,7 +177,8 @@ pub fn swept_pair_text(pair: &SweptPair, scene: &Scene) -> String {
 ///
 /// # Errors
 /// [`crate::Error::World`] for a malformed scene (line and column); [`crate::Error::Request`]
-/// for a wrong joint count or a non-finite value (field `q` or `to`).
+/// for a wrong joint count or a non-finite value (field `q`, `to`, `samples`), a sample
+/// outside the joints' limits, or both `to` and `samples`.
 pub fn check(robot: &Robot, request: &CheckRequest) -> Result<CheckReport> {
     let scene = parse_scene(&request.scene)?;
     let q = request.q.si(robot, "q")?;
@@ -139,6 +189,19 @@ pub fn check(robot: &Robot, request: &CheckRequest) -> Result<CheckReport> {
             let target = to.si(robot, "to")?;
             let (swept, pair) = checker.swept(&q, &target, &SweepOptions::default())?;
             Some(MotionCheckReport { to_deg: to.display(robot), swept: SweptReport::of(&swept, pair, &scene) })
+        }
+    };
+    let samples = match (&request.samples, &request.to) {
+        (None, _) => None,
+        (Some(_), Some(_)) => return Err(Error::request("samples", "give `to` or `samples`, not both")),
+        (Some(samples), None) if samples.is_empty() => {
+            return Err(Error::request("samples", "give at least one sample"));
+        }
+        (Some(samples), None) => {
+            let path: Vec<Vec<f64>> = std::iter::once(q.clone())
+                .chain(samples_si(robot, samples, "samples")?.into_iter().map(|s| s.q))
+                .collect();
+            SweptPathReport::check(robot, &scene, &path)?
         }
     };
     let report = checker.report(&q)?;
@@ -153,5 +216,6 @@ pub fn check(robot: &Robot, request: &CheckRequest) -> Result<CheckReport> {
         min_obstacle_clearance_m: report.min_obstacle_clearance_m,
         min_self_clearance_m: report.min_self_clearance_m,
         motion,
+        samples,
     })
 }

@@ -12,7 +12,7 @@ pub mod cspace;
 pub mod path;
 
 pub use avoid::{AvoidChoice, AvoidReport, AvoidRequest, AvoidRun, AvoidSide, avoid, avoid_run};
-pub use check::{CheckReport, CheckRequest, MotionCheckReport, SweptReport, check};
+pub use check::{CheckReport, CheckRequest, MotionCheckReport, SweptPathReport, SweptReport, check};
 pub use cspace::{
     CspaceReport, CspaceRequest, CspaceSection, FitPrimitive, FitReport, cspace, cspace_axes, cspace_with_cancel,
     cspace_with_grid,

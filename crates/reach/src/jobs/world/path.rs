@@ -4,22 +4,22 @@
 //! The path is timed with [`JointPath`]: one cycloidal segment per edge, stopping at every
 //! waypoint, so the timed motion stays on the planner's straight joint-space edges. Each
 //! segment takes the fastest synchronised time within the joints' speed limits, or a share
-//! of `duration_s` proportional to its joint-space length. The timed trajectory is then
-//! sampled and every sample re-checked with [`CollisionChecker::report`]: the smallest
-//! obstacle and self clearances are reported.
+//! of `duration_s` proportional to its joint-space length. Because the timed motion stays on
+//! the straight edges, the swept check of the edges ([`SweptPathReport`]) proves the timed
+//! motion clear: the report gives its certified clearance, where the path comes closest and
+//! on which link.
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use super::check::SweptReport;
+use super::check::SweptPathReport;
 use super::parse_scene;
 use crate::error::{Error, Result};
 use crate::ik::IkOptions;
 use crate::jobs::input::{Joints, Pose, positive, q_display, require_within_limits, time_budget};
 use crate::motion::{JointMotion, JointPath, JointRates, Profile};
+use crate::world::Scene;
 use crate::world::planner::{Goal, PlanError, PlanOptions, PlanStats, path_length, plan};
-use crate::world::sweep::SweepOptions;
-use crate::world::{CollisionChecker, Scene};
 use crate::{Cancel, Robot};
 
 fn default_seed() -> u64 {
@@ -102,31 +102,12 @@ pub struct PathReport {
     pub duration_s: Option<f64>,
     /// Duration of each segment, s.
     pub segment_durations_s: Vec<f64>,
-    /// Samples re-checked.
-    pub samples: usize,
-    /// Whether every sample of the timed motion is free.
+    /// Whether the timed motion is proven clear by the swept check (`null` without a path).
     pub collision_free: Option<bool>,
-    /// Smallest link–obstacle clearance over the samples, m (`null` without obstacles).
-    pub min_clearance_m: Option<f64>,
-    /// Smallest link–link clearance over the samples, m.
-    pub min_self_clearance_m: Option<f64>,
     /// The swept (continuous) check of every segment between waypoints: where the path comes
     /// closest and the certified lower bound of its clearance over the whole path (`null`
     /// when no path was found or nothing is checked: no obstacle, zone or link pair).
-    pub swept: Option<PathSweepReport>,
-}
-
-/// The swept check of a path: the closest segment's check, with the verdict and the
-/// certified lower bound over every segment.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
-pub struct PathSweepReport {
-    /// 1-based segment (between waypoints `segment` and `segment + 1`) where the path comes
-    /// closest; `at` is the fraction of that segment.
-    pub segment: usize,
-    /// The check: `clear` and `lower_bound_m` over the whole path, the rest of the closest
-    /// segment; `evaluations` over all segments.
-    #[serde(flatten)]
-    pub swept: SweptReport,
+    pub swept: Option<SweptPathReport>,
 }
 
 /// The timed path's samples (SI).
@@ -226,10 +207,7 @@ pub fn path_run_with_cancel(robot: &Robot, request: &PathRequest, cancel: &Cance
         },
         duration_s: None,
         segment_durations_s: Vec::new(),
-        samples: 0,
         collision_free: None,
-        min_clearance_m: None,
-        min_self_clearance_m: None,
         swept: None,
     };
     match plan(robot, &scene, &start, &goal, &options) {
@@ -248,14 +226,11 @@ pub fn path_run_with_cancel(robot: &Robot, request: &PathRequest, cancel: &Cance
             if let (Some(last), Some(to)) = (report.waypoints_deg.last_mut(), &request.to) {
                 *last = to.display(robot);
             }
-            let (durations, timed, check) = time_and_check(robot, &scene, &p.waypoints, total)?;
+            let (durations, timed) = timed_path(robot, &p.waypoints, total)?;
             report.duration_s = timed.times.last().copied();
             report.segment_durations_s = durations;
-            report.samples = timed.q.len();
-            report.collision_free = Some(check.free);
-            report.min_clearance_m = check.min_clearance;
-            report.min_self_clearance_m = check.min_self;
-            report.swept = swept_path(robot, &scene, &p.waypoints)?;
+            report.swept = SweptPathReport::check(robot, &scene, &p.waypoints)?;
+            report.collision_free = Some(report.swept.as_ref().is_none_or(|s| s.swept.clear));
             let waypoints_tool_xyz_m = tool_points(robot, &p.waypoints)?;
             return Ok(PathRun { report, scene, waypoints: p.waypoints, waypoints_tool_xyz_m, timed: Some(timed) });
         }
@@ -296,19 +271,9 @@ fn durations(robot: &Robot, waypoints: &[Vec<f64>], total: Option<f64>) -> Resul
     }
 }
 
-/// The re-check of the timed samples.
-struct Check {
-    free: bool,
-    min_clearance: Option<f64>,
-    min_self: Option<f64>,
-}
-
-fn time_and_check(
-    robot: &Robot,
-    scene: &Scene,
-    waypoints: &[Vec<f64>],
-    total: Option<f64>,
-) -> Result<(Vec<f64>, TimedPath, Check)> {
+/// The timed motion along `waypoints`, sampled for drawings and callers (200 to 2000
+/// samples).
+fn timed_path(robot: &Robot, waypoints: &[Vec<f64>], total: Option<f64>) -> Result<(Vec<f64>, TimedPath)> {
     let durations = durations(robot, waypoints, total)?;
     let path = JointPath::through(robot, waypoints, &durations, 0.0, Profile::Cycloidal)?;
     let steps = (20 * durations.len()).clamp(200, 2000);
@@ -316,42 +281,8 @@ fn time_and_check(
     let times = traj.times();
     let q: Vec<Vec<f64>> = traj.samples.into_iter().map(|s| s.q).collect();
     let qd: Vec<Vec<f64>> = times.iter().map(|t| path.velocity(*t)).collect();
-    let mut checker = CollisionChecker::new(robot, scene);
-    let mut check = Check { free: true, min_clearance: None, min_self: None };
-    for qk in &q {
-        let report = checker.report(qk)?;
-        check.free &= report.verdict.is_free();
-        if let Some(c) = report.min_obstacle_clearance_m {
-            check.min_clearance = Some(check.min_clearance.map_or(c, |m| m.min(c)));
-        }
-        if let Some(c) = report.min_self_clearance_m {
-            check.min_self = Some(check.min_self.map_or(c, |m| m.min(c)));
-        }
-    }
     let tool_xyz_m = tool_points(robot, &q)?;
-    Ok((durations, TimedPath { times, q, qd, tool_xyz_m }, check))
-}
-
-/// The swept check of every segment of `waypoints`, refined to the closest approach.
-fn swept_path(robot: &Robot, scene: &Scene, waypoints: &[Vec<f64>]) -> Result<Option<PathSweepReport>> {
-    let mut checker = CollisionChecker::new(robot, scene);
-    let (mut closest, mut clear, mut lower, mut evaluations) = (None::<PathSweepReport>, true, f64::INFINITY, 0);
-    for (k, w) in waypoints.windows(2).enumerate() {
-        let (sweep, pair) = checker.swept(&w[0], &w[1], &SweepOptions::default())?;
-        let report = SweptReport::of(&sweep, pair, scene);
-        let Some(min) = report.min_clearance_m else { continue };
-        (clear, lower, evaluations) =
-            (clear && sweep.clear, lower.min(sweep.lower_bound), evaluations + sweep.evaluations);
-        if closest.as_ref().is_none_or(|c| c.swept.min_clearance_m.is_some_and(|m| min < m)) {
-            closest = Some(PathSweepReport { segment: k + 1, swept: report });
-        }
-    }
-    Ok(closest.map(|mut c| {
-        c.swept.clear = clear;
-        c.swept.lower_bound_m = Some(lower);
-        c.swept.evaluations = evaluations;
-        c
-    }))
+    Ok((durations, TimedPath { times, q, qd, tool_xyz_m }))
 }
 
 /// The tool point (world frame, metres) of each configuration.

@@ -214,6 +214,7 @@ impl Tracker<'_> {
         q[k0] = Some(q0);
         let mut lost: Option<(f64, f64)> = None;
         let follow = |k: usize, from: usize, q: &mut Vec<Option<Vec<f64>>>| -> Result<bool, TrackingError> {
+            self.check_cancel()?;
             let reference = q[from].clone().expect("followed from a tracked sample");
             let found = self
                 .solving

@@ -163,6 +163,9 @@ pub enum TrackingError {
     /// The IK solver rejected a target or does not fit the robot.
     #[error(transparent)]
     Ik(#[from] IkError),
+    /// The tracking was stopped through [`TrackingOptions::cancel`].
+    #[error("tracking cancelled")]
+    Cancelled,
 }
 
 /// Everything [`track`] found.
@@ -212,6 +215,9 @@ pub struct TrackingOptions {
     /// Skip the speed-limit check (the paper's "diagnostic" mode checks nothing; angles are
     /// always reported).
     pub ignore_velocity: bool,
+    /// Stops the tracking between two samples ([`TrackingError::Cancelled`]); a front end
+    /// sets it on Ctrl-C ([`crate::Cancel`]).
+    pub cancel: crate::Cancel,
 }
 
 /// Counts the work of [`track_with_progress`] and calls its hook once per chunk.
@@ -245,6 +251,7 @@ impl Meter<'_> {
 
 struct Tracker<'a> {
     meter: Meter<'a>,
+    cancel: crate::Cancel,
     solving: Solving<'a>,
     path: &'a TrackedPath<'a>,
     configurations: Vec<Branch>,
@@ -405,6 +412,7 @@ impl<'a> Tracker<'a> {
         };
         Tracker {
             meter,
+            cancel: options.cancel.clone(),
             solving,
             path,
             configurations,
@@ -416,6 +424,12 @@ impl<'a> Tracker<'a> {
 
     fn robot(&self) -> &Robot {
         self.solving.robot
+    }
+
+    /// [`TrackingError::Cancelled`] once the options' cancel flag is set: called once per
+    /// sample solved or followed.
+    fn check_cancel(&self) -> Result<(), TrackingError> {
+        if self.cancel.is_cancelled() { Err(TrackingError::Cancelled) } else { Ok(()) }
     }
 }
 

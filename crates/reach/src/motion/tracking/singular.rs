@@ -164,6 +164,7 @@ impl Tracker<'_> {
         let mut values: Vec<Vec<Option<f64>>> = vec![Vec::with_capacity(samples.len()); self.measure_count()];
         let mut all = Vec::with_capacity(samples.len());
         for p in samples {
+            self.check_cancel()?;
             let sols = self.solving.solve(&p.pose, None)?;
             reach.push(self.reachable(&sols));
             let at = self.measures_at(&p.pose, Some(&sols))?;
