@@ -11,6 +11,7 @@
 //! cargo run --release -p reach --example ik_protocol               # table, 10 000 poses
 //! cargo run --release -p reach --example ik_protocol -- --poses 1000 --json
 //! cargo run --release -p reach --example ik_protocol -- --robots ur5,panda
+//! cargo run --release -p reach --example ik_protocol -- --restarts 1 --random-start  # one random start
 //! ```
 //!
 //! `bench/peers/ik_compare.py` runs this binary with `--json` and the same protocol on the
@@ -31,6 +32,8 @@ struct Protocol {
     rng_seed: u64,
     restarts: usize,
     max_iterations: usize,
+    /// Start each solve from a random joint vector (its own sequence) instead of home.
+    random_start: bool,
 }
 
 /// Result for one robot.
@@ -86,7 +89,7 @@ fn percentile(sorted: &[f64], p: f64) -> f64 {
 /// Runs the protocol on one robot.
 fn run(robot: &Robot, position_only: bool, protocol: &Protocol) -> Row {
     let solver = Numeric::from_robot(robot).expect("the numeric solver fits every chain");
-    let options = IkOptions {
+    let mut options = IkOptions {
         seed: Some(robot.home()),
         restarts: protocol.restarts,
         max_iterations: protocol.max_iterations,
@@ -100,6 +103,7 @@ fn run(robot: &Robot, position_only: bool, protocol: &Protocol) -> Row {
         ..IkOptions::default()
     };
     let mut rng = Rng(protocol.rng_seed);
+    let mut starts = Rng(protocol.rng_seed ^ 0x5747_4152_5453);
     let mut times = Vec::with_capacity(protocol.poses);
     let mut successes = 0;
     for _ in 0..protocol.poses {
@@ -110,6 +114,9 @@ fn run(robot: &Robot, position_only: bool, protocol: &Protocol) -> Row {
         } else {
             IkTarget::Pose(pose)
         };
+        if protocol.random_start {
+            options.seed = Some(random_q(robot, &mut starts));
+        }
         let t0 = Instant::now();
         let result = solver.solve(robot, &target, &options);
         times.push(t0.elapsed().as_secs_f64() * 1e6);
@@ -140,7 +147,8 @@ fn run(robot: &Robot, position_only: bool, protocol: &Protocol) -> Row {
 }
 
 fn main() {
-    let mut protocol = Protocol { poses: 10_000, rng_seed: 2024, restarts: 32, max_iterations: 100 };
+    let mut protocol =
+        Protocol { poses: 10_000, rng_seed: 2024, restarts: 32, max_iterations: 100, random_start: false };
     let mut json = false;
     let mut robots = vec!["ur5".to_string(), "puma560".to_string(), "panda".to_string(), "varan4".to_string()];
     let mut args = std::env::args().skip(1);
@@ -148,13 +156,14 @@ fn main() {
         let mut value = |name: &str| args.next().unwrap_or_else(|| panic!("{name} needs a value"));
         match a.as_str() {
             "--json" => json = true,
+            "--random-start" => protocol.random_start = true,
             "--poses" => protocol.poses = value("--poses").parse().expect("--poses: a count"),
             "--seed" => protocol.rng_seed = value("--seed").parse().expect("--seed: an integer"),
             "--restarts" => protocol.restarts = value("--restarts").parse().expect("--restarts: a count"),
             "--iterations" => protocol.max_iterations = value("--iterations").parse().expect("--iterations: a count"),
             "--robots" => robots = value("--robots").split(',').map(str::to_string).collect(),
             other => panic!(
-                "unknown argument `{other}` (--json, --poses N, --seed N, --restarts N, --iterations N, --robots a,b)"
+                "unknown argument `{other}` (--json, --poses N, --seed N, --restarts N, --iterations N, --robots a,b, --random-start)"
             ),
         }
     }

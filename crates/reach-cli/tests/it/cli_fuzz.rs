@@ -114,7 +114,11 @@ fn fuzz_command_lines() {
                 "reach {refs:?}: {}",
                 run.stderr
             );
-            if run.code == 2 && !run.stderr.contains("Usage:") {
+            // clap's usage errors: an `error:` line, then its usage or `--help` hint.
+            let usage = run.stderr.contains("Usage:") || run.stderr.contains("For more information, try '--help'.");
+            if run.code == 2 && usage {
+                prop_assert!(run.stderr.starts_with("error: "), "reach {refs:?}: {}", run.stderr);
+            } else if run.code == 2 {
                 // Bad input: nothing on stdout, one line on stderr.
                 one_error_line(&run);
             } else if run.code == 3 {
