@@ -22,10 +22,13 @@ use crate::service::{Control, MAX_BODY_BYTES, MAX_QUEUED_JOBS, Shared, lock};
 /// The OpenAPI description of this API.
 pub const OPENAPI: &str = include_str!("../../../docs/openapi.json");
 
-/// Most jobs `GET /jobs` lists (the newest ones).
+/// Jobs `GET /jobs` lists by default (the newest ones; reports make a job large).
+const LIST_DEFAULT: i64 = 100;
+
+/// Most jobs `GET /jobs?limit=N` lists.
 const LIST_LIMIT: i64 = 10_000;
 
-type Shared_ = State<Arc<Shared>>;
+type AppState = State<Arc<Shared>>;
 
 /// The service's routes, with the body limit, the token check and CORS.
 pub fn router(shared: Arc<Shared>) -> Router {
@@ -53,10 +56,15 @@ pub fn router(shared: Arc<Shared>) -> Router {
     router.with_state(shared)
 }
 
-/// Refuses requests from a browser page of another origin than `--cors` (403: a page must not
+/// Refuses bodies announced beyond [`MAX_BODY_BYTES`] (413, before reading them), requests from a browser page of another origin than `--cors` (403: a page must not
 /// drive the arm through the loopback service), and, beyond loopback, requests without the
 /// token (401; the WebSocket may give it as `?token=`).
-async fn guard(State(shared): Shared_, request: Request, next: Next) -> Response {
+async fn guard(State(shared): AppState, request: Request, next: Next) -> Response {
+    // A body announced larger than the limit is refused before it is read.
+    let announced = request.headers().get(header::CONTENT_LENGTH).and_then(|v| v.to_str().ok()?.parse::<u64>().ok());
+    if announced.is_some_and(|n| n > MAX_BODY_BYTES as u64) {
+        return too_large().into_response();
+    }
     if let Some(origin) = request.headers().get(header::ORIGIN) {
         if shared.cors.as_deref().is_none_or(|allowed| origin.as_bytes() != allowed.as_bytes()) {
             return ApiError {
@@ -87,13 +95,18 @@ async fn guard(State(shared): Shared_, request: Request, next: Next) -> Response
     next.run(request).await
 }
 
+/// 413.
+fn too_large() -> ApiError {
+    ApiError {
+        status: StatusCode::PAYLOAD_TOO_LARGE,
+        message: format!("the request body is larger than the limit of {MAX_BODY_BYTES} bytes"),
+    }
+}
+
 /// A body that could not be read: 413 beyond the limit, else 400.
 fn body_error(rejection: &BytesRejection) -> ApiError {
     if rejection.status() == StatusCode::PAYLOAD_TOO_LARGE {
-        ApiError {
-            status: StatusCode::PAYLOAD_TOO_LARGE,
-            message: format!("the request body is larger than the limit of {MAX_BODY_BYTES} bytes"),
-        }
+        too_large()
     } else {
         ApiError::bad_request(rejection.body_text())
     }
@@ -117,7 +130,7 @@ async fn schema(Path(name): Path<String>) -> Result<Json<Value>, ApiError> {
         .ok_or_else(|| ApiError::not_found(format!("no schema `{name}`")))
 }
 
-async fn state(State(shared): Shared_) -> Json<Value> {
+async fn state(State(shared): AppState) -> Json<Value> {
     let live = lock(&shared.live);
     let mut state = shared.state(&live);
     drop(live);
@@ -144,15 +157,15 @@ fn job_json(row: &crate::db::JobRow) -> Value {
 }
 
 async fn list_jobs(
-    State(shared): Shared_,
+    State(shared): AppState,
     Query(q): Query<std::collections::HashMap<String, String>>,
 ) -> Result<Json<Value>, ApiError> {
-    let limit = q.get("limit").and_then(|l| l.parse::<i64>().ok()).unwrap_or(LIST_LIMIT).clamp(1, LIST_LIMIT);
+    let limit = q.get("limit").and_then(|l| l.parse::<i64>().ok()).unwrap_or(LIST_DEFAULT).clamp(1, LIST_LIMIT);
     let rows = lock(&shared.db).jobs(limit)?;
     Ok(Json(Value::Array(rows.iter().map(job_json).collect())))
 }
 
-async fn job(State(shared): Shared_, Path(id): Path<String>) -> Result<Json<Value>, ApiError> {
+async fn job(State(shared): AppState, Path(id): Path<String>) -> Result<Json<Value>, ApiError> {
     let missing = || ApiError::not_found(format!("no job `{id}`"));
     let n: i64 = id.parse().map_err(|_| missing())?;
     let row = lock(&shared.db).job(n)?.ok_or_else(missing)?;
@@ -162,7 +175,7 @@ async fn job(State(shared): Shared_, Path(id): Path<String>) -> Result<Json<Valu
 /// `POST /jobs`: reads the request, plans it with the library (400 with the library's message
 /// for bad input), and queues it — or records it `refused` with its report when the plan is
 /// infeasible.
-async fn submit(State(shared): Shared_, body: Result<Bytes, BytesRejection>) -> Result<Response, ApiError> {
+async fn submit(State(shared): AppState, body: Result<Bytes, BytesRejection>) -> Result<Response, ApiError> {
     let body = body.map_err(|e| body_error(&e))?;
     let submission = intake::parse_request(&body)?;
     let request = if submission.from_current {
@@ -217,16 +230,16 @@ fn halt(shared: &Shared, control: Control) -> Result<Json<Value>, ApiError> {
     Ok(Json(state))
 }
 
-async fn stop(State(shared): Shared_) -> Result<Json<Value>, ApiError> {
+async fn stop(State(shared): AppState) -> Result<Json<Value>, ApiError> {
     halt(&shared, Control::Stop)
 }
 
-async fn estop(State(shared): Shared_) -> Result<Json<Value>, ApiError> {
+async fn estop(State(shared): AppState) -> Result<Json<Value>, ApiError> {
     halt(&shared, Control::Estop)
 }
 
 /// Lets queued jobs run again; 409 while a job is still stopping.
-async fn resume(State(shared): Shared_) -> Result<Json<Value>, ApiError> {
+async fn resume(State(shared): AppState) -> Result<Json<Value>, ApiError> {
     let mut live = lock(&shared.live);
     if let Some(job) = live.job {
         return Err(ApiError::conflict(format!("job {job} is still running; resume once it has stopped")));
@@ -241,7 +254,7 @@ async fn resume(State(shared): Shared_) -> Result<Json<Value>, ApiError> {
     Ok(Json(state))
 }
 
-async fn ws(State(shared): Shared_, upgrade: WebSocketUpgrade) -> Response {
+async fn ws(State(shared): AppState, upgrade: WebSocketUpgrade) -> Response {
     upgrade.on_upgrade(move |socket| stream(shared, socket))
 }
 

@@ -128,3 +128,32 @@ pub fn refusal(report: &Report) -> Option<String> {
         _ => None,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_move_shorthand_is_the_library_move_request() {
+        let short =
+            parse_request(br#"{"kind": "move", "from_deg": [0, -90], "to_deg": [90, -60], "duration_s": 6}"#).unwrap();
+        let library = parse_request(
+            br#"{"kind": "move", "from": {"joints": {"deg": [0, -90]}}, "to": {"joints": {"deg": [90, -60]}}, "duration_s": 6}"#,
+        )
+        .unwrap();
+        assert_eq!(short, library);
+        assert!(!short.from_current);
+        let here = parse_request(br#"{"kind": "move", "to_deg": [90, -60]}"#).unwrap();
+        assert!(here.from_current);
+        let Request::Move(m) = start_here(&here.request, &[1.0, 2.0]) else { panic!("a move") };
+        assert_eq!(m.from, reach::jobs::motion::End::Joints(Joints::Deg(vec![1.0, 2.0])));
+    }
+
+    #[test]
+    fn unknown_fields_and_kinds_are_named() {
+        let e = parse_request(br#"{"kind": "move", "to_deg": [1], "speed": 3}"#).unwrap_err();
+        assert!(e.message.contains("speed"), "{}", e.message);
+        let e = parse_request(br#"{"kind": "drive"}"#).unwrap_err();
+        assert!(e.message.contains("kind `drive`"), "{}", e.message);
+    }
+}

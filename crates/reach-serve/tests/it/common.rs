@@ -82,9 +82,14 @@ pub async fn wait_job(router: &Router, id: i64, what: &str, done: impl Fn(&Value
     }
 }
 
-/// Polls until job `id` has status `status`.
+/// Statuses that end a job.
+const FINAL: [&str; 5] = ["done", "refused", "failed", "interrupted", "stopped"];
+
+/// Polls until job `id` ends; asserts it ended with `status`.
 pub async fn wait_status(router: &Router, id: i64, status: &str) -> Value {
-    wait_job(router, id, status, |j| j["status"] == status).await
+    let job = wait_job(router, id, status, |j| j["status"] == status || FINAL.iter().any(|f| j["status"] == *f)).await;
+    assert_eq!(job["status"], status, "job {id}: {job}");
+    job
 }
 
 /// The numbers of a JSON array.
