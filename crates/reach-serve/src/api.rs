@@ -65,17 +65,17 @@ async fn guard(State(shared): AppState, request: Request, next: Next) -> Respons
     if announced.is_some_and(|n| n > MAX_BODY_BYTES as u64) {
         return too_large().into_response();
     }
-    if let Some(origin) = request.headers().get(header::ORIGIN) {
-        if shared.cors.as_deref().is_none_or(|allowed| origin.as_bytes() != allowed.as_bytes()) {
-            return ApiError {
-                status: StatusCode::FORBIDDEN,
-                message: format!(
-                    "requests from the browser origin `{}` are refused; start the service with --cors ORIGIN to allow one",
-                    origin.to_str().unwrap_or("?")
-                ),
-            }
-            .into_response();
+    if let Some(origin) = request.headers().get(header::ORIGIN)
+        && shared.cors.as_deref().is_none_or(|allowed| origin.as_bytes() != allowed.as_bytes())
+    {
+        return ApiError {
+            status: StatusCode::FORBIDDEN,
+            message: format!(
+                "requests from the browser origin `{}` are refused; start the service with --cors ORIGIN to allow one",
+                origin.to_str().unwrap_or("?")
+            ),
         }
+        .into_response();
     }
     if let Some(token) = &shared.token {
         let path = request.uri().path();

@@ -12,7 +12,7 @@ use reach::motion::Profile;
 
 use crate::db::JobRow;
 use crate::schedule::{self, SEGMENT_S, Timeline};
-use crate::service::{Control, Shared, TICK, lock};
+use crate::service::{Control, Motion, Shared, TICK, lock};
 
 /// Runs jobs until the service shuts down.
 pub fn run(shared: &Arc<Shared>) {
@@ -37,11 +37,11 @@ fn next_job(shared: &Shared) -> Option<JobRow> {
         if live.shutdown {
             return None;
         }
-        if !live.paused {
-            if let Ok(Some(job)) = lock(&shared.db).next_queued() {
-                live.job = Some(job.id);
-                return Some(job);
-            }
+        if !live.paused
+            && let Ok(Some(job)) = lock(&shared.db).next_queued()
+        {
+            live.job = Some(job.id);
+            return Some(job);
         }
         live = shared.wake.wait_timeout(live, Duration::from_millis(500)).map_or_else(|e| e.into_inner().0, |r| r.0);
     }
@@ -95,14 +95,14 @@ fn run_job(shared: &Arc<Shared>, job: &JobRow) -> Result<(), String> {
         finish(shared, job.id, "done", Some(&note));
         return Ok(());
     };
-    if let Some(scene) = &shared.scene {
-        if let Err(why) = schedule::require_clear(robot, scene, &motion) {
-            finish(shared, job.id, "refused", Some(&why));
-            return Ok(());
-        }
+    if let Some(scene) = &shared.scene
+        && let Err(why) = schedule::require_clear(robot, scene, &motion)
+    {
+        finish(shared, job.id, "refused", Some(&why));
+        return Ok(());
     }
     let timeline = match schedule::drive(robot, motion) {
-        Ok(drive) => Timeline::of(&drive),
+        Ok(drive) => Arc::new(Timeline::of(&drive)),
         Err(why) => {
             finish(shared, job.id, "refused", Some(&why));
             return Ok(());
@@ -130,6 +130,7 @@ fn run_job(shared: &Arc<Shared>, job: &JobRow) -> Result<(), String> {
                 Control::Estop => halt(shared, job.id, &timeline.steps_at(t))?,
                 Control::Stop => match stop_ramp(shared, &timeline, t) {
                     Ok(Some(ramp)) => {
+                        let ramp = Arc::new(ramp);
                         message.push_str(&format!("; decelerated to rest in {:.3} s", ramp.duration_s));
                         if let Played::Control(..) = play(shared, job.id, &ramp, false)? {
                             halt(shared, job.id, &ramp.steps_at(ramp.duration_s))?;
@@ -159,12 +160,30 @@ enum Played {
 }
 
 /// Plays `timeline` on the simulated motors: waits for each segment's end (scaled by the
-/// speed), publishing the joint state every [`TICK`], then commits the counters at the
-/// boundary (and, when `count` is set, the job's segment) in one transaction.
-fn play(shared: &Shared, job: i64, timeline: &Timeline, count: bool) -> Result<Played, String> {
+/// speed) and commits the counters at the boundary (and, when `count` is set, the job's
+/// segment) in one transaction. The joint states between commits are published by
+/// [`publish`], so their rate does not depend on the disk.
+fn play(shared: &Shared, job: i64, timeline: &Arc<Timeline>, count: bool) -> Result<Played, String> {
     let start = Instant::now();
+    lock(&shared.live).motion = Some(Motion { timeline: timeline.clone(), start });
+    let played = play_segments(shared, job, timeline, count, start);
+    let mut live = lock(&shared.live);
+    live.motion = None;
+    if let Ok(Played::Done) = played {
+        live.steps = timeline.steps_at(timeline.duration_s);
+    }
+    shared.publish_state(&live);
+    played
+}
+
+fn play_segments(
+    shared: &Shared,
+    job: i64,
+    timeline: &Timeline,
+    count: bool,
+    start: Instant,
+) -> Result<Played, String> {
     let sim_time = |now: Instant| now.duration_since(start).as_secs_f64() * shared.speed;
-    let mut last_publish = start;
     for k in 1..=timeline.segments() {
         let t_end = timeline.segment_end(k);
         let due = start + Duration::from_secs_f64(t_end / shared.speed);
@@ -180,26 +199,36 @@ fn play(shared: &Shared, job: i64, timeline: &Timeline, count: bool) -> Result<P
             if now >= due {
                 break;
             }
-            if now.duration_since(last_publish) >= TICK {
-                live.steps = timeline.steps_at(sim_time(now).min(t_end));
-                shared.publish_state(&live);
-                last_publish = now;
-            }
-            let wait =
-                (due - now).min(TICK.saturating_sub(now.duration_since(last_publish))).max(Duration::from_micros(100));
-            live = shared.wake.wait_timeout(live, wait).map_or_else(|e| e.into_inner().0, |r| r.0);
+            live = shared.wake.wait_timeout(live, due - now).map_or_else(|e| e.into_inner().0, |r| r.0);
         }
         drop(live);
         let steps = timeline.steps_at(t_end);
         let commit =
             lock(&shared.db).commit_steps(&steps, Some((job, count.then_some(k)))).map_err(|e| e.to_string())?;
-        let mut live = lock(&shared.live);
-        live.steps = steps;
-        live.last_commit = Some(commit);
-        shared.publish_state(&live);
-        last_publish = Instant::now();
+        lock(&shared.live).last_commit = Some(commit);
     }
     Ok(Played::Done)
+}
+
+/// The publisher thread: every [`TICK`] while a schedule plays, sets the motors' counters
+/// from it and sends the joint state to WebSocket clients (≥ 50 Hz, whatever the disk does).
+pub fn publish(shared: &Arc<Shared>) {
+    let mut next = Instant::now();
+    loop {
+        next += TICK;
+        let now = Instant::now();
+        if next > now {
+            std::thread::sleep(next - now);
+        }
+        let mut live = lock(&shared.live);
+        if live.shutdown {
+            return;
+        }
+        if let Some(motion) = live.motion.clone() {
+            live.steps = motion.steps_now(shared.speed, motion.timeline.duration_s);
+            shared.publish_state(&live);
+        }
+    }
 }
 
 /// Commits `steps` now (the motors halt where they are).

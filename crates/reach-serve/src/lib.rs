@@ -39,7 +39,7 @@ use service::{Shared, lock};
 /// A running service: the shared state and its executor thread.
 pub struct Service {
     shared: Arc<Shared>,
-    executor: Option<JoinHandle<()>>,
+    threads: Vec<JoinHandle<()>>,
 }
 
 impl Service {
@@ -51,16 +51,26 @@ impl Service {
     /// a database that cannot be opened.
     pub fn open(config: &Config) -> Result<Service, ServeError> {
         let shared = Arc::new(Shared::open(config)?);
+        let mut threads = Vec::new();
         let worker = shared.clone();
-        let executor = std::thread::Builder::new()
-            .name("reach-executor".into())
-            .spawn(move || executor::run(&worker))
-            .map_err(|e| ServeError::Io(format!("cannot start the executor: {e}")))?;
-        Ok(Service { shared, executor: Some(executor) })
+        threads.push(
+            std::thread::Builder::new()
+                .name("reach-executor".into())
+                .spawn(move || executor::run(&worker))
+                .map_err(|e| ServeError::Io(format!("cannot start the executor: {e}")))?,
+        );
+        let worker = shared.clone();
+        threads.push(
+            std::thread::Builder::new()
+                .name("reach-publisher".into())
+                .spawn(move || executor::publish(&worker))
+                .map_err(|e| ServeError::Io(format!("cannot start the publisher: {e}")))?,
+        );
+        let service = Service { shared, threads };
+        Ok(service)
     }
 
     /// The HTTP router.
-    #[must_use]
     pub fn router(&self) -> axum::Router {
         api::router(self.shared.clone())
     }
@@ -86,7 +96,7 @@ impl Service {
     fn stop_executor(&mut self) {
         lock(&self.shared.live).shutdown = true;
         self.shared.wake.notify_all();
-        if let Some(handle) = self.executor.take() {
+        for handle in self.threads.drain(..) {
             let _ = handle.join();
         }
     }

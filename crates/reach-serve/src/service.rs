@@ -67,6 +67,24 @@ pub enum Control {
     Estop,
 }
 
+/// The schedule the motors are playing.
+#[derive(Debug, Clone)]
+pub struct Motion {
+    /// The schedule.
+    pub timeline: Arc<crate::schedule::Timeline>,
+    /// When it started (wall time).
+    pub start: std::time::Instant,
+}
+
+impl Motion {
+    /// The step counters now: the schedule at the simulated time (wall time × speed), at most
+    /// `until` seconds into it.
+    #[must_use]
+    pub fn steps_now(&self, speed: f64, until: f64) -> Vec<i64> {
+        self.timeline.steps_at((self.start.elapsed().as_secs_f64() * speed).min(until))
+    }
+}
+
 /// The state that changes while the service runs (the durable part is in the database).
 #[derive(Debug)]
 pub struct Live {
@@ -78,6 +96,8 @@ pub struct Live {
     pub paused: bool,
     /// A stop asked for and not yet handled.
     pub control: Option<Control>,
+    /// The schedule being played (the publisher reads the motors' position from it).
+    pub motion: Option<Motion>,
     /// The last durable commit of the joint state.
     pub last_commit: Option<LastCommit>,
     /// Set when the service shuts down.
@@ -144,6 +164,7 @@ impl Shared {
             job: None,
             paused: db.paused()?,
             control: None,
+            motion: None,
             last_commit: db.last_commit()?,
             shutdown: false,
         };

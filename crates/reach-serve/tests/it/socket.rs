@@ -20,7 +20,7 @@ fn the_websocket_streams_states_while_moving_and_job_events_in_order() {
     let (mut ws, _) = tungstenite::connect(format!("ws://{addr}/ws")).expect("a WebSocket");
     let first: Value = serde_json::from_str(ws.read().unwrap().to_text().unwrap()).unwrap();
     assert_eq!(first["type"], "state", "{first}");
-    let body = r#"{"kind": "move", "from_deg": [0, 0, 0, 0, 0, 0], "to_deg": [5, 0, 0, 0, 0, 0], "duration_s": 0.5}"#;
+    let body = r#"{"kind": "move", "from_deg": [0, 0, 0, 0, 0, 0], "to_deg": [5, 0, 0, 0, 0, 0], "duration_s": 1}"#;
     let reply =
         ureq::post(format!("http://{addr}/jobs")).content_type("application/json").send(body).expect("POST /jobs");
     assert_eq!(reply.status(), 201);
@@ -39,7 +39,8 @@ fn the_websocket_streams_states_while_moving_and_job_events_in_order() {
         }
     }
     assert_eq!(job_events, ["queued", "planning", "executing", "done"]);
-    // 0.5 s of motion at ≥ 50 Hz: at least 25 states (ticks and commits; counted, not timed).
-    assert!(states_while_moving.len() >= 25, "{} states while moving", states_while_moving.len());
+    // 1 s of motion at 50 Hz: 50 ticks (a late tick is sent late, never skipped; a few at
+    // the ends may fall outside the motion).
+    assert!(states_while_moving.len() >= 45, "{} states while moving", states_while_moving.len());
     let _ = ws.close(None);
 }

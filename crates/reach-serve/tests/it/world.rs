@@ -41,3 +41,17 @@ async fn in_a_scene_a_blocked_move_is_refused_and_a_path_around_it_runs() {
     let (status, _) = call(&router, "GET", &format!("/jobs/{path}"), None, None).await;
     assert!(status.is_success());
 }
+
+#[tokio::test(flavor = "multi_thread")]
+async fn a_plan_job_drives_every_motion_of_its_task_file_in_turn() {
+    let dir = scratch("plan");
+    let service = open(&config("planar3", &dir, 100.0));
+    let router = service.router();
+    let task = serde_json::to_string(include_str!("../../../../examples/drive_planar3.toml")).unwrap();
+    let id = submit(&router, &format!(r#"{{"kind": "plan", "task": {task}}}"#)).await;
+    let job = wait_status(&router, id, "done").await;
+    // 10 + 12 + 16 s of motion in 50 ms segments.
+    assert_eq!(job["segments"], 760, "{job}");
+    assert_eq!(job["report"]["motions"].as_array().map(Vec::len), Some(3));
+    assert_eq!(integers(&get(&router, "/state").await["steps"]), vec![0, 0, 0], "back home");
+}
