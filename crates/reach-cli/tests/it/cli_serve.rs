@@ -145,9 +145,7 @@ fn schedule_steps_at(report: &Value, t: f64) -> Vec<i64> {
     let d = drive(&robot, &DriveRequest { motion: DriveMotion::Samples(samples), program: None }).unwrap();
     d.joints
         .iter()
-        .map(|j| {
-            d.steps.iter().filter(|s| s.joint == j.joint && s.t_s <= t).last().map_or(j.start_position, |s| s.position)
-        })
+        .map(|j| d.steps.iter().rfind(|s| s.joint == j.joint && s.t_s <= t).map_or(j.start_position, |s| s.position))
         .collect()
 }
 
@@ -162,7 +160,7 @@ fn sigkill_mid_motion_then_restart_keeps_the_committed_state_and_the_queue() {
     server.wait(long, "past segment 4", |j| j["segment"].as_i64().unwrap_or(0) >= 4);
     drop(server); // SIGKILL
     let (steps, segment) = committed(&state, long);
-    assert!(segment >= 4 && segment < 400, "killed mid-motion, at segment {segment} of 400");
+    assert!((4..400).contains(&segment), "killed mid-motion, at segment {segment} of 400");
 
     let server = Server::start("ur5", &state, "127.0.0.1:0", "5");
     let s = server.get("/state");
@@ -218,17 +216,18 @@ fn standalone(schema: &Value, doc: &Value) -> Value {
     fn embed(v: &mut Value, files: &mut serde_json::Map<String, Value>) {
         match v {
             Value::Object(map) => {
-                if let Some(Value::String(r)) = map.get_mut("$ref") {
-                    if let Some(rest) = r.strip_prefix("schemas/") {
-                        let file = rest.split('#').next().unwrap_or(rest).to_string();
-                        *r = format!("https://reach.invalid/schemas/{rest}");
-                        if !files.contains_key(&file) {
-                            let path = format!("{}/docs/schemas/{file}", crate::common::REPO_ROOT);
-                            let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-                            let mut loaded: Value = serde_json::from_str(&text).unwrap();
-                            loaded["$id"] = Value::String(format!("https://reach.invalid/schemas/{file}"));
-                            files.insert(file, loaded);
-                        }
+                if let Some(Value::String(r)) = map.get_mut("$ref")
+                    && let Some(rest) = r.strip_prefix("schemas/")
+                {
+                    let rest = rest.to_string();
+                    let file = rest.split('#').next().unwrap_or(&rest).to_string();
+                    *r = format!("https://reach.invalid/schemas/{rest}");
+                    if !files.contains_key(&file) {
+                        let path = format!("{}/docs/schemas/{file}", crate::common::REPO_ROOT);
+                        let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+                        let mut loaded: Value = serde_json::from_str(&text).unwrap();
+                        loaded["$id"] = Value::String(format!("https://reach.invalid/schemas/{file}"));
+                        files.insert(file, loaded);
                     }
                 }
                 for value in map.values_mut() {

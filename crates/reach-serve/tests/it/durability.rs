@@ -18,7 +18,7 @@ fn schedule_steps_at(report: &Value, t: f64) -> Vec<i64> {
         .joints
         .iter()
         .map(|j| {
-            let last = drive.steps.iter().filter(|s| s.joint == j.joint && s.t_s <= t).last();
+            let last = drive.steps.iter().rfind(|s| s.joint == j.joint && s.t_s <= t);
             last.map_or(j.start_position, |s| s.position)
         })
         .collect()
