@@ -331,11 +331,11 @@ pub enum Command {
             state directory. After a crash, a restart shows the last committed position, marks the \
             running job `interrupted` and keeps the queue, paused until POST /resume.\n\n\
             It listens on loopback by default; on any other address every request needs the \
-            token in STATE/token (Authorization: Bearer TOKEN).",
+            token in STATE/token (Authorization: Bearer TOKEN). Ctrl-C ends it.",
         after_help = "Examples:\n  \
             reach serve ur5\n  \
             reach serve planar3 --state /var/lib/reach --speed 10\n  \
-            reach serve ur5 --scene examples/scene.toml --listen 0.0.0.0:7878"
+            reach serve planar3 --scene examples/path_planar3_post.toml --listen 0.0.0.0:7878"
     )]
     Serve(crate::commands::serve::ServeArgs),
 

@@ -17,6 +17,7 @@ pub fn token(dir: &Path) -> Result<String, ServeError> {
     if let Ok(text) = std::fs::read_to_string(&path) {
         let text = text.trim();
         if text.len() >= 32 {
+            make_private(&path)?;
             return Ok(text.to_string());
         }
     }
@@ -35,6 +36,22 @@ pub fn token(dir: &Path) -> Result<String, ServeError> {
     let mut file = options.open(&path).map_err(|e| ServeError::io(&path, &e))?;
     file.write_all(token.as_bytes()).and_then(|()| file.sync_all()).map_err(|e| ServeError::io(&path, &e))?;
     Ok(token)
+}
+
+/// Makes the token file readable by its owner only (mode 0600) if it is not already.
+fn make_private(path: &Path) -> Result<(), ServeError> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let meta = std::fs::metadata(path).map_err(|e| ServeError::io(path, &e))?;
+        if meta.permissions().mode() & 0o077 != 0 {
+            std::fs::set_permissions(path, std::fs::Permissions::from_mode(0o600))
+                .map_err(|e| ServeError::io(path, &e))?;
+        }
+    }
+    #[cfg(not(unix))]
+    let _ = path;
+    Ok(())
 }
 
 /// Whether `given` equals `expected`, in time independent of where they differ.

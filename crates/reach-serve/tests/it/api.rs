@@ -159,6 +159,19 @@ async fn beyond_loopback_every_request_needs_the_token() {
     assert_eq!(status, StatusCode::OK, "{reply}");
     let (status, _) = call(&router, "GET", "/openapi.json", None, None).await;
     assert_eq!(status, StatusCode::OK, "the description is public");
+    // The same token on the next start; a token file others can read is made private again.
+    drop(router);
+    service.shutdown();
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::set_permissions(dir.join("token"), std::fs::Permissions::from_mode(0o644)).unwrap();
+        let again = open(&c);
+        assert_eq!(std::fs::read_to_string(dir.join("token")).unwrap(), token);
+        let mode = std::fs::metadata(dir.join("token")).unwrap().permissions().mode();
+        assert_eq!(mode & 0o777, 0o600);
+        drop(again);
+    }
 }
 
 #[tokio::test]
