@@ -39,6 +39,7 @@ pub fn router(shared: Arc<Shared>) -> Router {
         .route("/stop", post(stop))
         .route("/estop", post(estop))
         .route("/resume", post(resume))
+        .route("/scene/obstacles", post(add_obstacle))
         .route("/ws", get(ws))
         .route("/openapi.json", get(openapi))
         .route("/schemas/{name}", get(schema))
@@ -236,6 +237,36 @@ async fn stop(State(shared): AppState) -> Result<Json<Value>, ApiError> {
 
 async fn estop(State(shared): AppState) -> Result<Json<Value>, ApiError> {
     halt(&shared, Control::Estop)
+}
+
+/// `POST /scene/obstacles`: one obstacle in the scene file's format as JSON (`{"name",
+/// "shape", ...}`, in the stored scene's units; metres for a service started without a
+/// scene), appended to the scene and checked by the
+/// library's scene parser (400 with its message). Jobs that start afterwards must be proven
+/// clear of it; the one executing is not re-checked.
+async fn add_obstacle(State(shared): AppState, body: Result<Bytes, BytesRejection>) -> Result<Response, ApiError> {
+    let body = body.map_err(|e| body_error(&e))?;
+    let value: Value =
+        serde_json::from_slice(&body).map_err(|e| ApiError::bad_request(format!("the body is not JSON: {e}")))?;
+    if !value.is_object() {
+        return Err(ApiError::bad_request(
+            "an obstacle is a JSON object: {\"name\", \"shape\", ...} (docs/scene-format.md)",
+        ));
+    }
+    let table = toml::to_string(&value).map_err(|e| ApiError::bad_request(format!("obstacle: {e}")))?;
+    let db = lock(&shared.db);
+    // A service started without a scene gets one in metres and degrees.
+    let old = db.scene()?.unwrap_or_else(|| "length_unit = \"m\"\nangle_unit = \"deg\"\n".to_string());
+    let text = format!("{old}\n[[obstacles]]\n{table}");
+    let scene = reach::jobs::world::parse_scene(&text).map_err(|e| ApiError::bad_request(e.to_string()))?;
+    db.set_scene(&text)?;
+    drop(db);
+    let obstacles = scene.obstacles.len();
+    *shared.scene.write().unwrap_or_else(std::sync::PoisonError::into_inner) = Some(scene);
+    let name = value["name"].as_str().unwrap_or("").to_string();
+    let _ = lock(&shared.db).add_event(None, "obstacle", &name);
+    shared.publish(&json!({"type": "obstacle", "name": name, "obstacles": obstacles}));
+    Ok((StatusCode::CREATED, Json(json!({"obstacles": obstacles}))).into_response())
 }
 
 /// Lets queued jobs run again; 409 while a job is still stopping.

@@ -193,6 +193,15 @@ impl Db {
         Ok(self.conn.query_row("SELECT value FROM meta WHERE key = 'scene'", [], |r| r.get(0)).optional()?)
     }
 
+    /// Stores the scene text.
+    ///
+    /// # Errors
+    /// [`ServeError::Db`].
+    pub fn set_scene(&self, text: &str) -> Result<(), ServeError> {
+        self.conn.execute("INSERT OR REPLACE INTO meta (key, value) VALUES ('scene', ?1)", params![text])?;
+        Ok(())
+    }
+
     /// Every joint's committed step counter, base to tip.
     ///
     /// # Errors

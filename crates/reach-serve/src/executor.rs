@@ -95,8 +95,8 @@ fn run_job(shared: &Arc<Shared>, job: &JobRow) -> Result<(), String> {
         finish(shared, job.id, "done", Some(&note));
         return Ok(());
     };
-    if let Some(scene) = &shared.scene
-        && let Err(why) = schedule::require_clear(robot, scene, &motion)
+    if let Some(scene) = crate::service::scene(shared)
+        && let Err(why) = schedule::require_clear(robot, &scene, &motion)
     {
         finish(shared, job.id, "refused", Some(&why));
         return Ok(());

@@ -3,7 +3,7 @@
 
 use std::net::SocketAddr;
 use std::path::PathBuf;
-use std::sync::{Arc, Condvar, Mutex, MutexGuard};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard, RwLock};
 
 use reach::Robot;
 use reach::drive::{Axis, axes, with_simulated_drives};
@@ -112,8 +112,8 @@ pub struct Shared {
     pub axes: Vec<Axis>,
     /// Joints (0-based) driven by the default simulated motor.
     pub simulated: Vec<usize>,
-    /// The scene motions must be proven clear of.
-    pub scene: Option<Scene>,
+    /// The scene motions must be proven clear of (obstacles may be added while running).
+    pub scene: RwLock<Option<Scene>>,
     /// The state database.
     pub db: Mutex<Db>,
     /// The changing state; `wake` signals changes to the executor.
@@ -130,6 +130,12 @@ pub struct Shared {
     pub speed: f64,
     /// What opening the state found.
     pub recovery: Recovery,
+}
+
+/// The scene now (a copy).
+#[must_use]
+pub fn scene(shared: &Shared) -> Option<Scene> {
+    shared.scene.read().unwrap_or_else(std::sync::PoisonError::into_inner).clone()
 }
 
 /// Locks a mutex, recovering the data if a thread panicked while holding it.
@@ -172,7 +178,7 @@ impl Shared {
             robot,
             axes,
             simulated,
-            scene,
+            scene: RwLock::new(scene),
             db: Mutex::new(db),
             live: Mutex::new(live),
             wake: Condvar::new(),

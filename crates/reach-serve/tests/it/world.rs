@@ -55,3 +55,33 @@ async fn a_plan_job_drives_every_motion_of_its_task_file_in_turn() {
     assert_eq!(job["report"]["motions"].as_array().map(Vec::len), Some(3));
     assert_eq!(integers(&get(&router, "/state").await["steps"]), vec![0, 0, 0], "back home");
 }
+
+#[tokio::test(flavor = "multi_thread")]
+async fn an_obstacle_added_at_run_time_refuses_the_moves_through_it() {
+    let dir = scratch("obstacle");
+    let service = open(&config("planar3", &dir, 50.0));
+    let router = service.router();
+    let to_start = submit(&router, r#"{"kind": "move", "to_deg": [60, -40, -30], "duration_s": 10}"#).await;
+    wait_status(&router, to_start, "done").await;
+    // The library's scene check names what is wrong.
+    let (status, reply) =
+        call(&router, "POST", "/scene/obstacles", Some(r#"{"name": "post", "shape": "capsule", "radius": -1}"#), None)
+            .await;
+    assert_eq!(status, axum::http::StatusCode::BAD_REQUEST, "{reply}");
+    assert!(reply["error"].as_str().unwrap_or_default().contains("post"), "{reply}");
+    // The post of examples/path_planar3_post.toml (metres).
+    let post =
+        r#"{"name": "post", "shape": "capsule", "a": [2.68, -0.16, -0.5], "b": [2.68, -0.16, 0.5], "radius": 0.15}"#;
+    let (status, reply) = call(&router, "POST", "/scene/obstacles", Some(post), None).await;
+    assert_eq!((status, reply["obstacles"].as_i64()), (axum::http::StatusCode::CREATED, Some(1)), "{reply}");
+    let blocked = submit(&router, r#"{"kind": "move", "to_deg": [0, -30, -30], "duration_s": 10}"#).await;
+    let job = wait_status(&router, blocked, "refused").await;
+    assert!(job["message"].as_str().unwrap_or_default().contains("`post`"), "{job}");
+    // Kept across a restart.
+    drop(router);
+    service.shutdown();
+    let service = open(&config("planar3", &dir, 50.0));
+    let router = service.router();
+    let again = submit(&router, r#"{"kind": "move", "to_deg": [0, -30, -30], "duration_s": 10}"#).await;
+    wait_status(&router, again, "refused").await;
+}
