@@ -15,6 +15,8 @@
 //! * Durability (`docs/service.md`): one transaction per segment stores the counters and the
 //!   job's segment; after `kill -9` a restart shows the last committed counters, marks the
 //!   running job `interrupted` and keeps the queue, paused until `POST /resume`.
+//! * `POST /scene/obstacles` adds an obstacle (checked by the library's scene parser, stored);
+//!   jobs that start afterwards must be proven clear of it.
 //! * Security: loopback by default; beyond it, every request (except `GET /openapi.json`)
 //!   needs the bearer token from `STATE/token` (mode 0600, made on the first start). Bodies
 //!   are limited to [`service::MAX_BODY_BYTES`]; browser origins are refused unless allowed by
