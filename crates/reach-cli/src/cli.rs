@@ -319,4 +319,34 @@ pub enum Command {
             reach path planar3 examples/path_planar3_post.toml --from 60,-40,-30 --to 0,-30,-30 --duration 10 --json --svg path.svg"
     )]
     Path(Box<crate::commands::path::PathArgs>),
+
+    /// The control service: an HTTP + WebSocket API that queues jobs, plays them on simulated
+    /// stepper drives and keeps the arm's state in a database (see the README's "The control
+    /// service").
+    #[command(
+        long_about = "The control service: an HTTP + WebSocket API (GET /openapi.json describes it) \
+            that plans each submitted job with the library, refuses infeasible ones, plays the \
+            others on simulated stepper drives in real time (or --speed times faster) and commits \
+            every joint's step counter at least every 50 ms of motion to an SQLite database in the \
+            state directory. After a crash, a restart shows the last committed position, marks the \
+            running job `interrupted` and keeps the queue, paused until POST /resume.\n\n\
+            It listens on loopback by default; on any other address every request needs the \
+            token in STATE/token (Authorization: Bearer TOKEN). Ctrl-C ends it.",
+        after_help = "Examples:\n  \
+            reach serve ur5\n  \
+            reach serve planar3 --state /var/lib/reach --speed 10\n  \
+            reach serve planar3 --scene examples/path_planar3_post.toml --listen 0.0.0.0:7878"
+    )]
+    Serve(crate::commands::serve::ServeArgs),
+
+    /// A client of a running `reach serve`: submit jobs, show their status, watch the arm,
+    /// stop and resume.
+    #[command(after_help = "Examples:\n  \
+            reach job submit '{\"kind\": \"move\", \"to_deg\": [90, -60, 60, 30, 60, 90], \"duration_s\": 6}' --wait\n  \
+            reach job submit job.json --url http://10.0.0.5:7878 --token $(cat reach-state/token)\n  \
+            reach job status 3\n  \
+            reach job watch --count 100\n  \
+            reach job stop\n  \
+            reach job resume")]
+    Job(crate::commands::job::JobArgs),
 }

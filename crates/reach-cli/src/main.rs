@@ -30,9 +30,11 @@ fn main() {
     let cli = Cli::parse_from(args); // usage errors: clap prints them and exits with status 2
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(stdout.lock());
-    // Work stopped by Ctrl-C reports the interruption, whatever it returned.
+    // Work stopped by Ctrl-C reports the interruption, whatever it returned; for `serve`,
+    // Ctrl-C is the normal way to end it.
+    let serving = matches!(cli.command, Command::Serve(_));
     let result = run(&cli.command, &mut out)
-        .and_then(|()| interrupt::check())
+        .and_then(|()| if serving { Ok(()) } else { interrupt::check() })
         .or_else(|e| interrupt::check().and(Err(e)))
         .and_then(|()| out.flush().map_err(CliError::from));
     let code = match result {
@@ -66,6 +68,8 @@ fn run(command: &Command, out: &mut dyn Write) -> Result<(), CliError> {
         Command::Plan(args) => commands::plan::run_plan(args, out),
         Command::Tasks(args) => commands::tasks::run(args, out),
         Command::Path(args) => commands::path::run(args, out),
+        Command::Serve(args) => commands::serve::run(args, out),
+        Command::Job(args) => commands::job::run(args, out),
     }
 }
 

@@ -31,7 +31,33 @@ fn tour_commands() -> Vec<Vec<String>> {
 }
 
 /// Options whose value is a file or directory the command writes.
-const OUTPUT_OPTIONS: [&str; 4] = ["--svg", "--png", "-o", "--csv"];
+const OUTPUT_OPTIONS: [&str; 5] = ["--svg", "--png", "-o", "--csv", "--state"];
+
+/// A `reach serve` line runs until Ctrl-C: it must start and say where it listens (on a free
+/// loopback port, with its state in the scratch directory); then it is killed.
+fn serve_starts(args: &[String]) {
+    use std::io::BufRead;
+    let mut args = args.to_vec();
+    if !args.iter().any(|a| a == "--listen") {
+        args.extend(["--listen".to_string(), "127.0.0.1:0".to_string()]);
+    }
+    let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+    let mut child = crate::common::reach_command(&refs)
+        .stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("start reach serve");
+    let mut line = String::new();
+    let read = std::io::BufReader::new(child.stdout.take().expect("stdout")).read_line(&mut line);
+    let _ = child.kill();
+    let _ = child.wait();
+    assert!(
+        read.is_ok() && line.contains("listening on http://"),
+        "`reach {}` did not start: `{line}`",
+        args.join(" ")
+    );
+}
 
 #[test]
 fn every_tour_command_succeeds() {
@@ -44,6 +70,10 @@ fn every_tour_command_succeeds() {
             if OUTPUT_OPTIONS.contains(&args[i - 1].as_str()) {
                 args[i] = dir.join(format!("{k}-{}", args[i].replace('/', "_"))).display().to_string();
             }
+        }
+        if args[0] == "serve" {
+            serve_starts(&args);
+            continue;
         }
         let refs: Vec<&str> = args.iter().map(String::as_str).collect();
         let run = reach(&refs);

@@ -21,6 +21,8 @@
 //! * [`point_to_point`] — a synchronised move with a common trapezoidal step-rate ramp.
 //! * [`simulate`], [`verify`], [`grid_error`] — integrate a schedule back into joint angles and compare it
 //!   with the plan in joint and tool space.
+//! * [`simulated`], [`with_simulated_drives`] — default motors for simulating robots without
+//!   drive data (the control service).
 //! * [`output`] — rows for CSV/JSON, step/direction events, coil tables and G-code.
 //!
 //! ## Conventions
@@ -45,6 +47,7 @@ pub mod output;
 mod axis;
 mod error;
 mod schedule;
+mod simulated;
 mod verify;
 
 pub use axis::{Axis, axes};
@@ -53,4 +56,5 @@ pub use error::DriveError;
 pub use schedule::{
     JointSchedule, MAX_STEPS_PER_JOINT, PointToPoint, Step, StepSchedule, point_to_point, schedule_trajectory,
 };
+pub use simulated::{simulated, with_simulated_drives};
 pub use verify::{GridError, Verification, grid_error, simulate, verify};

@@ -1,0 +1,228 @@
+//! `reach job submit|status|watch|stop|resume` — a client of a running `reach serve`.
+
+use std::io::{Read, Write};
+use std::time::{Duration, Instant};
+
+use clap::{Args, Subcommand};
+use serde_json::Value;
+
+use crate::error::{CliError, one_line};
+use crate::output::write_json;
+
+/// Where the service is.
+#[derive(Debug, Clone, Args)]
+pub struct ServiceArgs {
+    /// The service's URL.
+    #[arg(long, value_name = "URL", default_value = "http://127.0.0.1:7878", global = true)]
+    pub url: String,
+
+    /// The bearer token (a service beyond loopback needs it; default: $REACH_TOKEN).
+    #[arg(long, value_name = "TOKEN", global = true)]
+    pub token: Option<String>,
+}
+
+/// `reach job …`.
+#[derive(Debug, Clone, Args)]
+pub struct JobArgs {
+    /// The service.
+    #[command(flatten)]
+    pub service: ServiceArgs,
+
+    /// What to do.
+    #[command(subcommand)]
+    pub command: JobCommand,
+}
+
+/// The `reach job` subcommands.
+#[derive(Debug, Clone, Subcommand)]
+pub enum JobCommand {
+    /// Submit a job: JSON inline (`{"kind": "move", ...}`), from a file, or `-` for stdin.
+    Submit {
+        /// The job.
+        #[arg(value_name = "JOB")]
+        job: String,
+        /// Wait until the job ends and print it; exit 3 when it is refused, failed or stopped.
+        #[arg(long)]
+        wait: bool,
+    },
+    /// Print a job (`GET /jobs/ID`), or the service's state without an ID (`GET /state`).
+    Status {
+        /// The job number.
+        #[arg(value_name = "ID")]
+        id: Option<i64>,
+    },
+    /// Print the service's messages (joint states, job events) as JSON lines.
+    Watch {
+        /// Stop after this many messages (default: until Ctrl-C).
+        #[arg(long, value_name = "N")]
+        count: Option<usize>,
+    },
+    /// Stop the arm with a controlled deceleration (`--estop`: halt now); the queue pauses.
+    Stop {
+        /// Emergency stop: halt at once.
+        #[arg(long)]
+        estop: bool,
+    },
+    /// Let the queued jobs run again after a stop or an interrupted job.
+    Resume,
+}
+
+/// A job's final statuses.
+const FINAL: [&str; 5] = ["done", "refused", "failed", "interrupted", "stopped"];
+
+/// Runs one `reach job` command.
+///
+/// # Errors
+/// [`CliError::BadInput`] for an unreachable service or an error reply (its message);
+/// [`CliError::NoSolution`] when a waited-for job does not end `done`.
+pub fn run(args: &JobArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let client = Client::new(&args.service);
+    match &args.command {
+        JobCommand::Submit { job, wait } => {
+            let body = job_text(job)?;
+            let reply = client.call("POST", "/jobs", Some(&body))?;
+            if !wait {
+                return write_json(out, &reply);
+            }
+            let id = reply["id"].as_i64().ok_or_else(|| CliError::internal(format!("no job id in {reply}")))?;
+            let job = loop {
+                let job = client.call("GET", &format!("/jobs/{id}"), None)?;
+                if job["status"].as_str().is_some_and(|s| FINAL.contains(&s)) {
+                    break job;
+                }
+                crate::interrupt::check()?;
+                std::thread::sleep(Duration::from_millis(50));
+            };
+            write_json(out, &job)?;
+            match job["status"].as_str() {
+                Some("done") => Ok(()),
+                status => Err(CliError::NoSolution(format!(
+                    "job {id} ended {}: {}",
+                    status.unwrap_or("?"),
+                    job["message"].as_str().unwrap_or("")
+                ))),
+            }
+        }
+        JobCommand::Status { id } => {
+            let path = id.map_or_else(|| "/state".to_string(), |id| format!("/jobs/{id}"));
+            write_json(out, &client.call("GET", &path, None)?)
+        }
+        JobCommand::Stop { estop } => {
+            write_json(out, &client.call("POST", if *estop { "/estop" } else { "/stop" }, None)?)
+        }
+        JobCommand::Resume => write_json(out, &client.call("POST", "/resume", None)?),
+        JobCommand::Watch { count } => client.watch(*count, out),
+    }
+}
+
+/// The job's JSON: inline, `-` (stdin) or a file.
+fn job_text(job: &str) -> Result<String, CliError> {
+    if job.trim_start().starts_with('{') {
+        return Ok(job.to_string());
+    }
+    if job == "-" {
+        let mut text = String::new();
+        std::io::stdin().read_to_string(&mut text)?;
+        return Ok(text);
+    }
+    std::fs::read_to_string(job)
+        .map_err(|e| CliError::bad_input(format!("cannot read job file `{job}`: {}", one_line(&e.to_string()))))
+}
+
+/// An HTTP client of the service.
+struct Client {
+    agent: ureq::Agent,
+    base: String,
+    token: Option<String>,
+}
+
+impl Client {
+    fn new(service: &ServiceArgs) -> Self {
+        let agent = ureq::Agent::config_builder()
+            .http_status_as_error(false)
+            .timeout_global(Some(Duration::from_secs(120)))
+            .build()
+            .into();
+        let token = service.token.clone().or_else(|| std::env::var("REACH_TOKEN").ok());
+        Client { agent, base: service.url.trim_end_matches('/').to_string(), token }
+    }
+
+    /// `METHOD path`: the JSON reply, or the service's `error` as a bad-input error.
+    fn call(&self, method: &str, path: &str, body: Option<&str>) -> Result<Value, CliError> {
+        let url = format!("{}{path}", self.base);
+        let auth = self.token.as_ref().map(|t| format!("Bearer {t}"));
+        let result = if method == "GET" {
+            let mut r = self.agent.get(&url);
+            if let Some(a) = &auth {
+                r = r.header("authorization", a);
+            }
+            r.call()
+        } else {
+            let mut r = self.agent.post(&url).content_type("application/json");
+            if let Some(a) = &auth {
+                r = r.header("authorization", a);
+            }
+            r.send(body.unwrap_or(""))
+        };
+        let mut response = result.map_err(|e| {
+            CliError::bad_input(format!("cannot reach the service at {}: {}", self.base, one_line(&e.to_string())))
+        })?;
+        let status = response.status();
+        let text = response
+            .body_mut()
+            .with_config()
+            .limit(256 << 20)
+            .read_to_string()
+            .map_err(|e| CliError::bad_input(format!("{method} {path}: {}", one_line(&e.to_string()))))?;
+        let value: Value = serde_json::from_str(&text).unwrap_or(Value::String(text));
+        if status.is_success() {
+            Ok(value)
+        } else {
+            let message = value["error"].as_str().map_or_else(|| value.to_string(), str::to_string);
+            Err(CliError::bad_input(format!("{method} {path}: {} {message}", status.as_u16())))
+        }
+    }
+
+    /// Prints WebSocket messages as JSON lines.
+    fn watch(&self, count: Option<usize>, out: &mut dyn Write) -> Result<(), CliError> {
+        let ws_base = self.base.replacen("http://", "ws://", 1);
+        if ws_base.starts_with("https://") {
+            return Err(CliError::bad_input("`reach job watch` speaks plain ws:// only (no TLS)"));
+        }
+        let url = match &self.token {
+            Some(t) => format!("{ws_base}/ws?token={t}"),
+            None => format!("{ws_base}/ws"),
+        };
+        let (mut socket, _) = tungstenite::connect(url.as_str()).map_err(|e| {
+            CliError::bad_input(format!("cannot watch the service at {}: {}", self.base, one_line(&e.to_string())))
+        })?;
+        if let tungstenite::stream::MaybeTlsStream::Plain(stream) = socket.get_ref() {
+            let _ = stream.set_read_timeout(Some(Duration::from_millis(200)));
+        }
+        let mut seen = 0;
+        let started = Instant::now();
+        while count.is_none_or(|n| seen < n) {
+            crate::interrupt::check()?;
+            match socket.read() {
+                Ok(tungstenite::Message::Text(text)) => {
+                    writeln!(out, "{}", text.as_str())?;
+                    out.flush()?;
+                    seen += 1;
+                }
+                Ok(tungstenite::Message::Close(_)) => break,
+                Ok(_) => {}
+                Err(tungstenite::Error::Io(e))
+                    if matches!(e.kind(), std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut) => {}
+                Err(e) => {
+                    return Err(CliError::bad_input(format!(
+                        "the service closed the stream after {:.1} s: {}",
+                        started.elapsed().as_secs_f64(),
+                        one_line(&e.to_string())
+                    )));
+                }
+            }
+        }
+        let _ = socket.close(None);
+        Ok(())
+    }
+}

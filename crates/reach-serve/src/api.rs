@@ -1,0 +1,322 @@
+//! The HTTP and WebSocket API (described in `docs/openapi.json`, served at
+//! `GET /openapi.json`).
+
+use std::sync::Arc;
+
+use axum::body::Bytes;
+use axum::extract::rejection::BytesRejection;
+use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
+use axum::extract::{DefaultBodyLimit, Path, Query, Request, State};
+use axum::http::{HeaderValue, Method, StatusCode, header};
+use axum::middleware::{self, Next};
+use axum::response::{IntoResponse, Response};
+use axum::routing::{get, post};
+use axum::{Json, Router};
+use serde_json::{Value, json};
+use tokio::sync::broadcast::error::RecvError;
+
+use crate::error::ApiError;
+use crate::intake;
+use crate::service::{Control, MAX_BODY_BYTES, MAX_QUEUED_JOBS, Shared, lock};
+
+/// The OpenAPI description of this API.
+pub const OPENAPI: &str = include_str!("../../../docs/openapi.json");
+
+/// Jobs `GET /jobs` lists by default (the newest ones; reports make a job large).
+const LIST_DEFAULT: i64 = 100;
+
+/// Most jobs `GET /jobs?limit=N` lists.
+const LIST_LIMIT: i64 = 10_000;
+
+type AppState = State<Arc<Shared>>;
+
+/// The service's routes, with the body limit, the token check and CORS.
+pub fn router(shared: Arc<Shared>) -> Router {
+    let mut router = Router::new()
+        .route("/state", get(state))
+        .route("/jobs", get(list_jobs).post(submit))
+        .route("/jobs/{id}", get(job))
+        .route("/stop", post(stop))
+        .route("/estop", post(estop))
+        .route("/resume", post(resume))
+        .route("/scene/obstacles", post(add_obstacle))
+        .route("/ws", get(ws))
+        .route("/openapi.json", get(openapi))
+        .route("/schemas/{name}", get(schema))
+        .fallback(not_found)
+        .layer(middleware::from_fn_with_state(shared.clone(), guard))
+        .layer(DefaultBodyLimit::max(MAX_BODY_BYTES));
+    if let Some(origin) = shared.cors.as_deref().and_then(|o| HeaderValue::from_str(o).ok()) {
+        router = router.layer(
+            tower_http::cors::CorsLayer::new()
+                .allow_origin(origin)
+                .allow_methods([Method::GET, Method::POST])
+                .allow_headers([header::AUTHORIZATION, header::CONTENT_TYPE]),
+        );
+    }
+    router.with_state(shared)
+}
+
+/// Refuses bodies announced beyond [`MAX_BODY_BYTES`] (413, before reading them), requests from a browser page of another origin than `--cors` (403: a page must not
+/// drive the arm through the loopback service), and, beyond loopback, requests without the
+/// token (401; the WebSocket may give it as `?token=`).
+async fn guard(State(shared): AppState, request: Request, next: Next) -> Response {
+    // A body announced larger than the limit is refused before it is read.
+    let announced = request.headers().get(header::CONTENT_LENGTH).and_then(|v| v.to_str().ok()?.parse::<u64>().ok());
+    if announced.is_some_and(|n| n > MAX_BODY_BYTES as u64) {
+        return too_large().into_response();
+    }
+    if let Some(origin) = request.headers().get(header::ORIGIN)
+        && shared.cors.as_deref().is_none_or(|allowed| origin.as_bytes() != allowed.as_bytes())
+    {
+        return ApiError {
+            status: StatusCode::FORBIDDEN,
+            message: format!(
+                "requests from the browser origin `{}` are refused; start the service with --cors ORIGIN to allow one",
+                origin.to_str().unwrap_or("?")
+            ),
+        }
+        .into_response();
+    }
+    if let Some(token) = &shared.token {
+        let path = request.uri().path();
+        let open = request.method() == Method::GET && (path == "/openapi.json" || path.starts_with("/schemas/"));
+        let bearer = request
+            .headers()
+            .get(header::AUTHORIZATION)
+            .and_then(|v| v.to_str().ok())
+            .and_then(|v| v.strip_prefix("Bearer "))
+            .map(str::trim);
+        let query = request.uri().query().and_then(|q| q.split('&').find_map(|kv| kv.strip_prefix("token=")));
+        let given = bearer.or(query);
+        if !open && !given.is_some_and(|g| crate::auth::same_token(g, token)) {
+            return ApiError::unauthorized().into_response();
+        }
+    }
+    next.run(request).await
+}
+
+/// 413.
+fn too_large() -> ApiError {
+    ApiError {
+        status: StatusCode::PAYLOAD_TOO_LARGE,
+        message: format!("the request body is larger than the limit of {MAX_BODY_BYTES} bytes"),
+    }
+}
+
+/// A body that could not be read: 413 beyond the limit, else 400.
+fn body_error(rejection: &BytesRejection) -> ApiError {
+    if rejection.status() == StatusCode::PAYLOAD_TOO_LARGE {
+        too_large()
+    } else {
+        ApiError::bad_request(rejection.body_text())
+    }
+}
+
+async fn not_found() -> ApiError {
+    ApiError::not_found("no such endpoint; see GET /openapi.json")
+}
+
+async fn openapi() -> impl IntoResponse {
+    ([(header::CONTENT_TYPE, "application/json")], OPENAPI)
+}
+
+/// The library's generated JSON Schemas (as in `docs/schemas/`), by file name.
+async fn schema(Path(name): Path<String>) -> Result<Json<Value>, ApiError> {
+    let stem = name.strip_suffix(".schema.json").unwrap_or(&name);
+    reach::jobs::schemas()
+        .into_iter()
+        .find(|(n, _)| *n == stem)
+        .map(|(_, s)| Json(s))
+        .ok_or_else(|| ApiError::not_found(format!("no schema `{name}`")))
+}
+
+async fn state(State(shared): AppState) -> Json<Value> {
+    let live = lock(&shared.live);
+    let mut state = shared.state(&live);
+    drop(live);
+    state["drives"] = shared.drives();
+    state["speed"] = json!(shared.speed);
+    state["queued"] = json!(lock(&shared.db).queued_count().unwrap_or(0));
+    Json(state)
+}
+
+/// A job as the API shows it.
+fn job_json(row: &crate::db::JobRow) -> Value {
+    json!({
+        "id": row.id,
+        "kind": row.kind,
+        "status": row.status,
+        "report": row.report,
+        "segment": row.segment,
+        "segments": row.segments,
+        "message": row.message,
+        "request": row.request,
+        "created_ms": row.created_ms,
+        "updated_ms": row.updated_ms,
+    })
+}
+
+async fn list_jobs(
+    State(shared): AppState,
+    Query(q): Query<std::collections::HashMap<String, String>>,
+) -> Result<Json<Value>, ApiError> {
+    let limit = q.get("limit").and_then(|l| l.parse::<i64>().ok()).unwrap_or(LIST_DEFAULT).clamp(1, LIST_LIMIT);
+    let rows = lock(&shared.db).jobs(limit)?;
+    Ok(Json(Value::Array(rows.iter().map(job_json).collect())))
+}
+
+async fn job(State(shared): AppState, Path(id): Path<String>) -> Result<Json<Value>, ApiError> {
+    let missing = || ApiError::not_found(format!("no job `{id}`"));
+    let n: i64 = id.parse().map_err(|_| missing())?;
+    let row = lock(&shared.db).job(n)?.ok_or_else(missing)?;
+    Ok(Json(job_json(&row)))
+}
+
+/// `POST /jobs`: reads the request, plans it with the library (400 with the library's message
+/// for bad input), and queues it — or records it `refused` with its report when the plan is
+/// infeasible.
+async fn submit(State(shared): AppState, body: Result<Bytes, BytesRejection>) -> Result<Response, ApiError> {
+    let body = body.map_err(|e| body_error(&e))?;
+    let submission = intake::parse_request(&body)?;
+    let request = if submission.from_current {
+        let q = shared.q_deg(&lock(&shared.live).steps);
+        intake::start_here(&submission.request, &q)
+    } else {
+        submission.request
+    };
+    if lock(&shared.db).queued_count()? >= MAX_QUEUED_JOBS {
+        return Err(ApiError::conflict(format!("the queue is full ({MAX_QUEUED_JOBS} jobs); wait for it to drain")));
+    }
+    let planner = shared.clone();
+    let (request, report) = tokio::task::spawn_blocking(move || {
+        let report = intake::plan(&planner.robot, &request)?;
+        Ok::<_, ApiError>((request, report))
+    })
+    .await
+    .map_err(|e| ApiError { status: StatusCode::INTERNAL_SERVER_ERROR, message: e.to_string() })??;
+    let refusal = intake::refusal(&report);
+    let status = if refusal.is_some() { "refused" } else { "queued" };
+    let kind = intake::kind_of(&request);
+    let request = serde_json::to_value(&request).unwrap_or_default();
+    let report = serde_json::to_value(&report).unwrap_or_default();
+    let id = lock(&shared.db).insert_job(
+        &kind,
+        &request,
+        submission.from_current,
+        status,
+        Some(&report),
+        refusal.as_deref(),
+    )?;
+    shared.job_event(id, status, refusal.as_deref());
+    shared.wake.notify_all();
+    let body = json!({"id": id, "status": status, "message": refusal});
+    Ok((StatusCode::CREATED, Json(body)).into_response())
+}
+
+/// Pauses the queue and asks the running job (if any) to stop.
+fn halt(shared: &Shared, control: Control) -> Result<Json<Value>, ApiError> {
+    let mut live = lock(&shared.live);
+    live.paused = true;
+    lock(&shared.db).set_paused(true)?;
+    if live.job.is_some() {
+        live.control = Some(control);
+    }
+    shared.wake.notify_all();
+    let state = shared.state(&live);
+    drop(live);
+    let what = if control == Control::Stop { "stop" } else { "estop" };
+    let _ = lock(&shared.db).add_event(None, what, "queue paused until POST /resume");
+    shared.publish(&json!({"type": what}));
+    Ok(Json(state))
+}
+
+async fn stop(State(shared): AppState) -> Result<Json<Value>, ApiError> {
+    halt(&shared, Control::Stop)
+}
+
+async fn estop(State(shared): AppState) -> Result<Json<Value>, ApiError> {
+    halt(&shared, Control::Estop)
+}
+
+/// `POST /scene/obstacles`: one obstacle in the scene file's format as JSON (`{"name",
+/// "shape", ...}`, in the stored scene's units; metres for a service started without a
+/// scene), appended to the scene and checked by the
+/// library's scene parser (400 with its message). Jobs that start afterwards must be proven
+/// clear of it; the one executing is not re-checked.
+async fn add_obstacle(State(shared): AppState, body: Result<Bytes, BytesRejection>) -> Result<Response, ApiError> {
+    let body = body.map_err(|e| body_error(&e))?;
+    let value: Value =
+        serde_json::from_slice(&body).map_err(|e| ApiError::bad_request(format!("the body is not JSON: {e}")))?;
+    if !value.is_object() {
+        return Err(ApiError::bad_request(
+            "an obstacle is a JSON object: {\"name\", \"shape\", ...} (docs/scene-format.md)",
+        ));
+    }
+    let table = toml::to_string(&value).map_err(|e| ApiError::bad_request(format!("obstacle: {e}")))?;
+    let db = lock(&shared.db);
+    // A service started without a scene gets one in metres and degrees.
+    let old = db.scene()?.unwrap_or_else(|| "length_unit = \"m\"\nangle_unit = \"deg\"\n".to_string());
+    let text = format!("{old}\n[[obstacles]]\n{table}");
+    let scene = reach::jobs::world::parse_scene(&text).map_err(|e| ApiError::bad_request(e.to_string()))?;
+    db.set_scene(&text)?;
+    drop(db);
+    let obstacles = scene.obstacles.len();
+    *shared.scene.write().unwrap_or_else(std::sync::PoisonError::into_inner) = Some(scene);
+    let name = value["name"].as_str().unwrap_or("").to_string();
+    let _ = lock(&shared.db).add_event(None, "obstacle", &name);
+    shared.publish(&json!({"type": "obstacle", "name": name, "obstacles": obstacles}));
+    Ok((StatusCode::CREATED, Json(json!({"obstacles": obstacles}))).into_response())
+}
+
+/// Lets queued jobs run again; 409 while a job is still stopping.
+async fn resume(State(shared): AppState) -> Result<Json<Value>, ApiError> {
+    let mut live = lock(&shared.live);
+    if let Some(job) = live.job {
+        return Err(ApiError::conflict(format!("job {job} is still running; resume once it has stopped")));
+    }
+    live.paused = false;
+    lock(&shared.db).set_paused(false)?;
+    shared.wake.notify_all();
+    let state = shared.state(&live);
+    drop(live);
+    let _ = lock(&shared.db).add_event(None, "resume", "");
+    shared.publish(&json!({"type": "resume"}));
+    Ok(Json(state))
+}
+
+async fn ws(State(shared): AppState, upgrade: WebSocketUpgrade) -> Response {
+    upgrade.on_upgrade(move |socket| stream(shared, socket))
+}
+
+/// Sends the joint state now, then every state and job message as it is published.
+async fn stream(shared: Arc<Shared>, mut socket: WebSocket) {
+    let mut rx = shared.events.subscribe();
+    let first = {
+        let live = lock(&shared.live);
+        let mut s = shared.state(&live);
+        s["type"] = json!("state");
+        s["t_ms"] = json!(crate::db::now_ms());
+        s.to_string()
+    };
+    if socket.send(Message::text(first)).await.is_err() {
+        return;
+    }
+    loop {
+        tokio::select! {
+            incoming = socket.recv() => match incoming {
+                Some(Ok(Message::Close(_)) | Err(_)) | None => return,
+                Some(Ok(_)) => {}
+            },
+            event = rx.recv() => match event {
+                Ok(text) => {
+                    if socket.send(Message::text(text.as_ref())).await.is_err() {
+                        return;
+                    }
+                }
+                Err(RecvError::Lagged(_)) => {}
+                Err(RecvError::Closed) => return,
+            },
+        }
+    }
+}

@@ -1,0 +1,415 @@
+//! The service's state in SQLite: the robot, the scene, each joint's step counter, the job
+//! journal and the event log (schema and guarantees in `docs/service.md`).
+//!
+//! The database runs in WAL mode with `synchronous = FULL`: every commit is on disk when
+//! `COMMIT` returns, so a committed step count survives `kill -9` *and* a power cut. (NORMAL
+//! would survive `kill -9` only; an arm's position must survive both, and at most 20 commits a
+//! second of real-time motion the fsync costs nothing that matters.)
+
+use std::path::Path;
+
+use rusqlite::{Connection, OptionalExtension, params};
+use serde::Serialize;
+use serde_json::Value;
+
+use crate::error::ServeError;
+
+/// The schema version this build writes (`PRAGMA user_version`).
+pub const SCHEMA_VERSION: i64 = 1;
+
+const SCHEMA: &str = "
+CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
+CREATE TABLE joints (joint INTEGER PRIMARY KEY, name TEXT NOT NULL, steps INTEGER NOT NULL);
+CREATE TABLE jobs (
+    id INTEGER PRIMARY KEY AUTOINCREMENT,
+    kind TEXT NOT NULL,
+    request TEXT NOT NULL,
+    from_current INTEGER NOT NULL DEFAULT 0,
+    status TEXT NOT NULL,
+    report TEXT,
+    message TEXT,
+    segment INTEGER NOT NULL DEFAULT 0,
+    segments INTEGER,
+    created_ms INTEGER NOT NULL,
+    updated_ms INTEGER NOT NULL
+);
+CREATE INDEX jobs_by_status ON jobs (status, id);
+CREATE TABLE events (
+    id INTEGER PRIMARY KEY AUTOINCREMENT,
+    at_ms INTEGER NOT NULL,
+    job INTEGER,
+    type TEXT NOT NULL,
+    message TEXT NOT NULL
+);
+";
+
+/// Milliseconds since the Unix epoch.
+#[must_use]
+pub fn now_ms() -> i64 {
+    std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| i64::try_from(d.as_millis()).unwrap_or(i64::MAX))
+}
+
+/// One job of the journal.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct JobRow {
+    /// Job number, in submission order.
+    pub id: i64,
+    /// The request's kind (`move`, `plan`, …).
+    pub kind: String,
+    /// The library request (`reach::jobs::Request`) as submitted (after the shorthand).
+    pub request: Value,
+    /// A move that starts wherever the arm is when the job starts (re-planned then).
+    pub from_current: bool,
+    /// `queued`, `planning`, `executing`, `done`, `refused`, `failed`, `interrupted`, `stopped`.
+    pub status: String,
+    /// The library's report of the planned job (`null` before it is planned).
+    pub report: Option<Value>,
+    /// Why the job was refused, failed, stopped or interrupted; `null` otherwise.
+    pub message: Option<String>,
+    /// Segments executed and committed (each at most 50 ms of motion).
+    pub segment: i64,
+    /// Segments of the job's schedule (`null` before it is scheduled).
+    pub segments: Option<i64>,
+    /// Submission time, ms since the Unix epoch.
+    pub created_ms: i64,
+    /// Last change, ms since the Unix epoch.
+    pub updated_ms: i64,
+}
+
+/// The last commit of the joint state.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LastCommit {
+    /// When, ms since the Unix epoch.
+    pub at_ms: i64,
+    /// The job executing then (`null` when none).
+    pub job: Option<i64>,
+    /// The job's segment committed (`null` when none).
+    pub segment: Option<i64>,
+}
+
+/// What opening the state found.
+#[derive(Debug, Clone, Default)]
+pub struct Recovery {
+    /// Whether the database was created now.
+    pub created: bool,
+    /// The job that was executing when the service stopped, now `interrupted`.
+    pub interrupted: Option<i64>,
+}
+
+/// The open state database.
+pub struct Db {
+    conn: Connection,
+}
+
+impl Db {
+    /// Opens (or creates) `dir/state.sqlite3` for the robot `robot_json` (its `RobotInput`
+    /// JSON) with joints `names`, starting at `initial_steps` when new.
+    ///
+    /// On an existing database the robot must be the same, else [`ServeError::RobotMismatch`]; a
+    /// job left `executing` becomes `interrupted` (its committed segment kept) and the queue is
+    /// paused until `POST /resume`; a job left `planning` (nothing moved yet) is queued again.
+    ///
+    /// # Errors
+    /// [`ServeError`] for a database that cannot be opened, has a newer schema, or holds
+    /// another robot.
+    pub fn open(
+        dir: &Path,
+        robot_json: &str,
+        names: &[String],
+        initial_steps: &[i64],
+        scene: Option<&str>,
+    ) -> Result<(Db, Recovery), ServeError> {
+        std::fs::create_dir_all(dir).map_err(|e| ServeError::io(dir, &e))?;
+        let path = dir.join("state.sqlite3");
+        let mut conn = Connection::open(&path)?;
+        conn.busy_timeout(std::time::Duration::from_secs(5))?;
+        conn.pragma_update(None, "journal_mode", "WAL")?;
+        conn.pragma_update(None, "synchronous", "FULL")?;
+        let version: i64 = conn.pragma_query_value(None, "user_version", |r| r.get(0))?;
+        let mut recovery = Recovery::default();
+        if version == 0 {
+            let tx = conn.transaction()?;
+            tx.execute_batch(SCHEMA)?;
+            tx.execute("INSERT INTO meta (key, value) VALUES ('robot', ?1)", params![robot_json])?;
+            tx.execute("INSERT INTO meta (key, value) VALUES ('paused', '0')", [])?;
+            for (i, (name, steps)) in names.iter().zip(initial_steps).enumerate() {
+                tx.execute(
+                    "INSERT INTO joints (joint, name, steps) VALUES (?1, ?2, ?3)",
+                    params![i as i64 + 1, name, steps],
+                )?;
+            }
+            tx.pragma_update(None, "user_version", SCHEMA_VERSION)?;
+            tx.commit()?;
+            recovery.created = true;
+        } else if version != SCHEMA_VERSION {
+            return Err(ServeError::Schema {
+                path: path.display().to_string(),
+                found: version,
+                expected: SCHEMA_VERSION,
+            });
+        }
+        let stored: String = conn.query_row("SELECT value FROM meta WHERE key = 'robot'", [], |r| r.get(0))?;
+        if !same_json(&stored, robot_json) {
+            return Err(ServeError::RobotMismatch {
+                dir: dir.display().to_string(),
+                stored: robot_summary(&stored),
+                given: robot_summary(robot_json),
+            });
+        }
+        let tx = conn.transaction()?;
+        if let Some(text) = scene {
+            tx.execute("INSERT OR REPLACE INTO meta (key, value) VALUES ('scene', ?1)", params![text])?;
+        }
+        let now = now_ms();
+        let interrupted: Option<i64> =
+            tx.query_row("SELECT id FROM jobs WHERE status = 'executing'", [], |r| r.get(0)).optional()?;
+        if let Some(id) = interrupted {
+            let segment: i64 = tx.query_row("SELECT segment FROM jobs WHERE id = ?1", params![id], |r| r.get(0))?;
+            let message =
+                format!("interrupted: the service stopped during the job; segment {segment} was the last committed");
+            tx.execute(
+                "UPDATE jobs SET status = 'interrupted', message = ?2, updated_ms = ?3 WHERE id = ?1",
+                params![id, message, now],
+            )?;
+            tx.execute("UPDATE meta SET value = '1' WHERE key = 'paused'", [])?;
+            tx.execute(
+                "INSERT INTO events (at_ms, job, type, message) VALUES (?1, ?2, 'interrupted', ?3)",
+                params![now, id, message],
+            )?;
+        }
+        tx.execute("UPDATE jobs SET status = 'queued', updated_ms = ?1 WHERE status = 'planning'", params![now])?;
+        tx.commit()?;
+        recovery.interrupted = interrupted;
+        Ok((Db { conn }, recovery))
+    }
+
+    /// The scene text stored (the last one given).
+    ///
+    /// # Errors
+    /// [`ServeError::Db`].
+    pub fn scene(&self) -> Result<Option<String>, ServeError> {
+        Ok(self.conn.query_row("SELECT value FROM meta WHERE key = 'scene'", [], |r| r.get(0)).optional()?)
+    }
+
+    /// Stores the scene text.
+    ///
+    /// # Errors
+    /// [`ServeError::Db`].
+    pub fn set_scene(&self, text: &str) -> Result<(), ServeError> {
+        self.conn.execute("INSERT OR REPLACE INTO meta (key, value) VALUES ('scene', ?1)", params![text])?;
+        Ok(())
+    }
+
+    /// Every joint's committed step counter, base to tip.
+    ///
+    /// # Errors
+    /// [`ServeError::Db`].
+    pub fn steps(&self) -> Result<Vec<i64>, ServeError> {
+        let mut stmt = self.conn.prepare_cached("SELECT steps FROM joints ORDER BY joint")?;
+        let rows = stmt.query_map([], |r| r.get(0))?;
+        Ok(rows.collect::<Result<Vec<i64>, _>>()?)
+    }
+
+    /// Whether the queue waits for `POST /resume`.
+    ///
+    /// # Errors
+    /// [`ServeError::Db`].
+    pub fn paused(&self) -> Result<bool, ServeError> {
+        let v: String = self.conn.query_row("SELECT value FROM meta WHERE key = 'paused'", [], |r| r.get(0))?;
+        Ok(v == "1")
+    }
+
+    /// Pauses or resumes the queue (durably).
+    ///
+    /// # Errors
+    /// [`ServeError::Db`].
+    pub fn set_paused(&self, paused: bool) -> Result<(), ServeError> {
+        self.conn
+            .execute("UPDATE meta SET value = ?1 WHERE key = 'paused'", params![if paused { "1" } else { "0" }])?;
+        Ok(())
+    }
+
+    /// The last commit of the joint state (`null` fields before any motion).
+    ///
+    /// # Errors
+    /// [`ServeError::Db`].
+    pub fn last_commit(&self) -> Result<Option<LastCommit>, ServeError> {
+        let text: Option<String> =
+            self.conn.query_row("SELECT value FROM meta WHERE key = 'last_commit'", [], |r| r.get(0)).optional()?;
+        Ok(text.and_then(|t| serde_json::from_str::<Value>(&t).ok()).map(|v| LastCommit {
+            at_ms: v["at_ms"].as_i64().unwrap_or(0),
+            job: v["job"].as_i64(),
+            segment: v["segment"].as_i64(),
+        }))
+    }
+
+    /// Records a new job; returns its id.
+    ///
+    /// # Errors
+    /// [`ServeError::Db`].
+    pub fn insert_job(
+        &self,
+        kind: &str,
+        request: &Value,
+        from_current: bool,
+        status: &str,
+        report: Option<&Value>,
+        message: Option<&str>,
+    ) -> Result<i64, ServeError> {
+        let now = now_ms();
+        self.conn.execute(
+            "INSERT INTO jobs (kind, request, from_current, status, report, message, created_ms, updated_ms) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?7)",
+            params![kind, request.to_string(), from_current, status, report.map(Value::to_string), message, now],
+        )?;
+        Ok(self.conn.last_insert_rowid())
+    }
+
+    /// Sets a job's status, and its message and segment count when given.
+    ///
+    /// # Errors
+    /// [`ServeError::Db`].
+    pub fn set_job(
+        &self,
+        id: i64,
+        status: &str,
+        message: Option<&str>,
+        segments: Option<i64>,
+    ) -> Result<(), ServeError> {
+        self.conn.execute(
+            "UPDATE jobs SET status = ?2, message = COALESCE(?3, message), segments = COALESCE(?4, segments), updated_ms = ?5 WHERE id = ?1",
+            params![id, status, message, segments, now_ms()],
+        )?;
+        Ok(())
+    }
+
+    /// Replaces a job's request and report (a move re-planned from where the arm is).
+    ///
+    /// # Errors
+    /// [`ServeError::Db`].
+    pub fn set_plan(&self, id: i64, request: &Value, report: &Value) -> Result<(), ServeError> {
+        self.conn.execute(
+            "UPDATE jobs SET request = ?2, report = ?3, updated_ms = ?4 WHERE id = ?1",
+            params![id, request.to_string(), report.to_string(), now_ms()],
+        )?;
+        Ok(())
+    }
+
+    /// Commits, in one transaction, every joint's step counter and (with a job) the job's
+    /// executed segment: after a crash the database holds either the state before or the state
+    /// after this call, never a mix.
+    ///
+    /// # Errors
+    /// [`ServeError::Db`].
+    pub fn commit_steps(&mut self, steps: &[i64], job: Option<(i64, Option<i64>)>) -> Result<LastCommit, ServeError> {
+        let now = now_ms();
+        let tx = self.conn.transaction()?;
+        {
+            let mut update = tx.prepare_cached("UPDATE joints SET steps = ?2 WHERE joint = ?1")?;
+            for (i, s) in steps.iter().enumerate() {
+                update.execute(params![i as i64 + 1, s])?;
+            }
+        }
+        let (job_id, segment) = job.map_or((None, None), |(id, seg)| (Some(id), seg));
+        if let (Some(id), Some(seg)) = (job_id, segment) {
+            tx.execute("UPDATE jobs SET segment = ?2, updated_ms = ?3 WHERE id = ?1", params![id, seg, now])?;
+        }
+        let commit = LastCommit { at_ms: now, job: job_id, segment };
+        let text = serde_json::json!({"at_ms": now, "job": job_id, "segment": segment}).to_string();
+        tx.execute("INSERT OR REPLACE INTO meta (key, value) VALUES ('last_commit', ?1)", params![text])?;
+        tx.commit()?;
+        Ok(commit)
+    }
+
+    /// Appends an event (operator message, job transition) to the log.
+    ///
+    /// # Errors
+    /// [`ServeError::Db`].
+    pub fn add_event(&self, job: Option<i64>, kind: &str, message: &str) -> Result<(), ServeError> {
+        self.conn.execute(
+            "INSERT INTO events (at_ms, job, type, message) VALUES (?1, ?2, ?3, ?4)",
+            params![now_ms(), job, kind, message],
+        )?;
+        Ok(())
+    }
+
+    /// The oldest queued job.
+    ///
+    /// # Errors
+    /// [`ServeError::Db`].
+    pub fn next_queued(&self) -> Result<Option<JobRow>, ServeError> {
+        self.query_jobs("WHERE status = 'queued' ORDER BY id LIMIT 1", []).map(|mut v| v.pop())
+    }
+
+    /// One job.
+    ///
+    /// # Errors
+    /// [`ServeError::Db`].
+    pub fn job(&self, id: i64) -> Result<Option<JobRow>, ServeError> {
+        self.query_jobs("WHERE id = ?1", [id]).map(|mut v| v.pop())
+    }
+
+    /// Every job in submission order (at most `limit`, the newest ones).
+    ///
+    /// # Errors
+    /// [`ServeError::Db`].
+    pub fn jobs(&self, limit: i64) -> Result<Vec<JobRow>, ServeError> {
+        let mut v = self.query_jobs("ORDER BY id DESC LIMIT ?1", [limit])?;
+        v.reverse();
+        Ok(v)
+    }
+
+    /// The number of jobs waiting in the queue.
+    ///
+    /// # Errors
+    /// [`ServeError::Db`].
+    pub fn queued_count(&self) -> Result<i64, ServeError> {
+        Ok(self.conn.query_row("SELECT COUNT(*) FROM jobs WHERE status = 'queued'", [], |r| r.get(0))?)
+    }
+
+    fn query_jobs<P: rusqlite::Params>(&self, tail: &str, p: P) -> Result<Vec<JobRow>, ServeError> {
+        let sql = format!(
+            "SELECT id, kind, request, status, report, message, segment, segments, created_ms, updated_ms, from_current FROM jobs {tail}"
+        );
+        let mut stmt = self.conn.prepare_cached(&sql)?;
+        let rows = stmt.query_map(p, |r| {
+            let request: String = r.get(2)?;
+            let report: Option<String> = r.get(4)?;
+            Ok(JobRow {
+                id: r.get(0)?,
+                kind: r.get(1)?,
+                request: serde_json::from_str(&request).unwrap_or(Value::Null),
+                status: r.get(3)?,
+                report: report.and_then(|t| serde_json::from_str(&t).ok()),
+                message: r.get(5)?,
+                segment: r.get(6)?,
+                segments: r.get(7)?,
+                created_ms: r.get(8)?,
+                updated_ms: r.get(9)?,
+                from_current: r.get(10)?,
+            })
+        })?;
+        Ok(rows.collect::<Result<Vec<_>, _>>()?)
+    }
+}
+
+/// Whether two JSON texts hold the same value.
+fn same_json(a: &str, b: &str) -> bool {
+    match (serde_json::from_str::<Value>(a), serde_json::from_str::<Value>(b)) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => a == b,
+    }
+}
+
+/// A robot input in a few words: `preset ur5`, `TOML text "…"`.
+fn robot_summary(json: &str) -> String {
+    let v: Value = serde_json::from_str(json).unwrap_or(Value::Null);
+    if let Some(name) = v["preset"].as_str() {
+        return format!("preset `{name}`");
+    }
+    let (kind, text) = if v["toml"].is_object() { ("TOML", &v["toml"]["text"]) } else { ("URDF", &v["urdf"]["text"]) };
+    let text = text.as_str().unwrap_or("");
+    let first = text.lines().find(|l| !l.trim().is_empty() && !l.trim_start().starts_with('#')).unwrap_or("");
+    format!("a {kind} description starting `{}`", first.chars().take(60).collect::<String>())
+}

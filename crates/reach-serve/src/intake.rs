@@ -1,0 +1,159 @@
+//! A job's way in: the JSON body → a library [`Request`] (with the one shorthand the service
+//! adds) → the library's plan and report → the verdict whether it may move the arm.
+
+use reach::Robot;
+use reach::jobs::motion::ProfileName;
+use reach::jobs::{Joints, MoveRequest, Report, Request};
+use serde::Deserialize;
+use serde_json::Value;
+
+use crate::error::ApiError;
+
+/// The kinds of job the service runs.
+pub const ACCEPTED_KINDS: [&str; 5] = ["move", "plan", "path", "tasks", "avoid"];
+
+/// The issue's shorthand for a joint-space move, read like `reach move`'s options:
+/// `{"kind": "move", "from_deg": [...], "to_deg": [...], "duration_s": 6}`. Without
+/// `from_deg` the move starts wherever the arm is when the job starts.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MoveShorthand {
+    #[allow(dead_code, reason = "the tag, checked before")]
+    kind: String,
+    #[serde(default)]
+    name: String,
+    #[serde(default)]
+    from_deg: Option<Vec<f64>>,
+    to_deg: Vec<f64>,
+    #[serde(default)]
+    duration_s: Option<f64>,
+    #[serde(default)]
+    profile: Option<ProfileName>,
+    #[serde(default)]
+    dt_s: Option<f64>,
+}
+
+impl MoveShorthand {
+    /// The library's request for the same move.
+    fn request(self) -> MoveRequest {
+        let from = self.from_deg.unwrap_or_else(|| vec![0.0; self.to_deg.len()]);
+        let mut r = MoveRequest::joints(Joints::Deg(from), Joints::Deg(self.to_deg));
+        r.name = self.name;
+        r.duration_s = self.duration_s;
+        r.profile = self.profile;
+        r.dt_s = self.dt_s;
+        r
+    }
+}
+
+/// A job as submitted.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Submission {
+    /// The library request.
+    pub request: Request,
+    /// A move that starts wherever the arm is when the job starts (the shorthand without
+    /// `from_deg`): its `from` is filled in by [`start_here`] before planning.
+    pub from_current: bool,
+}
+
+/// Reads a job body: a library request (`reach::jobs::Request`, tagged by `kind`), or the move
+/// shorthand (`from_deg`/`to_deg`), which is converted here and nowhere else.
+///
+/// # Errors
+/// 400 for text that is not JSON, a missing or unaccepted `kind`, or a request the library's
+/// types reject (the message is serde's, naming the field).
+pub fn parse_request(body: &[u8]) -> Result<Submission, ApiError> {
+    let value: Value =
+        serde_json::from_slice(body).map_err(|e| ApiError::bad_request(format!("the body is not JSON: {e}")))?;
+    let Some(kind) = value.get("kind").and_then(Value::as_str).map(str::to_string) else {
+        return Err(ApiError::bad_request(format!(
+            "a job needs a \"kind\" ({}); see GET /openapi.json",
+            ACCEPTED_KINDS.join(", ")
+        )));
+    };
+    if !ACCEPTED_KINDS.contains(&kind.as_str()) {
+        return Err(ApiError::bad_request(format!(
+            "the service does not run jobs of kind `{kind}` (it runs {}); use `reach {kind}` for it",
+            ACCEPTED_KINDS.join(", ")
+        )));
+    }
+    if kind == "move" && (value.get("from_deg").is_some() || value.get("to_deg").is_some()) {
+        let short: MoveShorthand =
+            serde_json::from_value(value).map_err(|e| ApiError::bad_request(format!("move job: {e}")))?;
+        let from_current = short.from_deg.is_none();
+        return Ok(Submission { request: Request::Move(short.request()), from_current });
+    }
+    let request = serde_json::from_value(value).map_err(|e| ApiError::bad_request(format!("{kind} job: {e}")))?;
+    Ok(Submission { request, from_current: false })
+}
+
+/// A move that starts at `q_deg` (the arm's position): sets the request's `from`.
+#[must_use]
+pub fn start_here(request: &Request, q_deg: &[f64]) -> Request {
+    let mut request = request.clone();
+    if let Request::Move(m) = &mut request {
+        m.from = reach::jobs::motion::End::Joints(Joints::Deg(q_deg.to_vec()));
+    }
+    request
+}
+
+/// The kind of a request, as in its JSON tag.
+#[must_use]
+pub fn kind_of(request: &Request) -> String {
+    serde_json::to_value(request).ok().and_then(|v| v["kind"].as_str().map(str::to_string)).unwrap_or_default()
+}
+
+/// Plans a request with the library.
+///
+/// # Errors
+/// 400 with the library's message for bad input (wrong joint count, NaN, unknown field value).
+pub fn plan(robot: &Robot, request: &Request) -> Result<Report, ApiError> {
+    reach::jobs::run(robot, request).map_err(|e| ApiError::bad_request(e.to_string()))
+}
+
+/// Why a planned job may not move the arm (`None`: it may), from the report alone.
+#[must_use]
+pub fn refusal(report: &Report) -> Option<String> {
+    let reasons = |r: &[String]| if r.is_empty() { "infeasible".to_string() } else { r.join("; ") };
+    match report {
+        Report::Move(m) if !m.feasible => Some(reasons(&m.reasons)),
+        Report::Plan(p) => {
+            p.motions.iter().find(|m| !m.feasible).map(|m| format!("motion `{}`: {}", m.name, reasons(&m.reasons)))
+        }
+        Report::Path(p) if !p.found => Some(p.reason.clone().unwrap_or_else(|| "no path found".into())),
+        Report::Path(p) if p.collision_free == Some(false) || p.swept.as_ref().is_some_and(|s| !s.swept.clear) => {
+            Some("the timed path is not proven clear of the scene".into())
+        }
+        Report::Tasks(t) if t.plan.is_none() => Some("no plan visits the task's points".into()),
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_move_shorthand_is_the_library_move_request() {
+        let short =
+            parse_request(br#"{"kind": "move", "from_deg": [0, -90], "to_deg": [90, -60], "duration_s": 6}"#).unwrap();
+        let library = parse_request(
+            br#"{"kind": "move", "from": {"joints": {"deg": [0, -90]}}, "to": {"joints": {"deg": [90, -60]}}, "duration_s": 6}"#,
+        )
+        .unwrap();
+        assert_eq!(short, library);
+        assert!(!short.from_current);
+        let here = parse_request(br#"{"kind": "move", "to_deg": [90, -60]}"#).unwrap();
+        assert!(here.from_current);
+        let Request::Move(m) = start_here(&here.request, &[1.0, 2.0]) else { panic!("a move") };
+        assert_eq!(m.from, reach::jobs::motion::End::Joints(Joints::Deg(vec![1.0, 2.0])));
+    }
+
+    #[test]
+    fn unknown_fields_and_kinds_are_named() {
+        let e = parse_request(br#"{"kind": "move", "to_deg": [1], "speed": 3}"#).unwrap_err();
+        assert!(e.message.contains("speed"), "{}", e.message);
+        let e = parse_request(br#"{"kind": "drive"}"#).unwrap_err();
+        assert!(e.message.contains("kind `drive`"), "{}", e.message);
+    }
+}
