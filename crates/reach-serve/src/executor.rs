@@ -6,7 +6,8 @@
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use reach::jobs::drive::{DriveMotion, DriveSample};
+use reach::jobs::drive::DriveMotion;
+use reach::jobs::input::MotionSample;
 use reach::jobs::{Report, Request};
 use reach::motion::Profile;
 
@@ -275,12 +276,12 @@ fn stop_ramp(shared: &Shared, timeline: &Timeline, t: f64) -> Result<Option<Time
     }
     let ramp = Profile::Trapezoidal { accel_fraction: 0.5 };
     let n = ((duration / 0.005).ceil() as usize).max(4);
-    let samples: Vec<DriveSample> = (0..=n)
+    let samples: Vec<MotionSample> = (0..=n)
         .map(|j| {
             let s = duration * j as f64 / n as f64;
             let lambda = ramp.position(0.5 + s / (2.0 * duration)) - 0.5;
             let q: Vec<f64> = q_now.iter().zip(&v).map(|(q0, vi)| q0 + vi * duration * lambda).collect();
-            DriveSample { t_s: s, q_deg: reach::jobs::input::q_display(&shared.robot, &q) }
+            MotionSample { t_s: s, q_deg: reach::jobs::input::q_display(&shared.robot, &q) }
         })
         .collect();
     schedule::drive(&shared.robot, DriveMotion::Samples(samples)).map(|d| Some(Timeline::of(&d)))

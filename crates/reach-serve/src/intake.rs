@@ -121,7 +121,7 @@ pub fn refusal(report: &Report) -> Option<String> {
             p.motions.iter().find(|m| !m.feasible).map(|m| format!("motion `{}`: {}", m.name, reasons(&m.reasons)))
         }
         Report::Path(p) if !p.found => Some(p.reason.clone().unwrap_or_else(|| "no path found".into())),
-        Report::Path(p) if p.collision_free == Some(false) || p.swept.as_ref().is_some_and(|s| !s.swept.clear) => {
+        Report::Path(p) if p.collision_free == Some(false) => {
             Some("the timed path is not proven clear of the scene".into())
         }
         Report::Tasks(t) if t.plan.is_none() => Some("no plan visits the task's points".into()),

@@ -6,12 +6,13 @@
 
 use reach::Robot;
 use reach::drive::Axis;
-use reach::jobs::drive::{DriveMotion, DriveReport, DriveRequest, DriveSample};
+use reach::jobs::drive::{DriveMotion, DriveReport, DriveRequest};
+use reach::jobs::input::MotionSample;
 use reach::jobs::input::{AngleUnit, Joints, from_si, number_text, q_display, unit_name};
+use reach::jobs::world::SweptPathReport;
 use reach::jobs::{Report, Request};
 use reach::motion::{JointPath, Profile};
-use reach::world::sweep::SweepOptions;
-use reach::world::{CollisionChecker, Scene};
+use reach::world::Scene;
 
 /// Motion time between two commits of the joint state, seconds (the issue's "at most 50 ms
 /// of motion apart").
@@ -89,9 +90,7 @@ impl Timeline {
 /// The library's message when a path's waypoints cannot be timed.
 pub fn motion_of(robot: &Robot, request: &Request, report: &Report) -> Result<Option<DriveMotion>, String> {
     Ok(match (request, report) {
-        (_, Report::Move(m)) => Some(DriveMotion::Samples(
-            m.samples.iter().map(|s| DriveSample { t_s: s.t_s, q_deg: s.q_deg.clone() }).collect(),
-        )),
+        (_, Report::Move(m)) => Some(DriveMotion::Samples(m.samples.iter().map(MotionSample::from).collect())),
         (Request::Plan(p), Report::Plan(_)) => Some(DriveMotion::Task(p.task.clone())),
         (_, Report::Path(p)) => {
             let waypoints = p
@@ -109,7 +108,7 @@ pub fn motion_of(robot: &Robot, request: &Request, report: &Report) -> Result<Op
                 .map_err(|e| e.to_string())?;
             let trajectory = path.sample(PATH_DT_S).map_err(|e| e.to_string())?;
             Some(DriveMotion::Samples(
-                trajectory.samples.iter().map(|s| DriveSample { t_s: s.t, q_deg: q_display(robot, &s.q) }).collect(),
+                trajectory.samples.iter().map(|s| MotionSample { t_s: s.t, q_deg: q_display(robot, &s.q) }).collect(),
             ))
         }
         _ => None,
@@ -163,19 +162,17 @@ pub fn require_clear(robot: &Robot, scene: &Scene, motion: &DriveMotion) -> Resu
         .map(|s| Joints::Deg(s.q_deg.clone()).si(robot, "motion"))
         .collect::<Result<_, _>>()
         .map_err(|e| e.to_string())?;
-    let mut checker = CollisionChecker::new(robot, scene);
-    let options = SweepOptions::default();
-    for (k, w) in q.windows(2).enumerate() {
-        let (sweep, pair) = checker.swept(&w[0], &w[1], &options).map_err(|e| e.to_string())?;
-        let report = reach::jobs::world::check::SweptReport::of(&sweep, pair, scene);
-        if !report.clear {
-            return Err(format!(
+    match SweptPathReport::check(robot, scene, &q).map_err(|e| e.to_string())? {
+        Some(p) if !p.swept.clear => {
+            // Segment k (1-based) runs from sample k to sample k + 1.
+            let (a, b) = (&samples[p.segment - 1], &samples[p.segment]);
+            Err(format!(
                 "the motion is not proven clear of the scene between t = {:.3} s and {:.3} s: {}",
-                samples[k].t_s,
-                samples[k + 1].t_s,
-                report.pair_text.unwrap_or_default()
-            ));
+                a.t_s,
+                b.t_s,
+                p.swept.pair_text.unwrap_or_default()
+            ))
         }
+        _ => Ok(()),
     }
-    Ok(())
 }

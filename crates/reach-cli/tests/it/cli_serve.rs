@@ -138,9 +138,10 @@ fn committed(state: &std::path::Path, job: i64) -> (Vec<i64>, i64) {
 
 /// The counters the library's drive workflow gives for a move report at `t` seconds.
 fn schedule_steps_at(report: &Value, t: f64) -> Vec<i64> {
-    use reach::jobs::drive::{DriveMotion, DriveRequest, DriveSample, drive};
+    use reach::jobs::drive::{DriveMotion, DriveRequest, drive};
+    use reach::jobs::input::MotionSample;
     let report: reach::jobs::MoveReport = serde_json::from_value(report.clone()).expect("a move report");
-    let samples = report.samples.iter().map(|s| DriveSample { t_s: s.t_s, q_deg: s.q_deg.clone() }).collect();
+    let samples = report.samples.iter().map(MotionSample::from).collect();
     let robot = reach::drive::with_simulated_drives(&reach::model::presets::get("ur5").unwrap()).unwrap().0;
     let d = drive(&robot, &DriveRequest { motion: DriveMotion::Samples(samples), program: None }).unwrap();
     d.joints

@@ -1,7 +1,8 @@
 //! Restarts: the state a restart finds is the last committed one (the real-binary SIGKILL
 //! test is in `reach-cli`'s `cli_serve`).
 
-use reach::jobs::drive::{DriveMotion, DriveRequest, DriveSample, drive};
+use reach::jobs::drive::{DriveMotion, DriveRequest, drive};
+use reach::jobs::input::MotionSample;
 use reach::jobs::{MoveReport, Report};
 use serde_json::Value;
 
@@ -11,7 +12,7 @@ use crate::common::{call, config, get, integers, open, scratch, submit, wait_job
 /// the independent value a committed segment must hold.
 fn schedule_steps_at(report: &Value, t: f64) -> Vec<i64> {
     let report: MoveReport = serde_json::from_value(report.clone()).expect("a move report");
-    let samples = report.samples.iter().map(|s| DriveSample { t_s: s.t_s, q_deg: s.q_deg.clone() }).collect();
+    let samples = report.samples.iter().map(MotionSample::from).collect();
     let robot = reach::drive::with_simulated_drives(&reach::model::presets::get("ur5").unwrap()).unwrap().0;
     let drive = drive(&robot, &DriveRequest { motion: DriveMotion::Samples(samples), program: None }).unwrap();
     drive

@@ -22,6 +22,13 @@ pub struct MoveSample {
     pub rpy_deg: [f64; 3],
 }
 
+impl From<&MoveSample> for crate::jobs::input::MotionSample {
+    /// The sample as a request gives it (`t_s`, `q_deg`), e.g. to drive a planned motion.
+    fn from(s: &MoveSample) -> Self {
+        crate::jobs::input::MotionSample { t_s: s.t_s, q_deg: s.q_deg.clone() }
+    }
+}
+
 /// One interval of a motion (joint space: the whole motion; tool space: between singular
 /// positions and workspace boundaries).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
