@@ -18,5 +18,6 @@ pub mod path;
 pub mod plan;
 pub mod robot_show;
 pub mod robots;
+pub mod sense;
 pub mod tasks;
 pub mod tasks_render;

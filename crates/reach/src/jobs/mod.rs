@@ -38,6 +38,7 @@ pub use motion::{MoveReport, MoveRequest, PlanReport, PlanRequest};
 pub use tasks::{TasksReport, TasksRequest};
 pub use world::{
     AvoidReport, AvoidRequest, CheckReport, CheckRequest, CspaceReport, CspaceRequest, PathReport, PathRequest,
+    SenseReport, SenseRequest,
 };
 
 use crate::Robot;
@@ -69,6 +70,8 @@ pub enum Request {
     Check(CheckRequest),
     /// Seed 000's planar detour around point obstacles.
     Avoid(AvoidRequest),
+    /// Seed 000's obstacle located from ultrasonic range readings.
+    Sense(SenseRequest),
     /// Seed 004's configuration-space grid (and fitted region).
     Cspace(CspaceRequest),
     /// A collision-free, timed joint-space path through a scene.
@@ -101,6 +104,8 @@ pub enum Report {
     Check(CheckReport),
     /// Seed 000's planar detour around point obstacles.
     Avoid(AvoidReport),
+    /// Seed 000's obstacle located from ultrasonic range readings.
+    Sense(SenseReport),
     /// Seed 004's configuration-space grid (and fitted region).
     Cspace(CspaceReport),
     /// A collision-free, timed joint-space path through a scene.
@@ -147,6 +152,7 @@ pub fn run(robot: &Robot, request: &Request) -> Result<Report> {
         Request::IkScan(r) => Report::IkScan(ik::ik_scan(robot, r)?),
         Request::Check(r) => Report::Check(world::check(robot, r)?),
         Request::Avoid(r) => Report::Avoid(world::avoid(robot, r)?),
+        Request::Sense(r) => Report::Sense(world::sense(robot, r)?),
         Request::Cspace(r) => Report::Cspace(world::cspace(robot, r)?),
         Request::Path(r) => Report::Path(world::path(robot, r)?),
         Request::Tasks(r) => Report::Tasks(tasks::tasks(robot, r)?),
@@ -182,6 +188,8 @@ pub fn schemas() -> Vec<(&'static str, serde_json::Value)> {
         ("check.report", of::<CheckReport>()),
         ("avoid.request", of::<AvoidRequest>()),
         ("avoid.report", of::<AvoidReport>()),
+        ("sense.request", of::<SenseRequest>()),
+        ("sense.report", of::<SenseReport>()),
         ("cspace.request", of::<CspaceRequest>()),
         ("cspace.report", of::<CspaceReport>()),
         ("path.request", of::<PathRequest>()),

@@ -126,10 +126,7 @@ fn validate(readings: &[RangeReading]) -> Result<(), WorldError> {
         )));
     }
     if readings.len() > MAX_SENSORS {
-        return Err(WorldError::Input(format!(
-            "sensing takes at most {MAX_SENSORS} sensors, got {}",
-            readings.len()
-        )));
+        return Err(WorldError::Input(format!("sensing takes at most {MAX_SENSORS} sensors, got {}", readings.len())));
     }
     for (i, r) in readings.iter().enumerate() {
         let bad = |field: &str, message: String| Err(WorldError::Input(format!("sensor {}: {field} {message}", i + 1)));
@@ -352,7 +349,13 @@ pub fn locate(readings: &[RangeReading]) -> Result<SenseEstimate, WorldError> {
                 .map(|(i, r)| (i, cone_distance(r, c.x)))
                 .max_by(|a, b| a.1.total_cmp(&b.1))
                 .unwrap_or((0, 0.0));
-            format!(": the best fit ({:.4}, {:.4}) m lies {:.4} m outside the cone of sensor {}", c.x[0], c.x[1], outside, i + 1)
+            format!(
+                ": the best fit ({:.4}, {:.4}) m lies {:.4} m outside the cone of sensor {}",
+                c.x[0],
+                c.x[1],
+                outside,
+                i + 1
+            )
         });
         return Err(WorldError::Input(format!(
             "sensing: no position fits the ranges inside every beam cone (contradictory readings){detail}"
@@ -362,8 +365,7 @@ pub fn locate(readings: &[RangeReading]) -> Result<SenseEstimate, WorldError> {
     let alternatives: Vec<P2> = fitting[1..]
         .iter()
         .filter(|c| {
-            c.f <= best.f + k2
-                && best.radius.is_none_or(|r| (c.x[0] - best.x[0]).hypot(c.x[1] - best.x[1]) > r)
+            c.f <= best.f + k2 && best.radius.is_none_or(|r| (c.x[0] - best.x[0]).hypot(c.x[1] - best.x[1]) > r)
         })
         .map(|c| c.x)
         .collect();
@@ -375,10 +377,8 @@ pub fn locate(readings: &[RangeReading]) -> Result<SenseEstimate, WorldError> {
     } else {
         None
     };
-    let residuals: Vec<f64> = readings
-        .iter()
-        .map(|r| (best.x[0] - r.position[0]).hypot(best.x[1] - r.position[1]) - r.range)
-        .collect();
+    let residuals: Vec<f64> =
+        readings.iter().map(|r| (best.x[0] - r.position[0]).hypot(best.x[1] - r.position[1]) - r.range).collect();
     let residual_rms = (residuals.iter().map(|e| e * e).sum::<f64>() / residuals.len() as f64).sqrt();
     Ok(SenseEstimate {
         position: best.x,
@@ -504,8 +504,11 @@ mod tests {
         let h = [2.0, 0.0];
         let e = locate(&[aimed([0.0, 0.0], h, 0.0, 30.0, 0.01), aimed([1.0, 0.0], h, 0.0, 30.0, 0.01)]).unwrap();
         assert_eq!(e.ambiguity, Some(Ambiguity::IllConditioned));
-        let e = locate(&[aimed([0.0, 0.0], [2.0, 0.005], 0.0, 30.0, 0.01), aimed([1.0, 0.0], [2.0, 0.005], 0.0, 30.0, 0.01)])
-            .unwrap();
+        let e = locate(&[
+            aimed([0.0, 0.0], [2.0, 0.005], 0.0, 30.0, 0.01),
+            aimed([1.0, 0.0], [2.0, 0.005], 0.0, 30.0, 0.01),
+        ])
+        .unwrap();
         assert!(e.ambiguity.is_some(), "{e:?}");
     }
 
@@ -520,7 +523,9 @@ mod tests {
             locate(&r).unwrap_err().to_string()
         };
         assert!(msg(seed_layout(0.01), &|r| r.truncate(1)).contains("at least 2 sensors, got 1"));
-        assert!(msg(seed_layout(0.01), &|r| r[1].range = f64::NAN).starts_with("sensor 2: range must be > 0 m, got NaN"));
+        assert!(
+            msg(seed_layout(0.01), &|r| r[1].range = f64::NAN).starts_with("sensor 2: range must be > 0 m, got NaN")
+        );
         assert!(msg(seed_layout(0.01), &|r| r[0].range = -1.0).starts_with("sensor 1: range"));
         assert!(msg(seed_layout(0.01), &|r| r[1].sigma = 0.0).starts_with("sensor 2: sigma must be > 0"));
         assert!(msg(seed_layout(0.01), &|r| r[0].half_angle = 1.6).starts_with("sensor 1: cone half-angle"));

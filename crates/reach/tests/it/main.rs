@@ -36,6 +36,7 @@ mod motion_tracking;
 mod seed_000_detour;
 mod seed_000_log_loader;
 mod seed_000_planar_ik;
+mod seed_000_sensing;
 mod seed_000_stepper;
 mod seed_001_ik;
 mod seed_001_motion;
