@@ -132,7 +132,9 @@ pub enum Command {
             least Σ wᵢ·|qᵢ − fromᵢ|, joint weights --joint-weights) is printed.\n\n\
             --choose topsis|vikor|weighted-sum|pareto ranks the solutions within limits by \
             --criteria (change = Σ wᵢ·|qᵢ − fromᵢ| [rad] less is better, limits = smallest \
-            normalised distance to a joint limit, manipulability, sigma_min: more is better; \
+            normalised distance to a joint limit, manipulability, sigma_min, stiffness = \
+            σmin/σmax of the position Jacobian: more is better; accuracy = σmax of the position \
+            Jacobian × 0.01° [m]: less is better; \
             default change,limits,manipulability) with --weights, one per criterion (default \
             equal), and prints the ranking table: raw and normalised value per criterion, the \
             score (TOPSIS closeness, VIKOR Q, weighted sum) and whether the solution is \

@@ -79,8 +79,9 @@ pub struct IkArgs {
 
     /// With --choose: the criteria, comma-separated, from change (Σ wᵢ·|qᵢ − fromᵢ| [rad],
     /// less), limits (smallest normalised distance to a joint limit, more), manipulability
-    /// (Yoshikawa, more), sigma_min (smallest singular value, more). Default:
-    /// change,limits,manipulability.
+    /// (Yoshikawa, more), sigma_min (smallest singular value, more), stiffness (σmin/σmax of
+    /// the position Jacobian, more), accuracy (σmax of the position Jacobian × 0.01° [m],
+    /// less). Default: change,limits,manipulability.
     #[arg(long, value_name = "C1,..,CK", requires = "choose")]
     pub criteria: Option<String>,
 

@@ -42,6 +42,7 @@ mod seed_001_ik;
 mod seed_001_motion;
 mod seed_001_spbu6_fk;
 mod seed_002_spherical_wrist;
+mod seed_003_criteria;
 mod seed_003_ik;
 mod seed_003_tracking;
 mod seed_003_welder6r_fk;
