@@ -209,7 +209,7 @@ fn refine(readings: &[RangeReading], mut x: P2) -> P2 {
         let damp = lambda * 0.5 * (m[0] + m[2]);
         let (a, b, c) = (m[0] + damp, m[1], m[2] + damp);
         let det = a * c - b * b;
-        if !(det > 0.0) {
+        if det.is_nan() || det <= 0.0 {
             lambda *= 10.0;
             if lambda > 1e12 {
                 break;
