@@ -35,6 +35,7 @@ mod motion_profiles_timing;
 mod motion_tracking;
 mod seed_000_detour;
 mod seed_000_log_loader;
+mod seed_000_planar4;
 mod seed_000_planar_ik;
 mod seed_000_sensing;
 mod seed_000_stepper;
