@@ -136,6 +136,7 @@ fn robots_lists_every_preset_with_dof_and_description() {
     let text = ok(&["robots"]);
     let want = [
         ("planar3", 3),
+        ("planar4", 4),
         ("log-loader", 3),
         ("spbu6", 6),
         ("puma560", 6),
