@@ -133,3 +133,38 @@ fn avoid_detours_around_the_sensed_obstacle() {
     assert_eq!(run.code, 2);
     assert!(run.stderr.contains("cannot be used with") && run.stdout.is_empty(), "{}", run.stderr);
 }
+
+/// Seed 000's future work: `reach ik planar4 --scan` chooses the minimum-change configuration of
+/// the four-link arm (the library's `planar_scan` report).
+#[test]
+fn ik_scan_of_planar4_is_the_minimum_change_choice() {
+    use reach::jobs::{Job, Joints, PlanarScanRequest, Request, RobotInput};
+    let job = Job {
+        robot: RobotInput::Preset("planar4".into()),
+        request: Request::PlanarScan(PlanarScanRequest {
+            xyz_m: [2.4, 0.2, 0.0],
+            step_deg: 1.0,
+            from: Some(Joints::Deg(vec![60.0, -40.0, -30.0, -20.0])),
+        }),
+    };
+    let v = assert_report(
+        &["ik", "planar4", "--xyz", "2.4,0.2,0", "--from", "60,-40,-30,-20", "--scan", "1", "--json"],
+        &job,
+        "planar_scan.report",
+    );
+    assert_eq!(v["status"], "ok");
+    assert_eq!(v["nodes"], 181 * 181);
+    let q: Vec<f64> = nums(&v["q_deg"]).iter().map(|d| d.to_radians()).collect();
+    let robot = reach::model::presets::get("planar4").unwrap();
+    let tool = robot.fk(&q).unwrap().translation.vector;
+    assert!((tool.x - 2.4).abs() < 1e-9 && (tool.y - 0.2).abs() < 1e-9);
+    let s: f64 = nums(&v["q_deg"]).iter().zip([60.0, -40.0, -30.0, -20.0]).map(|(a, b)| (a - b).abs()).sum();
+    assert!((num(&v["s_deg"]) - s).abs() < 1e-9);
+    let text = crate::common::ok(&["ik", "planar4", "--xyz", "2.4,0.2,0", "--from", "60,-40,-30,-20", "--scan", "1"]);
+    assert!(text.contains("32761 nodes") && text.contains("chosen q [deg]"), "{text}");
+    // No configuration: the report, then exit status 3 with the reason.
+    let run = reach(&["ik", "planar4", "--xyz", "4.5,0,0", "--scan", "1"]);
+    assert_eq!(run.code, 3);
+    assert!(run.stdout.contains("target out of reach") && run.stderr.contains("out of reach"), "{}", run.stderr);
+    fails(&["ik", "planar4", "--xyz", "2,0,0", "--scan", "1", "--csv", "t.csv"], 2, &["--csv", "not stored"]);
+}

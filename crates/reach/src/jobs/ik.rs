@@ -554,7 +554,7 @@ pub fn failure_code(failure: &IkFailure) -> &'static str {
     }
 }
 
-fn status(failure: Option<&IkFailure>) -> (String, Option<String>) {
+pub(crate) fn status(failure: Option<&IkFailure>) -> (String, Option<String>) {
     match failure {
         None => ("ok".into(), None),
         Some(f) => (failure_code(f).into(), Some(f.to_string())),
