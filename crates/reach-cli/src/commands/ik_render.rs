@@ -190,7 +190,8 @@ fn write_ranking(out: &mut dyn Write, solutions: &[IkSolutionReport], r: &IkRank
     for e in &r.ranked {
         let mut row = vec![e.rank.to_string(), (e.solution + 1).to_string(), solutions[e.solution].branch.clone()];
         for (j, v) in e.values.iter().enumerate() {
-            row.push(fixed(*v, 4));
+            // Small raw values (seed 003's accuracy is ~1e-4 m) keep four significant digits.
+            row.push(if *v != 0.0 && v.abs() < 0.01 { format!("{v:.4e}") } else { fixed(*v, 4) });
             if let Some(n) = &e.normalised {
                 row.push(fixed(n[j], 4));
             }
