@@ -181,6 +181,7 @@ pub fn run(args: &AvoidArgs, out: &mut dyn Write) -> Result<(), CliError> {
             &run.plan,
             &run.obstacles,
             run.circle_radius_m,
+            run.obstacle_radius_m,
         ))?;
     }
     if args.json {
