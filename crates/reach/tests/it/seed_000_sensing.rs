@@ -103,3 +103,38 @@ fn ambiguous_or_mixed_input_is_refused_by_avoid_and_reported_by_sense() {
     both.literal_test = true;
     assert!(avoid_run(&robot, &both).unwrap_err().to_string().contains("literal test takes points only"));
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 256, ..Default::default() })]
+
+    /// Any finite readings give an estimate or a named error, never a panic; an estimate is
+    /// finite, its radius finite and positive or absent (singular), its residuals match it.
+    #[test]
+    fn any_finite_readings_give_an_answer_or_a_named_error(
+        sensors in proptest::collection::vec(
+            (-3.0..3.0f64, -3.0..3.0f64, -360.0..360.0f64, 0.01..5.0f64, 1.0..179.0f64),
+            2..6,
+        ),
+        sigma in 1e-4..0.2f64,
+    ) {
+        let robot = presets::get("planar3").unwrap();
+        let request = SenseRequest {
+            sensors: sensors
+                .iter()
+                .map(|&(x, y, dir_deg, range_m, cone_deg)| SensorReading { xy_m: [x, y], dir_deg, range_m, cone_deg, sigma_m: None })
+                .collect(),
+            sigma_m: sigma,
+        };
+        match sense(&robot, &request) {
+            Ok(r) => {
+                proptest::prop_assert!(r.obstacle_m.iter().all(|v| v.is_finite()));
+                proptest::prop_assert!(r.uncertainty_m.is_none_or(|u| u.is_finite() && u > 0.0));
+                for (s, e) in request.sensors.iter().zip(&r.residuals_m) {
+                    let d = (r.obstacle_m[0] - s.xy_m[0]).hypot(r.obstacle_m[1] - s.xy_m[1]);
+                    proptest::prop_assert!((d - s.range_m - e).abs() < 1e-9);
+                }
+            }
+            Err(e) => proptest::prop_assert!(["world", "request"].contains(&e.code()), "{e}"),
+        }
+    }
+}
