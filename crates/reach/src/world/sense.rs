@@ -59,6 +59,14 @@ pub const MAX_SENSORS: usize = 32;
 /// and the linearised covariance no longer describes the error.
 pub const MAX_AXIS_RATIO: f64 = 100.0;
 
+/// Largest sensor coordinate and range, metres (1000 km): beyond it a value is a unit mistake,
+/// and squares of such numbers lose the centimetres the estimate is about.
+pub const MAX_LENGTH_M: f64 = 1e6;
+
+/// Smallest standard deviation of a reading, metres (a nanometre): the weights `1/σ²` stay
+/// far from overflow.
+pub const MIN_SIGMA_M: f64 = 1e-9;
+
 /// Iteration cap of one Levenberg–Marquardt run; from a trilateration start it converges in a
 /// handful of steps.
 const MAX_ITERATIONS: usize = 100;
@@ -130,8 +138,8 @@ fn validate(readings: &[RangeReading]) -> Result<(), WorldError> {
     }
     for (i, r) in readings.iter().enumerate() {
         let bad = |field: &str, message: String| Err(WorldError::Input(format!("sensor {}: {field} {message}", i + 1)));
-        if !r.position.iter().all(|v| v.is_finite()) {
-            return bad("position", format!("must be finite, got {:?}", r.position));
+        if !r.position.iter().all(|v| v.is_finite() && v.abs() <= MAX_LENGTH_M) {
+            return bad("position", format!("must be finite and within {MAX_LENGTH_M} m, got {:?}", r.position));
         }
         if !r.direction.is_finite() {
             return bad("direction", format!("must be finite, got {}", r.direction));
@@ -142,8 +150,14 @@ fn validate(readings: &[RangeReading]) -> Result<(), WorldError> {
         if !(r.range.is_finite() && r.range > 0.0) {
             return bad("range", format!("must be > 0 m, got {}", r.range));
         }
+        if r.range > MAX_LENGTH_M {
+            return bad("range", format!("must be at most {MAX_LENGTH_M} m, got {}", r.range));
+        }
         if !(r.sigma.is_finite() && r.sigma > 0.0) {
             return bad("sigma", format!("must be > 0 m, got {}", r.sigma));
+        }
+        if !(MIN_SIGMA_M..=MAX_LENGTH_M).contains(&r.sigma) {
+            return bad("sigma", format!("must be in [{MIN_SIGMA_M}, {MAX_LENGTH_M}] m, got {}", r.sigma));
         }
     }
     for i in 0..readings.len() {
@@ -303,7 +317,8 @@ fn candidate(readings: &[RangeReading], x: P2) -> Candidate {
 /// # Errors
 /// [`WorldError::Input`] naming the sensor (1-based) and the field for fewer than 2 or more
 /// than [`MAX_SENSORS`] readings, a non-finite position or direction, a cone half-angle outside
-/// `(0, π/2)`, a range or sigma that is not `> 0`, two sensors at one point; and when no
+/// `(0, π/2)`, a range that is not `> 0`, a sigma below [`MIN_SIGMA_M`], a coordinate, range or
+/// sigma beyond [`MAX_LENGTH_M`], two sensors at one point; and when no
 /// position fits the ranges within every beam cone (contradictory readings).
 ///
 /// # Example

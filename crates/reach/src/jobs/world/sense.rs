@@ -8,7 +8,9 @@ use serde::{Deserialize, Serialize};
 use crate::Robot;
 use crate::error::{Error, Result};
 use crate::jobs::input::number_text;
-use crate::world::sense::{Ambiguity, CONFIDENCE, MAX_SENSORS, RangeReading, SenseEstimate, locate};
+use crate::world::sense::{
+    Ambiguity, CONFIDENCE, MAX_LENGTH_M, MAX_SENSORS, MIN_SIGMA_M, RangeReading, SenseEstimate, locate,
+};
 
 /// Default standard deviation of a range reading, metres: a hobby ultrasonic ranger's
 /// centimetre.
@@ -50,7 +52,8 @@ pub struct SensorReading {
 pub struct SenseRequest {
     /// The readings: at least 2, at most 32.
     pub sensors: Vec<SensorReading>,
-    /// Standard deviation of the readings that give none, metres (default 0.01), > 0.
+    /// Standard deviation of the readings that give none, metres (default 0.01), in
+    /// [1e-9, 1e6]; coordinates and ranges are at most 1e6 m.
     #[serde(default = "default_sigma_m")]
     pub sigma_m: f64,
 }
@@ -91,11 +94,16 @@ fn finite(field: &str, values: &[f64]) -> Result<()> {
     }
 }
 
-fn positive(field: &str, value: f64, unit: &str) -> Result<()> {
-    if value.is_finite() && value > 0.0 {
-        Ok(())
+/// A length `> 0` (at least `min`) and at most [`MAX_LENGTH_M`].
+fn length(field: &str, value: f64, min: f64) -> Result<()> {
+    if !(value.is_finite() && value > 0.0) {
+        Err(Error::request(field, format!("must be > 0 m, got {}", number_text(value))))
+    } else if value > MAX_LENGTH_M {
+        Err(Error::request(field, format!("must be at most {MAX_LENGTH_M:e} m, got {value:e}")))
+    } else if value < min {
+        Err(Error::request(field, format!("must be at least {min:e} m, got {value:e}")))
     } else {
-        Err(Error::request(field, format!("must be > 0 {unit}, got {}", number_text(value))))
+        Ok(())
     }
 }
 
@@ -113,15 +121,21 @@ impl SenseRequest {
         if n > MAX_SENSORS {
             return Err(Error::request("sensors", format!("at most {MAX_SENSORS} sensors, got {n}")));
         }
-        positive("sigma_m", self.sigma_m, "m")?;
+        length("sigma_m", self.sigma_m, MIN_SIGMA_M)?;
         self.sensors
             .iter()
             .enumerate()
             .map(|(i, s)| {
                 let field = |name: &str| format!("sensors[{}].{name}", i + 1);
                 finite(&field("xy_m"), &s.xy_m)?;
+                if let Some(v) = s.xy_m.iter().find(|v| v.abs() > MAX_LENGTH_M) {
+                    return Err(Error::request(
+                        field("xy_m"),
+                        format!("at most {MAX_LENGTH_M:e} m from the origin, got {v:e}"),
+                    ));
+                }
                 finite(&field("dir_deg"), &[s.dir_deg])?;
-                positive(&field("range_m"), s.range_m, "m")?;
+                length(&field("range_m"), s.range_m, 0.0)?;
                 if !(s.cone_deg > 0.0 && s.cone_deg < 180.0) {
                     return Err(Error::request(
                         field("cone_deg"),
@@ -129,7 +143,7 @@ impl SenseRequest {
                     ));
                 }
                 if let Some(sigma) = s.sigma_m {
-                    positive(&field("sigma_m"), sigma, "m")?;
+                    length(&field("sigma_m"), sigma, MIN_SIGMA_M)?;
                 }
                 Ok(RangeReading {
                     position: s.xy_m,
@@ -213,5 +227,8 @@ mod tests {
             "sensors[1].xy_m: expected a finite number, got inf"
         );
         assert!(error(&|r| r.sensors[0].cone_deg = 180.0).starts_with("sensors[1].cone_deg: the full beam angle"));
+        assert_eq!(error(&|r| r.sigma_m = 1e-300), "sigma_m: must be at least 1e-9 m, got 1e-300");
+        assert_eq!(error(&|r| r.sensors[0].range_m = 1e300), "sensors[1].range_m: must be at most 1e6 m, got 1e300");
+        assert!(error(&|r| r.sensors[1].xy_m[0] = -2e6).starts_with("sensors[2].xy_m: at most 1e6 m"));
     }
 }
