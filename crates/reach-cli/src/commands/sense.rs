@@ -87,7 +87,7 @@ pub fn sensor_error(e: reach::Error, flags: &[(&str, &str)]) -> CliError {
         let reading = field.strip_prefix("sensors[").and_then(|rest| rest.split_once(']'));
         if let Some((i, tail)) = reading {
             let what = match tail {
-                ".xy_m" => " (X,Y)",
+                t if t.starts_with(".xy_m") => " (X,Y)",
                 ".dir_deg" => " (DIR_DEG)",
                 ".range_m" => " (RANGE)",
                 ".cone_deg" => " (CONE_DEG)",

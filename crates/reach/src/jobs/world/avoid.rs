@@ -10,6 +10,7 @@ use crate::decide::detour_choice::{DetourCriterion, DetourRanking, choose_detour
 use crate::error::{Error, Result};
 use crate::ik::planar::PlanarRedundant;
 use crate::jobs::input::{Joints, number_text, q_display, require_within_limits};
+use crate::jobs::world::finite;
 use crate::jobs::world::sense::{SenseReport, SenseRequest};
 use crate::world::detour::{
     Closest, DetourOptions, DetourOutcome, DetourPlan, P2, SweepTest, WaypointRule, plan_detour,
@@ -148,15 +149,6 @@ pub struct AvoidRun {
     pub circle_radius_m: f64,
     /// Radius the obstacles are grown by (a sensed obstacle's uncertainty), metres.
     pub obstacle_radius_m: f64,
-}
-
-fn finite(field: &str, values: &[f64]) -> Result<()> {
-    match values.iter().position(|v| !v.is_finite()) {
-        Some(i) => {
-            Err(Error::request(format!("{field}[{}]", i + 1), format!("expected a finite number, got {}", values[i])))
-        }
-        None => Ok(()),
-    }
 }
 
 /// Plans the move (see [`avoid_run`]).

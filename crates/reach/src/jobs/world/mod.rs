@@ -22,8 +22,22 @@ pub use cspace::{
 pub use path::{PathReport, PathRequest, PathRun, PathStatsReport, TimedPath, path, path_run, path_run_with_cancel};
 pub use sense::{SenseReport, SenseRequest, SensorReading, sense};
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::world::Scene;
+
+/// Refuses a non-finite value of the list `field`, naming it by its 1-based index
+/// (`to_xy_m[2]: expected a finite number, got NaN`).
+///
+/// # Errors
+/// [`crate::Error::Request`].
+pub(crate) fn finite(field: &str, values: &[f64]) -> Result<()> {
+    match values.iter().position(|v| !v.is_finite()) {
+        Some(i) => {
+            Err(Error::request(format!("{field}[{}]", i + 1), format!("expected a finite number, got {}", values[i])))
+        }
+        None => Ok(()),
+    }
+}
 
 /// Parses a request's scene text.
 ///

@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 use crate::Robot;
 use crate::error::{Error, Result};
 use crate::jobs::input::number_text;
+use crate::jobs::world::finite;
 use crate::world::sense::{
     Ambiguity, CONFIDENCE, MAX_LENGTH_M, MAX_SENSORS, MIN_SIGMA_M, RangeReading, SenseEstimate, locate,
 };
@@ -87,13 +88,6 @@ pub struct SenseReport {
     pub covariance_m2: Option<[[f64; 2]; 2]>,
 }
 
-fn finite(field: &str, values: &[f64]) -> Result<()> {
-    match values.iter().find(|v| !v.is_finite()) {
-        Some(v) => Err(Error::request(field, format!("expected a finite number, got {v}"))),
-        None => Ok(()),
-    }
-}
-
 /// A length `> 0` (at least `min`) and at most [`MAX_LENGTH_M`].
 fn length(field: &str, value: f64, min: f64) -> Result<()> {
     if !(value.is_finite() && value > 0.0) {
@@ -134,7 +128,12 @@ impl SenseRequest {
                         format!("at most {MAX_LENGTH_M:e} m from the origin, got {v:e}"),
                     ));
                 }
-                finite(&field("dir_deg"), &[s.dir_deg])?;
+                if !s.dir_deg.is_finite() {
+                    return Err(Error::request(
+                        field("dir_deg"),
+                        format!("expected a finite number, got {}", s.dir_deg),
+                    ));
+                }
                 length(&field("range_m"), s.range_m, 0.0)?;
                 if !(s.cone_deg > 0.0 && s.cone_deg < 180.0) {
                     return Err(Error::request(
@@ -224,7 +223,7 @@ mod tests {
         assert_eq!(error(&|r| r.sensors[1].sigma_m = Some(0.0)), "sensors[2].sigma_m: must be > 0 m, got 0");
         assert_eq!(
             error(&|r| r.sensors[0].xy_m[1] = f64::INFINITY),
-            "sensors[1].xy_m: expected a finite number, got inf"
+            "sensors[1].xy_m[2]: expected a finite number, got inf"
         );
         assert!(error(&|r| r.sensors[0].cone_deg = 180.0).starts_with("sensors[1].cone_deg: the full beam angle"));
         assert_eq!(error(&|r| r.sigma_m = 1e-300), "sigma_m: must be at least 1e-9 m, got 1e-300");
