@@ -132,7 +132,9 @@ pub enum Command {
             least Σ wᵢ·|qᵢ − fromᵢ|, joint weights --joint-weights) is printed.\n\n\
             --choose topsis|vikor|weighted-sum|pareto ranks the solutions within limits by \
             --criteria (change = Σ wᵢ·|qᵢ − fromᵢ| [rad] less is better, limits = smallest \
-            normalised distance to a joint limit, manipulability, sigma_min: more is better; \
+            normalised distance to a joint limit, manipulability, sigma_min, stiffness = \
+            σmin/σmax of the position Jacobian: more is better; accuracy = σmax of the position \
+            Jacobian × 0.01° [m]: less is better; \
             default change,limits,manipulability) with --weights, one per criterion (default \
             equal), and prints the ranking table: raw and normalised value per criterion, the \
             score (TOPSIS closeness, VIKOR Q, weighted sum) and whether the solution is \
@@ -225,9 +227,32 @@ pub enum Command {
         after_help = "Examples:\n  \
             reach avoid planar3 --from 60,-40,-30 --to-xy 2.4,0.2 --obstacle 2.0,0.7\n  \
             reach avoid planar3 --from-xy 2.4245,1.0344 --to-xy 2.4,0.2 --obstacle 2.0,0.7 --json\n  \
-            reach avoid planar3 --from 60,-40,-30 --to-xy 2.4,0.2 --obstacle 2.0,0.7 --choose topsis"
+            reach avoid planar3 --from 60,-40,-30 --to-xy 2.4,0.2 --obstacle 2.0,0.7 --choose topsis\n  \
+            reach avoid planar3 --from 60,-40,-30 --to-xy 2.4,0.2 --sensor 0.5,-0.5,43.66,1.920937 --sensor 3,-0.5,129.81,1.56205"
     )]
     Avoid(crate::commands::avoid::AvoidArgs),
+
+    /// Seed 000: locate an obstacle from two or more ultrasonic range readings.
+    #[command(
+        long_about = "Locates a point obstacle in the robot's x–y plane from range readings of two \
+            or more sensors at known poses (--sensor X,Y,DIR_DEG,RANGE[,CONE_DEG]: position [m], \
+            beam direction [deg from +x], measured range [m], full beam angle [deg, default 30]; \
+            --sigma: the readings' standard deviation [m], default 0.01). Weighted least squares \
+            (Levenberg–Marquardt from every closed-form trilateration point); the beam cones \
+            choose between the two intersections of two range circles. The uncertainty radius \
+            holds the obstacle with 99.73 % probability (the 1-D 3σ probability; covariance of \
+            the fit). \"ambiguous\" when the geometry cannot separate solutions: another \
+            position fits inside the cones (\"alternatives\") or the sensors are nearly in line \
+            with the obstacle (\"ill_conditioned\"). `reach avoid --sensor …` detours around the \
+            sensed obstacle grown by its uncertainty radius.\n\n\
+            --json prints {\"obstacle_m\": [x, y], \"uncertainty_m\", \"confidence\", \
+            \"residual_m\", \"residuals_m\", \"ambiguous\", \"ambiguity\", \"alternatives_m\", \
+            \"covariance_m2\"}.",
+        after_help = "Examples:\n  \
+            reach sense planar3 --sensor 0.5,-0.5,43.66,1.920937 --sensor 3,-0.5,129.81,1.56205\n  \
+            reach sense planar3 --sensor 0,0,0,0.538516,60 --sensor 1,0,180,0.538516,60 --json"
+    )]
+    Sense(crate::commands::sense::SenseArgs),
 
     /// Seed 004: classify a joint grid (limits, tool zone, self-collision, obstacles).
     #[command(

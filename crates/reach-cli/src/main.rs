@@ -63,6 +63,7 @@ fn run(command: &Command, out: &mut dyn Write) -> Result<(), CliError> {
         Command::Drive(args) => commands::drive::run(args, out),
         Command::Check(args) => commands::check::run(args, out),
         Command::Avoid(args) => commands::avoid::run(args, out),
+        Command::Sense(args) => commands::sense::run(args, out),
         Command::Cspace(args) => commands::cspace::run(args, out),
         Command::Move(args) => commands::move_cmd::run(args, out),
         Command::Plan(args) => commands::plan::run_plan(args, out),

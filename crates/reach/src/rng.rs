@@ -25,4 +25,12 @@ impl SplitMix64 {
     pub fn below(&mut self, n: usize) -> usize {
         ((self.next_f64() * n as f64) as usize).min(n - 1)
     }
+
+    /// Standard normal (mean 0, variance 1), by the Box–Muller transform of two uniforms
+    /// (`1 − u` keeps the logarithm's argument in `(0, 1]`).
+    #[cfg_attr(not(test), allow(dead_code, reason = "used by the sensing tests' simulated noise"))]
+    pub fn normal(&mut self) -> f64 {
+        let (u, v) = (1.0 - self.next_f64(), self.next_f64());
+        (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
+    }
 }

@@ -45,8 +45,13 @@ pub struct AvoidArgs {
     pub to_xy: String,
 
     /// A point obstacle x,y [m] (repeatable).
-    #[arg(long, value_name = "X,Y", allow_hyphen_values = true)]
+    #[arg(long, value_name = "X,Y", allow_hyphen_values = true, conflicts_with = "sensor")]
     pub obstacle: Vec<String>,
+
+    /// Range readings instead of --obstacle (as `reach sense`): the obstacle they locate is
+    /// detoured, grown by its uncertainty radius.
+    #[command(flatten)]
+    pub sensors: crate::commands::sense::SensorArgs,
 
     /// IK scan step, degrees (thesis: 0.01).
     #[arg(long, default_value = "0.01", value_name = "DEG")]
@@ -103,6 +108,7 @@ impl AvoidArgs {
             step_deg: parse_finite("--step", &self.step)?,
             literal_test: self.literal_test,
             printed_waypoints: self.printed_waypoints,
+            sense: self.sensors.request()?,
             choose: self
                 .choose
                 .as_ref()
@@ -150,7 +156,7 @@ pub fn run(args: &AvoidArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let request = args.request()?;
     args.draw.check_files()?;
     let run = avoid_run(robot, &request).map_err(|e| {
-        crate::error::flagged(
+        crate::commands::sense::sensor_error(
             e,
             &[
                 ("start", "--from"),
@@ -161,6 +167,7 @@ pub fn run(args: &AvoidArgs, out: &mut dyn Write) -> Result<(), CliError> {
                 ("choose.criteria", "--criteria"),
                 ("choose.weights", "--weights"),
                 ("choose", "--choose"),
+                ("sense", "--sensor"),
             ],
         )
     })?;
@@ -174,6 +181,7 @@ pub fn run(args: &AvoidArgs, out: &mut dyn Write) -> Result<(), CliError> {
             &run.plan,
             &run.obstacles,
             run.circle_radius_m,
+            run.obstacle_radius_m,
         ))?;
     }
     if args.json {
@@ -195,6 +203,17 @@ fn write_text(report: &AvoidReport, out: &mut dyn Write) -> Result<(), CliError>
     head.pair("outcome", outcome_text(&report.outcome));
     head.pair("direct move blocked", report.blocked.to_string());
     head.pair("start q [deg]", deg3(&report.start_deg));
+    if let Some(s) = &report.sensed {
+        head.pair(
+            "sensed obstacle",
+            format!(
+                "({}, {}) m, grown by its uncertainty {} m",
+                fixed(s.obstacle_m[0], 6),
+                fixed(s.obstacle_m[1], 6),
+                s.uncertainty_m.map_or("-".into(), |u| fixed(u, 6))
+            ),
+        );
+    }
     head.pair(
         "min clearance",
         report.closest.map_or("-".into(), |c| {

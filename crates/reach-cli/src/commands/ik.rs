@@ -79,8 +79,9 @@ pub struct IkArgs {
 
     /// With --choose: the criteria, comma-separated, from change (Σ wᵢ·|qᵢ − fromᵢ| [rad],
     /// less), limits (smallest normalised distance to a joint limit, more), manipulability
-    /// (Yoshikawa, more), sigma_min (smallest singular value, more). Default:
-    /// change,limits,manipulability.
+    /// (Yoshikawa, more), sigma_min (smallest singular value, more), stiffness (σmin/σmax of
+    /// the position Jacobian, more), accuracy (σmax of the position Jacobian × 0.01° [m],
+    /// less). Default: change,limits,manipulability.
     #[arg(long, value_name = "C1,..,CK", requires = "choose")]
     pub criteria: Option<String>,
 
@@ -113,7 +114,10 @@ pub struct IkArgs {
     pub time_budget: Option<String>,
 
     /// Planar arm (seed 000): print the thesis's table of configurations for the position
-    /// --xyz, alpha from alpha_min to 180 in steps of DEG, and the row with the least S.
+    /// --xyz, alpha from alpha_min to 180 in steps of DEG, and the row with the least S. For 4
+    /// to 6 links (`planar4`): joints 3..n stepped over their limits by DEG, the configuration
+    /// with the least S chosen (the table is counted, not listed;
+    /// docs/schemas/planar_scan.report.schema.json).
     #[arg(long, value_name = "DEG", allow_hyphen_values = true, requires = "xyz", conflicts_with_all = ["rpy", "quat", "matrix", "all", "solver", "free_angle", "step", "restarts", "time_budget", "joint_weights", "choose"])]
     pub scan: Option<String>,
 
@@ -157,6 +161,28 @@ pub fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let loaded = args.robot.load()?;
     let robot = &loaded.robot;
     let from = args.from.as_deref().map(|t| joints_arg("--from", t, args.rad)).transpose()?;
+    if let Some(step) = &args.scan
+        && robot.dof() != 3
+    {
+        if args.csv.is_some() {
+            return Err(CliError::bad_input("--csv: the table of a planar arm of 4 or more links is not stored"));
+        }
+        let xyz = parse_exact("--xyz", args.xyz.as_deref().unwrap_or_default(), 3, "x,y,z in metres")?;
+        let request = reach::jobs::PlanarScanRequest {
+            xyz_m: [xyz[0], xyz[1], xyz[2]],
+            step_deg: parse_finite("--scan", step)?,
+            from,
+        };
+        let scan_flags = [("step_deg", "--scan"), ("xyz_m", "--xyz"), ("from", "--from")];
+        let report = reach::jobs::planar_scan::planar_scan(robot, &request)
+            .map_err(|e| crate::error::flagged(e, &scan_flags))?;
+        if args.json {
+            write_json(out, &report)?;
+        } else {
+            super::ik_render::write_planar_scan(out, &report)?;
+        }
+        return finish(out, report.reason);
+    }
     if let Some(step) = &args.scan {
         let xyz = parse_exact("--xyz", args.xyz.as_deref().unwrap_or_default(), 3, "x,y,z in metres")?;
         let request = IkScanRequest { xyz_m: [xyz[0], xyz[1], xyz[2]], step_deg: parse_finite("--scan", step)?, from };

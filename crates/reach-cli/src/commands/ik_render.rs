@@ -190,7 +190,8 @@ fn write_ranking(out: &mut dyn Write, solutions: &[IkSolutionReport], r: &IkRank
     for e in &r.ranked {
         let mut row = vec![e.rank.to_string(), (e.solution + 1).to_string(), solutions[e.solution].branch.clone()];
         for (j, v) in e.values.iter().enumerate() {
-            row.push(fixed(*v, 4));
+            // Small raw values (seed 003's accuracy is ~1e-4 m) keep four significant digits.
+            row.push(if *v != 0.0 && v.abs() < 0.01 { format!("{v:.4e}") } else { fixed(*v, 4) });
             if let Some(n) = &e.normalised {
                 row.push(fixed(n[j], 4));
             }
@@ -341,4 +342,26 @@ fn demo_case(out: &mut dyn Write, robot: &Robot, what: &str, target: Pose) -> Re
         r.solver, r.found, r.within_limits
     )?;
     write_solution_table(out, robot, &r.solutions, r.chosen, "  ", true)
+}
+
+/// The n-link scan for people: grid counts and the chosen configuration.
+pub(super) fn write_planar_scan(out: &mut dyn Write, r: &reach::jobs::PlanarScanReport) -> Result<(), CliError> {
+    let mut head = Table::key_value();
+    head.pair("robot", r.robot.clone());
+    head.pair("from q [deg]", r.from_q_deg.iter().map(|v| fixed(*v, 6)).collect::<Vec<_>>().join(", "));
+    match (&r.q_deg, r.s_deg) {
+        (Some(q), Some(s)) => {
+            head.pair(
+                "scan",
+                format!(
+                    "joints 3..n every {} deg: {} nodes, {} configurations, {} within limits",
+                    r.step_deg, r.nodes, r.configurations, r.within_limits
+                ),
+            );
+            head.pair("chosen q [deg]", q.iter().map(|v| fixed(*v, 6)).collect::<Vec<_>>().join(", "));
+            head.pair("S [deg]", fixed(s, 6));
+        }
+        _ => head.pair("chosen", r.reason.clone().unwrap_or_default()),
+    }
+    head.write(out, "")
 }

@@ -19,6 +19,7 @@ pub mod path;
 pub mod plan;
 pub mod robot_show;
 pub mod robots;
+pub mod sense;
 pub mod serve;
 pub mod tasks;
 pub mod tasks_render;

@@ -298,7 +298,8 @@ fn project(shape: &Shape, a: usize, b: usize, view: [f64; 4]) -> Projection {
 /// Seed 000's detour: the planar arm at the start, at the waypoints `K2`, `K3` and at the
 /// target, intermediate poses of each leg (joints interpolated linearly, as the plan checks
 /// them), the area swept by the links in the direct move, the obstacles and the waypoint
-/// circles of radius `radius` (metres, the thesis's `L/7`).
+/// circles of radius `radius` (metres, the thesis's `L/7`, plus `disc`); obstacles grown into
+/// discs of radius `disc` (a sensed obstacle's uncertainty; 0 for points) are drawn filled.
 #[must_use]
 pub fn detour(
     title: &str,
@@ -307,6 +308,7 @@ pub fn detour(
     plan: &DetourPlan,
     obstacles: &[P2],
     radius: f64,
+    disc: f64,
 ) -> Svg {
     let mut poses: Vec<[f64; 3]> = vec![*start];
     poses.extend(plan.configurations.iter().copied());
@@ -353,6 +355,9 @@ pub fn detour(
     }
     for h in obstacles {
         panel.circle(&mut svg, (h[0], h[1]), radius, "circle");
+        if disc > 0.0 {
+            panel.circle(&mut svg, (h[0], h[1]), disc, "obstacle");
+        }
     }
     let names: Vec<&str> = if plan.waypoints.len() == 3 { vec!["K2", "K3", "K1"] } else { vec!["K1"] };
     let mut route = vec![arm_points(arm, start)[3]];
@@ -384,6 +389,14 @@ pub fn detour(
     }
     panel.dot(&mut svg, (0.0, 0.0), 5.0, "base");
     panel.end(&mut svg);
+    let circle = if disc > 0.0 {
+        format!("circle L/7 + {disc:.4} = {radius:.4} m")
+    } else {
+        format!("circle L/7 = {radius:.4} m")
+    };
+    let grown = format!("sensed H grown by {disc:.4} m");
+    // The last entry, the grown disc, only when there is one.
+    let disc_legend = if disc > 0.0 { 9 } else { 8 };
     svg.legend(
         width - 230.0,
         70.0,
@@ -394,9 +407,10 @@ pub fn detour(
             ("arm-ghost", "intermediate poses"),
             ("sweep", "swept area, direct move"),
             ("obstacle-point", "obstacle H"),
-            ("circle", &format!("circle L/7 = {:.4} m", radius)),
+            ("circle", &circle),
             ("base", "base O"),
-        ][..],
+            ("obstacle", &grown),
+        ][..disc_legend],
     );
     svg
 }

@@ -136,6 +136,7 @@ fn robots_lists_every_preset_with_dof_and_description() {
     let text = ok(&["robots"]);
     let want = [
         ("planar3", 3),
+        ("planar4", 4),
         ("log-loader", 3),
         ("spbu6", 6),
         ("puma560", 6),
@@ -162,7 +163,7 @@ fn robots_lists_every_preset_with_dof_and_description() {
         assert_eq!(entry["dof"], dof);
         assert!(!entry["description"].as_str().unwrap().is_empty());
     }
-    assert_eq!(list[7]["convention"], "mdh");
+    assert_eq!(list[8]["convention"], "mdh");
     assert_eq!(serde_json::to_value(reach::jobs::model::preset_list().unwrap()).unwrap(), serde_json::json!(list));
     crate::common::assert_valid("presets.report", &serde_json::json!(list));
 }

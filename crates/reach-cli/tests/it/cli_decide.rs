@@ -157,7 +157,7 @@ fn choose_bad_input_exits_2() {
         a
     };
     fails(&with(&["--choose", "electre"]), 2, &["--choose", "unknown method `electre`", "topsis"]);
-    fails(&with(&["--choose", "topsis", "--criteria", "change,stiffness"]), 2, &["unknown criterion `stiffness`"]);
+    fails(&with(&["--choose", "topsis", "--criteria", "change,rigidity"]), 2, &["unknown criterion `rigidity`"]);
     fails(
         &with(&["--choose", "topsis", "--criteria", "change,limits", "--weights", "1,2,3"]),
         2,
@@ -673,4 +673,70 @@ fn tasks_json_is_the_library_report() {
         "tasks.report",
     );
     assert!(r["plan"]["total_energy_j"].as_f64().unwrap() > 0.0);
+}
+
+/// Seed 003's stiffness and accuracy criteria (docs/choosing.md): each ranked value is
+/// recomputed from the eigenvalues of `J_p J_pᵀ` at the solution (not the singular values the
+/// library uses), and the two criteria are accepted by `reach move --choose` too.
+#[test]
+fn stiffness_and_accuracy_rank_ik_solutions_by_the_position_jacobian() {
+    let v = json(&[
+        "ik",
+        "ur5",
+        "--matrix",
+        UR5_POSE,
+        "--from",
+        UR5_FROM,
+        "--choose",
+        "topsis",
+        "--criteria",
+        "stiffness,accuracy",
+        "--json",
+    ]);
+    let ranking = &v["ranking"];
+    assert_eq!(ranking["criteria"][0]["name"], "stiffness");
+    assert_eq!(ranking["criteria"][0]["direction"], "more_is_better");
+    assert_eq!(
+        (ranking["criteria"][1]["name"].as_str(), ranking["criteria"][1]["unit"].as_str()),
+        (Some("accuracy"), Some("m"))
+    );
+    assert_eq!(ranking["criteria"][1]["direction"], "less_is_better");
+    let robot = reach::model::presets::get("ur5").unwrap();
+    let ranked = ranking["ranked"].as_array().unwrap();
+    assert_eq!(ranked.len(), 8);
+    for row in ranked {
+        let i = row["solution"].as_u64().unwrap() as usize;
+        let q: Vec<f64> = nums(&v["solutions"][i]["q_deg"]).iter().map(|d| d.to_radians()).collect();
+        let j = robot.jacobian(&q).unwrap();
+        let jp = j.fixed_rows::<3>(0).into_owned();
+        let eig = (&jp * jp.transpose()).symmetric_eigen().eigenvalues;
+        let (lo, hi) = (eig.min().sqrt(), eig.max().sqrt());
+        let values = nums(&row["values"]);
+        assert!((values[0] - lo / hi).abs() < 1e-6, "solution {i}: {values:?} vs {}", lo / hi);
+        assert!((values[1] - hi * 0.01f64.to_radians()).abs() < 1e-9, "solution {i}: {values:?}");
+    }
+    let v = json(&[
+        "move",
+        "ur5",
+        "--from-xyz",
+        "0.4,-0.2,0.3",
+        "--from-rpy",
+        "180,0,0",
+        "--to-xyz",
+        "0.4,0.2,0.3",
+        "--to-rpy",
+        "180,0,0",
+        "--space",
+        "tool",
+        "--duration",
+        "4",
+        "--dt",
+        "0.1",
+        "--choose",
+        "topsis",
+        "--criteria",
+        "stiffness,accuracy",
+        "--json",
+    ]);
+    assert!(v["intervals"].as_array().is_some_and(|i| !i.is_empty()));
 }

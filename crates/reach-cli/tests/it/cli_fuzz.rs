@@ -45,6 +45,10 @@ const VALUES: &[&str] = &[
     "60 -40 -30",
     ",,",
     "-",
+    "0.5,-0.5,43.66,1.920937",
+    "3,-0.5,129.81,1.56205,30",
+    "0,0,0,1,180",
+    "1,0,180,nan",
 ];
 const COMMANDS: &[(&str, &[&str], &[&str])] = &[
     ("fk", &[], &["--rad", "--json"]),
@@ -60,6 +64,8 @@ const COMMANDS: &[(&str, &[&str], &[&str])] = &[
     ("move", &["--from", "--to", "--duration", "--dt", "--speed", "--from-xyz", "--to-xyz"], &["--json", "--rad"]),
     ("drive", &["--from", "--to", "--duration"], &["--json", "--rad"]),
     ("path", &["--from", "--to", "--duration"], &["--json", "--rad"]),
+    ("sense", &["--sensor", "--sensor", "--sigma"], &["--json"]),
+    ("avoid", &["--from", "--to-xy", "--sensor", "--sigma"], &["--json"]),
 ];
 
 /// One argument vector: command, robot, positional values and flags.

@@ -133,6 +133,7 @@ fn check_avoid_and_cspace_json_are_the_library_reports_and_match_their_schemas()
             literal_test: false,
             printed_waypoints: false,
             choose: None,
+            sense: None,
         }),
     };
     let v = crate::common::assert_report(

@@ -11,6 +11,7 @@ mod cli_fuzz;
 mod cli_ik;
 mod cli_move;
 mod cli_plot;
+mod cli_sense;
 mod cli_serve;
 mod cli_urdf;
 mod cli_world;

@@ -8,7 +8,14 @@ use serde::Serialize;
 use super::DecideError;
 use super::mcdm::{Criterion, DecisionMatrix, Direction, Method, Ranking, rank};
 use crate::ik::IkSolution;
+use crate::kinematics::Manipulability;
 use crate::model::Robot;
+
+/// Joint resolution `δq` of the [`IkCriterion::Accuracy`] criterion by default: 0.01° (in
+/// radians; the same number in metres for prismatic joints) — seed 000's angle step `Δα`, the
+/// finest joint increment any seed computes with. The criterion scales linearly with it, so
+/// it changes no ranking, only the value a requirement is compared with.
+pub const DEFAULT_JOINT_RESOLUTION: f64 = 0.01 * std::f64::consts::PI / 180.0;
 
 /// A criterion evaluated on one IK solution.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -34,6 +41,22 @@ pub enum IkCriterion {
     /// Smallest singular value of the six-row Jacobian (distance from a singularity). Unit
     /// `1` (mixed); more is better.
     SigmaMin,
+    /// Seed 003's stiffness criterion (notes 003 §4 step 4, Conclusion 5), as the **isotropy of
+    /// the tool's translational stiffness**: `σ_min/σ_max = 1/κ(J_p)` of the position Jacobian
+    /// ([`Manipulability::position`]; 2-D for planar arms). With equal joint stiffnesses `k`
+    /// the tool's stiffness matrix is `K = k·(J_p J_pᵀ)⁻¹`, whose eigenvalues are `k/σᵢ²`: the
+    /// stiffest direction resists `κ²` times more than the most compliant one. In `[0, 1]`, 1
+    /// for an arm that is equally stiff in every direction, 0 at a singularity. Unit `1`; more
+    /// is better.
+    Stiffness,
+    /// Seed 003's accuracy criterion, as the **position-error amplification**: `σ_max(J_p)·δq`,
+    /// the largest tool displacement caused by a joint error vector of Euclidean norm `δq`
+    /// (`resolution`). Unit `m`; less is better.
+    Accuracy {
+        /// The joint resolution `δq`, radians (metres for prismatic joints), > 0; default
+        /// [`DEFAULT_JOINT_RESOLUTION`].
+        resolution: f64,
+    },
 }
 
 impl IkCriterion {
@@ -44,6 +67,8 @@ impl IkCriterion {
             IkCriterion::LimitMargin => Criterion::new("limits", "1", Direction::MoreIsBetter),
             IkCriterion::Manipulability => Criterion::new("manipulability", "1", Direction::MoreIsBetter),
             IkCriterion::SigmaMin => Criterion::new("sigma_min", "1", Direction::MoreIsBetter),
+            IkCriterion::Stiffness => Criterion::new("stiffness", "1", Direction::MoreIsBetter),
+            IkCriterion::Accuracy { .. } => Criterion::new("accuracy", "m", Direction::LessIsBetter),
         }
     }
 
@@ -81,6 +106,19 @@ impl IkCriterion {
                 .fold(0.5, f64::min)),
             IkCriterion::Manipulability => Ok(robot.manipulability(q)?.yoshikawa),
             IkCriterion::SigmaMin => Ok(robot.manipulability(q)?.sigma_min),
+            IkCriterion::Stiffness => {
+                let m = Manipulability::position(&robot.jacobian(q)?);
+                Ok(if m.sigma_max > 0.0 { m.sigma_min / m.sigma_max } else { 0.0 })
+            }
+            IkCriterion::Accuracy { resolution } => {
+                if !(resolution.is_finite() && *resolution > 0.0) {
+                    return Err(DecideError::BadVector {
+                        what: "joint resolution",
+                        reason: format!("must be a finite number > 0, got {resolution}"),
+                    });
+                }
+                Ok(Manipulability::position(&robot.jacobian(q)?).sigma_max * resolution)
+            }
         }
     }
 }

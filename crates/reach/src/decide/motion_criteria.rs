@@ -16,7 +16,7 @@
 use serde::Serialize;
 
 use super::DecideError;
-use super::ik_criteria::IkCriterion;
+use super::ik_criteria::{DEFAULT_JOINT_RESOLUTION, IkCriterion};
 use super::mcdm::{Criterion, DecisionMatrix, Direction, Method, Ranking, normalise_weights, rank};
 use crate::effort::{self, Differences};
 use crate::model::{JointKind, Robot};
@@ -97,6 +97,13 @@ pub enum MotionCriterion {
     /// Smallest singular value of the Jacobian over the samples (distance from a singularity).
     /// Unit `1`; more is better.
     MinSigma,
+    /// Seed 003's stiffness, the worst over the samples: the smallest
+    /// [`IkCriterion::Stiffness`] (`σ_min/σ_max` of the position Jacobian). Unit `1`; more is
+    /// better.
+    MinStiffness,
+    /// Seed 003's accuracy, the worst over the samples: the largest [`IkCriterion::Accuracy`]
+    /// (`σ_max(J_p)·δq`, `δq` = [`DEFAULT_JOINT_RESOLUTION`]). Unit `m`; less is better.
+    MaxErrorAmplification,
     /// Smallest link–obstacle clearance over the samples
     /// ([`crate::world::Report::min_obstacle_clearance_m`]; negative: penetration). Unit `m`;
     /// more is better.
@@ -114,7 +121,7 @@ pub enum MotionCriterion {
 }
 
 /// Names accepted by [`MotionCriterion::parse`], in a stable order.
-pub const MOTION_CRITERIA: [&str; 11] = [
+pub const MOTION_CRITERIA: [&str; 13] = [
     "j1",
     "j2",
     "duration",
@@ -123,6 +130,8 @@ pub const MOTION_CRITERIA: [&str; 11] = [
     "limits",
     "manipulability",
     "sigma_min",
+    "stiffness",
+    "accuracy",
     "clearance",
     "path_length",
     "energy",
@@ -163,6 +172,8 @@ impl MotionCriterion {
             "limits" => MotionCriterion::LimitMargin,
             "manipulability" => MotionCriterion::MinManipulability,
             "sigma_min" => MotionCriterion::MinSigma,
+            "stiffness" => MotionCriterion::MinStiffness,
+            "accuracy" => MotionCriterion::MaxErrorAmplification,
             "clearance" => match scene {
                 Some(s) if !s.obstacles.is_empty() => {
                     CollisionChecker::try_new(robot, s)
@@ -206,6 +217,8 @@ impl MotionCriterion {
             MotionCriterion::LimitMargin => ("limits", "1", More),
             MotionCriterion::MinManipulability => ("manipulability", "1", More),
             MotionCriterion::MinSigma => ("sigma_min", "1", More),
+            MotionCriterion::MinStiffness => ("stiffness", "1", More),
+            MotionCriterion::MaxErrorAmplification => ("accuracy", "m", Less),
             MotionCriterion::Clearance { .. } => ("clearance", "m", More),
             MotionCriterion::ToolPathLength => ("path_length", "m", Less),
             MotionCriterion::Energy => ("energy", "J", Less),
@@ -256,6 +269,11 @@ impl MotionCriterion {
             MotionCriterion::LimitMargin => min_over(&IkCriterion::LimitMargin),
             MotionCriterion::MinManipulability => min_over(&IkCriterion::Manipulability),
             MotionCriterion::MinSigma => min_over(&IkCriterion::SigmaMin),
+            MotionCriterion::MinStiffness => min_over(&IkCriterion::Stiffness),
+            MotionCriterion::MaxErrorAmplification => {
+                let accuracy = IkCriterion::Accuracy { resolution: DEFAULT_JOINT_RESOLUTION };
+                q.iter().try_fold(0.0_f64, |m, qk| Ok(m.max(accuracy.evaluate(robot, &wrapped_into_range(robot, qk))?)))
+            }
             MotionCriterion::Clearance { scene } => {
                 let mut checker = CollisionChecker::new(robot, scene);
                 let mut least = f64::INFINITY;

@@ -29,6 +29,7 @@ mod solution;
 pub mod numeric;
 pub mod parallel_axes;
 pub mod planar;
+pub mod planar_scan;
 pub mod spherical_wrist;
 pub mod two_link_wrist;
 pub mod yaw_planar3;

@@ -10,6 +10,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::input::{Joints, Pose, q_display, rpy_deg};
+use crate::decide::ik_criteria::DEFAULT_JOINT_RESOLUTION;
 use crate::decide::{Criterion, DecideError, Direction, IkCriterion, Method, ik_matrix, rank};
 use crate::error::{Error, Result};
 use crate::ik::numeric::MAX_UNTIMED_ITERATIONS;
@@ -93,14 +94,26 @@ pub enum IkCriterionName {
     Manipulability,
     /// Smallest singular value of the Jacobian, more is better.
     SigmaMin,
+    /// Seed 003's stiffness: `σ_min/σ_max` of the position Jacobian (isotropy of the tool's
+    /// stiffness), more is better.
+    Stiffness,
+    /// Seed 003's accuracy: `σ_max` of the position Jacobian times a joint resolution of 0.01°,
+    /// metres, less is better.
+    Accuracy,
 }
 
 impl IkCriterionName {
     /// Every criterion, in the order of the documentation.
-    pub const ALL: [IkCriterionName; 4] =
-        [IkCriterionName::Change, IkCriterionName::Limits, IkCriterionName::Manipulability, IkCriterionName::SigmaMin];
+    pub const ALL: [IkCriterionName; 6] = [
+        IkCriterionName::Change,
+        IkCriterionName::Limits,
+        IkCriterionName::Manipulability,
+        IkCriterionName::SigmaMin,
+        IkCriterionName::Stiffness,
+        IkCriterionName::Accuracy,
+    ];
 
-    /// The name (`change`, `limits`, `manipulability`, `sigma_min`).
+    /// The name (`change`, `limits`, `manipulability`, `sigma_min`, `stiffness`, `accuracy`).
     #[must_use]
     pub fn as_str(self) -> &'static str {
         match self {
@@ -108,6 +121,8 @@ impl IkCriterionName {
             IkCriterionName::Limits => "limits",
             IkCriterionName::Manipulability => "manipulability",
             IkCriterionName::SigmaMin => "sigma_min",
+            IkCriterionName::Stiffness => "stiffness",
+            IkCriterionName::Accuracy => "accuracy",
         }
     }
 
@@ -216,6 +231,8 @@ impl IkChoice {
                 IkCriterionName::Limits => IkCriterion::LimitMargin,
                 IkCriterionName::Manipulability => IkCriterion::Manipulability,
                 IkCriterionName::SigmaMin => IkCriterion::SigmaMin,
+                IkCriterionName::Stiffness => IkCriterion::Stiffness,
+                IkCriterionName::Accuracy => IkCriterion::Accuracy { resolution: DEFAULT_JOINT_RESOLUTION },
             })
             .collect();
         let candidates: Vec<usize> = (0..all.solutions.len()).filter(|&i| all.solutions[i].within_limits).collect();
@@ -537,7 +554,7 @@ pub fn failure_code(failure: &IkFailure) -> &'static str {
     }
 }
 
-fn status(failure: Option<&IkFailure>) -> (String, Option<String>) {
+pub(crate) fn status(failure: Option<&IkFailure>) -> (String, Option<String>) {
     match failure {
         None => ("ok".into(), None),
         Some(f) => (failure_code(f).into(), Some(f.to_string())),

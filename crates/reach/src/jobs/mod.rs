@@ -23,6 +23,7 @@ pub mod input;
 pub mod kinematics;
 pub mod model;
 pub mod motion;
+pub mod planar_scan;
 pub mod tasks;
 pub mod world;
 
@@ -35,9 +36,11 @@ pub use input::{AngleUnit, Joints, LoadedRobot, Pose, PoseReport, RobotInput};
 pub use kinematics::{FkReport, FkRequest, JacobianReport, JacobianRequest};
 pub use model::{ModelReport, ModelRequest, PresetEntry};
 pub use motion::{MoveReport, MoveRequest, PlanReport, PlanRequest};
+pub use planar_scan::{PlanarScanReport, PlanarScanRequest};
 pub use tasks::{TasksReport, TasksRequest};
 pub use world::{
     AvoidReport, AvoidRequest, CheckReport, CheckRequest, CspaceReport, CspaceRequest, PathReport, PathRequest,
+    SenseReport, SenseRequest,
 };
 
 use crate::Robot;
@@ -65,10 +68,14 @@ pub enum Request {
     Ik(IkRequest),
     /// Seed 000's table of configurations of a planar 3-link arm.
     IkScan(IkScanRequest),
+    /// Seed 000's scan and minimum-change choice for a planar arm of 3 to 6 links.
+    PlanarScan(PlanarScanRequest),
     /// Collisions and clearances of one configuration in a scene.
     Check(CheckRequest),
     /// Seed 000's planar detour around point obstacles.
     Avoid(AvoidRequest),
+    /// Seed 000's obstacle located from ultrasonic range readings.
+    Sense(SenseRequest),
     /// Seed 004's configuration-space grid (and fitted region).
     Cspace(CspaceRequest),
     /// A collision-free, timed joint-space path through a scene.
@@ -97,10 +104,14 @@ pub enum Report {
     Ik(IkReport),
     /// Seed 000's table of configurations.
     IkScan(IkScanReport),
+    /// Seed 000's minimum-change choice for a planar arm of 3 to 6 links.
+    PlanarScan(PlanarScanReport),
     /// Collisions and clearances of one configuration in a scene.
     Check(CheckReport),
     /// Seed 000's planar detour around point obstacles.
     Avoid(AvoidReport),
+    /// Seed 000's obstacle located from ultrasonic range readings.
+    Sense(SenseReport),
     /// Seed 004's configuration-space grid (and fitted region).
     Cspace(CspaceReport),
     /// A collision-free, timed joint-space path through a scene.
@@ -145,8 +156,10 @@ pub fn run(robot: &Robot, request: &Request) -> Result<Report> {
         Request::Plan(r) => Report::Plan(motion::plan(robot, r)?),
         Request::Ik(r) => Report::Ik(ik::ik(robot, r)?),
         Request::IkScan(r) => Report::IkScan(ik::ik_scan(robot, r)?),
+        Request::PlanarScan(r) => Report::PlanarScan(planar_scan::planar_scan(robot, r)?),
         Request::Check(r) => Report::Check(world::check(robot, r)?),
         Request::Avoid(r) => Report::Avoid(world::avoid(robot, r)?),
+        Request::Sense(r) => Report::Sense(world::sense(robot, r)?),
         Request::Cspace(r) => Report::Cspace(world::cspace(robot, r)?),
         Request::Path(r) => Report::Path(world::path(robot, r)?),
         Request::Tasks(r) => Report::Tasks(tasks::tasks(robot, r)?),
@@ -178,10 +191,14 @@ pub fn schemas() -> Vec<(&'static str, serde_json::Value)> {
         ("ik.report", of::<IkReport>()),
         ("ik_scan.request", of::<IkScanRequest>()),
         ("ik_scan.report", of::<IkScanReport>()),
+        ("planar_scan.request", of::<PlanarScanRequest>()),
+        ("planar_scan.report", of::<PlanarScanReport>()),
         ("check.request", of::<CheckRequest>()),
         ("check.report", of::<CheckReport>()),
         ("avoid.request", of::<AvoidRequest>()),
         ("avoid.report", of::<AvoidReport>()),
+        ("sense.request", of::<SenseRequest>()),
+        ("sense.report", of::<SenseReport>()),
         ("cspace.request", of::<CspaceRequest>()),
         ("cspace.report", of::<CspaceReport>()),
         ("path.request", of::<PathRequest>()),

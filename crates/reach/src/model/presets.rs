@@ -3,6 +3,7 @@
 //! | name | DOF | source |
 //! |---|---|---|
 //! | `planar3` | 3 | seed 000: planar redundant arm, three 1 m links |
+//! | `planar4` | 4 | seed 000's future work: planar redundant arm, four 1 m links |
 //! | `log-loader` | 3 | seed 000 appendix: base yaw + two 1 m links in a vertical plane |
 //! | `spbu6` | 6 | seed 001: two-link arm (l1 = 5, l2 = 3) with a spherical wrist |
 //! | `puma560` | 6 | seed 002 structure, classic PUMA 560 numbers |
@@ -16,6 +17,7 @@ use super::{ModelError, Robot};
 /// `(name, TOML source)` of every preset, in display order.
 pub const PRESETS: &[(&str, &str)] = &[
     ("planar3", include_str!("../../robots/planar3.toml")),
+    ("planar4", include_str!("../../robots/planar4.toml")),
     ("log-loader", include_str!("../../robots/log-loader.toml")),
     ("spbu6", include_str!("../../robots/spbu6.toml")),
     ("puma560", include_str!("../../robots/puma560.toml")),

@@ -65,6 +65,12 @@ pub struct DetourOptions {
     pub waypoints: WaypointRule,
     /// Radius of the waypoint circle, metres (thesis: `L/7`; `None` = mean link length / 7).
     pub radius: Option<f64>,
+    /// Radius every point obstacle is grown by, metres (0: the thesis's points). A sensed
+    /// obstacle grows by its uncertainty radius ([`super::sense`]), so a detour that clears
+    /// the disc clears the true obstacle wherever it lies in it. The swept checks and the
+    /// reported clearances are to the discs, and the waypoint circle's radius grows by it
+    /// (`L/7` beyond the disc). The literal test ([`SweepTest::PaperLiteral`]) takes points only.
+    pub obstacle_radius: f64,
 }
 
 impl Default for DetourOptions {
@@ -74,6 +80,7 @@ impl Default for DetourOptions {
             sweep_test: SweepTest::Robust,
             waypoints: WaypointRule::Perpendicular,
             radius: None,
+            obstacle_radius: 0.0,
         }
     }
 }
@@ -272,13 +279,16 @@ pub fn arm_points(arm: &PlanarRedundant, q: &[f64; 3]) -> [P2; 4] {
     pts
 }
 
-/// The clearances of the three links of a planar arm to point obstacles, for [`sweep`]:
-/// constraint `3·o + i` is link `i` (0-based: OB, BA, AK) against obstacle `o`.
+/// The clearances of the three links of a planar arm to point obstacles grown into discs of
+/// `radius`, for [`sweep`]: constraint `3·o + i` is link `i` (0-based: OB, BA, AK) against
+/// obstacle `o`.
 pub struct PlanarClearances<'a> {
     /// The arm.
     pub arm: &'a PlanarRedundant,
-    /// The obstacles.
+    /// The obstacles' centres.
     pub obstacles: &'a [P2],
+    /// The obstacles' radius, metres (0 for points).
+    pub radius: f64,
 }
 
 impl Clearances for PlanarClearances<'_> {
@@ -292,7 +302,7 @@ impl Clearances for PlanarClearances<'_> {
         let p = arm_points(self.arm, &[q[0], q[1], q[2]]);
         for (o, h) in self.obstacles.iter().enumerate() {
             for i in 0..3 {
-                out[3 * o + i] = seg_dist(*h, p[i], p[i + 1]);
+                out[3 * o + i] = seg_dist(*h, p[i], p[i + 1]) - self.radius;
             }
         }
         Ok(())
@@ -305,7 +315,22 @@ impl Clearances for PlanarClearances<'_> {
 /// # Errors
 /// [`WorldError::Input`] for non-finite joint values.
 pub fn leg_sweep(arm: &PlanarRedundant, from: &[f64; 3], to: &[f64; 3], obstacles: &[P2]) -> Result<Sweep, WorldError> {
-    sweep(&mut PlanarClearances { arm, obstacles }, from, to, &SweepOptions::default())
+    leg_sweep_discs(arm, from, to, obstacles, 0.0)
+}
+
+/// [`leg_sweep`] against obstacles grown into discs of `radius` metres (clearances to the
+/// discs).
+///
+/// # Errors
+/// [`WorldError::Input`] for non-finite joint values.
+pub fn leg_sweep_discs(
+    arm: &PlanarRedundant,
+    from: &[f64; 3],
+    to: &[f64; 3],
+    obstacles: &[P2],
+    radius: f64,
+) -> Result<Sweep, WorldError> {
+    sweep(&mut PlanarClearances { arm, obstacles, radius }, from, to, &SweepOptions::default())
 }
 
 /// Whether the move `from → to` is blocked by obstacle `h` under `test`.
@@ -365,7 +390,14 @@ pub fn plan_detour(
     if !start.iter().all(|v| v.is_finite()) || !finite(&target) || !obstacles.iter().all(finite) {
         return Err(WorldError::Input("detour: start, target and obstacles must be finite numbers".into()));
     }
-    let radius = options.circle_radius(arm);
+    let grown = options.obstacle_radius;
+    if !(grown.is_finite() && grown >= 0.0) {
+        return Err(WorldError::Input(format!("detour: obstacle radius must be ≥ 0, got {grown} m")));
+    }
+    if grown > 0.0 && options.sweep_test == SweepTest::PaperLiteral {
+        return Err(WorldError::Input("detour: the thesis's literal test takes point obstacles only".into()));
+    }
+    let radius = options.circle_radius(arm) + grown;
     if !(radius.is_finite() && radius > 0.0) {
         return Err(WorldError::Input(format!("detour: circle radius must be positive, got {radius} m")));
     }
@@ -384,7 +416,7 @@ pub fn plan_detour(
     let blocker = |from: &[f64; 3], to: &[f64; 3]| -> Result<Option<usize>, WorldError> {
         Ok(match options.sweep_test {
             SweepTest::Robust => {
-                let swept = leg_sweep(arm, from, to, obstacles)?;
+                let swept = leg_sweep_discs(arm, from, to, obstacles, grown)?;
                 (!swept.clear).then_some(swept.constraint / 3)
             }
             SweepTest::PaperLiteral => {
@@ -398,7 +430,7 @@ pub fn plan_detour(
         plan.configurations = vec![q1];
         plan.paper_angles = vec![p1];
         plan.leg_s = vec![s1];
-        plan.closest = closest(arm, start, &plan.configurations, obstacles)?;
+        plan.closest = closest(arm, start, &plan.configurations, obstacles, grown)?;
         plan.min_clearance = plan.closest.map(|c| c.clearance_m);
         return Ok(plan);
     };
@@ -433,7 +465,7 @@ pub fn plan_detour(
         current = q;
     }
     plan.outcome = DetourOutcome::Detour { obstacle: hit };
-    plan.closest = closest(arm, start, &plan.configurations, obstacles)?;
+    plan.closest = closest(arm, start, &plan.configurations, obstacles, grown)?;
     plan.min_clearance = plan.closest.map(|c| c.clearance_m);
     Ok(plan)
 }
@@ -445,11 +477,12 @@ fn closest(
     start: &[f64; 3],
     legs: &[[f64; 3]],
     obstacles: &[P2],
+    radius: f64,
 ) -> Result<Option<Closest>, WorldError> {
     let mut best: Option<Closest> = None;
     let mut from = *start;
     for (leg, to) in legs.iter().enumerate() {
-        let swept = leg_sweep(arm, &from, to, obstacles)?;
+        let swept = leg_sweep_discs(arm, &from, to, obstacles, radius)?;
         if swept.evaluations > 0 && best.is_none_or(|b| swept.min_clearance < b.clearance_m) {
             best = Some(Closest {
                 leg: leg + 1,

@@ -13,6 +13,8 @@
 //! * [`cspace`] — seed 004: joint-grid enumeration and classification of every node.
 //! * [`rfunction`] — seed 004: Rvachev's R-conjunction and the region primitives.
 //! * [`fit`] — seed 004: fitting those primitives to a classified grid; confusion counts.
+//! * [`sense`] — seed 000: an obstacle located from ultrasonic range readings (least squares,
+//!   beam cones, uncertainty radius, ambiguity).
 //! * [`planner`] — collision-free joint-space motion between joint vectors or to a pose:
 //!   seeded bidirectional RRT-Connect with shortcutting.
 //!
@@ -32,6 +34,7 @@ pub mod fit;
 pub mod planner;
 pub mod rfunction;
 mod scene;
+pub mod sense;
 mod shape;
 pub mod sweep;
 

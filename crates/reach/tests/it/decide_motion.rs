@@ -129,8 +129,8 @@ fn clearance_rejects_a_bad_allowed_collision_list_at_parse() {
 #[test]
 fn bad_motions_and_names_are_rejected() {
     let robot = presets::get("puma560").unwrap();
-    let err = MotionCriterion::parse("stiffness", &robot, None, None).unwrap_err();
-    assert!(err.to_string().contains("unknown criterion 'stiffness'"), "{err}");
+    let err = MotionCriterion::parse("rigidity", &robot, None, None).unwrap_err();
+    assert!(err.to_string().contains("unknown criterion 'rigidity'"), "{err}");
     assert!(MotionCriterion::parse("j1", &robot, Some(&[1.0, -1.0, 1.0, 1.0, 1.0, 1.0]), None).is_err());
     let j2 = c("j2", &robot);
     let t = [0.0, 1.0];

@@ -196,7 +196,8 @@ pub struct ChoiceSpec {
     /// `topsis`, `vikor` or `weighted-sum`.
     pub method: String,
     /// Motion criterion names (`j1`, `j2`, `duration`, `peak_velocity`, `peak_acceleration`,
-    /// `limits`, `manipulability`, `sigma_min`, `path_length`).
+    /// `limits`, `manipulability`, `sigma_min`, `stiffness`, `accuracy`, `path_length`, …;
+    /// docs/choosing.md).
     pub criteria: Vec<String>,
     /// One weight per criterion, ≥ 0, not all 0 (default equal).
     #[serde(default, skip_serializing_if = "Option::is_none")]

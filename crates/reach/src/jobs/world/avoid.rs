@@ -9,7 +9,9 @@ use crate::decide::Method;
 use crate::decide::detour_choice::{DetourCriterion, DetourRanking, choose_detour};
 use crate::error::{Error, Result};
 use crate::ik::planar::PlanarRedundant;
-use crate::jobs::input::{Joints, q_display, require_within_limits};
+use crate::jobs::input::{Joints, number_text, q_display, require_within_limits};
+use crate::jobs::world::finite;
+use crate::jobs::world::sense::{SenseReport, SenseRequest};
 use crate::world::detour::{
     Closest, DetourOptions, DetourOutcome, DetourPlan, P2, SweepTest, WaypointRule, plan_detour,
 };
@@ -38,6 +40,11 @@ pub struct AvoidRequest {
     /// Point obstacles `x, y`, metres.
     #[serde(default)]
     pub obstacles_xy_m: Vec<[f64; 2]>,
+    /// Range readings instead of `obstacles_xy_m`: the obstacle they locate, grown into a disc
+    /// of its uncertainty radius (`sense.report`'s `uncertainty_m`), is detoured; an ambiguous
+    /// geometry is refused.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sense: Option<SenseRequest>,
     /// IK scan step, degrees (thesis: 0.01), > 0.
     #[serde(default = "default_step_deg")]
     pub step_deg: f64,
@@ -111,6 +118,10 @@ pub struct AvoidReport {
     /// With `choose`: every side planned.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sides: Option<Vec<AvoidSide>>,
+    /// With `sense`: the located obstacle; the clearances above are to its disc of radius
+    /// `uncertainty_m`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sensed: Option<SenseReport>,
 }
 
 impl AvoidReport {
@@ -136,15 +147,8 @@ pub struct AvoidRun {
     pub obstacles: Vec<P2>,
     /// Radius of the waypoint circle, metres.
     pub circle_radius_m: f64,
-}
-
-fn finite(field: &str, values: &[f64]) -> Result<()> {
-    match values.iter().position(|v| !v.is_finite()) {
-        Some(i) => {
-            Err(Error::request(format!("{field}[{}]", i + 1), format!("expected a finite number, got {}", values[i])))
-        }
-        None => Ok(()),
-    }
+    /// Radius the obstacles are grown by (a sensed obstacle's uncertainty), metres.
+    pub obstacle_radius_m: f64,
 }
 
 /// Plans the move (see [`avoid_run`]).
@@ -162,7 +166,8 @@ pub fn avoid(robot: &Robot, request: &AvoidRequest) -> Result<AvoidReport> {
 /// [`Error::Ik`] for a robot that is not a planar three-link arm; [`Error::Request`] for
 /// non-finite positions, a step that is not > 0, both or neither of `start` and `from_xy_m`,
 /// a `from_xy_m` outside the workspace, an unknown method or criterion, `choose` with
-/// `printed_waypoints`; [`Error::Decide`] for bad weights.
+/// `printed_waypoints`, `sense` with `obstacles_xy_m` or `literal_test`, readings that are
+/// invalid or ambiguous (see [`SenseRequest::locate`]); [`Error::Decide`] for bad weights.
 pub fn avoid_run(robot: &Robot, request: &AvoidRequest) -> Result<AvoidRun> {
     let arm = PlanarRedundant::from_robot(robot)?;
     if !(request.step_deg.is_finite() && request.step_deg > 0.0) {
@@ -193,13 +198,14 @@ pub fn avoid_run(robot: &Robot, request: &AvoidRequest) -> Result<AvoidRun> {
         }
         _ => return Err(Error::request("start", "give exactly one of `start` and `from_xy_m`")),
     };
+    let (obstacles, sensed) = sensed_obstacles(robot, request)?;
     let options = DetourOptions {
         step,
         sweep_test: if request.literal_test { SweepTest::PaperLiteral } else { SweepTest::Robust },
         waypoints: if request.printed_waypoints { WaypointRule::PaperPrinted } else { WaypointRule::Perpendicular },
+        obstacle_radius: sensed.as_ref().and_then(|s| s.uncertainty_m).unwrap_or(0.0),
         ..DetourOptions::default()
     };
-    let obstacles = request.obstacles_xy_m.clone();
     let target = request.to_xy_m;
     let (plan, sides, criteria) = match &request.choose {
         None => (plan_detour(&arm, &start, target, &obstacles, &options)?, None, None),
@@ -227,9 +233,42 @@ pub fn avoid_run(robot: &Robot, request: &AvoidRequest) -> Result<AvoidRun> {
         closest: plan.closest,
         criteria,
         sides,
+        sensed,
     };
-    let circle_radius_m = options.circle_radius(&arm);
-    Ok(AvoidRun { report, arm, start, plan, obstacles, circle_radius_m })
+    let obstacle_radius_m = options.obstacle_radius;
+    let circle_radius_m = options.circle_radius(&arm) + obstacle_radius_m;
+    Ok(AvoidRun { report, arm, start, plan, obstacles, circle_radius_m, obstacle_radius_m })
+}
+
+/// The obstacles to detour: the request's points, or the one its readings locate.
+fn sensed_obstacles(robot: &Robot, request: &AvoidRequest) -> Result<(Vec<P2>, Option<SenseReport>)> {
+    let Some(sense) = &request.sense else { return Ok((request.obstacles_xy_m.clone(), None)) };
+    if !request.obstacles_xy_m.is_empty() {
+        return Err(Error::request("sense", "give either `obstacles_xy_m` or `sense` readings, not both"));
+    }
+    if request.literal_test {
+        return Err(Error::request(
+            "sense",
+            "a sensed obstacle is a disc (its uncertainty); the literal test takes points only",
+        ));
+    }
+    let report = SenseReport::of(robot, &sense.locate()?);
+    if report.ambiguous {
+        let at = |p: &[f64; 2]| format!("({}, {})", number_text(p[0]), number_text(p[1]));
+        let why = match &report.alternatives_m[..] {
+            [] => "the sensors are nearly in line with the obstacle".to_string(),
+            others => format!(
+                "{} and {} m fit the readings",
+                at(&report.obstacle_m),
+                others.iter().map(at).collect::<Vec<_>>().join(", ")
+            ),
+        };
+        return Err(Error::request(
+            "sense",
+            format!("the readings do not locate the obstacle unambiguously: {why}; add a sensor or narrow the cones"),
+        ));
+    }
+    Ok((vec![report.obstacle_m], Some(report)))
 }
 
 /// Plans both sides, ranks them; returns the sides, the criterion names and the plan shown

@@ -1,6 +1,7 @@
 //! The world workflows: a configuration checked against a scene (`check`), seed 000's planar
 //! detour (`avoid`), seed 004's configuration-space grid and its fitted region (`cspace`),
-//! and a collision-free, timed joint-space path through a scene (`path`).
+//! a collision-free, timed joint-space path through a scene (`path`), and seed 000's obstacle
+//! located from ultrasonic range readings (`sense`).
 //!
 //! Requests that need a scene carry the **text** of the scene file (`scene`, TOML,
 //! docs/scene-format.md); it is parsed here ([`parse_scene`]), so a front end only reads the
@@ -10,6 +11,7 @@ pub mod avoid;
 pub mod check;
 pub mod cspace;
 pub mod path;
+pub mod sense;
 
 pub use avoid::{AvoidChoice, AvoidReport, AvoidRequest, AvoidRun, AvoidSide, avoid, avoid_run};
 pub use check::{CheckReport, CheckRequest, MotionCheckReport, SweptPathReport, SweptReport, check};
@@ -18,9 +20,24 @@ pub use cspace::{
     cspace_with_grid,
 };
 pub use path::{PathReport, PathRequest, PathRun, PathStatsReport, TimedPath, path, path_run, path_run_with_cancel};
+pub use sense::{SenseReport, SenseRequest, SensorReading, sense};
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::world::Scene;
+
+/// Refuses a non-finite value of the list `field`, naming it by its 1-based index
+/// (`to_xy_m[2]: expected a finite number, got NaN`).
+///
+/// # Errors
+/// [`crate::Error::Request`].
+pub(crate) fn finite(field: &str, values: &[f64]) -> Result<()> {
+    match values.iter().position(|v| !v.is_finite()) {
+        Some(i) => {
+            Err(Error::request(format!("{field}[{}]", i + 1), format!("expected a finite number, got {}", values[i])))
+        }
+        None => Ok(()),
+    }
+}
 
 /// Parses a request's scene text.
 ///
@@ -75,6 +92,7 @@ mod tests {
             literal_test: false,
             printed_waypoints: false,
             choose: None,
+            sense: None,
         };
         assert!(avoid(&robot, &request).unwrap_err().to_string().contains("exactly one of `start` and `from_xy_m`"));
         request.start = Some(crate::jobs::Joints::Deg(vec![60.0, -40.0, -30.0]));
