@@ -40,6 +40,7 @@ pub fn router(shared: Arc<Shared>) -> Router {
         .route("/estop", post(estop))
         .route("/resume", post(resume))
         .route("/scene/obstacles", post(add_obstacle))
+        .route("/sense", post(sense))
         .route("/ws", get(ws))
         .route("/openapi.json", get(openapi))
         .route("/schemas/{name}", get(schema))
@@ -218,11 +219,13 @@ async fn submit(State(shared): AppState, body: Result<Bytes, BytesRejection>) ->
 fn halt(shared: &Shared, control: Control) -> Result<Json<Value>, ApiError> {
     let mut live = lock(&shared.live);
     live.paused = true;
-    lock(&shared.db).set_paused(true)?;
+    // The executor is told first (an estop must not wait for the database), and a stop never
+    // softens an estop already asked for.
     if live.job.is_some() {
-        live.control = Some(control);
+        live.control = Some(if live.control == Some(Control::Estop) { Control::Estop } else { control });
     }
     shared.wake.notify_all();
+    lock(&shared.db).set_paused(true)?;
     let state = shared.state(&live);
     drop(live);
     let what = if control == Control::Stop { "stop" } else { "estop" };
@@ -241,9 +244,9 @@ async fn estop(State(shared): AppState) -> Result<Json<Value>, ApiError> {
 
 /// `POST /scene/obstacles`: one obstacle in the scene file's format as JSON (`{"name",
 /// "shape", ...}`, in the stored scene's units; metres for a service started without a
-/// scene), appended to the scene and checked by the
-/// library's scene parser (400 with its message). Jobs that start afterwards must be proven
-/// clear of it; the one executing is not re-checked.
+/// scene), appended to the scene and checked by the library's scene parser (400 with its
+/// message). Jobs that start afterwards must be proven clear of it; the one executing is not
+/// re-checked.
 async fn add_obstacle(State(shared): AppState, body: Result<Bytes, BytesRejection>) -> Result<Response, ApiError> {
     let body = body.map_err(|e| body_error(&e))?;
     let value: Value =
@@ -253,20 +256,72 @@ async fn add_obstacle(State(shared): AppState, body: Result<Bytes, BytesRejectio
             "an obstacle is a JSON object: {\"name\", \"shape\", ...} (docs/scene-format.md)",
         ));
     }
-    let table = toml::to_string(&value).map_err(|e| ApiError::bad_request(format!("obstacle: {e}")))?;
+    let obstacles = append_obstacle(&shared, &value, None)?;
+    Ok((StatusCode::CREATED, Json(json!({"obstacles": obstacles}))).into_response())
+}
+
+/// Appends one obstacle (scene-file format as JSON) to the stored scene, checked by the
+/// library's parser; `metres`: the names of the obstacle's length fields given in metres, scaled
+/// to the scene's length unit. Returns the number of obstacles in the scene now.
+fn append_obstacle(shared: &Shared, value: &Value, metres: Option<&[&str]>) -> Result<usize, ApiError> {
     let db = lock(&shared.db);
     // A service started without a scene gets one in metres and degrees.
     let old = db.scene()?.unwrap_or_else(|| "length_unit = \"m\"\nangle_unit = \"deg\"\n".to_string());
+    let mut value = value.clone();
+    if let Some(fields) = metres {
+        let in_mm = toml::from_str::<toml::Table>(&old)
+            .ok()
+            .is_some_and(|t| t.get("length_unit").and_then(toml::Value::as_str) == Some("mm"));
+        let scale = if in_mm { 1000.0 } else { 1.0 };
+        for field in fields {
+            value[*field] = scale_numbers(&value[*field], scale);
+        }
+    }
+    let table = toml::to_string(&value).map_err(|e| ApiError::bad_request(format!("obstacle: {e}")))?;
     let text = format!("{old}\n[[obstacles]]\n{table}");
     let scene = reach::jobs::world::parse_scene(&text).map_err(|e| ApiError::bad_request(e.to_string()))?;
     db.set_scene(&text)?;
-    drop(db);
     let obstacles = scene.obstacles.len();
+    // Replaced while the database lock is held: concurrent additions keep their order.
     *shared.scene.write().unwrap_or_else(std::sync::PoisonError::into_inner) = Some(scene);
+    drop(db);
     let name = value["name"].as_str().unwrap_or("").to_string();
     let _ = lock(&shared.db).add_event(None, "obstacle", &name);
     shared.publish(&json!({"type": "obstacle", "name": name, "obstacles": obstacles}));
-    Ok((StatusCode::CREATED, Json(json!({"obstacles": obstacles}))).into_response())
+    Ok(obstacles)
+}
+
+/// `value` with every number multiplied by `scale` (numbers and arrays of numbers).
+fn scale_numbers(value: &Value, scale: f64) -> Value {
+    match value {
+        Value::Number(n) => json!(n.as_f64().unwrap_or(f64::NAN) * scale),
+        Value::Array(items) => Value::Array(items.iter().map(|v| scale_numbers(v, scale)).collect()),
+        other => other.clone(),
+    }
+}
+
+/// `POST /sense`: range readings (the library's sense request: seed 000's range finders in
+/// the x–y plane of the robot's base frame) → the library's sense report. An obstacle located
+/// without ambiguity joins the scene as a sphere about the estimate at z = 0 whose radius is
+/// the estimate's uncertainty (the obstacle lies inside it with 99.73 % probability); jobs
+/// that start afterwards must be proven clear of it. An ambiguous fit adds nothing (`added`
+/// is `false`; the report says why). The job executing is not re-planned.
+async fn sense(State(shared): AppState, body: Result<Bytes, BytesRejection>) -> Result<Json<Value>, ApiError> {
+    let body = body.map_err(|e| body_error(&e))?;
+    let request: reach::jobs::world::sense::SenseRequest =
+        serde_json::from_slice(&body).map_err(|e| ApiError::bad_request(format!("readings: {e}")))?;
+    let report =
+        reach::jobs::world::sense::sense(&shared.robot, &request).map_err(|e| ApiError::bad_request(e.to_string()))?;
+    let added = match (report.ambiguous, report.uncertainty_m) {
+        (false, Some(radius)) => {
+            let [x, y] = report.obstacle_m;
+            let name = format!("sensed {}", crate::db::now_ms());
+            let obstacle = json!({"name": name, "shape": "sphere", "center": [x, y, 0.0], "radius": radius});
+            Some(append_obstacle(&shared, &obstacle, Some(&["center", "radius"]))?)
+        }
+        _ => None,
+    };
+    Ok(Json(json!({"report": report, "added": added.is_some(), "obstacles": added})))
 }
 
 /// Lets queued jobs run again; 409 while a job is still stopping.

@@ -101,6 +101,9 @@ pub struct Recovery {
 /// The open state database.
 pub struct Db {
     conn: Connection,
+    /// `dir/lock`, held exclusively while the service runs: a second service on the same
+    /// state directory is refused before it recovers or changes anything.
+    _lock: std::fs::File,
 }
 
 impl Db {
@@ -122,6 +125,23 @@ impl Db {
         scene: Option<&str>,
     ) -> Result<(Db, Recovery), ServeError> {
         std::fs::create_dir_all(dir).map_err(|e| ServeError::io(dir, &e))?;
+        let lock_path = dir.join("lock");
+        let lock = std::fs::OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(&lock_path)
+            .map_err(|e| ServeError::io(&lock_path, &e))?;
+        match lock.try_lock() {
+            Ok(()) => {}
+            Err(std::fs::TryLockError::WouldBlock) => {
+                return Err(ServeError::Config(format!(
+                    "the state directory `{}` is in use by another reach serve; stop it or use another --state directory",
+                    dir.display()
+                )));
+            }
+            Err(std::fs::TryLockError::Error(e)) => return Err(ServeError::io(&lock_path, &e)),
+        }
         let path = dir.join("state.sqlite3");
         let mut conn = Connection::open(&path)?;
         conn.busy_timeout(std::time::Duration::from_secs(5))?;
@@ -182,7 +202,7 @@ impl Db {
         tx.execute("UPDATE jobs SET status = 'queued', updated_ms = ?1 WHERE status = 'planning'", params![now])?;
         tx.commit()?;
         recovery.interrupted = interrupted;
-        Ok((Db { conn }, recovery))
+        Ok((Db { conn, _lock: lock }, recovery))
     }
 
     /// The scene text stored (the last one given).

@@ -62,7 +62,7 @@
 //! | seed-000 IK scan rows (`scan`, `step_deg`) | [`ik::planar::MAX_SCAN_ROWS`] (1 million) | — |
 //! | self-motion samples per turn | [`ik::planar::MAX_SELF_MOTION_SAMPLES`] (3600) | — |
 //! | path planner iterations (two trees, one node each at most) | [`world::planner::PlanOptions::max_iterations`] (20 000) and its time budget | — |
-//! | stepper steps per joint (`drive`) | [`drive::MAX_STEPS_PER_JOINT`] (20 million) | — |
+//! | stepper steps per joint (`drive`) | [`drive::MAX_STEPS_PER_JOINT`] (2 million) | — |
 //! | wall-time budgets | [`jobs::input::MAX_TIME_BUDGET_S`] (one day) | — |
 //!
 //! ## Example

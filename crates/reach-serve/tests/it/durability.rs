@@ -69,6 +69,28 @@ async fn a_restart_shows_the_committed_counts_interrupts_the_job_and_keeps_the_q
     let _: Option<Report> = None;
 }
 
+/// A second service on a state directory in use is refused before it recovers or changes
+/// anything: the running job stays `executing` and the queue is not paused.
+#[tokio::test(flavor = "multi_thread")]
+async fn a_second_service_on_the_same_state_is_refused() {
+    let dir = scratch("two-services");
+    let first = open(&config("ur5", &dir, 1.0));
+    let router = first.router();
+    let id = crate::common::submit(&router, r#"{"kind": "move", "to_deg": [30, -90, 90, 0, 90, 0], "duration_s": 30}"#)
+        .await;
+    crate::common::wait_status(&router, id, "executing").await;
+    let Err(e) = reach_serve::Service::open(&config("ur5", &dir, 1.0)) else { panic!("a second service opened") };
+    assert!(e.to_string().contains("in use by another reach serve"), "{e}");
+    let job = crate::common::get(&router, &format!("/jobs/{id}")).await;
+    assert_eq!(job["status"], "executing", "{job}");
+    assert_eq!(crate::common::get(&router, "/state").await["status"], "executing");
+    crate::common::call(&router, "POST", "/estop", None, None).await;
+    drop(router);
+    first.shutdown();
+    // Released with the service: it opens again.
+    drop(open(&config("ur5", &dir, 1.0)));
+}
+
 #[tokio::test(flavor = "multi_thread")]
 async fn another_robot_on_the_same_state_is_refused() {
     let dir = scratch("other-robot");

@@ -85,3 +85,43 @@ async fn an_obstacle_added_at_run_time_refuses_the_moves_through_it() {
     let again = submit(&router, r#"{"kind": "move", "to_deg": [0, -30, -30], "duration_s": 10}"#).await;
     wait_status(&router, again, "refused").await;
 }
+
+/// `POST /sense`: two range readings of a point that link 3 passes on the straight move
+/// (60, −40, −30)° → (0, −30, −30)° locate it (the library's sense report); the located
+/// obstacle joins the scene and the move through it is refused. Ambiguous readings add nothing.
+#[tokio::test(flavor = "multi_thread")]
+async fn sensed_obstacles_join_the_scene() {
+    use serde_json::json;
+    let dir = scratch("sense");
+    let service = open(&config("planar3", &dir, 50.0));
+    let router = service.router();
+    let to_start = submit(&router, r#"{"kind": "move", "to_deg": [60, -40, -30], "duration_s": 10}"#).await;
+    wait_status(&router, to_start, "done").await;
+    // The tool point halfway through the move: on link 3 at that moment.
+    let robot = reach::model::presets::get("planar3").unwrap();
+    let mid = robot.fk(&[30f64.to_radians(), (-35f64).to_radians(), (-30f64).to_radians()]).unwrap();
+    let h = [mid.translation.x, mid.translation.y];
+    let reading = |s: [f64; 2]| {
+        let d = [h[0] - s[0], h[1] - s[1]];
+        json!({"xy_m": s, "dir_deg": d[1].atan2(d[0]).to_degrees(), "range_m": d[0].hypot(d[1])})
+    };
+    let body = json!({"sensors": [reading([0.5, -0.5]), reading([3.0, -0.5])], "sigma_m": 0.01}).to_string();
+    let (status, reply) = call(&router, "POST", "/sense", Some(&body), None).await;
+    assert_eq!(status, axum::http::StatusCode::OK, "{reply}");
+    assert_eq!((reply["added"].as_bool(), reply["obstacles"].as_i64()), (Some(true), Some(1)), "{reply}");
+    let located = &reply["report"]["obstacle_m"];
+    assert!((located[0].as_f64().unwrap() - h[0]).hypot(located[1].as_f64().unwrap() - h[1]) < 1e-6, "{reply}");
+    let blocked = submit(&router, r#"{"kind": "move", "to_deg": [0, -30, -30], "duration_s": 10}"#).await;
+    let job = wait_status(&router, blocked, "refused").await;
+    assert!(job["message"].as_str().unwrap_or_default().contains("sensed"), "{job}");
+    // Two sensors facing each other: both mirror points fit; nothing is added.
+    let face =
+        |x: f64, dir: f64| json!({"xy_m": [x, 0.0], "dir_deg": dir, "range_m": 0.5f64.hypot(0.2), "cone_deg": 60.0});
+    let body = json!({"sensors": [face(0.0, 0.0), face(1.0, 180.0)]}).to_string();
+    let (status, reply) = call(&router, "POST", "/sense", Some(&body), None).await;
+    assert_eq!((status, reply["added"].as_bool()), (axum::http::StatusCode::OK, Some(false)), "{reply}");
+    assert_eq!(reply["report"]["ambiguous"], true);
+    // Bad readings: the library's message.
+    let (status, reply) = call(&router, "POST", "/sense", Some(r#"{"sensors": []}"#), None).await;
+    assert_eq!(status, axum::http::StatusCode::BAD_REQUEST, "{reply}");
+}

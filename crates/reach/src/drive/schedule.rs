@@ -5,9 +5,11 @@ use crate::Robot;
 use crate::motion::JointSample;
 use crate::tolerance::DRIVE_LIMIT_SLACK;
 
-/// The most steps one joint's schedule may hold (about 0.5 GB of steps): a plan that asks for
-/// more is refused before anything is allocated.
-pub const MAX_STEPS_PER_JOINT: u64 = 20_000_000;
+/// The most steps one joint's schedule may hold: a plan that asks for more is refused before
+/// anything is allocated. 2 million steps are 10 s at a 200 kHz step rate; they take 48 MB as
+/// [`Step`]s and about 250 MB as the drive report's step rows, so a six-joint motion stays
+/// within about 1.5 GB.
+pub const MAX_STEPS_PER_JOINT: u64 = 2_000_000;
 
 /// One motor step.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
