@@ -66,6 +66,7 @@ fn run(command: &Command, out: &mut dyn Write) -> Result<(), CliError> {
         Command::Plan(args) => commands::plan::run_plan(args, out),
         Command::Tasks(args) => commands::tasks::run(args, out),
         Command::Path(args) => commands::path::run(args, out),
+        Command::View(args) => commands::view::run(args, out),
     }
 }
 

@@ -20,3 +20,4 @@ pub mod robot_show;
 pub mod robots;
 pub mod tasks;
 pub mod tasks_render;
+pub mod view;

@@ -242,8 +242,7 @@ impl<'a> CollisionChecker<'a> {
     #[must_use]
     pub fn new(robot: &'a Robot, scene: &'a Scene) -> Self {
         let n = robot.dof();
-        let links = robot.links();
-        let radii: Vec<f64> = (0..=n).map(|k| links.get(k.min(n - 1)).map_or(0.0, |l| l.radius)).collect();
+        let radii = robot.segment_radii();
         let exempt = exempt_masks(robot, scene);
         let margin = match scene.touching {
             Touching::Closed => CONTACT,
