@@ -222,7 +222,7 @@ function start() {
     startTime: () => viewer.t0,
     duration: () => viewer.duration,
     state: () => viewer.report.states[viewer.index],
-    toolPosition: () => viewer.arm.toolPoint.toArray(),
+    toolPosition: () => viewer.arm.tip.position.toArray(),
     linkCount: () => viewer.arm.group.children.filter((c) => c.userData.link !== undefined).length,
     play: () => viewer.play(),
     pause: () => viewer.pause(),

@@ -115,7 +115,6 @@ export class Arm {
       h.position.set(...poses[i].xyz_m);
       h.quaternion.copy(quat(poses[i].quat_wxyz));
     });
-    this.toolPoint = pts[pts.length - 1];
   }
 }
 
@@ -125,7 +124,7 @@ export function shapeMesh(shape, size) {
   const material = new THREE.MeshStandardMaterial({
     color: zone ? COLORS.zone : COLORS.obstacle,
     transparent: true,
-    opacity: zone ? 0.15 : 0.45,
+    opacity: zone ? 0.15 : shape.shape === 'half_space' ? 0.25 : 0.45,
     side: THREE.DoubleSide,
     depthWrite: false,
   });
