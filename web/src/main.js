@@ -108,7 +108,7 @@ class Viewer {
 
     const b = report.base.xyz_m;
     const centre = new THREE.Vector3(b[0], b[1], b[2] + 0.3 * size);
-    this.camera.position.set(b[0] + 1.6 * size, b[1] - 2.2 * size, b[2] + 1.4 * size);
+    this.camera.position.set(b[0] + 1.2 * size, b[1] - 1.7 * size, b[2] + 1.1 * size);
     this.camera.near = size / 100;
     this.camera.far = size * 100;
     this.controls.target.copy(centre);
@@ -118,6 +118,7 @@ class Viewer {
     this.duration = report.duration_s;
     this.title.textContent = `${report.robot}` + (report.ik_status ? ` — IK: ${report.ik_status}, ${report.ghosts.length} solution(s)` : '');
     this.plot = new JointPlot(this.plotCanvas, report);
+    this.plotCanvas.style.display = report.states.length > 1 ? '' : 'none';
     this.drawTimeline();
     this.resize();
     this.setTime(this.t0);

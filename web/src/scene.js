@@ -124,7 +124,7 @@ export function shapeMesh(shape, size) {
   const material = new THREE.MeshStandardMaterial({
     color: zone ? COLORS.zone : COLORS.obstacle,
     transparent: true,
-    opacity: zone ? 0.15 : shape.shape === 'half_space' ? 0.25 : 0.45,
+    opacity: zone ? 0.15 : shape.shape === 'half_space' ? 0.18 : 0.45,
     side: THREE.DoubleSide,
     depthWrite: false,
   });
@@ -157,7 +157,7 @@ export function shapeMesh(shape, size) {
     }
     case 'half_space': {
       const n = new THREE.Vector3(...shape.normal);
-      mesh = new THREE.Mesh(new THREE.PlaneGeometry(3 * size, 3 * size), material);
+      mesh = new THREE.Mesh(new THREE.PlaneGeometry(2 * size, 2 * size), material);
       mesh.position.copy(n.clone().multiplyScalar(shape.offset_m));
       mesh.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), n);
       break;
