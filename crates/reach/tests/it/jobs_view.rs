@@ -78,7 +78,7 @@ fn scene_shapes_are_the_scene_files_in_si() {
     let ViewShapeKind::HalfSpace { normal, offset_m } = &report.shapes[1].kind else { panic!("not a half-space") };
     assert!(close(normal, &[-1.0, 0.0, 0.0], 1e-12) && (offset_m + 0.5).abs() < 1e-12);
     assert_eq!(report.states.len(), 1);
-    assert_eq!(report.states[0].q_deg, vec![0.0, 30.0, -45.0, 10.0]);
+    assert!(close(&report.states[0].q_deg, &[0.0, 30.0, -45.0, 10.0], 1e-12));
 }
 
 #[test]
@@ -100,14 +100,15 @@ fn a_task_is_planned_and_its_events_are_on_the_timeline() {
     let robot = presets::get("welder6r").unwrap();
     let request = ViewRequest { task: Some(example("seed003_welding.toml")), ..ViewRequest::default() };
     let report = view(&robot, &request).unwrap();
-    let motions = report.events.iter().filter(|e| e.code == "motion").count();
-    assert_eq!(motions, 2, "both configurations are planned, one after the other");
-    // The second motion (−β) is infeasible for s ∈ (618.1, 882.2) mm at 1 mm/s, after the first
-    // motion's 943.928 s (notes 003 §5.2).
-    let bad = report.events.iter().find(|e| e.code == "infeasible").expect("an infeasible interval");
-    let end = bad.end_s.unwrap();
-    assert!((bad.t_s - 943.928 - 618.1).abs() < 10.0 && (end - 943.928 - 882.2).abs() < 10.0, "{bad:?}");
-    assert!((report.duration_s - 2.0 * 943.928).abs() < 1e-3, "{}", report.duration_s);
+    let motions: Vec<_> = report.events.iter().filter(|e| e.code == "motion").collect();
+    assert_eq!(motions.len(), 1);
+    assert_eq!(motions[0].message, "weld P -> M");
+    // Notes 003 §5.2: 943.928 mm at 1 mm/s; the −β configuration leaves θ4's range at
+    // s = 618.1 mm (K7), tracked in the +β one, which stays feasible.
+    let k7 = report.events.iter().find(|e| e.code == "K7").expect("a K7 event");
+    assert!((k7.t_s - 618.1).abs() < 0.05, "{k7:?}");
+    assert!(report.events.iter().all(|e| e.code != "infeasible"));
+    assert!((report.duration_s - 943.928).abs() < 1e-3, "{}", report.duration_s);
     assert!(report.events.windows(2).all(|w| w[0].t_s <= w[1].t_s));
 }
 
