@@ -12,5 +12,6 @@ mod cli_ik;
 mod cli_move;
 mod cli_plot;
 mod cli_urdf;
+mod cli_view;
 mod cli_world;
 mod readme_tour;
