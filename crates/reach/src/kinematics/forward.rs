@@ -4,6 +4,9 @@ use super::{KinematicsError, check_q};
 use crate::model::Robot;
 use crate::model::chain::{Chain, apply_motion};
 
+/// A joint axis in the world frame: `(point on the axis, unit direction)`.
+pub type JointAxis = (Vector3<f64>, Vector3<f64>);
+
 impl Robot {
     /// Tool pose in the world frame for joint values `q` (radians / metres).
     ///
@@ -78,7 +81,7 @@ impl Robot {
     ///
     /// # Errors
     /// [`KinematicsError`] when `q` has the wrong length or a non-finite value.
-    pub fn joint_axes(&self, q: &[f64]) -> Result<Vec<(Vector3<f64>, Vector3<f64>)>, KinematicsError> {
+    pub fn joint_axes(&self, q: &[f64]) -> Result<Vec<JointAxis>, KinematicsError> {
         check_q(self.dof(), q)?;
         let mut axes = Vec::with_capacity(self.dof());
         let mut t = self.chain.first;
