@@ -374,4 +374,23 @@ pub enum Command {
             reach job stop\n  \
             reach job resume")]
     Job(crate::commands::job::JobArgs),
+
+    /// The robot in 3-D: one self-contained HTML file (motion playback, scene, IK ghosts).
+    #[command(
+        allow_negative_numbers = true,
+        long_about = "Writes one self-contained HTML file (-o) that shows the robot in 3-D in a \
+            browser, offline: the arm as capsules between its frames with joint axes and frames, \
+            at Q (default home), or playing a motion (--motion, a `reach move --json` report; \
+            --plan, a task file planned for ROBOT) with a time slider, play/pause, the events \
+            (K-codes, infeasible intervals) marked on the timeline and a joint plot; the tool \
+            path; the obstacles and tool zone of --scene; and with --ik-xyz (and --ik-rpy or \
+            --ik-quat) every IK solution of that target as a ghost arm. At most 2000 states are \
+            shipped (a longer motion is thinned evenly). See docs/viewer.md.",
+        after_help = "Examples:\n  \
+            reach view ur5 0 -90 90 0 90 0 -o ur5.html\n  \
+            reach view ur5 --ik-xyz 0.4,0.2,0.3 --ik-rpy 180,0,0 -o ik.html\n  \
+            reach view welder6r --plan examples/seed003_welding.toml -o weld.html\n  \
+            reach view varan4 0 30 -45 10 --scene examples/seed004_two_planes.toml -o zones.html"
+    )]
+    View(crate::commands::view::ViewArgs),
 }

@@ -71,6 +71,7 @@ fn run(command: &Command, out: &mut dyn Write) -> Result<(), CliError> {
         Command::Path(args) => commands::path::run(args, out),
         Command::Serve(args) => commands::serve::run(args, out),
         Command::Job(args) => commands::job::run(args, out),
+        Command::View(args) => commands::view::run(args, out),
     }
 }
 

@@ -23,3 +23,4 @@ pub mod sense;
 pub mod serve;
 pub mod tasks;
 pub mod tasks_render;
+pub mod view;

@@ -14,5 +14,6 @@ mod cli_plot;
 mod cli_sense;
 mod cli_serve;
 mod cli_urdf;
+mod cli_view;
 mod cli_world;
 mod readme_tour;

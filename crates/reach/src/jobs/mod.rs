@@ -25,6 +25,7 @@ pub mod model;
 pub mod motion;
 pub mod planar_scan;
 pub mod tasks;
+pub mod view;
 pub mod world;
 
 use schemars::JsonSchema;
@@ -38,6 +39,7 @@ pub use model::{ModelReport, ModelRequest, PresetEntry};
 pub use motion::{MoveReport, MoveRequest, PlanReport, PlanRequest};
 pub use planar_scan::{PlanarScanReport, PlanarScanRequest};
 pub use tasks::{TasksReport, TasksRequest};
+pub use view::{ViewReport, ViewRequest};
 pub use world::{
     AvoidReport, AvoidRequest, CheckReport, CheckRequest, CspaceReport, CspaceRequest, PathReport, PathRequest,
     SenseReport, SenseRequest,
@@ -84,6 +86,8 @@ pub enum Request {
     Tasks(TasksRequest),
     /// Stepper step schedules (and G-code, coil tables, step/direction events) for a motion.
     Drive(DriveRequest),
+    /// Everything the 3-D viewer draws: states with frames and axes, scene, events, IK ghosts.
+    View(ViewRequest),
 }
 
 /// A workflow's report, tagged by `"kind"` like its request.
@@ -120,6 +124,8 @@ pub enum Report {
     Tasks(TasksReport),
     /// Stepper step schedules for a motion.
     Drive(DriveReport),
+    /// Everything the 3-D viewer draws.
+    View(ViewReport),
 }
 
 /// A request together with its robot.
@@ -164,6 +170,7 @@ pub fn run(robot: &Robot, request: &Request) -> Result<Report> {
         Request::Path(r) => Report::Path(world::path(robot, r)?),
         Request::Tasks(r) => Report::Tasks(tasks::tasks(robot, r)?),
         Request::Drive(r) => Report::Drive(drive::drive(robot, r)?),
+        Request::View(r) => Report::View(view::view(robot, r)?),
     })
 }
 
@@ -207,6 +214,8 @@ pub fn schemas() -> Vec<(&'static str, serde_json::Value)> {
         ("tasks.report", of::<TasksReport>()),
         ("drive.request", of::<DriveRequest>()),
         ("drive.report", of::<DriveReport>()),
+        ("view.request", of::<ViewRequest>()),
+        ("view.report", of::<ViewReport>()),
     ]
 }
 

@@ -1,8 +1,11 @@
-use nalgebra::{Isometry3, IsometryMatrix3, UnitQuaternion};
+use nalgebra::{Isometry3, IsometryMatrix3, UnitQuaternion, Vector3};
 
 use super::{KinematicsError, check_q};
 use crate::model::Robot;
 use crate::model::chain::{Chain, apply_motion};
+
+/// A joint axis in the world frame: `(point on the axis, unit direction)`.
+pub type JointAxis = (Vector3<f64>, Vector3<f64>);
 
 impl Robot {
     /// Tool pose in the world frame for joint values `q` (radians / metres).
@@ -70,6 +73,26 @@ impl Robot {
         let mut out = vec![IsometryMatrix3::identity(); self.dof()];
         self.frames_into(q, &mut out)?;
         Ok(out)
+    }
+
+    /// Every joint's axis in the world frame: `(point on the axis, unit direction)`, the
+    /// direction signed as the joint value turns or slides (the Jacobian's `zᵢ`, see
+    /// [`Robot::jacobian`]). Mimic joints have no entry.
+    ///
+    /// # Errors
+    /// [`KinematicsError`] when `q` has the wrong length or a non-finite value.
+    pub fn joint_axes(&self, q: &[f64]) -> Result<Vec<JointAxis>, KinematicsError> {
+        check_q(self.dof(), q)?;
+        let mut axes = Vec::with_capacity(self.dof());
+        let mut t = self.chain.first;
+        Chain::apply_mimics(&mut t, &self.chain.first_mimics, q);
+        for (link, &v) in self.chain.links.iter().zip(q) {
+            axes.push((t.translation.vector, t.rotation.matrix().column(2) * link.sign));
+            apply_motion(&mut t, link.prismatic, link.sign * v);
+            t *= link.after;
+            Chain::apply_mimics(&mut t, &link.mimics, q);
+        }
+        Ok(axes)
     }
 
     /// World positions of the base origin, every link-frame origin and the tool point:

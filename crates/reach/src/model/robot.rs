@@ -173,6 +173,16 @@ impl Robot {
         &self.spec.links
     }
 
+    /// Capsule radius of each of the `dof + 1` segments of [`Robot::joint_positions`]'s
+    /// polyline, metres: segment `k` (0-based) is link `k + 1`; the last one (last frame →
+    /// tool point) takes the last link's radius; 0 when the description gives no `[[links]]`.
+    #[must_use]
+    pub fn segment_radii(&self) -> Vec<f64> {
+        let n = self.dof();
+        let links = self.links();
+        (0..=n).map(|k| links.get(k.min(n.saturating_sub(1))).map_or(0.0, |l| l.radius)).collect()
+    }
+
     /// Mass properties per link (empty when the description gives none; see [`LinkInertial`]
     /// for the frames).
     #[must_use]

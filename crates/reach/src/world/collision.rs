@@ -242,8 +242,7 @@ impl<'a> CollisionChecker<'a> {
     #[must_use]
     pub fn new(robot: &'a Robot, scene: &'a Scene) -> Self {
         let n = robot.dof();
-        let links = robot.links();
-        let radii: Vec<f64> = (0..=n).map(|k| links.get(k.min(n - 1)).map_or(0.0, |l| l.radius)).collect();
+        let radii = robot.segment_radii();
         let exempt = exempt_masks(robot, scene);
         let margin = match scene.touching {
             Touching::Closed => CONTACT,
@@ -258,7 +257,7 @@ impl<'a> CollisionChecker<'a> {
             active: Vec::with_capacity(n + 1),
             margin,
             bounds: scene.obstacles.iter().map(|o| o.shape.bounding_sphere()).collect(),
-            max_radius: links.iter().map(|l| l.radius).fold(0.0, f64::max),
+            max_radius: robot.links().iter().map(|l| l.radius).fold(0.0, f64::max),
             exempt: exempt.as_ref().map_or_else(|_| vec![0; n + 1], Clone::clone),
             exempt_error: exempt.err(),
             sweep_pairs: Vec::new(),

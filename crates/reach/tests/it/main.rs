@@ -26,6 +26,7 @@ mod ik_branch;
 mod ik_detect;
 mod ik_numeric;
 mod ik_round_trip;
+mod jobs_view;
 mod kinematics_presets;
 mod kinematics_properties;
 mod kinematics_reference;

@@ -1,0 +1,478 @@
+//! The `view` workflow: everything the 3-D viewer draws, precomputed, so the viewer (three.js,
+//! `web/`) does no kinematics of its own.
+//!
+//! A view holds the robot's states — one configuration, or the samples of a motion (a sampled
+//! motion such as `reach move --json`'s, or every motion of a task file planned here) — each
+//! with the world pose of every link frame and of the tool, and the world axis of every joint;
+//! the capsule radius of every link segment; the scene's obstacles and tool zone as plain
+//! shapes; the events of the motion for the timeline; and, for an IK target, one "ghost" state
+//! per IK solution.
+//!
+//! # Sizes
+//! At most [`MAX_VIEW_INPUT_SAMPLES`] samples are accepted; at most [`MAX_VIEW_SAMPLES`] are
+//! shipped: a longer motion is thinned to evenly spaced samples that keep the first and the last
+//! (`samples_total` tells how many there were). Events beyond [`MAX_VIEW_EVENTS`] are dropped
+//! (the count is in `events_total`).
+
+use nalgebra::{IsometryMatrix3, UnitQuaternion, Vector3};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use super::ik::{IkRequest, ik};
+use super::input::{Joints, MotionSample, Pose, q_display, quat_wxyz, samples_si};
+use super::motion::{MoveEvent, MoveInterval, MoveReport, PlanRequest, plan};
+use super::world::parse_scene;
+use crate::Robot;
+use crate::error::{Error, Result};
+use crate::world::Shape;
+
+/// Most motion samples a view request accepts.
+pub const MAX_VIEW_INPUT_SAMPLES: usize = 1_000_000;
+/// Most states a view report ships (a longer motion is thinned evenly, first and last kept).
+pub const MAX_VIEW_SAMPLES: usize = 2_000;
+/// Most timeline events a view report ships.
+pub const MAX_VIEW_EVENTS: usize = 1_000;
+
+/// What to show.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ViewRequest {
+    /// The configuration shown when there is no motion (default: home).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub q: Option<Joints>,
+    /// A sampled motion (`reach move --json`'s `samples`), every sample within the limits.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub samples: Option<Vec<MotionSample>>,
+    /// Events to mark on the timeline of `samples` (e.g. from the move report,
+    /// [`ViewEvent::of_move`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub events: Vec<ViewEvent>,
+    /// Instead of `samples`: the text of a task file (TOML), planned here; its motions are
+    /// shown one after the other, their events and infeasible intervals on the timeline.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub task: Option<String>,
+    /// The text of a scene file (TOML): its obstacles and tool zone are drawn.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scene: Option<String>,
+    /// An IK target: every solution is shown as a ghost arm.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ik_target: Option<Pose>,
+}
+
+/// A pose in the world frame.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ViewFrame {
+    /// Origin, metres.
+    pub xyz_m: [f64; 3],
+    /// Orientation, unit quaternion `[w, x, y, z]`.
+    pub quat_wxyz: [f64; 4],
+}
+
+impl ViewFrame {
+    fn of(t: &IsometryMatrix3<f64>) -> Self {
+        let v = t.translation.vector;
+        ViewFrame { xyz_m: [v.x, v.y, v.z], quat_wxyz: quat_wxyz(&UnitQuaternion::from_rotation_matrix(&t.rotation)) }
+    }
+}
+
+/// A joint axis in the world frame.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ViewAxis {
+    /// A point on the axis (the joint's frame origin before its motion), metres.
+    pub point_m: [f64; 3],
+    /// Unit direction, signed as the joint value turns or slides.
+    pub direction: [f64; 3],
+}
+
+/// The robot at one configuration.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ViewState {
+    /// Time, seconds (0 for a single configuration).
+    pub t_s: f64,
+    /// Joint values: revolute in degrees, prismatic in metres.
+    pub q_deg: Vec<f64>,
+    /// World pose of every link frame (`Robot::frames`), one per joint.
+    pub frames: Vec<ViewFrame>,
+    /// World pose of the tool.
+    pub tool: ViewFrame,
+    /// World axis of every joint.
+    pub axes: Vec<ViewAxis>,
+}
+
+/// One mark on the timeline.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ViewEvent {
+    /// Start, seconds.
+    pub t_s: f64,
+    /// End of an interval, seconds (`null` for an instant).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub end_s: Option<f64>,
+    /// Short code: `K1` … `K14` for tracking events, `infeasible` for an infeasible
+    /// interval, `motion` for the start of a task's motion.
+    pub code: String,
+    /// The text.
+    pub message: String,
+}
+
+impl ViewEvent {
+    /// The events and infeasible intervals of a move report, shifted by `offset_s` seconds.
+    #[must_use]
+    pub fn of_move(report: &MoveReport, offset_s: f64) -> Vec<ViewEvent> {
+        Self::of_log(&report.events, &report.intervals, offset_s)
+    }
+
+    /// Tracking events and the infeasible ones of `intervals`, shifted by `offset_s` seconds.
+    #[must_use]
+    pub fn of_log(events: &[MoveEvent], intervals: &[MoveInterval], offset_s: f64) -> Vec<ViewEvent> {
+        let events = events.iter().map(|e| ViewEvent {
+            t_s: e.t_s + offset_s,
+            end_s: None,
+            code: e.code.clone(),
+            message: e.message.clone(),
+        });
+        let intervals = intervals.iter().filter(|i| !i.feasible).map(|i| ViewEvent {
+            t_s: i.start_s + offset_s,
+            end_s: Some(i.end_s + offset_s),
+            code: "infeasible".into(),
+            message: i.reasons.join("; "),
+        });
+        events.chain(intervals).collect()
+    }
+}
+
+/// The timeline marks of a motion file (`reach move --json`'s `events` and infeasible
+/// `intervals`); none when the file has neither (e.g. samples only).
+///
+/// # Errors
+/// [`Error::File`] for text that is not JSON or whose `events`/`intervals` are malformed.
+pub fn parse_motion_events(text: &str) -> Result<Vec<ViewEvent>> {
+    #[derive(Deserialize)]
+    struct MotionLog {
+        #[serde(default)]
+        events: Vec<MoveEvent>,
+        #[serde(default)]
+        intervals: Vec<MoveInterval>,
+    }
+    serde_json::from_str::<MotionLog>(text)
+        .map(|log| ViewEvent::of_log(&log.events, &log.intervals, 0.0))
+        .map_err(|e| Error::File { what: "motion file", message: crate::one_line(&e.to_string()) })
+}
+
+/// Whether a shape is an obstacle or an entry of the tool's allowed zone.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum ViewRole {
+    /// A forbidden zone.
+    Obstacle,
+    /// The tool point must stay inside.
+    ToolZone,
+}
+
+/// A scene shape, SI units.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "shape", rename_all = "snake_case")]
+pub enum ViewShapeKind {
+    /// A point.
+    Point {
+        /// Position, metres.
+        at_m: [f64; 3],
+    },
+    /// A ball.
+    Sphere {
+        /// Centre, metres.
+        center_m: [f64; 3],
+        /// Radius, metres.
+        radius_m: f64,
+    },
+    /// An oriented box (a rectangle has a zero half-extent).
+    Box {
+        /// Centre, metres.
+        center_m: [f64; 3],
+        /// Half-extents along the box axes, metres.
+        half_extents_m: [f64; 3],
+        /// World ← box rotation, `[w, x, y, z]`.
+        quat_wxyz: [f64; 4],
+    },
+    /// Points within `radius_m` of segment `a`–`b`.
+    Capsule {
+        /// First end, metres.
+        a_m: [f64; 3],
+        /// Second end, metres.
+        b_m: [f64; 3],
+        /// Radius, metres.
+        radius_m: f64,
+    },
+    /// `{p : normal·p ≤ offset_m}`; `normal` points to the free side.
+    HalfSpace {
+        /// Unit outward normal.
+        normal: [f64; 3],
+        /// `normal·p` on the boundary plane, metres.
+        offset_m: f64,
+    },
+}
+
+/// A named scene shape.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ViewShape {
+    /// Name from the scene file.
+    pub name: String,
+    /// Obstacle or tool zone.
+    pub role: ViewRole,
+    /// The solid.
+    #[serde(flatten)]
+    pub kind: ViewShapeKind,
+}
+
+fn xyz(v: &Vector3<f64>) -> [f64; 3] {
+    [v.x, v.y, v.z]
+}
+
+impl ViewShapeKind {
+    fn of(shape: &Shape) -> Self {
+        match shape {
+            Shape::Point { at } => ViewShapeKind::Point { at_m: xyz(at) },
+            Shape::Sphere { center, radius } => ViewShapeKind::Sphere { center_m: xyz(center), radius_m: *radius },
+            Shape::Box { center, half_extents, rotation } => ViewShapeKind::Box {
+                center_m: xyz(center),
+                half_extents_m: xyz(half_extents),
+                quat_wxyz: quat_wxyz(&UnitQuaternion::from_matrix(rotation)),
+            },
+            Shape::Capsule { a, b, radius } => ViewShapeKind::Capsule { a_m: xyz(a), b_m: xyz(b), radius_m: *radius },
+            Shape::HalfSpace { normal, offset } => ViewShapeKind::HalfSpace { normal: xyz(normal), offset_m: *offset },
+        }
+    }
+}
+
+/// One IK solution drawn as a ghost arm.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ViewGhost {
+    /// Branch label.
+    pub branch: String,
+    /// Whether every joint is within its limits.
+    pub within_limits: bool,
+    /// Whether it is the solution IK chooses.
+    pub chosen: bool,
+    /// The arm at the solution.
+    pub state: ViewState,
+}
+
+/// Everything the viewer draws.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ViewReport {
+    /// Robot name.
+    pub robot: String,
+    /// Joint names.
+    pub joint_names: Vec<String>,
+    /// Per joint: whether it is prismatic (its `q_deg` entry is in metres).
+    pub prismatic: Vec<bool>,
+    /// World pose of the base.
+    pub base: ViewFrame,
+    /// Capsule radius of every link segment, metres (`dof + 1` entries: base → frame 1, …,
+    /// last frame → tool point; 0 when the robot file gives no `[[links]]`).
+    pub link_radii_m: Vec<f64>,
+    /// The states in time order: one for a single configuration, else the motion's samples
+    /// (at most [`MAX_VIEW_SAMPLES`]).
+    pub states: Vec<ViewState>,
+    /// How many samples the motion had before thinning.
+    pub samples_total: usize,
+    /// Duration of the motion, seconds (0 for a single configuration).
+    pub duration_s: f64,
+    /// Timeline marks (at most [`MAX_VIEW_EVENTS`]).
+    pub events: Vec<ViewEvent>,
+    /// How many events there were before the cap.
+    pub events_total: usize,
+    /// Obstacles and tool-zone entries.
+    pub shapes: Vec<ViewShape>,
+    /// The IK target, when given.
+    pub ik_target: Option<ViewFrame>,
+    /// IK status (`ok`, `unreachable`, …) when a target is given.
+    pub ik_status: Option<String>,
+    /// One ghost arm per IK solution.
+    pub ghosts: Vec<ViewGhost>,
+}
+
+/// The robot at `q` (SI) and time `t_s`.
+///
+/// # Errors
+/// [`Error::Kinematics`] for a `q` of the wrong length or a non-finite value.
+pub fn view_state(robot: &Robot, t_s: f64, q: &[f64]) -> Result<ViewState> {
+    let mut frames = vec![IsometryMatrix3::identity(); robot.dof()];
+    let tool = robot.frames_into(q, &mut frames)?;
+    let axes = robot.joint_axes(q)?.iter().map(|(p, d)| ViewAxis { point_m: xyz(p), direction: xyz(d) }).collect();
+    Ok(ViewState {
+        t_s,
+        q_deg: q_display(robot, q),
+        frames: frames.iter().map(ViewFrame::of).collect(),
+        tool: ViewFrame::of(&tool),
+        axes,
+    })
+}
+
+/// Indices of at most `cap` evenly spaced items out of `n`, first and last kept.
+fn thinned(n: usize, cap: usize) -> Vec<usize> {
+    if n <= cap {
+        return (0..n).collect();
+    }
+    if cap < 2 {
+        return vec![0];
+    }
+    let mut idx: Vec<usize> = (0..cap).map(|k| (k * (n - 1) + (cap - 1) / 2) / (cap - 1)).collect();
+    idx.dedup();
+    idx
+}
+
+/// Builds the view.
+///
+/// # Errors
+/// [`Error::Request`] naming the field for bad joint values, samples outside the limits, too
+/// many samples or both `samples` and `task`; the errors of [`plan`], [`parse_scene`] and
+/// [`ik`].
+pub fn view(robot: &Robot, request: &ViewRequest) -> Result<ViewReport> {
+    if request.samples.is_some() && request.task.is_some() {
+        return Err(Error::request("task", "give either samples or a task, not both"));
+    }
+    let mut events = request.events.clone();
+    let (times_q, samples_total) = if let Some(samples) = &request.samples {
+        if samples.len() > MAX_VIEW_INPUT_SAMPLES {
+            return Err(Error::request(
+                "samples",
+                format!("{} samples, more than the {MAX_VIEW_INPUT_SAMPLES} a view accepts", samples.len()),
+            ));
+        }
+        if samples.is_empty() {
+            return Err(Error::request("samples", "no sample"));
+        }
+        let si = samples_si(robot, samples, "samples")?;
+        (si.into_iter().map(|s| (s.t, s.q)).collect::<Vec<_>>(), samples.len())
+    } else if let Some(task) = &request.task {
+        let report = plan(robot, &PlanRequest { task: task.clone(), scene: request.scene.clone() })?;
+        let mut all = Vec::new();
+        let mut offset = 0.0;
+        for m in &report.motions {
+            events.push(ViewEvent { t_s: offset, end_s: None, code: "motion".into(), message: m.name.clone() });
+            events.extend(ViewEvent::of_move(m, offset));
+            for s in &m.samples {
+                let q = Joints::Deg(s.q_deg.clone()).si(robot, "task")?;
+                all.push((offset + s.t_s, q));
+            }
+            offset += m.duration_s;
+        }
+        if all.is_empty() {
+            return Err(Error::request("task", "the task has no motion"));
+        }
+        let n = all.len();
+        (all, n)
+    } else {
+        let q = match &request.q {
+            Some(q) => q.si(robot, "q")?,
+            None => robot.home(),
+        };
+        (vec![(0.0, q)], 1)
+    };
+    let states = thinned(times_q.len(), MAX_VIEW_SAMPLES)
+        .into_iter()
+        .map(|k| view_state(robot, times_q[k].0, &times_q[k].1))
+        .collect::<Result<Vec<_>>>()?;
+    let duration_s = match (times_q.first(), times_q.last()) {
+        (Some(a), Some(b)) => b.0 - a.0,
+        _ => 0.0,
+    };
+    events.sort_by(|a, b| a.t_s.total_cmp(&b.t_s));
+    let events_total = events.len();
+    events.truncate(MAX_VIEW_EVENTS);
+
+    let mut shapes = Vec::new();
+    if let Some(text) = &request.scene {
+        let scene = parse_scene(text)?;
+        let roles = [(ViewRole::Obstacle, &scene.obstacles), (ViewRole::ToolZone, &scene.tool_zone)];
+        for (role, list) in roles {
+            shapes.extend(list.iter().map(|o| ViewShape {
+                name: o.name.clone(),
+                role,
+                kind: ViewShapeKind::of(&o.shape),
+            }));
+        }
+    }
+
+    let (mut ik_target, mut ik_status, mut ghosts) = (None, None, Vec::new());
+    if let Some(target) = &request.ik_target {
+        let pose = target.isometry("ik_target")?;
+        ik_target =
+            Some(ViewFrame::of(&IsometryMatrix3::from_parts(pose.translation, pose.rotation.to_rotation_matrix())));
+        let mut ik_request = IkRequest::new(target.clone());
+        ik_request.all = true;
+        let report = ik(robot, &ik_request)?;
+        ik_status = Some(report.status.clone());
+        for (k, s) in report.solutions.iter().enumerate() {
+            let q = Joints::Deg(s.q_deg.clone()).si(robot, "ik_target")?;
+            ghosts.push(ViewGhost {
+                branch: s.branch.clone(),
+                within_limits: s.within_limits,
+                chosen: report.chosen == Some(k),
+                state: view_state(robot, 0.0, &q)?,
+            });
+        }
+    }
+
+    Ok(ViewReport {
+        robot: robot.name().to_string(),
+        joint_names: robot.joints().iter().map(|j| j.name.clone()).collect(),
+        prismatic: robot.joints().iter().map(|j| j.kind == crate::model::JointKind::Prismatic).collect(),
+        base: ViewFrame::of(&IsometryMatrix3::from_parts(
+            robot.base().translation,
+            robot.base().rotation.to_rotation_matrix(),
+        )),
+        link_radii_m: robot.segment_radii(),
+        states,
+        samples_total,
+        duration_s,
+        events,
+        events_total,
+        shapes,
+        ik_target,
+        ik_status,
+        ghosts,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::presets;
+
+    #[test]
+    fn thinning_keeps_first_and_last_and_the_cap() {
+        assert_eq!(thinned(5, 10), vec![0, 1, 2, 3, 4]);
+        let idx = thinned(10_001, 2_000);
+        assert_eq!(idx.len(), 2_000);
+        assert_eq!((idx[0], idx[1999]), (0, 10_000));
+        assert!(idx.windows(2).all(|w| w[0] < w[1]));
+        assert_eq!(thinned(0, 10), Vec::<usize>::new());
+    }
+
+    #[test]
+    fn a_state_holds_the_fk_frames_and_the_jacobian_axes() {
+        let robot = presets::get("ur5").unwrap();
+        let q = [0.3, -1.2, 1.1, -0.4, 1.3, 0.2];
+        let state = view_state(&robot, 0.0, &q).unwrap();
+        let tool = robot.fk(&q).unwrap();
+        for i in 0..3 {
+            assert!((state.tool.xyz_m[i] - tool.translation.vector[i]).abs() < 1e-12);
+        }
+        let j = robot.jacobian(&q).unwrap();
+        for (i, axis) in state.axes.iter().enumerate() {
+            for r in 0..3 {
+                assert!((axis.direction[r] - j[(3 + r, i)]).abs() < 1e-12, "joint {i}");
+            }
+            // The linear column is z × (p − o) for a revolute joint.
+            let o = Vector3::from(axis.point_m);
+            let z = Vector3::from(axis.direction);
+            let v = z.cross(&(tool.translation.vector - o));
+            for r in 0..3 {
+                assert!((v[r] - j[(r, i)]).abs() < 1e-12, "joint {i}");
+            }
+        }
+        assert_eq!(state.frames.len(), 6);
+    }
+}

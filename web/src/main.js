@@ -1,0 +1,236 @@
+// Entry point of the reach viewer. Reads the view report (JSON) from
+// `<script id="reach-view-data" type="application/json">` when present, builds the page, and
+// exposes the test and integration hook `window.reachViewer`:
+//   ready            true once a report is drawn
+//   load(report)     draws another view report (e.g. fed live by `reach serve`)
+//   setTime(t)       shows the last state at or before t seconds (clamped to the motion)
+//   time()           the time shown
+//   startTime(), duration()   the motion's first time and length, seconds
+//   state()          the state shown (t_s, q_deg, frames, tool, axes), as in the report
+//   toolPosition()   world position [x, y, z] (metres) of the drawn tool point
+//   linkCount()      number of link objects of the arm (one per link segment)
+//   play() / pause()
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { Arm, extent, shapeMesh, toolPath, ghostArms } from './scene.js';
+import { JointPlot } from './plot.js';
+
+const CSS = `
+html, body { margin: 0; height: 100%; font: 13px sans-serif; }
+#reach { display: flex; height: 100%; }
+#reach-main { flex: 1; display: flex; flex-direction: column; min-width: 0; }
+#reach-3d { flex: 1; position: relative; min-height: 0; }
+#reach-3d canvas { display: block; }
+#reach-title { position: absolute; left: 8px; top: 6px; background: rgba(255,255,255,.8); padding: 2px 6px; }
+#reach-timeline { padding: 6px 10px; border-top: 1px solid #ccc; display: flex; align-items: center; gap: 8px; }
+#reach-track { flex: 1; position: relative; padding-top: 10px; }
+#reach-slider { width: 100%; margin: 0; }
+.reach-mark { position: absolute; top: 0; height: 9px; background: #d32f2f; min-width: 2px; opacity: .8; }
+.reach-mark.motion { background: #555; }
+.reach-mark.infeasible { background: #f9a825; }
+#reach-side { width: 340px; border-left: 1px solid #ccc; padding: 8px; overflow: auto; }
+#reach-q { font-family: monospace; white-space: pre; }
+#reach-events { font-size: 12px; }
+`;
+
+function el(tag, attrs = {}, parent = null) {
+  const e = document.createElement(tag);
+  Object.assign(e, attrs);
+  if (parent) parent.appendChild(e);
+  return e;
+}
+
+class Viewer {
+  constructor(root) {
+    el('style', { textContent: CSS }, document.head);
+    this.root = el('div', { id: 'reach' }, root);
+    const main = el('div', { id: 'reach-main' }, this.root);
+    this.view = el('div', { id: 'reach-3d' }, main);
+    this.title = el('div', { id: 'reach-title' }, this.view);
+    const bar = el('div', { id: 'reach-timeline' }, main);
+    this.playButton = el('button', { id: 'reach-play', textContent: '▶' }, bar);
+    this.track = el('div', { id: 'reach-track' }, bar);
+    this.slider = el('input', { id: 'reach-slider', type: 'range', min: 0, max: 1000, value: 0 }, this.track);
+    this.clock = el('span', { id: 'reach-clock' }, bar);
+    const side = el('div', { id: 'reach-side' }, this.root);
+    this.plotCanvas = el('canvas', { id: 'reach-plot', width: 320, height: 200 }, side);
+    this.qText = el('div', { id: 'reach-q' }, side);
+    this.eventList = el('div', { id: 'reach-events' }, side);
+
+    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    this.renderer.setPixelRatio(window.devicePixelRatio || 1);
+    this.view.appendChild(this.renderer.domElement);
+    this.camera = new THREE.PerspectiveCamera(45, 1, 0.01, 1000);
+    this.camera.up.set(0, 0, 1);
+    this.controls = new OrbitControls(this.camera, this.renderer.domElement);
+    this.controls.addEventListener('change', () => this.render());
+    this.playing = false;
+    this.t = 0;
+    this.ready = false;
+
+    this.slider.addEventListener('input', () => {
+      this.pause();
+      this.setTime(this.t0 + (this.slider.value / 1000) * this.duration);
+    });
+    this.playButton.addEventListener('click', () => (this.playing ? this.pause() : this.play()));
+    window.addEventListener('resize', () => this.resize());
+  }
+
+  load(report) {
+    this.report = report;
+    this.scene = new THREE.Scene();
+    this.scene.background = new THREE.Color(0xf4f4f4);
+    this.scene.add(new THREE.HemisphereLight(0xffffff, 0x888888, 2.0));
+    const sun = new THREE.DirectionalLight(0xffffff, 1.5);
+    sun.position.set(3, -4, 6);
+    this.scene.add(sun);
+    const size = extent(report);
+    const grid = new THREE.GridHelper(4 * size, 20, 0xaaaaaa, 0xdddddd);
+    grid.rotation.x = Math.PI / 2;
+    grid.position.set(report.base.xyz_m[0], report.base.xyz_m[1], 0);
+    this.scene.add(grid);
+    this.scene.add(new THREE.AxesHelper(0.25 * size));
+
+    report.shapes.forEach((s) => this.scene.add(shapeMesh(s, size)));
+    if (report.states.length > 1) this.scene.add(toolPath(report));
+    this.ghosts = ghostArms(report, size);
+    this.ghosts.forEach((g) => this.scene.add(g.group));
+    if (report.ik_target) {
+      const target = new THREE.AxesHelper(0.15 * size);
+      target.position.set(...report.ik_target.xyz_m);
+      const q = report.ik_target.quat_wxyz;
+      target.quaternion.set(q[1], q[2], q[3], q[0]);
+      this.scene.add(target);
+    }
+    this.arm = new Arm(report, { scale: size });
+    this.arm.group.name = 'arm';
+    this.scene.add(this.arm.group);
+
+    const b = report.base.xyz_m;
+    const centre = new THREE.Vector3(b[0], b[1], b[2] + 0.3 * size);
+    this.camera.position.set(b[0] + 1.2 * size, b[1] - 1.7 * size, b[2] + 1.1 * size);
+    this.camera.near = size / 100;
+    this.camera.far = size * 100;
+    this.controls.target.copy(centre);
+    this.controls.update();
+
+    this.t0 = report.states[0].t_s;
+    this.duration = report.duration_s;
+    this.title.textContent = `${report.robot}` + (report.ik_status ? ` — IK: ${report.ik_status}, ${report.ghosts.length} solution(s)` : '');
+    this.plot = new JointPlot(this.plotCanvas, report);
+    this.plotCanvas.style.display = report.states.length > 1 ? '' : 'none';
+    this.drawTimeline();
+    this.resize();
+    this.setTime(this.t0);
+    this.ready = true;
+  }
+
+  drawTimeline() {
+    this.track.querySelectorAll('.reach-mark').forEach((m) => m.remove());
+    this.eventList.textContent = '';
+    const span = this.duration || 1;
+    for (const e of this.report.events) {
+      const left = ((e.t_s - this.t0) / span) * 100;
+      const width = e.end_s != null ? ((e.end_s - e.t_s) / span) * 100 : 0;
+      const mark = el('div', { className: `reach-mark ${e.code}`, title: `${e.t_s.toFixed(3)} s ${e.code}: ${e.message}` }, this.track);
+      mark.style.left = `${left}%`;
+      mark.style.width = `${width}%`;
+      const item = el('div', { textContent: `${e.t_s.toFixed(3)} s  ${e.code}  ${e.message}` }, this.eventList);
+      item.style.cursor = 'pointer';
+      item.addEventListener('click', () => this.setTime(e.t_s));
+    }
+    this.slider.disabled = this.report.states.length < 2;
+    this.playButton.disabled = this.slider.disabled;
+  }
+
+  resize() {
+    const w = this.view.clientWidth || 800;
+    const h = this.view.clientHeight || 600;
+    this.renderer.setSize(w, h);
+    this.camera.aspect = w / h;
+    this.camera.updateProjectionMatrix();
+    this.render();
+  }
+
+  stateAt(t) {
+    const states = this.report.states;
+    let lo = 0;
+    let hi = states.length - 1;
+    if (t >= states[hi].t_s) return hi;
+    while (lo < hi) {
+      const mid = (lo + hi + 1) >> 1;
+      if (states[mid].t_s <= t + 1e-12) lo = mid;
+      else hi = mid - 1;
+    }
+    return lo;
+  }
+
+  setTime(t) {
+    if (!Number.isFinite(t)) throw new Error(`setTime: not a finite time: ${t}`);
+    this.t = Math.min(Math.max(t, this.t0), this.t0 + this.duration);
+    this.index = this.stateAt(this.t);
+    const s = this.report.states[this.index];
+    this.arm.set(s);
+    this.slider.value = this.duration > 0 ? Math.round(((this.t - this.t0) / this.duration) * 1000) : 0;
+    this.clock.textContent = `${this.t.toFixed(3)} / ${(this.t0 + this.duration).toFixed(3)} s`;
+    const lines = this.report.joint_names.map((n, j) => {
+      const unit = this.report.prismatic[j] ? 'm' : '°';
+      return `${n.padEnd(12)} ${s.q_deg[j].toFixed(3).padStart(10)} ${unit}`;
+    });
+    const p = s.tool.xyz_m;
+    lines.push(`tool xyz (m)  ${p.map((v) => v.toFixed(4)).join(' ')}`);
+    this.qText.textContent = lines.join('\n');
+    this.plot.draw(s.t_s);
+    this.render();
+  }
+
+  render() {
+    if (this.scene) this.renderer.render(this.scene, this.camera);
+  }
+
+  play() {
+    if (this.duration <= 0) return;
+    if (this.t >= this.t0 + this.duration) this.setTime(this.t0);
+    this.playing = true;
+    this.playButton.textContent = '⏸';
+    let last = performance.now();
+    const step = (now) => {
+      if (!this.playing) return;
+      const dt = (now - last) / 1000;
+      last = now;
+      this.setTime(this.t + dt);
+      if (this.t >= this.t0 + this.duration) this.pause();
+      else requestAnimationFrame(step);
+    };
+    requestAnimationFrame(step);
+  }
+
+  pause() {
+    this.playing = false;
+    this.playButton.textContent = '▶';
+  }
+}
+
+function start() {
+  const viewer = new Viewer(document.body);
+  window.reachViewer = {
+    get ready() {
+      return viewer.ready;
+    },
+    load: (report) => viewer.load(report),
+    setTime: (t) => viewer.setTime(t),
+    time: () => viewer.t,
+    startTime: () => viewer.t0,
+    duration: () => viewer.duration,
+    state: () => viewer.report.states[viewer.index],
+    toolPosition: () => viewer.arm.tip.position.toArray(),
+    linkCount: () => viewer.arm.group.children.filter((c) => c.userData.link !== undefined).length,
+    play: () => viewer.play(),
+    pause: () => viewer.pause(),
+  };
+  const data = document.getElementById('reach-view-data');
+  if (data) viewer.load(JSON.parse(data.textContent));
+}
+
+if (document.readyState === 'loading') document.addEventListener('DOMContentLoaded', start);
+else start();
