@@ -814,6 +814,28 @@ fn s_of(row: &ScanRow, start: &InteriorAngles) -> f64 {
     (p.alpha - start.alpha).abs() + (p.beta - start.beta).abs() + (p.gamma - start.gamma).abs()
 }
 
+/// Checks the inputs every planar scan shares — the grid step (`step_deg`, a positive angle in
+/// degrees) and a finite target (`xyz_m`) — and returns the start (`from`, default home; SI).
+///
+/// # Errors
+/// [`Error::Request`] naming `step_deg`, `xyz_m[i]` or `from`.
+pub(crate) fn scan_input(robot: &Robot, step_deg: f64, xyz_m: &[f64; 3], from: Option<&Joints>) -> Result<Vec<f64>> {
+    if !(step_deg.is_finite() && step_deg > 0.0) {
+        return Err(Error::request(
+            "step_deg",
+            format!("the step must be a positive angle in degrees, got {step_deg}"),
+        ));
+    }
+    if let Some(i) = xyz_m.iter().position(|v| !v.is_finite()) {
+        return Err(Error::request(format!("xyz_m[{}]", i + 1), format!("expected a finite number, got {}", xyz_m[i])));
+    }
+    let from = match from {
+        Some(q) => q.si(robot, "from")?,
+        None => robot.home(),
+    };
+    Ok(from)
+}
+
 /// Builds seed 000's table of configurations.
 ///
 /// # Errors
@@ -822,19 +844,7 @@ fn s_of(row: &ScanRow, start: &InteriorAngles) -> f64 {
 pub fn ik_scan(robot: &Robot, request: &IkScanRequest) -> Result<IkScanReport> {
     let arm = PlanarRedundant::from_robot(robot)?;
     let step = request.step_deg;
-    if !(step.is_finite() && step > 0.0) {
-        return Err(Error::request("step_deg", format!("the step must be a positive angle in degrees, got {step}")));
-    }
-    if let Some(i) = request.xyz_m.iter().position(|v| !v.is_finite()) {
-        return Err(Error::request(
-            format!("xyz_m[{}]", i + 1),
-            format!("expected a finite number, got {}", request.xyz_m[i]),
-        ));
-    }
-    let from = match &request.from {
-        Some(q) => q.si(robot, "from")?,
-        None => robot.home(),
-    };
+    let from = scan_input(robot, step, &request.xyz_m, request.from.as_ref())?;
     let (x, y, offset) = arm.plane_coordinates(&nalgebra::Point3::from(request.xyz_m));
     let scan = if offset.abs() > IK_POSITION {
         let failure = IkFailure::Unreachable { distance: offset.abs(), reach: 0.0 };

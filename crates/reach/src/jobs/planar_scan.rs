@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 use super::ik::status;
 use super::input::{Joints, q_display};
 use crate::Robot;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::ik::planar_scan::{ScanOutcome, scan_min_change};
 
 /// The scan of one tool position.
@@ -58,19 +58,7 @@ pub struct PlanarScanReport {
 /// links, or a grid beyond the node cap.
 pub fn planar_scan(robot: &Robot, request: &PlanarScanRequest) -> Result<PlanarScanReport> {
     let step = request.step_deg;
-    if !(step.is_finite() && step > 0.0) {
-        return Err(Error::request("step_deg", format!("the step must be a positive angle in degrees, got {step}")));
-    }
-    if let Some(i) = request.xyz_m.iter().position(|v| !v.is_finite()) {
-        return Err(Error::request(
-            format!("xyz_m[{}]", i + 1),
-            format!("expected a finite number, got {}", request.xyz_m[i]),
-        ));
-    }
-    let from = match &request.from {
-        Some(q) => q.si(robot, "from")?,
-        None => robot.home(),
-    };
+    let from = super::ik::scan_input(robot, step, &request.xyz_m, request.from.as_ref())?;
     let outcome = scan_min_change(robot, &nalgebra::Point3::from(request.xyz_m), &from, step.to_radians())?;
     let mut report = PlanarScanReport {
         robot: robot.name().to_string(),
