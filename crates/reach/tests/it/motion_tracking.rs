@@ -420,3 +420,66 @@ fn a_cancelled_tracking_stops() {
     assert!(matches!(e, reach::Error::Tracking(TrackingError::Cancelled)), "{e}");
     assert!(move_motion_with_progress(&welder, &weld, &mut |_, _| {}, &reach::Cancel::default()).is_ok());
 }
+
+/// Seed 003's dialogue: where both configurations of the welder are feasible (the first
+/// 300 mm of the weld, before −β's θ4 leaves its range at s = 618 mm), the report offers both
+/// as alternatives and realises the default (+β); the operator's choice of the other one is
+/// realised instead (decision `operator`), its samples reach the same tool poses in another
+/// branch. A choice of a configuration that is not feasible, or of an interval that does not
+/// exist, is refused with a message naming it.
+#[test]
+fn the_operator_chooses_a_feasible_configuration_per_interval() {
+    use reach::jobs::motion::{End, IntervalChoice, MoveRequest, Space, move_motion};
+    use reach::jobs::{Joints, Pose};
+    use reach::motion::tracking::Decision;
+    let rpy = [0.0, -41.86854343693031, -50.19442890773481];
+    let (p, m) = (Vector3::new(0.05, 0.74, 0.07), Vector3::new(0.5, 0.2, 0.7));
+    let at = |s: f64| p + (m - p).normalize() * s;
+    let request = |to: Vector3<f64>, choices: Vec<IntervalChoice>| MoveRequest {
+        from: End::Pose(Pose::xyz_rpy_deg(p.into(), rpy)),
+        to: End::Pose(Pose::xyz_rpy_deg(to.into(), rpy)),
+        space: Space::Tool,
+        duration_s: Some(30.0),
+        choices,
+        ..MoveRequest::joints(Joints::Deg(Vec::new()), Joints::Deg(Vec::new()))
+    };
+    let welder = presets::get("welder6r").unwrap();
+    let auto = move_motion(&welder, &request(at(0.3), Vec::new())).unwrap();
+    assert!(auto.feasible);
+    assert_eq!(auto.intervals.len(), 1);
+    let interval = &auto.intervals[0];
+    assert_eq!(interval.alternatives.len(), 2, "{interval:?}");
+    assert_eq!(interval.decision, Some(Decision::Default));
+    assert_eq!(interval.configuration.as_ref(), Some(&interval.alternatives[0]));
+    let other = interval.alternatives[1].clone();
+    let chosen =
+        move_motion(&welder, &request(at(0.3), vec![IntervalChoice { interval: 1, configuration: other.clone() }]))
+            .unwrap();
+    assert!(chosen.feasible);
+    assert_eq!(chosen.intervals[0].decision, Some(Decision::Operator));
+    assert_eq!(chosen.intervals[0].configuration.as_ref(), Some(&other));
+    // Same tool path, another branch: the joints differ, FK of each sample is the sample's pose.
+    let (a, b) = (&auto.samples[10], &chosen.samples[10]);
+    assert!(a.q_deg.iter().zip(&b.q_deg).any(|(x, y)| (x - y).abs() > 1.0), "{a:?} {b:?}");
+    for s in [a, b] {
+        let q: Vec<f64> = s.q_deg.iter().map(|d| d.to_radians()).collect();
+        let t = welder.fk(&q).unwrap().translation.vector;
+        assert!((t - Vector3::from(s.xyz_m)).norm() < 1e-9);
+        assert!((t - Vector3::from(a.xyz_m)).norm() < 1e-6, "both branches put the tool at the same point");
+    }
+    // Over the whole weld −β is infeasible (θ4, notes 003 §5.2): choosing it is refused.
+    let whole = request(m, vec![IntervalChoice { interval: 1, configuration: other.clone() }]);
+    let e = move_motion(&welder, &whole).unwrap_err().to_string();
+    assert!(e.contains("choices") && e.contains(&format!("`{other}` is not feasible")), "{e}");
+    let e = move_motion(&welder, &request(at(0.3), vec![IntervalChoice { interval: 2, configuration: other }]))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("interval 2 does not exist"), "{e}");
+    let e = move_motion(
+        &welder,
+        &request(at(0.3), vec![IntervalChoice { interval: 1, configuration: "elbow sideways".into() }]),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("no configuration `elbow sideways`"), "{e}");
+}

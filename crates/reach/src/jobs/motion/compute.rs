@@ -130,6 +130,9 @@ fn joint_space(robot: &Robot, request: &MoveRequest) -> Result<Computed> {
     if request.choose.is_some() {
         return Err(Error::request("choose", "a joint-space move has no configuration to choose; use tool space"));
     }
+    if !request.choices.is_empty() {
+        return Err(Error::request("choices", "a joint-space move has no configuration to choose; use tool space"));
+    }
     let profile = request.profile.unwrap_or(ProfileName::Cycloidal).profile()?;
     let motion = match (&request.from, &request.to) {
         (End::Joints(a), End::Joints(b)) => {
@@ -166,6 +169,7 @@ fn joint_space(robot: &Robot, request: &MoveRequest) -> Result<Computed> {
         feasible: reasons.is_empty(),
         reasons,
         decision: None,
+        alternatives: Vec::new(),
     };
     Ok(Computed { times, q, qd, intervals: vec![interval], events: Vec::new() })
 }
@@ -245,7 +249,8 @@ fn tool_space(
     let chooser = request.choose.as_ref().map(|c| c.chooser(robot, request.joint_weights.as_deref())).transpose()?;
     let criterion = chooser.as_ref().map(|c| c as &dyn ConfigurationCriterion);
     let progress = RefCell::new(progress);
-    let options = TrackingOptions { cancel: cancel.clone(), ..TrackingOptions::default() };
+    let choices = request.choices.iter().map(|c| (c.interval, c.configuration.clone())).collect();
+    let options = TrackingOptions { cancel: cancel.clone(), choices, ..TrackingOptions::default() };
     let report = track_with_progress(robot, &tracked, &options, criterion, &|done, total| {
         (progress.borrow_mut())(done, total);
     })?;
@@ -303,6 +308,13 @@ fn tool_space(
                 feasible: iv.chosen.is_some(),
                 reasons,
                 decision: Some(iv.decision),
+                alternatives: iv
+                    .configurations
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, t)| t.feasible)
+                    .filter_map(|(c, _)| report.configurations.get(c).map(ToString::to_string))
+                    .collect(),
             }
         })
         .collect();

@@ -23,7 +23,7 @@ mod task_file;
 
 pub use compute::{move_motion, move_motion_with_progress};
 pub use report::{MoveEffort, MoveEvent, MoveInterval, MoveReport, MoveSample, PlanReport};
-pub use request::{ChoiceSpec, End, MoveRequest, ProfileName, Space};
+pub use request::{ChoiceSpec, End, IntervalChoice, MoveRequest, ProfileName, Space};
 pub use task_file::{PlanRequest, Task, plan, plan_with_progress};
 
 #[cfg(test)]

@@ -47,6 +47,10 @@ pub struct MoveInterval {
     /// How the configuration was chosen (tool space only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub decision: Option<Decision>,
+    /// Tool space: every configuration feasible in the interval (labels, the realised one
+    /// among them) — what an operator may choose from (the request's `choices`).
+    #[serde(default)]
+    pub alternatives: Vec<String>,
 }
 
 /// One event of the tracking log (tool space).

@@ -159,6 +159,21 @@ pub struct MoveRequest {
     /// not proven clear is infeasible.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scene: Option<String>,
+    /// Tool space: the operator's choice of configuration for named intervals (seed 003's
+    /// dialogue); each must be feasible in its interval. Intervals not named are chosen as
+    /// usual (`choose`, else the default configuration).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub choices: Vec<IntervalChoice>,
+}
+
+/// The configuration an operator chose for one interval of a tool-space move.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct IntervalChoice {
+    /// The interval, 1-based (the paper's `P_t`; the report's `intervals` in order).
+    pub interval: usize,
+    /// The configuration's label, as the report names it (`configuration`, `alternatives`).
+    pub configuration: String,
 }
 
 impl MoveRequest {
@@ -184,6 +199,7 @@ impl MoveRequest {
             joint_weights: None,
             choose: None,
             scene: None,
+            choices: Vec::new(),
         }
     }
 }

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use super::compute::move_motion_with_progress;
 use super::report::PlanReport;
-use super::request::{ChoiceSpec, End, MoveRequest, ProfileName, Space};
+use super::request::{ChoiceSpec, End, IntervalChoice, MoveRequest, ProfileName, Space};
 use crate::Robot;
 use crate::error::{Error, Result};
 use crate::jobs::input::{Joints, Pose};
@@ -62,6 +62,7 @@ struct MotionTable {
     speed: Option<f64>,
     dt: Option<f64>,
     weights: Option<Vec<f64>>,
+    choices: Option<Vec<IntervalChoice>>,
 }
 
 /// A task-file error: `line L, column C: message`.
@@ -128,6 +129,7 @@ impl Task {
                 // `[choose]` applies to every tool-space motion of the file.
                 choose: if space == Space::Tool { file.choose.clone() } else { None },
                 scene: None,
+                choices: m.choices.or(d.choices.clone()).unwrap_or_default(),
                 name,
             });
         }

@@ -82,6 +82,8 @@ pub enum Decision {
     CriterionRejected,
     /// Outside the reachable set, or no configuration feasible (K8).
     NotRealizable,
+    /// The operator chose among the feasible configurations ([`super::TrackingOptions::choices`]).
+    Operator,
 }
 
 /// One interval between consecutive split points.
@@ -360,7 +362,10 @@ impl Tracker<'_> {
         let tracks: Vec<ConfigurationTrack> =
             tracks.into_iter().map(|t| t.expect("every configuration tracked")).collect();
         let feasible: Vec<usize> = order.iter().copied().filter(|&c| tracks[c].feasible).collect();
-        let (chosen, decision) = choose(&tracks, &feasible, default, criterion);
+        let (chosen, decision) = match self.choices.get(&index) {
+            Some(label) => (Some(self.operator_choice(index, label, &feasible)?), Decision::Operator),
+            None => choose(&tracks, &feasible, default, criterion),
+        };
         if feasible.len() > 1 {
             log.several_realizable(a, index, &feasible);
         }
@@ -375,6 +380,26 @@ impl Tracker<'_> {
         report.chosen = chosen;
         report.decision = decision;
         Ok(report)
+    }
+
+    /// The configuration the operator named for interval `index` (its label), which must be one
+    /// of the `feasible` ones there.
+    fn operator_choice(&self, index: usize, label: &str, feasible: &[usize]) -> Result<usize, TrackingError> {
+        let labels: Vec<String> = self.configurations.iter().map(ToString::to_string).collect();
+        let named = |cs: &mut dyn Iterator<Item = usize>| cs.map(|c| format!("`{}`", labels[c])).collect::<Vec<_>>();
+        let reason = match labels.iter().position(|l| l == label) {
+            Some(c) if feasible.contains(&c) => return Ok(c),
+            Some(_) if feasible.is_empty() => format!("interval {index}: no configuration is feasible there"),
+            Some(_) => format!(
+                "interval {index}: configuration `{label}` is not feasible there; feasible: {}",
+                named(&mut feasible.iter().copied()).join(", ")
+            ),
+            None => format!(
+                "interval {index}: no configuration `{label}`; the configurations are {}",
+                named(&mut (0..labels.len())).join(", ")
+            ),
+        };
+        Err(TrackingError::InvalidOption { option: "choices", reason })
     }
 
     /// The realised joint trajectory: the chosen configuration of every realised interval,

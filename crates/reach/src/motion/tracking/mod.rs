@@ -218,6 +218,11 @@ pub struct TrackingOptions {
     /// Stops the tracking between two samples ([`TrackingError::Cancelled`]); a front end
     /// sets it on Ctrl-C ([`crate::Cancel`]).
     pub cancel: crate::Cancel,
+    /// The operator's choices (seed 003's dialogue): interval (1-based) → configuration label
+    /// ([`Branch`]'s text, as [`TrackingReport::configurations`] shows it). The named
+    /// configuration must be feasible in its interval ([`Decision::Operator`]); the
+    /// criterion and the default decide the other intervals.
+    pub choices: std::collections::BTreeMap<usize, String>,
 }
 
 /// Counts the work of [`track_with_progress`] and calls its hook once per chunk.
@@ -259,6 +264,7 @@ struct Tracker<'a> {
     closed_form: Option<Box<dyn SingularityMeasures>>,
     tolerance: f64,
     check_velocity: bool,
+    choices: std::collections::BTreeMap<usize, String>,
 }
 
 /// Tracks `path` through IK in every configuration, finds its singular positions, splits it
@@ -419,6 +425,7 @@ impl<'a> Tracker<'a> {
             closed_form,
             tolerance,
             check_velocity: !options.ignore_velocity,
+            choices: options.choices.clone(),
         }
     }
 
@@ -446,6 +453,12 @@ fn track_with(
         log.split(p);
     }
     let count = bounds.len() - 1;
+    if let Some(bad) = tracker.choices.keys().find(|&&i| i == 0 || i > count) {
+        return Err(TrackingError::InvalidOption {
+            option: "choices",
+            reason: format!("interval {bad} does not exist: the path has intervals 1 to {count}"),
+        });
+    }
     let mut intervals = Vec::with_capacity(count);
     // Progress: interval i owns the samples from the previous interval's end up to its end.
     let mut owned_until = 0;
