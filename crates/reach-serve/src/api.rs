@@ -15,6 +15,7 @@ use axum::{Json, Router};
 use serde_json::{Value, json};
 use tokio::sync::broadcast::error::RecvError;
 
+use crate::db::JobStatus;
 use crate::error::ApiError;
 use crate::intake;
 use crate::service::{Control, MAX_BODY_BYTES, MAX_QUEUED_JOBS, Shared, lock};
@@ -36,6 +37,7 @@ pub fn router(shared: Arc<Shared>) -> Router {
         .route("/state", get(state))
         .route("/jobs", get(list_jobs).post(submit))
         .route("/jobs/{id}", get(job))
+        .route("/jobs/{id}/choose", post(choose))
         .route("/stop", post(stop))
         .route("/estop", post(estop))
         .route("/resume", post(resume))
@@ -79,6 +81,21 @@ async fn guard(State(shared): AppState, request: Request, next: Next) -> Respons
         }
         .into_response();
     }
+    if shared.token.is_none()
+        && let Some(host) = request.headers().get(header::HOST)
+        && !loopback_host(host.to_str().unwrap_or(""))
+    {
+        // A page of another site that resolves its name to 127.0.0.1 (DNS rebinding) sends its
+        // own name: the loopback service answers only to loopback names.
+        return ApiError {
+            status: StatusCode::FORBIDDEN,
+            message: format!(
+                "requests for host `{}` are refused: the service listens on loopback; call it as localhost or 127.0.0.1",
+                host.to_str().unwrap_or("?")
+            ),
+        }
+        .into_response();
+    }
     if let Some(token) = &shared.token {
         let path = request.uri().path();
         let open = request.method() == Method::GET && (path == "/openapi.json" || path.starts_with("/schemas/"));
@@ -88,13 +105,27 @@ async fn guard(State(shared): AppState, request: Request, next: Next) -> Respons
             .and_then(|v| v.to_str().ok())
             .and_then(|v| v.strip_prefix("Bearer "))
             .map(str::trim);
-        let query = request.uri().query().and_then(|q| q.split('&').find_map(|kv| kv.strip_prefix("token=")));
+        // Browsers cannot set headers on a WebSocket: there (only) the token may be a query.
+        let query = (path == "/ws")
+            .then(|| request.uri().query().and_then(|q| q.split('&').find_map(|kv| kv.strip_prefix("token="))))
+            .flatten();
         let given = bearer.or(query);
         if !open && !given.is_some_and(|g| crate::auth::same_token(g, token)) {
             return ApiError::unauthorized().into_response();
         }
     }
     next.run(request).await
+}
+
+/// Whether a `Host` header names the loopback interface (`localhost`, `127.x.x.x`, `[::1]`,
+/// with or without a port).
+fn loopback_host(host: &str) -> bool {
+    let name = if let Some(rest) = host.strip_prefix('[') {
+        rest.split(']').next().unwrap_or("")
+    } else {
+        host.rsplit_once(':').map_or(host, |(name, _)| name)
+    };
+    name.eq_ignore_ascii_case("localhost") || name.parse::<std::net::IpAddr>().is_ok_and(|ip| ip.is_loopback())
 }
 
 /// 413.
@@ -142,9 +173,17 @@ async fn state(State(shared): AppState) -> Json<Value> {
     Json(state)
 }
 
-/// A job as the API shows it.
+/// A job as the API shows it; one waiting for the operator adds its `questions`.
 fn job_json(row: &crate::db::JobRow) -> Value {
+    let questions = (row.status == JobStatus::WaitingOperator)
+        .then(|| {
+            let request = serde_json::from_value(row.request.clone()).ok()?;
+            let report = serde_json::from_value(row.report.clone()?).ok()?;
+            Some(intake::questions(&request, &report))
+        })
+        .flatten();
     json!({
+        "questions": questions,
         "id": row.id,
         "kind": row.kind,
         "status": row.status,
@@ -189,15 +228,17 @@ async fn submit(State(shared): AppState, body: Result<Bytes, BytesRejection>) ->
     if lock(&shared.db).queued_count()? >= MAX_QUEUED_JOBS {
         return Err(ApiError::conflict(format!("the queue is full ({MAX_QUEUED_JOBS} jobs); wait for it to drain")));
     }
-    let planner = shared.clone();
-    let (request, report) = tokio::task::spawn_blocking(move || {
-        let report = intake::plan(&planner.robot, &request)?;
-        Ok::<_, ApiError>((request, report))
-    })
-    .await
-    .map_err(|e| ApiError { status: StatusCode::INTERNAL_SERVER_ERROR, message: e.to_string() })??;
+    let (request, report) = plan(&shared, request).await?;
     let refusal = intake::refusal(&report);
-    let status = if refusal.is_some() { "refused" } else { "queued" };
+    let asks = !intake::questions(&request, &report).is_empty();
+    let (status, message) = match refusal {
+        Some(why) => (JobStatus::Refused, Some(why)),
+        None if asks => (
+            JobStatus::WaitingOperator,
+            Some("several configurations are feasible: answer with POST /jobs/{id}/choose (see `questions`)".into()),
+        ),
+        None => (JobStatus::Queued, None),
+    };
     let kind = intake::kind_of(&request);
     let request = serde_json::to_value(&request).unwrap_or_default();
     let report = serde_json::to_value(&report).unwrap_or_default();
@@ -207,12 +248,77 @@ async fn submit(State(shared): AppState, body: Result<Bytes, BytesRejection>) ->
         submission.from_current,
         status,
         Some(&report),
-        refusal.as_deref(),
+        message.as_deref(),
     )?;
-    shared.job_event(id, status, refusal.as_deref());
+    shared.job_event(id, status, message.as_deref());
     shared.wake.notify_all();
-    let body = json!({"id": id, "status": status, "message": refusal});
+    let body = json!({"id": id, "status": status, "message": message});
     Ok((StatusCode::CREATED, Json(body)).into_response())
+}
+
+/// Plans `request` with the library on the blocking pool, at most [`crate::service::MAX_PLANNING`] at once
+/// (the others wait their turn): 400 with the library's message for bad input.
+async fn plan(
+    shared: &Arc<Shared>,
+    request: reach::jobs::Request,
+) -> Result<(reach::jobs::Request, reach::jobs::Report), ApiError> {
+    let internal = |e: String| ApiError { status: StatusCode::INTERNAL_SERVER_ERROR, message: e };
+    let _permit = shared.planning.acquire().await.map_err(|e| internal(e.to_string()))?;
+    let planner = shared.clone();
+    tokio::task::spawn_blocking(move || {
+        let report = intake::plan(&planner.robot, &request)?;
+        Ok::<_, ApiError>((request, report))
+    })
+    .await
+    .map_err(|e| internal(e.to_string()))?
+}
+
+/// The body of `POST /jobs/{id}/choose`: the library's per-interval choices.
+#[derive(Debug, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Answer {
+    choices: Vec<reach::jobs::motion::IntervalChoice>,
+}
+
+/// `POST /jobs/{id}/choose`: the operator's answer to a job waiting for it (seed 003's
+/// dialogue): `{"choices": [{"interval": 1, "configuration": "…"}]}`, labels from the job's
+/// `questions`. The move is re-planned with them (400 with the library's message when a
+/// choice is not feasible, or the motion with them is not) and queued; 409 when the job no
+/// longer waits (it ran, or the criterion answered after the timeout).
+async fn choose(
+    State(shared): AppState,
+    Path(id): Path<String>,
+    body: Result<Bytes, BytesRejection>,
+) -> Result<Json<Value>, ApiError> {
+    let body = body.map_err(|e| body_error(&e))?;
+    let missing = || ApiError::not_found(format!("no job `{id}`"));
+    let n: i64 = id.parse().map_err(|_| missing())?;
+    let answer: Answer =
+        serde_json::from_slice(&body).map_err(|e| ApiError::bad_request(format!("the answer: {e}")))?;
+    let row = lock(&shared.db).job(n)?.ok_or_else(missing)?;
+    let not_waiting =
+        |status: JobStatus| ApiError::conflict(format!("job {n} is {}, not waiting for the operator", status.as_str()));
+    if row.status != JobStatus::WaitingOperator {
+        return Err(not_waiting(row.status));
+    }
+    let request: reach::jobs::Request = serde_json::from_value(row.request.clone())
+        .map_err(|e| ApiError { status: StatusCode::INTERNAL_SERVER_ERROR, message: format!("stored request: {e}") })?;
+    let (request, report) = plan(&shared, intake::with_choices(&request, &answer.choices)).await?;
+    if let Some(why) = intake::refusal(&report) {
+        return Err(ApiError::bad_request(format!("with these choices the motion is infeasible: {why}")));
+    }
+    let chosen: Vec<String> =
+        answer.choices.iter().map(|c| format!("interval {}: {}", c.interval, c.configuration)).collect();
+    let message = format!("the operator chose {}", chosen.join(", "));
+    let (rq, rp) =
+        (serde_json::to_value(&request).unwrap_or_default(), serde_json::to_value(&report).unwrap_or_default());
+    if !lock(&shared.db).answer(n, &rq, &rp, &message)? {
+        let status = lock(&shared.db).job(n)?.map_or(JobStatus::Queued, |r| r.status);
+        return Err(not_waiting(status));
+    }
+    shared.job_event(n, JobStatus::Queued, Some(&message));
+    shared.wake.notify_all();
+    Ok(Json(json!({"id": n, "status": JobStatus::Queued, "message": message, "report": rp})))
 }
 
 /// Pauses the queue and asks the running job (if any) to stop.
@@ -372,6 +478,23 @@ async fn stream(shared: Arc<Shared>, mut socket: WebSocket) {
                 Err(RecvError::Lagged(_)) => {}
                 Err(RecvError::Closed) => return,
             },
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::loopback_host;
+
+    #[test]
+    fn only_loopback_names_are_loopback_hosts() {
+        for host in
+            ["localhost", "LOCALHOST:7878", "127.0.0.1", "127.0.0.1:7878", "127.1.2.3:80", "[::1]", "[::1]:7878"]
+        {
+            assert!(loopback_host(host), "{host}");
+        }
+        for host in ["evil.example", "evil.example:7878", "10.0.0.1:7878", "localhost.evil.example", "[::2]:7878", ""] {
+            assert!(!loopback_host(host), "{host}");
         }
     }
 }

@@ -26,8 +26,14 @@ pub fn token(dir: &Path) -> Result<String, ServeError> {
         .and_then(|mut f| f.read_exact(&mut bytes))
         .map_err(|e| ServeError::io(Path::new("/dev/urandom"), &e))?;
     let token: String = bytes.iter().map(|b| format!("{b:02x}")).collect();
+    // A short or unreadable file is replaced, not rewritten: a new file gets mode 0600 (an
+    // existing one would keep its mode).
+    match std::fs::remove_file(&path) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => return Err(ServeError::io(&path, &e)),
+        _ => {}
+    }
     let mut options = std::fs::OpenOptions::new();
-    options.write(true).create(true).truncate(true);
+    options.write(true).create_new(true);
     #[cfg(unix)]
     {
         use std::os::unix::fs::OpenOptionsExt;

@@ -51,6 +51,88 @@ pub fn now_ms() -> i64 {
         .map_or(0, |d| i64::try_from(d.as_millis()).unwrap_or(i64::MAX))
 }
 
+/// A job's status in the journal (stored and shown as its snake_case name).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum JobStatus {
+    /// Waiting for the executor.
+    Queued,
+    /// Being re-planned or scheduled by the executor.
+    Planning,
+    /// Waiting for the operator's choice of configuration (`POST /jobs/{id}/choose`).
+    WaitingOperator,
+    /// The motors are playing it.
+    Executing,
+    /// Executed to its end (or planned only, for reports without motion).
+    Done,
+    /// Infeasible or unsafe: nothing moved.
+    Refused,
+    /// An internal failure.
+    Failed,
+    /// The service stopped during the job (crash, `kill -9`, shutdown).
+    Interrupted,
+    /// Stopped by `POST /stop` or `POST /estop`.
+    Stopped,
+}
+
+impl JobStatus {
+    /// Every status, in the order of a job's life.
+    pub const ALL: [JobStatus; 9] = [
+        JobStatus::Queued,
+        JobStatus::Planning,
+        JobStatus::WaitingOperator,
+        JobStatus::Executing,
+        JobStatus::Done,
+        JobStatus::Refused,
+        JobStatus::Failed,
+        JobStatus::Interrupted,
+        JobStatus::Stopped,
+    ];
+
+    /// The name stored and shown.
+    #[must_use]
+    pub const fn as_str(self) -> &'static str {
+        match self {
+            JobStatus::Queued => "queued",
+            JobStatus::Planning => "planning",
+            JobStatus::WaitingOperator => "waiting_operator",
+            JobStatus::Executing => "executing",
+            JobStatus::Done => "done",
+            JobStatus::Refused => "refused",
+            JobStatus::Failed => "failed",
+            JobStatus::Interrupted => "interrupted",
+            JobStatus::Stopped => "stopped",
+        }
+    }
+
+    /// The status of a stored name.
+    #[must_use]
+    pub fn parse(name: &str) -> Option<JobStatus> {
+        JobStatus::ALL.into_iter().find(|s| s.as_str() == name)
+    }
+
+    /// Whether the job has ended.
+    #[must_use]
+    pub const fn is_final(self) -> bool {
+        matches!(
+            self,
+            JobStatus::Done | JobStatus::Refused | JobStatus::Failed | JobStatus::Interrupted | JobStatus::Stopped
+        )
+    }
+}
+
+/// How a commit of the joint state concerns a job: its segment executed, and the status it
+/// ends with when the commit ends it (written in the same transaction).
+#[derive(Debug, Clone, Copy)]
+pub struct JobCommit<'a> {
+    /// The job.
+    pub id: i64,
+    /// The segment executed (`None`: a commit that does not advance the job's schedule).
+    pub segment: Option<i64>,
+    /// The final status and message, when this commit ends the job.
+    pub end: Option<(JobStatus, Option<&'a str>)>,
+}
+
 /// One job of the journal.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct JobRow {
@@ -62,8 +144,8 @@ pub struct JobRow {
     pub request: Value,
     /// A move that starts wherever the arm is when the job starts (re-planned then).
     pub from_current: bool,
-    /// `queued`, `planning`, `executing`, `done`, `refused`, `failed`, `interrupted`, `stopped`.
-    pub status: String,
+    /// Its status.
+    pub status: JobStatus,
     /// The library's report of the planned job (`null` before it is planned).
     pub report: Option<Value>,
     /// Why the job was refused, failed, stopped or interrupted; `null` otherwise.
@@ -183,15 +265,16 @@ impl Db {
             tx.execute("INSERT OR REPLACE INTO meta (key, value) VALUES ('scene', ?1)", params![text])?;
         }
         let now = now_ms();
-        let interrupted: Option<i64> =
-            tx.query_row("SELECT id FROM jobs WHERE status = 'executing'", [], |r| r.get(0)).optional()?;
+        let interrupted: Option<i64> = tx
+            .query_row("SELECT id FROM jobs WHERE status = ?1", [JobStatus::Executing.as_str()], |r| r.get(0))
+            .optional()?;
         if let Some(id) = interrupted {
             let segment: i64 = tx.query_row("SELECT segment FROM jobs WHERE id = ?1", params![id], |r| r.get(0))?;
             let message =
                 format!("interrupted: the service stopped during the job; segment {segment} was the last committed");
             tx.execute(
-                "UPDATE jobs SET status = 'interrupted', message = ?2, updated_ms = ?3 WHERE id = ?1",
-                params![id, message, now],
+                "UPDATE jobs SET status = ?4, message = ?2, updated_ms = ?3 WHERE id = ?1",
+                params![id, message, now, JobStatus::Interrupted.as_str()],
             )?;
             tx.execute("UPDATE meta SET value = '1' WHERE key = 'paused'", [])?;
             tx.execute(
@@ -199,7 +282,10 @@ impl Db {
                 params![now, id, message],
             )?;
         }
-        tx.execute("UPDATE jobs SET status = 'queued', updated_ms = ?1 WHERE status = 'planning'", params![now])?;
+        tx.execute(
+            "UPDATE jobs SET status = ?2, updated_ms = ?1 WHERE status = ?3",
+            params![now, JobStatus::Queued.as_str(), JobStatus::Planning.as_str()],
+        )?;
         tx.commit()?;
         recovery.interrupted = interrupted;
         Ok((Db { conn, _lock: lock }, recovery))
@@ -274,14 +360,14 @@ impl Db {
         kind: &str,
         request: &Value,
         from_current: bool,
-        status: &str,
+        status: JobStatus,
         report: Option<&Value>,
         message: Option<&str>,
     ) -> Result<i64, ServeError> {
         let now = now_ms();
         self.conn.execute(
             "INSERT INTO jobs (kind, request, from_current, status, report, message, created_ms, updated_ms) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?7)",
-            params![kind, request.to_string(), from_current, status, report.map(Value::to_string), message, now],
+            params![kind, request.to_string(), from_current, status.as_str(), report.map(Value::to_string), message, now],
         )?;
         Ok(self.conn.last_insert_rowid())
     }
@@ -293,15 +379,37 @@ impl Db {
     pub fn set_job(
         &self,
         id: i64,
-        status: &str,
+        status: JobStatus,
         message: Option<&str>,
         segments: Option<i64>,
     ) -> Result<(), ServeError> {
         self.conn.execute(
             "UPDATE jobs SET status = ?2, message = COALESCE(?3, message), segments = COALESCE(?4, segments), updated_ms = ?5 WHERE id = ?1",
-            params![id, status, message, segments, now_ms()],
+            params![id, status.as_str(), message, segments, now_ms()],
         )?;
         Ok(())
+    }
+
+    /// The answer to a job waiting for the operator: its request and report replaced and the
+    /// job queued, if it still waits (`false`: it does not, e.g. the criterion answered first).
+    ///
+    /// # Errors
+    /// [`ServeError::Db`].
+    pub fn answer(&self, id: i64, request: &Value, report: &Value, message: &str) -> Result<bool, ServeError> {
+        let changed = self.conn.execute(
+            "UPDATE jobs SET status = ?2, request = ?3, report = ?4, message = ?5, updated_ms = ?6 \
+             WHERE id = ?1 AND status = ?7",
+            params![
+                id,
+                JobStatus::Queued.as_str(),
+                request.to_string(),
+                report.to_string(),
+                message,
+                now_ms(),
+                JobStatus::WaitingOperator.as_str()
+            ],
+        )?;
+        Ok(changed == 1)
     }
 
     /// Replaces a job's request and report (a move re-planned from where the arm is).
@@ -317,12 +425,12 @@ impl Db {
     }
 
     /// Commits, in one transaction, every joint's step counter and (with a job) the job's
-    /// executed segment: after a crash the database holds either the state before or the state
-    /// after this call, never a mix.
+    /// executed segment and, when the commit ends the job, its final status: after a crash the
+    /// database holds either the state before or the state after this call, never a mix.
     ///
     /// # Errors
     /// [`ServeError::Db`].
-    pub fn commit_steps(&mut self, steps: &[i64], job: Option<(i64, Option<i64>)>) -> Result<LastCommit, ServeError> {
+    pub fn commit_steps(&mut self, steps: &[i64], job: Option<JobCommit<'_>>) -> Result<LastCommit, ServeError> {
         let now = now_ms();
         let tx = self.conn.transaction()?;
         {
@@ -331,9 +439,15 @@ impl Db {
                 update.execute(params![i as i64 + 1, s])?;
             }
         }
-        let (job_id, segment) = job.map_or((None, None), |(id, seg)| (Some(id), seg));
+        let (job_id, segment) = job.map_or((None, None), |j| (Some(j.id), j.segment));
         if let (Some(id), Some(seg)) = (job_id, segment) {
             tx.execute("UPDATE jobs SET segment = ?2, updated_ms = ?3 WHERE id = ?1", params![id, seg, now])?;
+        }
+        if let Some(JobCommit { id, end: Some((status, message)), .. }) = job {
+            tx.execute(
+                "UPDATE jobs SET status = ?2, message = COALESCE(?3, message), updated_ms = ?4 WHERE id = ?1",
+                params![id, status.as_str(), message, now],
+            )?;
         }
         let commit = LastCommit { at_ms: now, job: job_id, segment };
         let text = serde_json::json!({"at_ms": now, "job": job_id, "segment": segment}).to_string();
@@ -354,12 +468,17 @@ impl Db {
         Ok(())
     }
 
-    /// The oldest queued job.
+    /// The oldest job queued or waiting for the operator (the queue keeps its order: a job
+    /// waiting for its operator holds the ones behind it).
     ///
     /// # Errors
     /// [`ServeError::Db`].
     pub fn next_queued(&self) -> Result<Option<JobRow>, ServeError> {
-        self.query_jobs("WHERE status = 'queued' ORDER BY id LIMIT 1", []).map(|mut v| v.pop())
+        self.query_jobs(
+            "WHERE status IN (?1, ?2) ORDER BY id LIMIT 1",
+            [JobStatus::Queued.as_str(), JobStatus::WaitingOperator.as_str()],
+        )
+        .map(|mut v| v.pop())
     }
 
     /// One job.
@@ -380,12 +499,16 @@ impl Db {
         Ok(v)
     }
 
-    /// The number of jobs waiting in the queue.
+    /// The number of jobs waiting in the queue (queued or waiting for the operator).
     ///
     /// # Errors
     /// [`ServeError::Db`].
     pub fn queued_count(&self) -> Result<i64, ServeError> {
-        Ok(self.conn.query_row("SELECT COUNT(*) FROM jobs WHERE status = 'queued'", [], |r| r.get(0))?)
+        Ok(self.conn.query_row(
+            "SELECT COUNT(*) FROM jobs WHERE status IN (?1, ?2)",
+            [JobStatus::Queued.as_str(), JobStatus::WaitingOperator.as_str()],
+            |r| r.get(0),
+        )?)
     }
 
     fn query_jobs<P: rusqlite::Params>(&self, tail: &str, p: P) -> Result<Vec<JobRow>, ServeError> {
@@ -400,7 +523,16 @@ impl Db {
                 id: r.get(0)?,
                 kind: r.get(1)?,
                 request: serde_json::from_str(&request).unwrap_or(Value::Null),
-                status: r.get(3)?,
+                status: {
+                    let name: String = r.get(3)?;
+                    JobStatus::parse(&name).ok_or_else(|| {
+                        rusqlite::Error::FromSqlConversionFailure(
+                            3,
+                            rusqlite::types::Type::Text,
+                            format!("unknown job status `{name}`").into(),
+                        )
+                    })?
+                },
                 report: report.and_then(|t| serde_json::from_str(&t).ok()),
                 message: r.get(5)?,
                 segment: r.get(6)?,

@@ -1,37 +1,41 @@
-//! The executor thread: takes queued jobs in order, schedules each with the library's drive
+//! The executor thread: takes queued jobs in order, asks the operator where a job leaves a
+//! choice of configuration (seed 003's dialogue), schedules each job with the library's drive
 //! workflow, plays the schedule on the simulated motors in real time (or `--speed` times
 //! faster) and commits the joint state at every segment boundary (at most 50 ms of motion
-//! apart); handles `POST /stop` (a deceleration ramp) and `POST /estop` (halt now).
+//! apart); handles `POST /stop` (a deceleration along the planned path) and `POST /estop`
+//! (halt now).
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use reach::jobs::drive::DriveMotion;
-use reach::jobs::input::MotionSample;
+use reach::jobs::input::{MotionSample, q_display};
 use reach::jobs::{Report, Request};
-use reach::motion::Profile;
+use serde_json::{Value, json};
 
-use crate::db::JobRow;
+use crate::db::{JobCommit, JobRow, JobStatus};
+use crate::intake;
 use crate::schedule::{self, SEGMENT_S, Timeline};
 use crate::service::{Control, Motion, Shared, TICK, lock};
 
-/// Runs jobs until the service shuts down.
+/// Runs jobs until the service shuts down. A job that fails (an internal error) pauses the
+/// queue, like a stop: the jobs behind it were planned for the arm where it would have ended.
 pub fn run(shared: &Arc<Shared>) {
     while let Some(job) = next_job(shared) {
         let outcome = run_job(shared, &job);
-        let mut live = lock(&shared.live);
-        live.job = None;
-        live.control = None;
         if let Err(message) = outcome {
-            drop(live);
-            finish(shared, job.id, "failed", Some(&message));
-            live = lock(&shared.live);
+            let note = format!("{message}; the queue is paused until POST /resume");
+            lock(&shared.live).paused = true;
+            let _ = lock(&shared.db).set_paused(true);
+            finish(shared, job.id, JobStatus::Failed, Some(&note));
         }
-        shared.publish_state(&live);
+        release(shared);
+        shared.publish_state(&lock(&shared.live));
     }
 }
 
-/// Waits for the oldest queued job while the queue is not paused; `None` on shutdown.
+/// Waits for the oldest job queued (or waiting for its operator) while the queue is not
+/// paused; `None` on shutdown.
 fn next_job(shared: &Shared) -> Option<JobRow> {
     let mut live = lock(&shared.live);
     loop {
@@ -48,76 +52,99 @@ fn next_job(shared: &Shared) -> Option<JobRow> {
     }
 }
 
-/// The statuses that end a job.
-const FINAL: [&str; 5] = ["done", "refused", "failed", "stopped", "interrupted"];
+/// Frees the executor when `status` ends the job (`GET /state` no longer shows it, so a client
+/// that sees the job end sees the service idle or stopped) and tells the WebSocket clients.
+fn announce(shared: &Shared, id: i64, status: JobStatus, message: Option<&str>) {
+    if status.is_final() {
+        release(shared);
+    }
+    shared.job_event(id, status, message);
+}
 
-/// Sets a job's status and tells the WebSocket clients. A final status first frees the
-/// executor (`GET /state` no longer shows the job), so that a client that sees the job end
-/// sees the service idle or stopped.
-fn finish(shared: &Shared, id: i64, status: &str, message: Option<&str>) {
-    if FINAL.contains(&status) {
-        let mut live = lock(&shared.live);
-        live.job = None;
-        live.control = None;
+/// Sets a job's status in the journal (a final one after freeing the executor, as
+/// [`announce`] says why) and tells the WebSocket clients.
+fn finish(shared: &Shared, id: i64, status: JobStatus, message: Option<&str>) {
+    if status.is_final() {
+        release(shared);
     }
     let _ = lock(&shared.db).set_job(id, status, message, None);
     shared.job_event(id, status, message);
 }
 
+/// The executor holds no job.
+fn release(shared: &Shared) {
+    let mut live = lock(&shared.live);
+    live.job = None;
+    live.control = None;
+    live.waiting = false;
+}
+
+/// A job's request and report as stored.
+fn stored(job: &JobRow) -> Result<(Request, Report), String> {
+    let request = serde_json::from_value(job.request.clone()).map_err(|e| format!("stored request: {e}"))?;
+    let report =
+        serde_json::from_value(job.report.clone().unwrap_or_default()).map_err(|e| format!("stored report: {e}"))?;
+    Ok((request, report))
+}
+
 /// Schedules and plays one job. `Err`: an internal failure (the job is marked `failed`).
 fn run_job(shared: &Arc<Shared>, job: &JobRow) -> Result<(), String> {
-    finish(shared, job.id, "planning", None);
-    let request: Request = serde_json::from_value(job.request.clone()).map_err(|e| format!("stored request: {e}"))?;
-    let mut report: Report =
-        serde_json::from_value(job.report.clone().unwrap_or_default()).map_err(|e| format!("stored report: {e}"))?;
     let robot = &shared.robot;
-    let mut request = request;
+    let (mut request, mut report) = stored(job)?;
     if job.from_current {
         // Re-planned from where the arm is now.
+        finish(shared, job.id, JobStatus::Planning, None);
         let q = shared.q_deg(&lock(&shared.live).steps);
-        request = crate::intake::start_here(&request, &q);
-        report = match crate::intake::plan(robot, &request) {
+        request = intake::start_here(&request, &q);
+        report = match intake::plan(robot, &request) {
             Ok(r) => r,
             Err(e) => {
-                finish(shared, job.id, "refused", Some(&e.message));
+                finish(shared, job.id, JobStatus::Refused, Some(&e.message));
                 return Ok(());
             }
         };
         let (rq, rp) =
             (serde_json::to_value(&request).unwrap_or_default(), serde_json::to_value(&report).unwrap_or_default());
         lock(&shared.db).set_plan(job.id, &rq, &rp).map_err(|e| e.to_string())?;
-        if let Some(why) = crate::intake::refusal(&report) {
-            finish(shared, job.id, "refused", Some(&why));
+        if let Some(why) = intake::refusal(&report) {
+            finish(shared, job.id, JobStatus::Refused, Some(&why));
             return Ok(());
         }
     }
+    let Some((request, report)) = ask_operator(shared, job.id, request, report)? else {
+        return Ok(());
+    };
+    finish(shared, job.id, JobStatus::Planning, None);
     let Some(motion) = schedule::motion_of(robot, &request, &report)? else {
         let note = format!("planned only: a `{}` report holds no joint motion to drive", job.kind);
-        finish(shared, job.id, "done", Some(&note));
+        finish(shared, job.id, JobStatus::Done, Some(&note));
         return Ok(());
     };
     if let Some(scene) = crate::service::scene(shared)
         && let Err(why) = schedule::require_clear(robot, &scene, &motion)
     {
-        finish(shared, job.id, "refused", Some(&why));
+        finish(shared, job.id, JobStatus::Refused, Some(&why));
         return Ok(());
     }
     let timeline = match schedule::drive(robot, motion) {
         Ok(drive) => Arc::new(Timeline::of(&drive)),
         Err(why) => {
-            finish(shared, job.id, "refused", Some(&why));
+            finish(shared, job.id, JobStatus::Refused, Some(&why));
             return Ok(());
         }
     };
     let steps = lock(&shared.live).steps.clone();
     if let Err(why) = schedule::require_start(robot, &shared.axes, &timeline, &steps) {
-        finish(shared, job.id, "refused", Some(&why));
+        finish(shared, job.id, JobStatus::Refused, Some(&why));
         return Ok(());
     }
-    lock(&shared.db).set_job(job.id, "executing", None, Some(timeline.segments())).map_err(|e| e.to_string())?;
-    shared.job_event(job.id, "executing", None);
-    match play(shared, job.id, &timeline, true)? {
-        Played::Done => finish(shared, job.id, "done", None),
+    lock(&shared.db)
+        .set_job(job.id, JobStatus::Executing, None, Some(timeline.segments()))
+        .map_err(|e| e.to_string())?;
+    shared.job_event(job.id, JobStatus::Executing, None);
+    let events = k_events(&report, timeline.start_s);
+    match play(shared, job.id, &timeline, Playing::Job(&events))? {
+        Played::Done => announce(shared, job.id, JobStatus::Done, None),
         Played::Shutdown => {} // left `executing`: the next start marks it `interrupted`
         Played::Control(control, t) => {
             let k = ((t / SEGMENT_S).floor() as i64).min(timeline.segments());
@@ -127,27 +154,149 @@ fn run_job(shared: &Arc<Shared>, job: &JobRow) -> Result<(), String> {
                 timeline.duration_s,
                 timeline.segments()
             );
-            match control {
-                Control::Estop => halt(shared, job.id, &timeline.steps_at(t))?,
+            let at = match control {
+                Control::Estop => timeline.steps_at(t),
                 Control::Stop => match stop_ramp(shared, &timeline, t) {
                     Ok(Some(ramp)) => {
                         let ramp = Arc::new(ramp);
-                        message.push_str(&format!("; decelerated to rest in {:.3} s", ramp.duration_s));
-                        if let Played::Control(..) = play(shared, job.id, &ramp, false)? {
-                            halt(shared, job.id, &ramp.steps_at(ramp.duration_s))?;
+                        match play(shared, job.id, &ramp, Playing::Braking)? {
+                            Played::Control(_, t2) => {
+                                message.push_str(&format!("; halted {t2:.3} s into the deceleration"));
+                                ramp.steps_at(t2)
+                            }
+                            _ => {
+                                message.push_str(&format!(
+                                    "; decelerated to rest along the planned path in {:.3} s",
+                                    ramp.duration_s
+                                ));
+                                ramp.steps_at(ramp.duration_s)
+                            }
                         }
                     }
-                    Ok(None) => halt(shared, job.id, &timeline.steps_at(t))?,
+                    Ok(None) => timeline.steps_at(t),
                     Err(why) => {
-                        message.push_str(&format!("; halted at once: no ramp ({why})"));
-                        halt(shared, job.id, &timeline.steps_at(t))?;
+                        message.push_str(&format!("; halted at once: no deceleration ({why})"));
+                        timeline.steps_at(t)
                     }
                 },
-            }
-            finish(shared, job.id, "stopped", Some(&message));
+            };
+            halt(shared, job.id, &at, &message)?;
         }
     }
     Ok(())
+}
+
+/// Seed 003's dialogue. When the plan leaves the operator a choice of configuration
+/// ([`intake::questions`]), the job waits (`waiting_operator`, `GET /state` says `waiting`)
+/// for `POST /jobs/{id}/choose` for at most the configured timeout; then the configured
+/// criterion answers (or, without one, the default configuration stands). Returns the request
+/// and report to execute; `None` when the job is not to run now: a stop, an estop or a
+/// shutdown came first (the job keeps waiting and asks again once the queue resumes), or the
+/// criterion's plan is refused.
+///
+/// # Errors
+/// An internal failure (a stored plan that cannot be read, the database).
+fn ask_operator(
+    shared: &Shared,
+    id: i64,
+    request: Request,
+    report: Report,
+) -> Result<Option<(Request, Report)>, String> {
+    let questions = intake::questions(&request, &report);
+    if questions.is_empty() {
+        return Ok(Some((request, report)));
+    }
+    let timeout = shared.operator_timeout;
+    let deadline = Instant::now() + timeout;
+    let deadline_ms = crate::db::now_ms() + i64::try_from(timeout.as_millis()).unwrap_or(i64::MAX);
+    let message = format!(
+        "several configurations are feasible in interval(s) {}: POST /jobs/{id}/choose within {:.0} s",
+        questions.iter().map(|q| q.interval.to_string()).collect::<Vec<_>>().join(", "),
+        timeout.as_secs_f64()
+    );
+    lock(&shared.db).set_job(id, JobStatus::WaitingOperator, Some(&message), None).map_err(|e| e.to_string())?;
+    lock(&shared.live).waiting = true;
+    shared.job_event_with(
+        id,
+        JobStatus::WaitingOperator,
+        Some(&message),
+        json!({"questions": questions, "deadline_ms": deadline_ms}),
+    );
+    loop {
+        let mut live = lock(&shared.live);
+        if live.shutdown || live.control.take().is_some() {
+            live.waiting = false;
+            return Ok(None);
+        }
+        let row = lock(&shared.db).job(id).map_err(|e| e.to_string())?.ok_or("the job vanished")?;
+        if row.status == JobStatus::Queued {
+            live.waiting = false;
+            return stored(&row).map(Some);
+        }
+        let now = Instant::now();
+        if now >= deadline {
+            live.waiting = false;
+            break;
+        }
+        let pause = (deadline - now).min(Duration::from_millis(200));
+        drop(shared.wake.wait_timeout(live, pause).map_or_else(|e| e.into_inner().0, |r| r.0));
+    }
+    let waited = format!("no answer within {:.0} s", timeout.as_secs_f64());
+    let (request, report, note) = match &shared.operator_criterion {
+        Some(criterion) => {
+            let request = intake::with_criterion(&request, criterion);
+            match intake::plan(&shared.robot, &request) {
+                Ok(report) => {
+                    let note = format!("{waited}: the criterion ({}) chose", criterion.method);
+                    (request, report, note)
+                }
+                Err(e) => {
+                    finish(shared, id, JobStatus::Refused, Some(&format!("{waited}; the criterion: {}", e.message)));
+                    return Ok(None);
+                }
+            }
+        }
+        None => (request, report, format!("{waited}: the default configuration stands")),
+    };
+    if let Some(why) = intake::refusal(&report) {
+        finish(shared, id, JobStatus::Refused, Some(&format!("{note}, but {why}")));
+        return Ok(None);
+    }
+    let (rq, rp) =
+        (serde_json::to_value(&request).unwrap_or_default(), serde_json::to_value(&report).unwrap_or_default());
+    let db = lock(&shared.db);
+    if !db.answer(id, &rq, &rp, &note).map_err(|e| e.to_string())? {
+        // The operator answered in the meantime: the answer wins.
+        let row = db.job(id).map_err(|e| e.to_string())?.ok_or("the job vanished")?;
+        return stored(&row).map(Some);
+    }
+    drop(db);
+    shared.job_event(id, JobStatus::Queued, Some(&note));
+    Ok(Some((request, report)))
+}
+
+/// The K-events of a move's report as WebSocket messages, by their time from the schedule's
+/// start (`start_s`: the schedule's start in the report's time).
+fn k_events(report: &Report, start_s: f64) -> Vec<(f64, Value)> {
+    let Report::Move(m) = report else { return Vec::new() };
+    m.events
+        .iter()
+        .map(|e| {
+            (
+                e.t_s - start_s,
+                json!({"type": "event", "code": e.code, "t_s": e.t_s, "message": e.message, "detail": e.detail}),
+            )
+        })
+        .collect()
+}
+
+/// What a schedule being played is.
+enum Playing<'a> {
+    /// A job's schedule: each commit records its segment, the last one ends the job `done`;
+    /// the job's K-events are sent as their time passes.
+    Job(&'a [(f64, Value)]),
+    /// A deceleration after a stop: commits move the counters only.
+    Braking,
 }
 
 /// How playing a schedule ended.
@@ -161,13 +310,13 @@ enum Played {
 }
 
 /// Plays `timeline` on the simulated motors: waits for each segment's end (scaled by the
-/// speed) and commits the counters at the boundary (and, when `count` is set, the job's
-/// segment) in one transaction. The joint states between commits are published by
-/// [`publish`], so their rate does not depend on the disk.
-fn play(shared: &Shared, job: i64, timeline: &Arc<Timeline>, count: bool) -> Result<Played, String> {
+/// speed) and commits the counters at the boundary in one transaction (with a job's segment;
+/// the last commit of a job also sets it `done`). The joint states between commits are
+/// published by [`publish`], so their rate does not depend on the disk.
+fn play(shared: &Shared, job: i64, timeline: &Arc<Timeline>, playing: Playing<'_>) -> Result<Played, String> {
     let start = Instant::now();
     lock(&shared.live).motion = Some(Motion { timeline: timeline.clone(), start });
-    let played = play_segments(shared, job, timeline, count, start);
+    let played = play_segments(shared, job, timeline, &playing, start);
     let mut live = lock(&shared.live);
     live.motion = None;
     if let Ok(Played::Done) = played {
@@ -181,11 +330,12 @@ fn play_segments(
     shared: &Shared,
     job: i64,
     timeline: &Timeline,
-    count: bool,
+    playing: &Playing<'_>,
     start: Instant,
 ) -> Result<Played, String> {
     let sim_time = |now: Instant| now.duration_since(start).as_secs_f64() * shared.speed;
-    for k in 1..=timeline.segments() {
+    let segments = timeline.segments();
+    for k in 1..=segments {
         let t_end = timeline.segment_end(k);
         let due = start + Duration::from_secs_f64(t_end / shared.speed);
         let mut live = lock(&shared.live);
@@ -202,11 +352,26 @@ fn play_segments(
             }
             live = shared.wake.wait_timeout(live, due - now).map_or_else(|e| e.into_inner().0, |r| r.0);
         }
-        drop(live);
         let steps = timeline.steps_at(t_end);
-        let commit =
-            lock(&shared.db).commit_steps(&steps, Some((job, count.then_some(k)))).map_err(|e| e.to_string())?;
+        let commit = match playing {
+            Playing::Job(_) if k == segments => {
+                // The last commit ends the job: the executor is freed first (see `announce`).
+                live.job = None;
+                live.steps.clone_from(&steps);
+                JobCommit { id: job, segment: Some(k), end: Some((JobStatus::Done, None)) }
+            }
+            Playing::Job(_) => JobCommit { id: job, segment: Some(k), end: None },
+            Playing::Braking => JobCommit { id: job, segment: None, end: None },
+        };
+        drop(live);
+        let commit = lock(&shared.db).commit_steps(&steps, Some(commit)).map_err(|e| e.to_string())?;
         lock(&shared.live).last_commit = Some(commit);
+        if let Playing::Job(events) = playing {
+            let t_start = timeline.segment_end(k - 1);
+            for (_, event) in events.iter().filter(|(t, _)| *t > t_start - 1e-9 && *t <= t_end + 1e-9) {
+                shared.publish(event);
+            }
+        }
     }
     Ok(Played::Done)
 }
@@ -232,32 +397,49 @@ pub fn publish(shared: &Arc<Shared>) {
     }
 }
 
-/// Commits `steps` now (the motors halt where they are).
-fn halt(shared: &Shared, job: i64, steps: &[i64]) -> Result<(), String> {
-    let commit = lock(&shared.db).commit_steps(steps, Some((job, None))).map_err(|e| e.to_string())?;
+/// Commits `steps` now (the motors halt where they are) and ends the job `stopped` with
+/// `message`, in one transaction.
+fn halt(shared: &Shared, job: i64, steps: &[i64], message: &str) -> Result<(), String> {
+    {
+        let mut live = lock(&shared.live);
+        live.steps = steps.to_vec();
+        live.job = None;
+        live.control = None;
+    }
+    let end = JobCommit { id: job, segment: None, end: Some((JobStatus::Stopped, Some(message))) };
+    let commit = lock(&shared.db).commit_steps(steps, Some(end)).map_err(|e| e.to_string())?;
     let mut live = lock(&shared.live);
-    live.steps = steps.to_vec();
     live.last_commit = Some(commit);
     shared.publish_state(&live);
+    drop(live);
+    announce(shared, job, JobStatus::Stopped, Some(message));
     Ok(())
 }
 
-/// The controlled stop from time `t` of `timeline`: every joint keeps its direction and slows
-/// down at a constant rate to rest, all joints together, in the shortest time `T` the joints'
-/// acceleration limits (their drives' `max_acceleration`) allow: `T = maxᵢ |vᵢ|/aᵢ`. The ramp
-/// is the second half of the library's triangular profile (`λ` of a trapezoid with `f = ½`
-/// from `τ = ½` to 1), scheduled by the drive workflow, which re-checks position limits.
-/// `Ok(None)`: the arm is already at rest (or no joint has an acceleration limit).
+/// How much longer than the shortest deceleration a stop takes: the braking term uses at most
+/// `1/m` of each motor's acceleration, the rest is left for the path's own acceleration (which
+/// the warp scales down by the square of its rate).
+const BRAKING_MARGIN: f64 = 1.5;
+
+/// The controlled stop from time `t` of `timeline`: the arm slows down *along the planned
+/// path*, so it never leaves the motion that was checked (limits, scene): the schedule is
+/// replayed with the time warp `t(τ) = t + τ − τ²/(2T)`, `τ ∈ [0, T]`, whose rate `1 − τ/T`
+/// falls linearly from 1 to 0 — every joint's velocity is the planned one times that rate,
+/// and the braking term of its acceleration is `vᵢ/T`. `T = m·maxᵢ |vᵢ|/aᵢ` over the joints'
+/// velocities now and their drives' `max_acceleration`, with the margin
+/// `m =` [`BRAKING_MARGIN`] leaving room for the path's own acceleration. The warped samples (every 5 ms) are
+/// scheduled by the drive workflow, which re-checks position and speed limits and the motors'
+/// rates, and with a scene they are proven clear of it. `Ok(None)`: the arm is already at rest
+/// (or no joint has an acceleration limit).
 ///
 /// # Errors
-/// The drive workflow's message (e.g. a joint would pass its position limit while braking).
+/// Why there is no deceleration (the drive workflow's or the scene check's message).
 fn stop_ramp(shared: &Shared, timeline: &Timeline, t: f64) -> Result<Option<Timeline>, String> {
     let h = SEGMENT_S.min(t);
     if h <= 0.0 {
         return Ok(None);
     }
     let (now, before) = (timeline.steps_at(t), timeline.steps_at(t - h));
-    let q_now: Vec<f64> = shared.axes.iter().zip(&now).map(|(a, &s)| a.joint_value(s)).collect();
     // Velocity over the last segment, joint units per second.
     let v: Vec<f64> = shared
         .axes
@@ -270,19 +452,22 @@ fn stop_ramp(shared: &Shared, timeline: &Timeline, t: f64) -> Result<Option<Time
         .iter()
         .zip(&v)
         .filter_map(|(a, vi)| a.max_acceleration.map(|acc| vi.abs() / (acc / a.steps_per_unit)))
-        .fold(0.0, f64::max);
+        .fold(0.0, f64::max)
+        * BRAKING_MARGIN;
     if duration < 1e-3 {
         return Ok(None);
     }
-    let ramp = Profile::Trapezoidal { accel_fraction: 0.5 };
     let n = ((duration / 0.005).ceil() as usize).max(4);
     let samples: Vec<MotionSample> = (0..=n)
         .map(|j| {
-            let s = duration * j as f64 / n as f64;
-            let lambda = ramp.position(0.5 + s / (2.0 * duration)) - 0.5;
-            let q: Vec<f64> = q_now.iter().zip(&v).map(|(q0, vi)| q0 + vi * duration * lambda).collect();
-            MotionSample { t_s: s, q_deg: reach::jobs::input::q_display(&shared.robot, &q) }
+            let tau = duration * j as f64 / n as f64;
+            let warped = t + tau - tau * tau / (2.0 * duration);
+            MotionSample { t_s: tau, q_deg: q_display(&shared.robot, &timeline.values_at(&shared.axes, warped)) }
         })
         .collect();
-    schedule::drive(&shared.robot, DriveMotion::Samples(samples)).map(|d| Some(Timeline::of(&d)))
+    let motion = DriveMotion::Samples(samples);
+    if let Some(scene) = crate::service::scene(shared) {
+        schedule::require_clear(&shared.robot, &scene, &motion)?;
+    }
+    schedule::drive(&shared.robot, motion).map(|d| Some(Timeline::of(&d)))
 }

@@ -2,9 +2,10 @@
 //! adds) → the library's plan and report → the verdict whether it may move the arm.
 
 use reach::Robot;
-use reach::jobs::motion::ProfileName;
+use reach::jobs::motion::{ChoiceSpec, IntervalChoice, ProfileName};
 use reach::jobs::{Joints, MoveRequest, Report, Request};
-use serde::Deserialize;
+use reach::motion::tracking::Decision;
+use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
 use crate::error::ApiError;
@@ -127,6 +128,70 @@ pub fn refusal(report: &Report) -> Option<String> {
         Report::Tasks(t) if t.plan.is_none() => Some("no plan visits the task's points".into()),
         _ => None,
     }
+}
+
+/// One interval of a planned move where the operator may choose the configuration (seed
+/// 003's dialogue: several are feasible there).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Question {
+    /// The interval, 1-based (what `POST /jobs/{id}/choose` names).
+    pub interval: usize,
+    /// Its start, seconds into the motion.
+    pub start_s: f64,
+    /// Its end, seconds.
+    pub end_s: f64,
+    /// The feasible configurations (labels to answer with).
+    pub alternatives: Vec<String>,
+    /// The configuration realised without an answer (the default, or the first feasible).
+    pub proposed: Option<String>,
+}
+
+/// The questions a planned job leaves to the operator: the intervals of a tool-space move
+/// with several feasible configurations, when the request gives no criterion (`choose`) and
+/// the operator has not chosen there yet. Empty for other jobs (a plan job's intervals are
+/// decided by its task file's `[choose]`, else by the default configuration).
+#[must_use]
+pub fn questions(request: &Request, report: &Report) -> Vec<Question> {
+    let (Request::Move(m), Report::Move(r)) = (request, report) else { return Vec::new() };
+    if m.choose.is_some() || !r.feasible {
+        return Vec::new();
+    }
+    r.intervals
+        .iter()
+        .enumerate()
+        .filter(|(_, iv)| iv.alternatives.len() > 1 && iv.decision != Some(Decision::Operator))
+        .map(|(k, iv)| Question {
+            interval: k + 1,
+            start_s: iv.start_s,
+            end_s: iv.end_s,
+            alternatives: iv.alternatives.clone(),
+            proposed: iv.configuration.clone(),
+        })
+        .collect()
+}
+
+/// A move with the operator's `choices` added (replacing earlier ones for the same
+/// intervals).
+#[must_use]
+pub fn with_choices(request: &Request, choices: &[IntervalChoice]) -> Request {
+    let mut request = request.clone();
+    if let Request::Move(m) = &mut request {
+        m.choices.retain(|old| choices.iter().all(|new| new.interval != old.interval));
+        m.choices.extend(choices.iter().cloned());
+        m.choices.sort_by_key(|c| c.interval);
+    }
+    request
+}
+
+/// A move whose intervals are chosen by `criterion` (the service's answer when the operator
+/// does not answer in time).
+#[must_use]
+pub fn with_criterion(request: &Request, criterion: &ChoiceSpec) -> Request {
+    let mut request = request.clone();
+    if let Request::Move(m) = &mut request {
+        m.choose = Some(criterion.clone());
+    }
+    request
 }
 
 #[cfg(test)]

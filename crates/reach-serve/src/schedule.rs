@@ -64,6 +64,26 @@ impl Timeline {
             .collect()
     }
 
+    /// Every joint's value (SI) at `t` seconds after the start, continuous: between two steps
+    /// the counter is interpolated linearly in time (within one step of the counters of
+    /// [`Timeline::steps_at`]).
+    #[must_use]
+    pub fn values_at(&self, axes: &[Axis], t: f64) -> Vec<f64> {
+        let t = self.start_s + t;
+        self.joints
+            .iter()
+            .zip(axes)
+            .map(|((start, times, positions), axis)| {
+                let k = times.partition_point(|&s| s <= t);
+                let (t0, p0) = if k == 0 { (self.start_s, *start) } else { (times[k - 1], positions[k - 1]) };
+                let Some((&t1, &p1)) = times.get(k).zip(positions.get(k)) else { return axis.joint_value(p0) };
+                let f = if t1 > t0 { ((t - t0) / (t1 - t0)).clamp(0.0, 1.0) } else { 1.0 };
+                let (v0, v1) = (axis.joint_value(p0), axis.joint_value(p1));
+                v0 + f * (v1 - v0)
+            })
+            .collect()
+    }
+
     /// The counters at the start.
     #[must_use]
     pub fn start_steps(&self) -> Vec<i64> {

@@ -13,17 +13,26 @@ use reach::world::Scene;
 use serde_json::{Value, json};
 use tokio::sync::broadcast;
 
-use crate::db::{Db, LastCommit, Recovery};
+use crate::db::{Db, JobStatus, LastCommit, Recovery};
 use crate::error::ServeError;
 
 /// Largest request body, bytes (larger ones get 413).
 pub const MAX_BODY_BYTES: usize = 1 << 20;
+
+/// Most plans computed at once; further submissions wait their turn.
+pub const MAX_PLANNING: usize = 2;
 
 /// Most jobs waiting in the queue (more get 409).
 pub const MAX_QUEUED_JOBS: i64 = 10_000;
 
 /// Interval between joint-state messages on the WebSocket while moving (50 Hz).
 pub const TICK: std::time::Duration = std::time::Duration::from_millis(20);
+
+/// How long a job waits for the operator by default, seconds.
+pub const DEFAULT_OPERATOR_TIMEOUT_S: f64 = 60.0;
+
+/// The longest operator timeout, seconds (a day).
+pub const MAX_OPERATOR_TIMEOUT_S: f64 = 86_400.0;
 
 /// How the service is started (`reach serve`'s options).
 #[derive(Debug, Clone)]
@@ -40,6 +49,12 @@ pub struct Config {
     pub speed: f64,
     /// An origin allowed to call the API from a browser (CORS); `None`: none.
     pub cors: Option<String>,
+    /// How long a job waits for the operator's choice of configuration, seconds (seed 003's
+    /// dialogue); then `operator_criterion` answers.
+    pub operator_timeout_s: f64,
+    /// What answers when the operator does not: a ranking of the feasible configurations;
+    /// `None`: the default configuration stands (seed 003's `config=+β`).
+    pub operator_criterion: Option<reach::jobs::motion::ChoiceSpec>,
 }
 
 impl Config {
@@ -54,6 +69,8 @@ impl Config {
             listen: SocketAddr::from(([127, 0, 0, 1], 7878)),
             speed: 1.0,
             cors: None,
+            operator_timeout_s: DEFAULT_OPERATOR_TIMEOUT_S,
+            operator_criterion: None,
         }
     }
 }
@@ -90,8 +107,10 @@ impl Motion {
 pub struct Live {
     /// The motors' step counters now (between commits: simulated, not yet durable).
     pub steps: Vec<i64>,
-    /// The job being planned or executed.
+    /// The job being planned or executed (or waiting for its operator).
     pub job: Option<i64>,
+    /// Whether that job waits for the operator's choice.
+    pub waiting: bool,
     /// Whether the queue waits for `POST /resume`.
     pub paused: bool,
     /// A stop asked for and not yet handled.
@@ -130,6 +149,13 @@ pub struct Shared {
     pub speed: f64,
     /// What opening the state found.
     pub recovery: Recovery,
+    /// Plans being computed at once (`POST /jobs`, `POST /jobs/{id}/choose`): at most
+    /// [`MAX_PLANNING`].
+    pub planning: tokio::sync::Semaphore,
+    /// How long a job waits for the operator.
+    pub operator_timeout: std::time::Duration,
+    /// What answers when the operator does not.
+    pub operator_criterion: Option<reach::jobs::motion::ChoiceSpec>,
 }
 
 /// The scene now (a copy).
@@ -152,6 +178,12 @@ impl Shared {
         if !(config.speed.is_finite() && config.speed > 0.0 && config.speed <= 1e6) {
             return Err(ServeError::Config(format!("--speed must be a number in (0, 1e6], got {}", config.speed)));
         }
+        let timeout = config.operator_timeout_s;
+        if !(timeout.is_finite() && (0.0..=MAX_OPERATOR_TIMEOUT_S).contains(&timeout)) {
+            return Err(ServeError::Config(format!(
+                "--operator-timeout must be a number of seconds in [0, {MAX_OPERATOR_TIMEOUT_S}], got {timeout}"
+            )));
+        }
         let loaded = config.robot.load()?;
         let (robot, simulated) = with_simulated_drives(&loaded.robot).map_err(reach::Error::from)?;
         let axes = axes(&robot).map_err(reach::Error::from)?;
@@ -168,6 +200,7 @@ impl Shared {
         let live = Live {
             steps: db.steps()?,
             job: None,
+            waiting: false,
             paused: db.paused()?,
             control: None,
             motion: None,
@@ -187,6 +220,9 @@ impl Shared {
             cors: config.cors.clone(),
             speed: config.speed,
             recovery,
+            planning: tokio::sync::Semaphore::new(MAX_PLANNING),
+            operator_timeout: std::time::Duration::from_secs_f64(timeout),
+            operator_criterion: config.operator_criterion.clone(),
         })
     }
 
@@ -200,7 +236,9 @@ impl Shared {
     /// `GET /state` (and the WebSocket's `state` message without its `type`).
     #[must_use]
     pub fn state(&self, live: &Live) -> Value {
-        let status = if live.job.is_some() {
+        let status = if live.waiting {
+            "waiting"
+        } else if live.job.is_some() {
             "executing"
         } else if live.paused {
             "stopped"
@@ -231,12 +269,21 @@ impl Shared {
     }
 
     /// Records a job event in the log and sends it to WebSocket clients.
-    pub fn job_event(&self, id: i64, status: &str, message: Option<&str>) {
+    pub fn job_event(&self, id: i64, status: JobStatus, message: Option<&str>) {
+        self.job_event_with(id, status, message, json!({}));
+    }
+
+    /// [`Shared::job_event`] with more fields in the WebSocket message (`extra`, an object).
+    pub fn job_event_with(&self, id: i64, status: JobStatus, message: Option<&str>, extra: Value) {
         let db = lock(&self.db);
-        let _ = db.add_event(Some(id), status, message.unwrap_or(""));
+        let _ = db.add_event(Some(id), status.as_str(), message.unwrap_or(""));
         let segment = db.job(id).ok().flatten().map(|j| j.segment);
         drop(db);
-        self.publish(&json!({"type": "job", "id": id, "status": status, "segment": segment, "message": message}));
+        let mut event = json!({"type": "job", "id": id, "status": status, "segment": segment, "message": message});
+        if let (Some(event), Value::Object(extra)) = (event.as_object_mut(), extra) {
+            event.extend(extra);
+        }
+        self.publish(&event);
     }
 
     /// The drive data in use, per joint (shown by `GET /state`'s `drives`).

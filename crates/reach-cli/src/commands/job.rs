@@ -65,10 +65,21 @@ pub enum JobCommand {
     },
     /// Let the queued jobs run again after a stop or an interrupted job.
     Resume,
+    /// Answer a job waiting for the operator (its `questions`): the configuration per interval.
+    Choose {
+        /// The job number.
+        #[arg(value_name = "ID")]
+        id: i64,
+        /// INTERVAL=CONFIGURATION, e.g. `1=config=-β` (repeat for several intervals).
+        #[arg(long = "choice", value_name = "INTERVAL=CONFIGURATION", required = true)]
+        choices: Vec<String>,
+    },
 }
 
-/// A job's final statuses.
-const FINAL: [&str; 5] = ["done", "refused", "failed", "interrupted", "stopped"];
+/// Whether a job's status (as the service shows it) ends the job.
+fn is_final(status: Option<&str>) -> bool {
+    status.and_then(reach_serve::db::JobStatus::parse).is_some_and(reach_serve::db::JobStatus::is_final)
+}
 
 /// Runs one `reach job` command.
 ///
@@ -87,7 +98,7 @@ pub fn run(args: &JobArgs, out: &mut dyn Write) -> Result<(), CliError> {
             let id = reply["id"].as_i64().ok_or_else(|| CliError::internal(format!("no job id in {reply}")))?;
             let job = loop {
                 let job = client.call("GET", &format!("/jobs/{id}"), None)?;
-                if job["status"].as_str().is_some_and(|s| FINAL.contains(&s)) {
+                if is_final(job["status"].as_str()) {
                     break job;
                 }
                 crate::interrupt::check()?;
@@ -111,6 +122,14 @@ pub fn run(args: &JobArgs, out: &mut dyn Write) -> Result<(), CliError> {
             write_json(out, &client.call("POST", if *estop { "/estop" } else { "/stop" }, None)?)
         }
         JobCommand::Resume => write_json(out, &client.call("POST", "/resume", None)?),
+        JobCommand::Choose { id, choices } => {
+            let choices = choices
+                .iter()
+                .map(|c| crate::commands::move_cmd::parse_choice(c))
+                .collect::<Result<Vec<_>, CliError>>()?;
+            let body = serde_json::json!({ "choices": choices }).to_string();
+            write_json(out, &client.call("POST", &format!("/jobs/{id}/choose"), Some(&body))?)
+        }
         JobCommand::Watch { count } => client.watch(*count, out),
     }
 }

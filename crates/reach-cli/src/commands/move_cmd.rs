@@ -20,7 +20,7 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use reach::jobs::motion::{ChoiceSpec, End, MoveRequest};
+use reach::jobs::motion::{ChoiceSpec, End, IntervalChoice, MoveRequest};
 
 use crate::commands::check::read_valid_scene;
 use crate::commands::move_render::{infeasible, move_drawing, write_csv, write_report};
@@ -116,6 +116,11 @@ pub struct MoveArgs {
     #[arg(long, value_name = "C1,..,CK", requires = "choose")]
     pub criteria: Option<String>,
 
+    /// Tool space: the configuration of one path interval, INTERVAL=CONFIGURATION with a label
+    /// of the report's `alternatives` (repeat for several intervals; docs/choosing.md).
+    #[arg(long, value_name = "INTERVAL=CONFIGURATION")]
+    pub choice: Vec<String>,
+
     /// With --choose: one weight per criterion, >= 0, not all 0 (default equal). Joint weights
     /// of J1/J2 are --joint-weights.
     #[arg(long, value_name = "W1,..,WK", allow_hyphen_values = true, requires = "choose")]
@@ -177,18 +182,50 @@ impl MoveArgs {
             speed_m_s: number("--speed", &self.speed)?,
             dt_s: number("--dt", &self.dt)?,
             joint_weights: self.joint_weights.as_deref().map(|t| parse_list("--joint-weights", t)).transpose()?,
-            choose: match &self.choose {
-                None => None,
-                Some(method) => Some(ChoiceSpec {
-                    method: method.clone(),
-                    criteria: self.criteria.iter().flat_map(|c| c.split(',')).map(|c| c.trim().to_string()).collect(),
-                    weights: self.weights.as_deref().map(|t| parse_list("--weights", t)).transpose()?,
-                    require: Default::default(),
-                }),
-            },
+            choose: choice_spec(
+                self.choose.as_deref(),
+                self.criteria.as_deref(),
+                self.weights.as_deref(),
+                "--weights",
+            )?,
             scene: self.scene.as_deref().map(read_valid_scene).transpose()?,
+            choices: self.choice.iter().map(|c| parse_choice(c)).collect::<Result<_, _>>()?,
         })
     }
+}
+
+/// One interval's configuration from `INTERVAL=CONFIGURATION` (`--choice`).
+///
+/// # Errors
+/// [`CliError::BadInput`] naming the flag's text when it is not of that form.
+pub fn parse_choice(text: &str) -> Result<IntervalChoice, CliError> {
+    let bad = |why: String| CliError::bad_input(format!("--choice `{text}`: {why}"));
+    let (interval, configuration) =
+        text.split_once('=').ok_or_else(|| bad("write INTERVAL=CONFIGURATION, e.g. 1=config=-β".into()))?;
+    let interval = interval.trim().parse::<usize>().ok().filter(|&i| i >= 1);
+    let interval = interval.ok_or_else(|| bad("the interval must be a whole number ≥ 1".into()))?;
+    Ok(IntervalChoice { interval, configuration: configuration.to_string() })
+}
+
+/// A tool-space motion's criterion from `--choose METHOD --criteria C1,..,CK [--weights
+/// W1,..,WK]` (`weights_flag`: how the weights' flag is spelt, for errors); `None` without a
+/// method.
+///
+/// # Errors
+/// [`CliError::BadInput`] for weights that are not numbers.
+pub fn choice_spec(
+    method: Option<&str>,
+    criteria: Option<&str>,
+    weights: Option<&str>,
+    weights_flag: &str,
+) -> Result<Option<ChoiceSpec>, CliError> {
+    let Some(method) = method else { return Ok(None) };
+    Ok(Some(ChoiceSpec {
+        method: method.to_string(),
+        criteria: criteria.iter().flat_map(|c| c.split(',')).map(|c| c.trim().to_string()).collect(),
+        weights: weights.map(|t| parse_list(weights_flag, t)).transpose()?,
+        require: Default::default(),
+    }))
 }
 
 /// The library's error with the request field named by its flag (`duration_s` → `--duration`,
@@ -206,6 +243,7 @@ fn flag_error(args: &MoveArgs, e: reach::Error) -> CliError {
         ("choose.criteria", "--criteria"),
         ("choose.weights", "--weights"),
         ("choose", "--choose"),
+        ("choices", "--choice"),
     ];
     let flags = flag_table(&fixed, &[(args.from_pose.flags(), "from.pose"), (args.to_pose.flags(), "to.pose")]);
     crate::error::flagged(e, &flags)

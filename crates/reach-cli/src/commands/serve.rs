@@ -35,6 +35,24 @@ pub struct ServeArgs {
     /// A browser origin allowed to call the API (CORS), e.g. http://localhost:5173.
     #[arg(long, value_name = "ORIGIN")]
     pub cors: Option<String>,
+
+    /// Seconds a job waits for the operator's choice of configuration (POST /jobs/ID/choose)
+    /// before --operator-choose answers (without it: the default configuration).
+    #[arg(long, value_name = "S", default_value_t = reach_serve::service::DEFAULT_OPERATOR_TIMEOUT_S)]
+    pub operator_timeout: f64,
+
+    /// What answers when the operator does not: topsis, vikor or weighted-sum over
+    /// --operator-criteria (docs/choosing.md).
+    #[arg(long, value_name = "METHOD", requires = "operator_criteria")]
+    pub operator_choose: Option<String>,
+
+    /// With --operator-choose: the motion criteria, comma-separated.
+    #[arg(long, value_name = "C1,..,CK", requires = "operator_choose")]
+    pub operator_criteria: Option<String>,
+
+    /// With --operator-choose: one weight per criterion (default equal).
+    #[arg(long, value_name = "W1,..,WK", requires = "operator_choose")]
+    pub operator_weights: Option<String>,
 }
 
 /// Runs the service until Ctrl-C.
@@ -59,6 +77,13 @@ pub fn run(args: &ServeArgs, _out: &mut dyn Write) -> Result<(), CliError> {
     config.listen = listen;
     config.speed = args.speed;
     config.cors.clone_from(&args.cors);
+    config.operator_timeout_s = args.operator_timeout;
+    config.operator_criterion = crate::commands::move_cmd::choice_spec(
+        args.operator_choose.as_deref(),
+        args.operator_criteria.as_deref(),
+        args.operator_weights.as_deref(),
+        "--operator-weights",
+    )?;
     let cancel = crate::interrupt::cancel().clone();
     let stop = async move {
         while !cancel.is_cancelled() {

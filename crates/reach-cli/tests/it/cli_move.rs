@@ -427,3 +427,39 @@ fn move_takes_radians_and_every_pose_form() {
     );
     fails(&["move", "ur5", "--from", "0,-90,x,0,90,0", "--to", "0,0,0,0,0,0"], 2, "--from joint 3");
 }
+
+/// `--choice INTERVAL=CONFIGURATION`: the operator's configuration of a tool-space interval
+/// (a label of the report's `alternatives`), realised with decision `operator`; a malformed
+/// or infeasible choice exits 2 with one line naming it.
+#[test]
+fn choice_realises_the_named_configuration() {
+    let base = [
+        "move",
+        "welder6r",
+        "--from-xyz",
+        "0.05,0.74,0.07",
+        "--from-rpy",
+        "0,-41.86854343693031,-50.19442890773481",
+        "--to-xyz",
+        "0.1,0.68,0.14",
+        "--to-rpy",
+        "0,-41.86854343693031,-50.19442890773481",
+        "--space",
+        "tool",
+        "--duration",
+        "10",
+        "--json",
+    ];
+    let auto = json(&reach(&base));
+    let alternatives = auto["intervals"][0]["alternatives"].as_array().unwrap();
+    assert_eq!(alternatives.len(), 2, "{auto}");
+    assert_eq!(auto["intervals"][0]["decision"], "default");
+    let other = alternatives[1].as_str().unwrap();
+    let choice = format!("1={other}");
+    let chosen = json(&reach(&[&base[..], &["--choice", &choice]].concat()));
+    assert_eq!(chosen["intervals"][0]["decision"], "operator", "{chosen}");
+    assert_eq!(chosen["intervals"][0]["configuration"], other);
+    assert_ne!(q(&chosen["samples"][0]), q(&auto["samples"][0]), "another branch");
+    fails(&[&base[..], &["--choice", "one"]].concat(), 2, "--choice `one`");
+    fails(&[&base[..], &["--choice", "2=x"]].concat(), 2, "interval 2 does not exist");
+}

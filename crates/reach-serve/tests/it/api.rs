@@ -193,3 +193,19 @@ async fn stop_pauses_the_queue_and_resume_releases_it() {
     assert_eq!(status, StatusCode::OK);
     wait_status(&router, id, "done").await;
 }
+
+/// On loopback, a request for a host that is not a loopback name (a page of another site
+/// resolving to 127.0.0.1: DNS rebinding) is refused; loopback names pass.
+#[tokio::test]
+async fn a_loopback_service_answers_only_to_loopback_names() {
+    use axum::body::Body;
+    use tower::ServiceExt;
+    let dir = scratch("host-check");
+    let service = open(&config("ur5", &dir, 50.0));
+    let router = service.router();
+    for (host, expected) in [("evil.example:7878", StatusCode::FORBIDDEN), ("localhost:7878", StatusCode::OK)] {
+        let request = axum::http::Request::get("/state").header("host", host).body(Body::empty()).unwrap();
+        let response = router.clone().oneshot(request).await.unwrap();
+        assert_eq!(response.status(), expected, "{host}");
+    }
+}

@@ -8,6 +8,7 @@ use axum::Router;
 use axum::body::Body;
 use axum::http::{Request, StatusCode};
 use reach::jobs::RobotInput;
+use reach_serve::db::JobStatus;
 use reach_serve::{Config, Service};
 use serde_json::Value;
 use tower::ServiceExt;
@@ -82,12 +83,10 @@ pub async fn wait_job(router: &Router, id: i64, what: &str, done: impl Fn(&Value
     }
 }
 
-/// Statuses that end a job.
-const FINAL: [&str; 5] = ["done", "refused", "failed", "interrupted", "stopped"];
-
-/// Polls until job `id` ends; asserts it ended with `status`.
+/// Polls until job `id` ends (or has `status`); asserts it has `status`.
 pub async fn wait_status(router: &Router, id: i64, status: &str) -> Value {
-    let job = wait_job(router, id, status, |j| j["status"] == status || FINAL.iter().any(|f| j["status"] == *f)).await;
+    let ended = |j: &Value| j["status"].as_str().and_then(JobStatus::parse).is_some_and(JobStatus::is_final);
+    let job = wait_job(router, id, status, |j| j["status"] == status || ended(j)).await;
     assert_eq!(job["status"], status, "job {id}: {job}");
     job
 }

@@ -1,10 +1,11 @@
 //! The integration tests of `reach-serve`, compiled as one test binary (`it`): the router
-//! in-process (`api`), restarts of the state (`durability`), the socket and WebSocket
+//! in-process (`api`), restarts of the state (`durability`), seed 003's operator dialogue (`operator`), the socket and WebSocket
 //! (`socket`). Helpers in `common`.
 
 mod common;
 
 mod api;
 mod durability;
+mod operator;
 mod socket;
 mod world;
