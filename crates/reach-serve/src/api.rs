@@ -392,6 +392,14 @@ fn append_obstacle(shared: &Shared, value: &Value, metres: Option<&[&str]>) -> R
     *shared.scene.write().unwrap_or_else(std::sync::PoisonError::into_inner) = Some(scene);
     drop(db);
     let name = value["name"].as_str().unwrap_or("").to_string();
+    {
+        // The job executing re-checks the rest of its motion against the new scene.
+        let mut live = lock(&shared.live);
+        if live.job.is_some() {
+            live.scene_changed = true;
+            shared.wake.notify_all();
+        }
+    }
     let _ = lock(&shared.db).add_event(None, "obstacle", &name);
     shared.publish(&json!({"type": "obstacle", "name": name, "obstacles": obstacles}));
     Ok(obstacles)
@@ -411,7 +419,8 @@ fn scale_numbers(value: &Value, scale: f64) -> Value {
 /// without ambiguity joins the scene as a sphere about the estimate at z = 0 whose radius is
 /// the estimate's uncertainty (the obstacle lies inside it with 99.73 % probability); jobs
 /// that start afterwards must be proven clear of it. An ambiguous fit adds nothing (`added`
-/// is `false`; the report says why). The job executing is not re-planned.
+/// is `false`; the report says why). The job executing is re-planned around it when its rest
+/// is not clear (as for `POST /scene/obstacles`).
 async fn sense(State(shared): AppState, body: Result<Bytes, BytesRejection>) -> Result<Json<Value>, ApiError> {
     let body = body.map_err(|e| body_error(&e))?;
     let request: reach::jobs::world::sense::SenseRequest =

@@ -126,6 +126,10 @@ fn run_job(shared: &Arc<Shared>, job: &JobRow) -> Result<(), String> {
         finish(shared, job.id, JobStatus::Refused, Some(&why));
         return Ok(());
     }
+    let samples = match &motion {
+        DriveMotion::Samples(samples) => samples.clone(),
+        _ => Vec::new(),
+    };
     let timeline = match schedule::drive(robot, motion) {
         Ok(drive) => Arc::new(Timeline::of(&drive)),
         Err(why) => {
@@ -143,48 +147,180 @@ fn run_job(shared: &Arc<Shared>, job: &JobRow) -> Result<(), String> {
         .map_err(|e| e.to_string())?;
     shared.job_event(job.id, JobStatus::Executing, None);
     let events = k_events(&report, timeline.start_s);
-    match play(shared, job.id, &timeline, Playing::Job(&events))? {
-        Played::Done => announce(shared, job.id, JobStatus::Done, None),
-        Played::Shutdown => {} // left `executing`: the next start marks it `interrupted`
-        Played::Control(control, t) => {
-            let k = ((t / SEGMENT_S).floor() as i64).min(timeline.segments());
-            let mut message = format!(
-                "stopped by POST /{} at t = {t:.3} s of {:.3} s (after segment {k} of {})",
-                if control == Control::Stop { "stop" } else { "estop" },
-                timeline.duration_s,
-                timeline.segments()
-            );
-            let at = match control {
-                Control::Estop => timeline.steps_at(t),
-                Control::Stop => match stop_ramp(shared, &timeline, t) {
-                    Ok(Some(ramp)) => {
-                        let ramp = Arc::new(ramp);
-                        match play(shared, job.id, &ramp, Playing::Braking)? {
-                            Played::Control(_, t2) => {
-                                message.push_str(&format!("; halted {t2:.3} s into the deceleration"));
-                                ramp.steps_at(t2)
-                            }
-                            _ => {
-                                message.push_str(&format!(
-                                    "; decelerated to rest along the planned path in {:.3} s",
-                                    ramp.duration_s
-                                ));
-                                ramp.steps_at(ramp.duration_s)
-                            }
-                        }
-                    }
-                    Ok(None) => timeline.steps_at(t),
-                    Err(why) => {
-                        message.push_str(&format!("; halted at once: no deceleration ({why})"));
-                        timeline.steps_at(t)
-                    }
-                },
-            };
-            halt(shared, job.id, &at, &message)?;
+    let (mut timeline, mut samples, mut playing, mut from_t) = (timeline, samples, Playing::Job(&events), 0.0);
+    loop {
+        match play(shared, job.id, &timeline, &playing, from_t)? {
+            Played::Done => announce(shared, job.id, JobStatus::Done, None),
+            Played::Shutdown => {} // left `executing`: the next start marks it `interrupted`
+            Played::Control(control, t) => stop(shared, job.id, &timeline, control, t)?,
+            Played::SceneChanged(t) => match replan(shared, job.id, &timeline, &samples, t)? {
+                Replanned::Clear => {
+                    from_t = t;
+                    continue;
+                }
+                Replanned::Detour(detour, path) => {
+                    (timeline, samples, playing, from_t) = (detour, path, Playing::Detour, 0.0);
+                    continue;
+                }
+                Replanned::Ended => {}
+            },
         }
+        break;
     }
     Ok(())
 }
+
+/// Ends the job after `POST /stop` or `POST /estop` at time `t` of `timeline`: an estop halts
+/// at once, a stop decelerates along the path ([`stop_ramp`]); the position reached and the
+/// job's `stopped` are committed together.
+fn stop(shared: &Shared, id: i64, timeline: &Arc<Timeline>, control: Control, t: f64) -> Result<(), String> {
+    let k = ((t / SEGMENT_S).floor() as i64).min(timeline.segments());
+    let mut message = format!(
+        "stopped by POST /{} at t = {t:.3} s of {:.3} s (after segment {k} of {})",
+        if control == Control::Stop { "stop" } else { "estop" },
+        timeline.duration_s,
+        timeline.segments()
+    );
+    let at = match control {
+        Control::Estop => timeline.steps_at(t),
+        Control::Stop => brake(shared, id, timeline, t, &mut message)?.0,
+    };
+    halt(shared, id, &at, Some(&message))
+}
+
+/// Decelerates along the path from time `t` of `timeline` ([`stop_ramp`]) and returns the
+/// counters where the arm came to rest (or where a second stop or estop halted it, or at `t`
+/// when there is no deceleration), and whether a stop or estop cut the deceleration short;
+/// says how in `message`.
+fn brake(
+    shared: &Shared,
+    id: i64,
+    timeline: &Timeline,
+    t: f64,
+    message: &mut String,
+) -> Result<(Vec<i64>, bool), String> {
+    Ok(match stop_ramp(shared, timeline, t) {
+        Ok(Some(ramp)) => {
+            let ramp = Arc::new(ramp);
+            match play(shared, id, &ramp, &Playing::Braking, 0.0)? {
+                Played::Control(_, t2) => {
+                    message.push_str(&format!("; halted {t2:.3} s into the deceleration"));
+                    (ramp.steps_at(t2), true)
+                }
+                _ => {
+                    message
+                        .push_str(&format!("; decelerated to rest along the planned path in {:.3} s", ramp.duration_s));
+                    (ramp.steps_at(ramp.duration_s), false)
+                }
+            }
+        }
+        Ok(None) => (timeline.steps_at(t), false),
+        Err(why) => {
+            message.push_str(&format!("; halted at once: no deceleration ({why})"));
+            (timeline.steps_at(t), false)
+        }
+    })
+}
+
+/// What [`replan`] decided.
+enum Replanned {
+    /// The rest of the motion is proven clear of the new scene: go on.
+    Clear,
+    /// The arm stopped; this detour (its schedule and samples) leads to the motion's goal.
+    Detour(Arc<Timeline>, Vec<MotionSample>),
+    /// The job has ended (stopped: no detour, or a stop during the deceleration).
+    Ended,
+}
+
+/// An obstacle joined the scene at time `t` of the job's `timeline` (seed 000 §4.5: the range
+/// finders see an obstacle, the system plans a detour). The rest of the motion (`samples`, the
+/// job's joint motion, from the position now) is checked with the library's swept check; when
+/// it is not proven clear, the arm decelerates along its path (itself proven clear, else it
+/// halts at once), the library's planner (`path` workflow) plans a collision-free path from
+/// there to the motion's goal in the new scene, and the drive workflow schedules it. Without a
+/// detour the job ends `stopped` and the queue pauses (the jobs behind it start at its goal).
+///
+/// # Errors
+/// An internal failure (the database).
+fn replan(
+    shared: &Shared,
+    id: i64,
+    timeline: &Arc<Timeline>,
+    samples: &[MotionSample],
+    t: f64,
+) -> Result<Replanned, String> {
+    let Some(scene) = crate::service::scene(shared) else { return Ok(Replanned::Clear) };
+    let robot = &shared.robot;
+    let why = if samples.is_empty() {
+        "the rest of a plan job cannot be proven clear of it".to_string()
+    } else {
+        let now =
+            MotionSample { t_s: timeline.start_s + t, q_deg: q_display(robot, &timeline.values_at(&shared.axes, t)) };
+        let rest: Vec<MotionSample> =
+            std::iter::once(now).chain(samples.iter().filter(|s| s.t_s > timeline.start_s + t).cloned()).collect();
+        match schedule::require_clear(robot, &scene, &DriveMotion::Samples(rest)) {
+            Ok(()) => return Ok(Replanned::Clear),
+            Err(why) => why,
+        }
+    };
+    let mut message = format!("an obstacle joined the scene at t = {t:.3} s: {why}; stopping");
+    let (at, cut_short) = brake(shared, id, timeline, t, &mut message)?;
+    if cut_short {
+        // A stop or estop during the deceleration: the operator ends the job.
+        halt(shared, id, &at, Some(&message))?;
+        return Ok(Replanned::Ended);
+    }
+    halt(shared, id, &at, None)?;
+    let scene_text = lock(&shared.db).scene().map_err(|e| e.to_string())?.unwrap_or_default();
+    let goal = samples.last().ok_or_else(|| "a plan job's goal is not one configuration".to_string());
+    let request = goal.map(|goal| {
+        reach::jobs::Request::Path(reach::jobs::world::PathRequest {
+            scene: scene_text,
+            from: reach::jobs::Joints::Deg(shared.q_deg(&at)),
+            to: Some(reach::jobs::Joints::Deg(goal.q_deg.clone())),
+            to_pose: None,
+            seed: 1,
+            time_budget_s: DETOUR_BUDGET_S,
+            // At the job's pace; slowed when a motor would be too fast.
+            duration_s: Some(timeline.duration_s),
+        })
+    });
+    let detour = request.and_then(|request| {
+        let report = intake::plan(robot, &request).map_err(|e| e.message)?;
+        if let Some(why) = intake::refusal(&report) {
+            return Err(why);
+        }
+        let motion = schedule::motion_of(robot, &request, &report)?.ok_or("the detour holds no motion")?;
+        let DriveMotion::Samples(path) = motion else { return Err("the detour is not a joint motion".into()) };
+        let (drive, path) = schedule::drive_slowed(robot, path)?;
+        let timeline = Arc::new(Timeline::of(&drive));
+        schedule::require_start(robot, &shared.axes, &timeline, &at)?;
+        Ok((timeline, path, report))
+    });
+    match detour {
+        Ok((timeline, path, report)) => {
+            let Report::Path(p) = &report else { return Err("the detour is not a path".into()) };
+            message.push_str(&format!(
+                "; detour around it to the goal: {} waypoints, {:.3} s",
+                p.waypoints_deg.len(),
+                timeline.duration_s
+            ));
+            let _ = lock(&shared.db).set_job(id, JobStatus::Executing, Some(&message), None);
+            shared.job_event_with(id, JobStatus::Executing, Some(&message), json!({"detour": report}));
+            Ok(Replanned::Detour(timeline, path))
+        }
+        Err(why) => {
+            message.push_str(&format!("; no detour to the goal ({why}); the queue is paused until POST /resume"));
+            lock(&shared.live).paused = true;
+            let _ = lock(&shared.db).set_paused(true);
+            halt(shared, id, &at, Some(&message))?;
+            Ok(Replanned::Ended)
+        }
+    }
+}
+
+/// Wall-time budget of the planner for a detour, seconds.
+const DETOUR_BUDGET_S: f64 = 2.0;
 
 /// Seed 003's dialogue. When the plan leaves the operator a choice of configuration
 /// ([`intake::questions`]), the job waits (`waiting_operator`, `GET /state` says `waiting`)
@@ -295,7 +431,9 @@ enum Playing<'a> {
     /// A job's schedule: each commit records its segment, the last one ends the job `done`;
     /// the job's K-events are sent as their time passes.
     Job(&'a [(f64, Value)]),
-    /// A deceleration after a stop: commits move the counters only.
+    /// A detour after an obstacle joined the scene: the last commit ends the job `done`.
+    Detour,
+    /// A deceleration: commits move the counters only.
     Braking,
 }
 
@@ -305,6 +443,8 @@ enum Played {
     Done,
     /// A stop or emergency stop at this time (seconds from the schedule's start).
     Control(Control, f64),
+    /// An obstacle joined the scene at this time (a job or a detour only).
+    SceneChanged(f64),
     /// The service shuts down.
     Shutdown,
 }
@@ -313,10 +453,17 @@ enum Played {
 /// speed) and commits the counters at the boundary in one transaction (with a job's segment;
 /// the last commit of a job also sets it `done`). The joint states between commits are
 /// published by [`publish`], so their rate does not depend on the disk.
-fn play(shared: &Shared, job: i64, timeline: &Arc<Timeline>, playing: Playing<'_>) -> Result<Played, String> {
-    let start = Instant::now();
+fn play(
+    shared: &Shared,
+    job: i64,
+    timeline: &Arc<Timeline>,
+    playing: &Playing<'_>,
+    from_t: f64,
+) -> Result<Played, String> {
+    // Started `from_t` seconds (of schedule time) ago: a schedule resumed after a re-check.
+    let start = Instant::now().checked_sub(Duration::from_secs_f64(from_t / shared.speed)).unwrap_or_else(Instant::now);
     lock(&shared.live).motion = Some(Motion { timeline: timeline.clone(), start });
-    let played = play_segments(shared, job, timeline, &playing, start);
+    let played = play_segments(shared, job, timeline, playing, start, from_t);
     let mut live = lock(&shared.live);
     live.motion = None;
     if let Ok(Played::Done) = played {
@@ -332,10 +479,12 @@ fn play_segments(
     timeline: &Timeline,
     playing: &Playing<'_>,
     start: Instant,
+    from_t: f64,
 ) -> Result<Played, String> {
     let sim_time = |now: Instant| now.duration_since(start).as_secs_f64() * shared.speed;
     let segments = timeline.segments();
-    for k in 1..=segments {
+    let first = ((from_t / SEGMENT_S + 1e-9).floor() as i64 + 1).min(segments);
+    for k in first..=segments {
         let t_end = timeline.segment_end(k);
         let due = start + Duration::from_secs_f64(t_end / shared.speed);
         let mut live = lock(&shared.live);
@@ -346,6 +495,9 @@ fn play_segments(
             if let Some(control) = live.control.take() {
                 return Ok(Played::Control(control, sim_time(Instant::now()).min(t_end)));
             }
+            if !matches!(playing, Playing::Braking) && std::mem::take(&mut live.scene_changed) {
+                return Ok(Played::SceneChanged(sim_time(Instant::now()).min(t_end)));
+            }
             let now = Instant::now();
             if now >= due {
                 break;
@@ -353,15 +505,15 @@ fn play_segments(
             live = shared.wake.wait_timeout(live, due - now).map_or_else(|e| e.into_inner().0, |r| r.0);
         }
         let steps = timeline.steps_at(t_end);
+        let segment = matches!(playing, Playing::Job(_)).then_some(k);
         let commit = match playing {
-            Playing::Job(_) if k == segments => {
+            Playing::Job(_) | Playing::Detour if k == segments => {
                 // The last commit ends the job: the executor is freed first (see `announce`).
                 live.job = None;
                 live.steps.clone_from(&steps);
-                JobCommit { id: job, segment: Some(k), end: Some((JobStatus::Done, None)) }
+                JobCommit { id: job, segment, end: Some((JobStatus::Done, None)) }
             }
-            Playing::Job(_) => JobCommit { id: job, segment: Some(k), end: None },
-            Playing::Braking => JobCommit { id: job, segment: None, end: None },
+            _ => JobCommit { id: job, segment, end: None },
         };
         drop(live);
         let commit = lock(&shared.db).commit_steps(&steps, Some(commit)).map_err(|e| e.to_string())?;
@@ -397,22 +549,28 @@ pub fn publish(shared: &Arc<Shared>) {
     }
 }
 
-/// Commits `steps` now (the motors halt where they are) and ends the job `stopped` with
-/// `message`, in one transaction.
-fn halt(shared: &Shared, job: i64, steps: &[i64], message: &str) -> Result<(), String> {
+/// Commits `steps` now (the motors halt where they are); with `stopped`, ends the job
+/// `stopped` with that message in the same transaction.
+fn halt(shared: &Shared, job: i64, steps: &[i64], stopped: Option<&str>) -> Result<(), String> {
     {
         let mut live = lock(&shared.live);
         live.steps = steps.to_vec();
-        live.job = None;
-        live.control = None;
+        if stopped.is_some() {
+            live.job = None;
+            live.control = None;
+        }
     }
-    let end = JobCommit { id: job, segment: None, end: Some((JobStatus::Stopped, Some(message))) };
-    let commit = lock(&shared.db).commit_steps(steps, Some(end)).map_err(|e| e.to_string())?;
+    let end = stopped.map(|message| (JobStatus::Stopped, Some(message)));
+    let commit = lock(&shared.db)
+        .commit_steps(steps, Some(JobCommit { id: job, segment: None, end }))
+        .map_err(|e| e.to_string())?;
     let mut live = lock(&shared.live);
     live.last_commit = Some(commit);
     shared.publish_state(&live);
     drop(live);
-    announce(shared, job, JobStatus::Stopped, Some(message));
+    if let Some(message) = stopped {
+        announce(shared, job, JobStatus::Stopped, Some(message));
+    }
     Ok(())
 }
 

@@ -144,6 +144,32 @@ pub fn drive(robot: &Robot, motion: DriveMotion) -> Result<DriveReport, String> 
         .map_err(|e| reach::one_line(&e.to_string()))
 }
 
+/// [`drive`] for a motion whose pace the service chose (a detour): when a motor's rate or
+/// acceleration limit is exceeded, the same path is slowed uniformly to the duration the drive
+/// workflow suggests (every sample's time scaled) and scheduled again. Returns the schedule and
+/// the samples it follows.
+///
+/// # Errors
+/// The library's message.
+pub fn drive_slowed(robot: &Robot, samples: Vec<MotionSample>) -> Result<(DriveReport, Vec<MotionSample>), String> {
+    use reach::drive::DriveError;
+    let request = |samples| DriveRequest { motion: DriveMotion::Samples(samples), program: None };
+    match reach::jobs::drive::drive(robot, &request(samples.clone())) {
+        Ok(report) => Ok((report, samples)),
+        Err(reach::Error::Drive(
+            DriveError::RateLimit { suggested, duration, .. }
+            | DriveError::AccelerationLimit { suggested, duration, .. },
+        )) if duration > 0.0 => {
+            let scale = suggested / duration * 1.01;
+            let t0 = samples.first().map_or(0.0, |s| s.t_s);
+            let slowed: Vec<MotionSample> =
+                samples.into_iter().map(|s| MotionSample { t_s: t0 + (s.t_s - t0) * scale, ..s }).collect();
+            Ok((drive(robot, DriveMotion::Samples(slowed.clone()))?, slowed))
+        }
+        Err(e) => Err(reach::one_line(&e.to_string())),
+    }
+}
+
 /// Refuses a schedule that does not start where the arm is (more than one step away),
 /// naming the first such joint and both values.
 ///

@@ -111,6 +111,9 @@ pub struct Live {
     pub job: Option<i64>,
     /// Whether that job waits for the operator's choice.
     pub waiting: bool,
+    /// An obstacle joined the scene while the job executes: the executor re-checks the rest of
+    /// its motion.
+    pub scene_changed: bool,
     /// Whether the queue waits for `POST /resume`.
     pub paused: bool,
     /// A stop asked for and not yet handled.
@@ -201,6 +204,7 @@ impl Shared {
             steps: db.steps()?,
             job: None,
             waiting: false,
+            scene_changed: false,
             paused: db.paused()?,
             control: None,
             motion: None,

@@ -125,3 +125,44 @@ async fn sensed_obstacles_join_the_scene() {
     let (status, reply) = call(&router, "POST", "/sense", Some(r#"{"sensors": []}"#), None).await;
     assert_eq!(status, axum::http::StatusCode::BAD_REQUEST, "{reply}");
 }
+
+/// Seed 000 §4.5: an obstacle joins the scene while a move executes. One away from the rest of
+/// the motion changes nothing (every segment still runs, once); the post on the rest of the
+/// motion makes the arm stop along its path and drive a detour, planned around the post by the
+/// library's planner, to the move's goal.
+#[tokio::test(flavor = "multi_thread")]
+async fn an_obstacle_on_the_rest_of_the_motion_makes_a_detour_to_the_goal() {
+    use crate::common::wait_job;
+    let dir = scratch("detour");
+    let service = open(&config("planar3", &dir, 5.0));
+    let router = service.router();
+    let to_start = submit(&router, r#"{"kind": "move", "to_deg": [60, -40, -30], "duration_s": 10}"#).await;
+    wait_status(&router, to_start, "done").await;
+    let far = r#"{"name": "far", "shape": "sphere", "center": [-3, -3, 0], "radius": 0.2}"#;
+    let post =
+        r#"{"name": "post", "shape": "capsule", "a": [2.68, -0.16, -0.5], "b": [2.68, -0.16, 0.5], "radius": 0.15}"#;
+    // Far away: the move goes on where it was.
+    let on = submit(&router, r#"{"kind": "move", "to_deg": [30, -40, -30], "duration_s": 5}"#).await;
+    wait_job(&router, on, "moving", |j| j["segment"].as_i64().unwrap_or(0) >= 10).await;
+    let (status, _) = call(&router, "POST", "/scene/obstacles", Some(far), None).await;
+    assert_eq!(status, axum::http::StatusCode::CREATED);
+    let job = wait_status(&router, on, "done").await;
+    assert_eq!((job["segment"].as_i64(), job["segments"].as_i64()), (Some(100), Some(100)), "{job}");
+    assert!(job["message"].is_null(), "{job}");
+    let back = submit(&router, r#"{"kind": "move", "to_deg": [60, -40, -30], "duration_s": 5}"#).await;
+    wait_status(&router, back, "done").await;
+    // The post, on the rest of the swing: stop, detour, goal.
+    let swing = submit(&router, r#"{"kind": "move", "to_deg": [0, -30, -30], "duration_s": 10}"#).await;
+    wait_job(&router, swing, "moving", |j| j["segment"].as_i64().unwrap_or(0) >= 10).await;
+    let (status, _) = call(&router, "POST", "/scene/obstacles", Some(post), None).await;
+    assert_eq!(status, axum::http::StatusCode::CREATED);
+    let job = wait_status(&router, swing, "done").await;
+    let message = job["message"].as_str().unwrap_or_default();
+    assert!(message.contains("`post`") && message.contains("detour around it to the goal"), "{message}");
+    assert!(job["segment"].as_i64().unwrap() < 200, "the straight swing was left: {job}");
+    let q: Vec<f64> =
+        get(&router, "/state").await["q_deg"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    for (got, want) in q.iter().zip([0.0, -30.0, -30.0]) {
+        assert!((got - want).abs() < 0.05, "at the goal: {q:?}");
+    }
+}
