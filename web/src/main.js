@@ -10,10 +10,14 @@
 //   toolPosition()   world position [x, y, z] (metres) of the drawn tool point
 //   linkCount()      number of link objects of the arm (one per link segment)
 //   play() / pause()
+//   live             on the page `reach serve` serves at `/`: received(), latencies() (ms from
+//                    the service's send to the page's receipt of each joint state), lastState()
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { Arm, extent, shapeMesh, toolPath, ghostArms } from './scene.js';
 import { JointPlot } from './plot.js';
+import { el } from './dom.js';
+import { startLive } from './live.js';
 
 const CSS = `
 html, body { margin: 0; height: 100%; font: 13px sans-serif; }
@@ -33,13 +37,6 @@ html, body { margin: 0; height: 100%; font: 13px sans-serif; }
 #reach-events { font-size: 12px; }
 `;
 
-function el(tag, attrs = {}, parent = null) {
-  const e = document.createElement(tag);
-  Object.assign(e, attrs);
-  if (parent) parent.appendChild(e);
-  return e;
-}
-
 class Viewer {
   constructor(root) {
     el('style', { textContent: CSS }, document.head);
@@ -53,6 +50,7 @@ class Viewer {
     this.slider = el('input', { id: 'reach-slider', type: 'range', min: 0, max: 1000, value: 0 }, this.track);
     this.clock = el('span', { id: 'reach-clock' }, bar);
     const side = el('div', { id: 'reach-side' }, this.root);
+    this.side = side;
     this.plotCanvas = el('canvas', { id: 'reach-plot', width: 320, height: 200 }, side);
     this.qText = el('div', { id: 'reach-q' }, side);
     this.eventList = el('div', { id: 'reach-events' }, side);
@@ -170,22 +168,33 @@ class Viewer {
     this.t = Math.min(Math.max(t, this.t0), this.t0 + this.duration);
     this.index = this.stateAt(this.t);
     const s = this.report.states[this.index];
-    this.arm.set(s);
     this.slider.value = this.duration > 0 ? Math.round(((this.t - this.t0) / this.duration) * 1000) : 0;
     this.clock.textContent = `${this.t.toFixed(3)} / ${(this.t0 + this.duration).toFixed(3)} s`;
-    const lines = this.report.joint_names.map((n, j) => {
-      const unit = this.report.prismatic[j] ? 'm' : '°';
-      return `${n.padEnd(12)} ${s.q_deg[j].toFixed(3).padStart(10)} ${unit}`;
-    });
-    const p = s.tool.xyz_m;
-    lines.push(`tool xyz (m)  ${p.map((v) => v.toFixed(4)).join(' ')}`);
-    this.qText.textContent = lines.join('\n');
+    this.liveState = null;
+    this.draw(s);
     this.plot.draw(s.t_s);
-    this.render();
   }
 
   render() {
     if (this.scene) this.renderer.render(this.scene, this.camera);
+  }
+
+  // The arm at a state sent by the service (live mode): drawn at once, the timeline left as is.
+  showLive(s) {
+    this.liveState = s;
+    this.draw(s);
+  }
+
+  // The arm at state `s`, its joint values and tool position beside it.
+  draw(s) {
+    this.arm.set(s);
+    const lines = this.report.joint_names.map((n, j) => {
+      const unit = this.report.prismatic[j] ? 'm' : '°';
+      return `${n.padEnd(12)} ${s.q_deg[j].toFixed(3).padStart(10)} ${unit}`;
+    });
+    lines.push(`tool xyz (m)  ${s.tool.xyz_m.map((v) => v.toFixed(4)).join(' ')}`);
+    this.qText.textContent = lines.join('\n');
+    this.render();
   }
 
   play() {
@@ -222,7 +231,7 @@ function start() {
     time: () => viewer.t,
     startTime: () => viewer.t0,
     duration: () => viewer.duration,
-    state: () => viewer.report.states[viewer.index],
+    state: () => viewer.liveState || viewer.report.states[viewer.index],
     toolPosition: () => viewer.arm.tip.position.toArray(),
     linkCount: () => viewer.arm.group.children.filter((c) => c.userData.link !== undefined).length,
     play: () => viewer.play(),
@@ -230,6 +239,7 @@ function start() {
   };
   const data = document.getElementById('reach-view-data');
   if (data) viewer.load(JSON.parse(data.textContent));
+  if (data && data.dataset.live === '1') window.reachViewer.live = startLive(viewer, viewer.side);
 }
 
 if (document.readyState === 'loading') document.addEventListener('DOMContentLoaded', start);

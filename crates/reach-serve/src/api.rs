@@ -34,6 +34,8 @@ type AppState = State<Arc<Shared>>;
 /// The service's routes, with the body limit, the token check and CORS.
 pub fn router(shared: Arc<Shared>) -> Router {
     let mut router = Router::new()
+        .route("/", get(live_page))
+        .route("/favicon.ico", get(|| async { StatusCode::NO_CONTENT }))
         .route("/state", get(state))
         .route("/jobs", get(list_jobs).post(submit))
         .route("/jobs/{id}", get(job))
@@ -71,6 +73,7 @@ async fn guard(State(shared): AppState, request: Request, next: Next) -> Respons
     }
     if let Some(origin) = request.headers().get(header::ORIGIN)
         && shared.cors.as_deref().is_none_or(|allowed| origin.as_bytes() != allowed.as_bytes())
+        && !same_origin(origin.as_bytes(), request.headers().get(header::HOST).map(HeaderValue::as_bytes))
     {
         return ApiError {
             status: StatusCode::FORBIDDEN,
@@ -105,8 +108,9 @@ async fn guard(State(shared): AppState, request: Request, next: Next) -> Respons
             .and_then(|v| v.to_str().ok())
             .and_then(|v| v.strip_prefix("Bearer "))
             .map(str::trim);
-        // Browsers cannot set headers on a WebSocket: there (only) the token may be a query.
-        let query = (path == "/ws")
+        // A browser cannot set headers when it opens a page or a WebSocket: there (only) the
+        // token may be a query.
+        let query = (path == "/ws" || path == "/")
             .then(|| request.uri().query().and_then(|q| q.split('&').find_map(|kv| kv.strip_prefix("token="))))
             .flatten();
         let given = bearer.or(query);
@@ -115,6 +119,13 @@ async fn guard(State(shared): AppState, request: Request, next: Next) -> Respons
         }
     }
     next.run(request).await
+}
+
+/// Whether a browser's `Origin` is the service itself (`http://` + the request's `Host`): the
+/// live page at `/` calls the API it was served by. (On loopback the `Host` is checked to be
+/// a loopback name first, so another site cannot pass for the service.)
+fn same_origin(origin: &[u8], host: Option<&[u8]>) -> bool {
+    host.is_some_and(|h| origin.strip_prefix(b"http://") == Some(h))
 }
 
 /// Whether a `Host` header names the loopback interface (`localhost`, `127.x.x.x`, `[::1]`,
@@ -161,6 +172,23 @@ async fn schema(Path(name): Path<String>) -> Result<Json<Value>, ApiError> {
         .find(|(n, _)| *n == stem)
         .map(|(_, s)| Json(s))
         .ok_or_else(|| ApiError::not_found(format!("no schema `{name}`")))
+}
+
+/// `GET /`: the 3-D viewer (`reach view`'s page) showing the arm where it is and the scene,
+/// following the service live: joint states over the WebSocket, the operator's questions
+/// answered with buttons.
+async fn live_page(State(shared): AppState) -> Result<Response, ApiError> {
+    let q = shared.q_deg(&lock(&shared.live).steps);
+    let scene = lock(&shared.db).scene()?;
+    let request =
+        reach::jobs::ViewRequest { q: Some(reach::jobs::Joints::Deg(q)), scene, ..reach::jobs::ViewRequest::default() };
+    let report = reach::jobs::view::view(&shared.robot, &request).map_err(|e| ApiError {
+        status: StatusCode::INTERNAL_SERVER_ERROR,
+        message: reach::one_line(&e.to_string()),
+    })?;
+    let json = serde_json::to_string(&report).unwrap_or_default();
+    let html = reach::jobs::view::page(&report.robot, &json, true);
+    Ok(([(header::CONTENT_TYPE, "text/html; charset=utf-8")], html).into_response())
 }
 
 async fn state(State(shared): AppState) -> Json<Value> {
@@ -462,13 +490,7 @@ async fn ws(State(shared): AppState, upgrade: WebSocketUpgrade) -> Response {
 /// Sends the joint state now, then every state and job message as it is published.
 async fn stream(shared: Arc<Shared>, mut socket: WebSocket) {
     let mut rx = shared.events.subscribe();
-    let first = {
-        let live = lock(&shared.live);
-        let mut s = shared.state(&live);
-        s["type"] = json!("state");
-        s["t_ms"] = json!(crate::db::now_ms());
-        s.to_string()
-    };
+    let first = shared.state_message(&lock(&shared.live)).to_string();
     if socket.send(Message::text(first)).await.is_err() {
         return;
     }

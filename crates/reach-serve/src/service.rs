@@ -264,12 +264,25 @@ impl Shared {
         let _ = self.events.send(Arc::from(message.to_string()));
     }
 
-    /// Publishes the joint state.
-    pub fn publish_state(&self, live: &Live) {
+    /// The WebSocket's `state` message: [`Shared::state`] with its `type`, the time `t_ms`
+    /// (Unix ms) and `view`, the arm as the viewer draws it (the library's view state: frames,
+    /// tool, joint axes).
+    #[must_use]
+    pub fn state_message(&self, live: &Live) -> Value {
         let mut state = self.state(live);
         state["type"] = json!("state");
         state["t_ms"] = json!(crate::db::now_ms());
-        self.publish(&state);
+        let q: Vec<f64> = self.axes.iter().zip(&live.steps).map(|(a, &s)| a.joint_value(s)).collect();
+        state["view"] = reach::jobs::view::view_state(&self.robot, 0.0, &q)
+            .ok()
+            .and_then(|v| serde_json::to_value(v).ok())
+            .unwrap_or(Value::Null);
+        state
+    }
+
+    /// Publishes the joint state.
+    pub fn publish_state(&self, live: &Live) {
+        self.publish(&self.state_message(live));
     }
 
     /// Records a job event in the log and sends it to WebSocket clients.

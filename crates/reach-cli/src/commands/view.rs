@@ -16,9 +16,6 @@ use crate::output::{read_file, read_motion_file, write_file};
 use crate::pose_arg::PoseFlags;
 use crate::robot_arg::RobotArgs;
 
-/// The viewer bundle built from `web/src` (`npm run build` in `web/`), committed.
-const VIEWER_JS: &str = include_str!("../../../../web/dist/viewer.js");
-
 /// Arguments of `reach view`.
 #[derive(Debug, Clone, Args)]
 pub struct ViewArgs {
@@ -96,7 +93,7 @@ pub fn run(args: &ViewArgs, out: &mut dyn Write) -> Result<(), CliError> {
         Some(path) => scene_error(path, e),
         None => e.into(),
     })?;
-    let html = page(&report.robot, &serde_json::to_string(&report)?);
+    let html = reach::jobs::view::page(&report.robot, &serde_json::to_string(&report)?, false);
     write_file("-o", &args.output, html)?;
     writeln!(
         out,
@@ -109,30 +106,4 @@ pub fn run(args: &ViewArgs, out: &mut dyn Write) -> Result<(), CliError> {
         report.ghosts.len()
     )?;
     Ok(())
-}
-
-/// The HTML page: the report as inline JSON data, the viewer bundle as an inline script.
-/// Every `<` of the JSON (only inside its strings) is written `\u003c`, the same string to a
-/// JSON parser, so the data can neither close its script element nor open a comment.
-#[must_use]
-pub fn page(title: &str, report_json: &str) -> String {
-    let data = report_json.replace('<', "\\u003c");
-    let title = title.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;");
-    format!(
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>reach view: {title}</title>\n\
-         </head>\n<body>\n<script id=\"reach-view-data\" type=\"application/json\">{data}</script>\n\
-         <script>{VIEWER_JS}</script>\n</body>\n</html>\n"
-    )
-}
-
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn the_bundle_cannot_close_its_script_element() {
-        assert!(!super::VIEWER_JS.to_ascii_lowercase().contains("</script"));
-        let html = super::page("a<b", r#"{"name":"</script>"}"#);
-        assert_eq!(html.matches("</script>").count(), 2);
-        assert!(html.contains(r#"{"name":"\u003c/script>"}"#));
-        assert!(html.contains("a&lt;b"));
-    }
 }

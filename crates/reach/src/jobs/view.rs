@@ -59,6 +59,27 @@ pub struct ViewRequest {
     pub ik_target: Option<Pose>,
 }
 
+/// The viewer bundle built from `web/src` (`npm run build` in `web/`), committed (so that
+/// building needs no npm; CI checks it matches its sources).
+pub const VIEWER_JS: &str = include_str!("../../../../web/dist/viewer.js");
+
+/// A self-contained HTML page showing a view report (its JSON, `report_json`) with the viewer
+/// bundle inlined: it opens offline. `live`: the page also follows the service that serves it
+/// (`reach serve`'s `GET /`: joint states over its WebSocket, the operator's questions).
+/// Every `<` of the JSON (only inside its strings) is written `\u003c`, the same string to a
+/// JSON parser, so the data can neither close its script element nor open a comment.
+#[must_use]
+pub fn page(title: &str, report_json: &str, live: bool) -> String {
+    let data = report_json.replace('<', "\\u003c");
+    let title = title.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;");
+    let live = if live { " data-live=\"1\"" } else { "" };
+    format!(
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>reach view: {title}</title>\n\
+         </head>\n<body>\n<script id=\"reach-view-data\" type=\"application/json\"{live}>{data}</script>\n\
+         <script>{VIEWER_JS}</script>\n</body>\n</html>\n"
+    )
+}
+
 /// A pose in the world frame.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct ViewFrame {
@@ -440,6 +461,17 @@ pub fn view(robot: &Robot, request: &ViewRequest) -> Result<ViewReport> {
 mod tests {
     use super::*;
     use crate::model::presets;
+
+    #[test]
+    fn the_bundle_cannot_close_its_script_element() {
+        assert!(!VIEWER_JS.to_ascii_lowercase().contains("</script"));
+        let html = page("a<b", r#"{"name":"</script>"}"#, false);
+        assert_eq!(html.matches("</script>").count(), 2);
+        assert!(html.contains(r#"{"name":"\u003c/script>"}"#));
+        assert!(html.contains("a&lt;b"));
+        assert!(!html.contains("data-live"));
+        assert!(page("x", "{}", true).contains(r#"type="application/json" data-live="1">{}"#));
+    }
 
     #[test]
     fn thinning_keeps_first_and_last_and_the_cap() {
