@@ -506,18 +506,20 @@ fn play_segments(
         }
         let steps = timeline.steps_at(t_end);
         let segment = matches!(playing, Playing::Job(_)).then_some(k);
-        let commit = match playing {
-            Playing::Job(_) | Playing::Detour if k == segments => {
-                // The last commit ends the job: the executor is freed first (see `announce`).
-                live.job = None;
-                live.steps.clone_from(&steps);
-                JobCommit { id: job, segment, end: Some((JobStatus::Done, None)) }
-            }
-            _ => JobCommit { id: job, segment, end: None },
-        };
-        drop(live);
-        let commit = lock(&shared.db).commit_steps(&steps, Some(commit)).map_err(|e| e.to_string())?;
-        lock(&shared.live).last_commit = Some(commit);
+        if k == segments && !matches!(playing, Playing::Braking) {
+            // The last commit ends the job: the executor is freed (see `announce`) and the state
+            // updated while the commit is made, so a client that sees the job `done` sees the
+            // state after it.
+            live.job = None;
+            live.steps.clone_from(&steps);
+            let end = JobCommit { id: job, segment, end: Some((JobStatus::Done, None)) };
+            live.last_commit = Some(lock(&shared.db).commit_steps(&steps, Some(end)).map_err(|e| e.to_string())?);
+        } else {
+            drop(live);
+            let commit = JobCommit { id: job, segment, end: None };
+            let commit = lock(&shared.db).commit_steps(&steps, Some(commit)).map_err(|e| e.to_string())?;
+            lock(&shared.live).last_commit = Some(commit);
+        }
         if let Playing::Job(events) = playing {
             let t_start = timeline.segment_end(k - 1);
             for (_, event) in events.iter().filter(|(t, _)| *t > t_start - 1e-9 && *t <= t_end + 1e-9) {
@@ -552,20 +554,17 @@ pub fn publish(shared: &Arc<Shared>) {
 /// Commits `steps` now (the motors halt where they are); with `stopped`, ends the job
 /// `stopped` with that message in the same transaction.
 fn halt(shared: &Shared, job: i64, steps: &[i64], stopped: Option<&str>) -> Result<(), String> {
-    {
-        let mut live = lock(&shared.live);
-        live.steps = steps.to_vec();
-        if stopped.is_some() {
-            live.job = None;
-            live.control = None;
-        }
+    // The state is updated while the commit is made (a client that sees the job `stopped` sees
+    // the state after it).
+    let mut live = lock(&shared.live);
+    live.steps = steps.to_vec();
+    if stopped.is_some() {
+        live.job = None;
+        live.control = None;
     }
     let end = stopped.map(|message| (JobStatus::Stopped, Some(message)));
-    let commit = lock(&shared.db)
-        .commit_steps(steps, Some(JobCommit { id: job, segment: None, end }))
-        .map_err(|e| e.to_string())?;
-    let mut live = lock(&shared.live);
-    live.last_commit = Some(commit);
+    let commit = JobCommit { id: job, segment: None, end };
+    live.last_commit = Some(lock(&shared.db).commit_steps(steps, Some(commit)).map_err(|e| e.to_string())?);
     shared.publish_state(&live);
     drop(live);
     if let Some(message) = stopped {

@@ -8,10 +8,9 @@ use reach::Robot;
 use reach::drive::Axis;
 use reach::jobs::drive::{DriveMotion, DriveReport, DriveRequest};
 use reach::jobs::input::MotionSample;
-use reach::jobs::input::{AngleUnit, Joints, from_si, number_text, q_display, unit_name};
+use reach::jobs::input::{AngleUnit, from_si, number_text, samples_si, unit_name};
 use reach::jobs::world::SweptPathReport;
 use reach::jobs::{Report, Request};
-use reach::motion::{JointPath, Profile};
 use reach::world::Scene;
 
 /// Motion time between two commits of the joint state, seconds (the issue's "at most 50 ms
@@ -113,23 +112,8 @@ pub fn motion_of(robot: &Robot, request: &Request, report: &Report) -> Result<Op
         (_, Report::Move(m)) => Some(DriveMotion::Samples(m.samples.iter().map(MotionSample::from).collect())),
         (Request::Plan(p), Report::Plan(_)) => Some(DriveMotion::Task(p.task.clone())),
         (_, Report::Path(p)) => {
-            let waypoints = p
-                .waypoints_deg
-                .iter()
-                .map(|w| Joints::Deg(w.clone()).si(robot, "waypoint"))
-                .collect::<Result<Vec<_>, _>>()
-                .map_err(|e| e.to_string())?;
-            if waypoints.len() < 2 {
-                return Ok(None);
-            }
-            // The path workflow's timing: one cycloidal segment per edge, stopping at each
-            // waypoint; linear interpolation of its samples stays on the straight edges.
-            let path = JointPath::through(robot, &waypoints, &p.segment_durations_s, 0.0, Profile::Cycloidal)
-                .map_err(|e| e.to_string())?;
-            let trajectory = path.sample(PATH_DT_S).map_err(|e| e.to_string())?;
-            Some(DriveMotion::Samples(
-                trajectory.samples.iter().map(|s| MotionSample { t_s: s.t, q_deg: q_display(robot, &s.q) }).collect(),
-            ))
+            let samples = p.motion(robot, PATH_DT_S).map_err(|e| e.to_string())?;
+            (samples.len() >= 2).then_some(DriveMotion::Samples(samples))
         }
         _ => None,
     })
@@ -203,11 +187,8 @@ pub fn require_clear(robot: &Robot, scene: &Scene, motion: &DriveMotion) -> Resu
     let DriveMotion::Samples(samples) = motion else {
         return Err("a plan job cannot be proven clear of the service's scene; submit its motions as move jobs".into());
     };
-    let q: Vec<Vec<f64>> = samples
-        .iter()
-        .map(|s| Joints::Deg(s.q_deg.clone()).si(robot, "motion"))
-        .collect::<Result<_, _>>()
-        .map_err(|e| e.to_string())?;
+    let q: Vec<Vec<f64>> =
+        samples_si(robot, samples, "motion").map_err(|e| e.to_string())?.into_iter().map(|s| s.q).collect();
     match SweptPathReport::check(robot, scene, &q).map_err(|e| e.to_string())? {
         Some(p) if !p.swept.clear => {
             // Segment k (1-based) runs from sample k to sample k + 1.

@@ -16,7 +16,7 @@ use super::check::SweptPathReport;
 use super::parse_scene;
 use crate::error::{Error, Result};
 use crate::ik::IkOptions;
-use crate::jobs::input::{Joints, Pose, positive, q_display, require_within_limits, time_budget};
+use crate::jobs::input::{Joints, MotionSample, Pose, positive, q_display, require_within_limits, time_budget};
 use crate::motion::{JointMotion, JointPath, JointRates, Profile};
 use crate::world::Scene;
 use crate::world::planner::{Goal, PlanError, PlanOptions, PlanStats, path_length, plan};
@@ -275,7 +275,7 @@ fn durations(robot: &Robot, waypoints: &[Vec<f64>], total: Option<f64>) -> Resul
 /// samples).
 fn timed_path(robot: &Robot, waypoints: &[Vec<f64>], total: Option<f64>) -> Result<(Vec<f64>, TimedPath)> {
     let durations = durations(robot, waypoints, total)?;
-    let path = JointPath::through(robot, waypoints, &durations, 0.0, Profile::Cycloidal)?;
+    let path = timing(robot, waypoints, &durations)?;
     let steps = (20 * durations.len()).clamp(200, 2000);
     let traj = path.sample(path.duration() / steps as f64)?;
     let times = traj.times();
@@ -283,6 +283,35 @@ fn timed_path(robot: &Robot, waypoints: &[Vec<f64>], total: Option<f64>) -> Resu
     let qd: Vec<Vec<f64>> = times.iter().map(|t| path.velocity(*t)).collect();
     let tool_xyz_m = tool_points(robot, &q)?;
     Ok((durations, TimedPath { times, q, qd, tool_xyz_m }))
+}
+
+/// The path's timing: one cycloidal segment per edge, stopping at every waypoint (so the
+/// motion stays on the straight edges the planner proved clear).
+fn timing(robot: &Robot, waypoints: &[Vec<f64>], durations: &[f64]) -> Result<JointPath> {
+    Ok(JointPath::through(robot, waypoints, durations, 0.0, Profile::Cycloidal)?)
+}
+
+impl PathReport {
+    /// The timed motion of a found path ([`PathReport::waypoints_deg`],
+    /// [`PathReport::segment_durations_s`], the workflow's timing) sampled every `dt_s`
+    /// seconds (and at the end), as a drive follows it; empty when no path was found.
+    ///
+    /// # Errors
+    /// The motion module's error for a `dt_s` that is not positive or gives too many samples;
+    /// [`Error::Request`] for waypoints that do not fit the robot.
+    pub fn motion(&self, robot: &Robot, dt_s: f64) -> Result<Vec<MotionSample>> {
+        if self.waypoints_deg.len() < 2 {
+            return Ok(Vec::new());
+        }
+        let waypoints = self
+            .waypoints_deg
+            .iter()
+            .map(|w| Joints::Deg(w.clone()).si(robot, "waypoints_deg"))
+            .collect::<Result<Vec<_>>>()?;
+        let path = timing(robot, &waypoints, &self.segment_durations_s)?;
+        let trajectory = path.sample(dt_s)?;
+        Ok(trajectory.samples.iter().map(|s| MotionSample { t_s: s.t, q_deg: q_display(robot, &s.q) }).collect())
+    }
 }
 
 /// The tool point (world frame, metres) of each configuration.
