@@ -51,7 +51,7 @@ const CHUNK: usize = 64;
 /// [`Error::Request`] naming `field` when the length is not a multiple of `width` or there are
 /// more than [`MAX_BATCH`] rows.
 pub fn rows(field: &str, len: usize, width: usize) -> Result<usize> {
-    if width == 0 || len % width != 0 {
+    if width == 0 || !len.is_multiple_of(width) {
         return Err(Error::request(field, format!("expected rows of {width} numbers, got {len} numbers in all")));
     }
     let n = len / width;

