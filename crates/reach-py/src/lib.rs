@@ -62,7 +62,12 @@ fn batch_shape(name: &str, shape: &[usize], inner: &[usize]) -> PyResult<Option<
     if shape.len() == inner.len() + 1 && &shape[1..] == inner {
         return Ok(Some(shape[0]));
     }
-    Err(value_err(format!("{name}: expected shape {} or (N, {}), got {}", tuple(inner), tuple(inner).trim_matches(['(', ')', ',']), tuple(shape))))
+    Err(value_err(format!(
+        "{name}: expected shape {} or (N, {}), got {}",
+        tuple(inner),
+        tuple(inner).trim_matches(['(', ')', ',']),
+        tuple(shape)
+    )))
 }
 
 /// A shape as Python prints it: `(6,)`, `(3, 5)`.
@@ -216,7 +221,12 @@ impl Robot {
     fn run_request<'py>(&self, py: Python<'py>, request: &Request) -> PyResult<Bound<'py, PyAny>> {
         let robot = &self.robot;
         let report = py.detach(|| jobs::run(robot, request)).map_err(|e| lib_err(&e))?;
-        to_python(py, &report)
+        // The CLI prints the workflow's own report; `kind` only tags the enum.
+        let mut value = serde_json::to_value(&report).map_err(|e| value_err(e.to_string()))?;
+        if let Some(map) = value.as_object_mut() {
+            map.remove("kind");
+        }
+        to_python(py, &value)
     }
 }
 

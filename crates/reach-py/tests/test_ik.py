@@ -55,7 +55,8 @@ def test_single_ik_report_arrays_and_choice():
 
 def test_numeric_ik_with_seeds_and_masks():
     panda = reach.Robot.preset("panda")
-    q = random_q(panda, 20, seed=13) * 0.5
+    lo, hi = panda.limits().T
+    q = lo + (hi - lo) * np.random.default_rng(13).uniform(0.1, 0.9, (20, 7))
     T = panda.fk(q)
     out = panda.ik_all(T, seeds=q + 0.05, restarts=2)
     assert out["solver"] == "numeric"

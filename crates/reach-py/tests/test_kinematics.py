@@ -71,6 +71,17 @@ def test_from_file_reads_toml_and_urdf(tmp_path):
     robot = reach.Robot.from_file(toml)
     q = random_q(robot, 3, seed=5)
     np.testing.assert_array_equal(robot.fk(q), reach.Robot.preset("ur5").fk(q))
-    urdfs = sorted(root.glob("examples/**/*.urdf"))
-    if urdfs:
-        assert reach.Robot.from_file(urdfs[0]).dof >= 1
+    urdf = tmp_path / "two.urdf"
+    urdf.write_text(
+        """<robot name="two">
+  <link name="base"/><link name="l1"/><link name="l2"/><link name="tool"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
+    <origin xyz="0 0 0.1"/><axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/>
+    <origin xyz="0.5 0 0"/><axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="t" type="fixed"><parent link="l2"/><child link="tool"/><origin xyz="0.3 0 0"/></joint>
+</robot>"""
+    )
+    two = reach.Robot.from_file(urdf, tip="tool")
+    assert two.joint_names == ["j1", "j2"]
+    np.testing.assert_allclose(two.fk([0, np.pi / 2])[:3, 3], [0.5, 0.3, 0.1], atol=1e-12)

@@ -8,30 +8,33 @@ import reach
 from conftest import ROOT
 
 
-def _same(ours, theirs):
-    """Equal reports: the CLI's JSON, its numeric lists as numpy (reach._convert.arrays)."""
+def _same(ours, theirs, where="report"):
+    """Equal reports: ours against the CLI's JSON with its numeric lists as numpy
+    (``reach._convert.arrays``, what every report goes through)."""
     from reach._convert import arrays
 
-    theirs = arrays(theirs)
-    assert set(ours) == set(theirs)
-    for k in ours:
-        a, b = ours[k], theirs[k]
-        if isinstance(a, np.ndarray):
-            np.testing.assert_allclose(a, b, rtol=0, atol=1e-12, err_msg=k)
-        elif isinstance(a, dict):
-            _same(a, b)
-        elif isinstance(a, list) and a and isinstance(a[0], dict):
-            for x, y in zip(a, b):
-                _same(x, y)
-        else:
-            assert a == b, k
+    _equal(ours, arrays(theirs), where)
+
+
+def _equal(a, b, where):
+    if isinstance(a, dict):
+        assert isinstance(b, dict) and set(a) == set(b), where
+        for k in a:
+            _equal(a[k], b[k], f"{where}.{k}")
+    elif isinstance(a, list):
+        assert isinstance(b, list) and len(a) == len(b), where
+        for i, (x, y) in enumerate(zip(a, b)):
+            _equal(x, y, f"{where}[{i}]")
+    elif isinstance(a, np.ndarray):
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-12, err_msg=where)
+    else:
+        assert a == b, where
 
 
 def test_move_equals_the_cli(cli):
     ur5 = reach.Robot.preset("ur5")
     report = ur5.move(**{"from": {"joints": {"deg": [0, -90, 90, 0, 90, 0]}}, "to": {"joints": {"deg": [30, -60, 60, 30, 60, 30]}}, "duration_s": 2.0})
     theirs = cli("move", "ur5", "--from", "0,-90,90,0,90,0", "--to", "30,-60,60,30,60,30", "--duration", "2")
-    assert isinstance(report["samples"], list) or isinstance(report.get("samples"), np.ndarray) or "samples" not in report
     _same(report, theirs)
 
 
