@@ -15,7 +15,9 @@
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyTuple};
+use std::collections::HashMap;
+
+use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 use reach::ik::{IkOptions, SolverKind, numeric::TaskAxes};
 use reach::jobs::input::{AngleUnit, from_si, to_si};
 use reach::jobs::{self, IkRequest, Joints, Pose, Request, RobotInput};
@@ -470,7 +472,8 @@ impl Robot {
     /// Every IK solution of each pose of `T` `(N, 4, 4)` (or one `(4, 4)`), on all cores: a
     /// dict of `q` `(N, kmax, dof)` NaN-padded, `valid` `(N, kmax)`, `within_limits`,
     /// `position_error`, `orientation_error`, `singular` `(N, kmax)`, `count` `(N,)`,
-    /// `status` (N codes), `branch` (N lists of labels) and `solver`.
+    /// `status` (N codes), `branch` (N lists of labels), `branch_index` `(N, kmax)` (index
+    /// into `labels`, -1 in padding), `labels` (the distinct labels) and `solver`.
     ///
     /// `seeds` `(dof,)` or `(N, dof)`: the numeric solver's first start per pose (and the
     /// angle kept at a wrist singularity). Numeric solver: `restarts`, `max_iterations`,
@@ -561,12 +564,35 @@ impl Robot {
             "count",
             py.import("numpy")?.call_method1("asarray", (to_numpy(py, count, lead(vec![]))?, "int64"))?,
         )?;
+        // Each distinct label and status is one Python string, shared by the rows.
+        let labels: Vec<Bound<'py, PyString>> = all.labels.iter().map(|l| PyString::new(py, l)).collect();
+        let row_labels = |i: usize| {
+            let idx = &all.branch[i * k..i * k + all.count[i]];
+            PyList::new(py, idx.iter().map(|&j| labels[j as usize].clone()))
+        };
+        let index: Vec<f64> = all
+            .branch
+            .iter()
+            .map(|&j| if j == reach::batch::IkBatch::NO_LABEL { -1.0 } else { f64::from(j) })
+            .collect();
+        let np = py.import("numpy")?;
+        out.set_item("branch_index", np.call_method1("asarray", (to_numpy(py, index, lead(vec![k]))?, "int64"))?)?;
+        out.set_item("labels", &labels)?;
         if single {
             out.set_item("status", all.status[0])?;
-            out.set_item("branch", all.branch[0].clone())?;
+            out.set_item("branch", row_labels(0)?)?;
         } else {
-            out.set_item("status", all.status)?;
-            out.set_item("branch", all.branch)?;
+            let mut statuses: HashMap<&str, Bound<'py, PyString>> = HashMap::new();
+            let status = PyList::empty(py);
+            for s in &all.status {
+                status.append(statuses.entry(s).or_insert_with(|| PyString::new(py, s)).clone())?;
+            }
+            let branch = PyList::empty(py);
+            for i in 0..n {
+                branch.append(row_labels(i)?)?;
+            }
+            out.set_item("status", status)?;
+            out.set_item("branch", branch)?;
         }
         out.set_item("solver", all.solver)?;
         Ok(out.into_any())

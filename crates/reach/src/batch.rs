@@ -32,7 +32,9 @@
 use nalgebra::IsometryMatrix3;
 
 use crate::error::{Error, Result};
-use crate::ik::{IkOptions, IkSolutions, IkTarget, SolverKind};
+use std::collections::HashMap;
+
+use crate::ik::{Branch, IkOptions, IkSolutions, IkTarget, SolverKind};
 use crate::jobs::ik::failure_code;
 use crate::jobs::input::Pose;
 use crate::model::Robot;
@@ -152,10 +154,19 @@ pub struct IkBatch {
     /// `N`: `ok`, or the stable code of why no solution is within limits
     /// ([`failure_code`]: `unreachable`, `outside_limits`, …).
     pub status: Vec<&'static str>,
-    /// `N` lists: each solution's branch label (`shoulder=left elbow=up wrist=flip`).
-    pub branch: Vec<Vec<String>>,
+    /// `N × kmax`: index of the solution's branch label in [`IkBatch::labels`]
+    /// ([`IkBatch::NO_LABEL`] in padding).
+    pub branch: Vec<u32>,
+    /// The distinct branch labels (`shoulder=left elbow=up wrist=flip`), in order of first
+    /// appearance.
+    pub labels: Vec<String>,
     /// Name of the solver used.
     pub solver: &'static str,
+}
+
+impl IkBatch {
+    /// The label index of a padding slot.
+    pub const NO_LABEL: u32 = u32::MAX;
 }
 
 /// Every IK solution of each target of `targets` (`N × 4 × 4` homogeneous matrices,
@@ -189,31 +200,39 @@ pub fn ik_many(
     }
     let kind = kind.unwrap_or_else(|| SolverKind::detect(robot));
     let solver_name = kind.build(robot)?.name();
-    // Every row builds the same solver: `build` succeeded above, so it cannot fail below.
-    let solved: Vec<IkSolutions> = map_rows(
-        n,
-        || kind.build(robot),
-        |solver, i| {
-            let solver = solver.as_ref().map_err(|e| Error::Ik(e.clone()))?;
-            let target = target_of(&targets[i * 16..(i + 1) * 16], &format!("T[{i}]"))?;
-            let seed = match seeds {
-                Some(s) => {
-                    let row = &s[i * dof..(i + 1) * dof];
-                    if let Some(j) = row.iter().position(|v| !v.is_finite()) {
-                        return Err(Error::request(
-                            format!("seeds[{i}]"),
-                            format!("joint {}: value must be a finite number, got {}", j + 1, row[j]),
-                        ));
-                    }
-                    Some(row.to_vec())
+    let solve_row = |solver: &dyn crate::ik::IkSolver, i: usize| -> Result<IkSolutions> {
+        let target = target_of(&targets[i * 16..(i + 1) * 16], &format!("T[{i}]"))?;
+        let seed = match seeds {
+            Some(s) => {
+                let row = &s[i * dof..(i + 1) * dof];
+                if let Some(j) = row.iter().position(|v| !v.is_finite()) {
+                    return Err(Error::request(
+                        format!("seeds[{i}]"),
+                        format!("joint {}: value must be a finite number, got {}", j + 1, row[j]),
+                    ));
                 }
-                None => options.seed.clone(),
-            };
-            let opts = IkOptions { seed, ..options.clone() };
-            Ok(solver.solve(robot, &target, &opts)?)
+                Some(row.to_vec())
+            }
+            None => options.seed.clone(),
+        };
+        let opts = IkOptions { seed, ..options.clone() };
+        Ok(solver.solve(robot, &target, &opts)?)
+    };
+    // Each task solves a chunk of rows and packs it on its own thread (the solutions are
+    // freed where they were allocated); the chunks are then copied into place.
+    let chunks = n.div_ceil(CHUNK);
+    let packed: Vec<Packed> = map_rows(
+        chunks,
+        || kind.build(robot),
+        |solver, c| {
+            // `build` succeeded above, so it does not fail here.
+            let solver = solver.as_ref().map_err(|e| Error::Ik(e.clone()))?;
+            let rows = c * CHUNK..((c + 1) * CHUNK).min(n);
+            let solved = rows.map(|i| solve_row(solver.as_ref(), i)).collect::<Result<Vec<_>>>()?;
+            Ok(Packed::of(solved, dof))
         },
     )?;
-    let kmax = solved.iter().map(|s| s.solutions.len()).max().unwrap_or(0);
+    let kmax = packed.iter().map(|p| p.kmax).max().unwrap_or(0);
     let slots = n * kmax;
     let mut out = IkBatch {
         targets: n,
@@ -227,24 +246,95 @@ pub fn ik_many(
         singular: vec![false; slots],
         count: Vec::with_capacity(n),
         status: Vec::with_capacity(n),
-        branch: Vec::with_capacity(n),
+        branch: vec![IkBatch::NO_LABEL; slots],
+        labels: Vec::new(),
         solver: solver_name,
     };
-    for (i, s) in solved.iter().enumerate() {
-        for (k, sol) in s.solutions.iter().enumerate() {
-            let slot = i * kmax + k;
-            out.q[slot * dof..(slot + 1) * dof].copy_from_slice(&sol.q);
-            out.valid[slot] = true;
-            out.within_limits[slot] = sol.within_limits;
-            out.position_error[slot] = sol.position_error;
-            out.orientation_error[slot] = sol.orientation_error;
-            out.singular[slot] = !sol.singularities.is_empty();
+    let mut label_index: HashMap<Branch, u32> = HashMap::new();
+    let mut row = 0;
+    for p in packed {
+        // The chunk's labels as global indices (each distinct label written out once).
+        let global: Vec<u32> = p
+            .branches
+            .into_iter()
+            .map(|b| {
+                let next = u32::try_from(out.labels.len()).unwrap_or(IkBatch::NO_LABEL - 1);
+                *label_index.entry(b).or_insert_with_key(|b| {
+                    out.labels.push(b.to_string());
+                    next
+                })
+            })
+            .collect();
+        for (r, (&count, status)) in p.count.iter().zip(&p.status).enumerate() {
+            let (from, to) = (r * p.kmax, row * kmax);
+            out.q[to * dof..(to + count) * dof].copy_from_slice(&p.q[from * dof..(from + count) * dof]);
+            for k in 0..count {
+                out.valid[to + k] = true;
+                out.within_limits[to + k] = p.within_limits[from + k];
+                out.position_error[to + k] = p.position_error[from + k];
+                out.orientation_error[to + k] = p.orientation_error[from + k];
+                out.singular[to + k] = p.singular[from + k];
+                out.branch[to + k] = global[p.branch[from + k] as usize];
+            }
+            out.count.push(count);
+            out.status.push(status);
+            row += 1;
         }
-        out.count.push(s.solutions.len());
-        out.status.push(s.failure.as_ref().map_or("ok", failure_code));
-        out.branch.push(s.solutions.iter().map(|sol| sol.branch.to_string()).collect());
     }
     Ok(out)
+}
+
+/// One chunk of rows packed as [`IkBatch`] with the chunk's own `kmax` and its own label table.
+struct Packed {
+    kmax: usize,
+    q: Vec<f64>,
+    within_limits: Vec<bool>,
+    position_error: Vec<f64>,
+    orientation_error: Vec<f64>,
+    singular: Vec<bool>,
+    /// Index into `branches`.
+    branch: Vec<u32>,
+    branches: Vec<Branch>,
+    count: Vec<usize>,
+    status: Vec<&'static str>,
+}
+
+impl Packed {
+    fn of(solved: Vec<IkSolutions>, dof: usize) -> Packed {
+        let kmax = solved.iter().map(|s| s.solutions.len()).max().unwrap_or(0);
+        let slots = solved.len() * kmax;
+        let mut p = Packed {
+            kmax,
+            q: vec![f64::NAN; slots * dof],
+            within_limits: vec![false; slots],
+            position_error: vec![f64::NAN; slots],
+            orientation_error: vec![f64::NAN; slots],
+            singular: vec![false; slots],
+            branch: vec![0; slots],
+            branches: Vec::new(),
+            count: Vec::with_capacity(solved.len()),
+            status: Vec::with_capacity(solved.len()),
+        };
+        let mut lookup: HashMap<Branch, u32> = HashMap::new();
+        for (i, s) in solved.into_iter().enumerate() {
+            p.count.push(s.solutions.len());
+            p.status.push(s.failure.as_ref().map_or("ok", failure_code));
+            for (k, sol) in s.solutions.into_iter().enumerate() {
+                let slot = i * kmax + k;
+                p.q[slot * dof..(slot + 1) * dof].copy_from_slice(&sol.q);
+                p.within_limits[slot] = sol.within_limits;
+                p.position_error[slot] = sol.position_error;
+                p.orientation_error[slot] = sol.orientation_error;
+                p.singular[slot] = !sol.singularities.is_empty();
+                let next = u32::try_from(lookup.len()).unwrap_or(u32::MAX);
+                p.branch[slot] = *lookup.entry(sol.branch).or_insert(next);
+            }
+        }
+        let mut branches: Vec<(u32, Branch)> = lookup.into_iter().map(|(b, i)| (i, b)).collect();
+        branches.sort_unstable_by_key(|(i, _)| *i);
+        p.branches = branches.into_iter().map(|(_, b)| b).collect();
+        p
+    }
 }
 
 /// The IK target of a row-major 4×4 matrix, validated as a request's `matrix` pose.
@@ -319,6 +409,17 @@ mod tests {
                 s.iter().zip(&q[i * 6..i * 6 + 6]).all(|(a, b)| crate::angle::wrap(a - b).abs() < 1e-7)
             });
             assert!(hit, "row {i}: {:?}", &q[i * 6..i * 6 + 6]);
+            if i % 97 == 0 {
+                // the same solutions, in the same order, with the same labels as one solve
+                let one = crate::ik::solve(&ur5, &target_of(&t[i * 16..][..16], "T").unwrap(), &IkOptions::default())
+                    .unwrap();
+                assert_eq!(one.solutions.len(), all.count[i]);
+                for (k, s) in one.solutions.iter().enumerate() {
+                    let slot = i * all.kmax + k;
+                    assert_eq!(all.labels[all.branch[slot] as usize], s.branch.to_string());
+                    assert_eq!(&all.q[slot * 6..][..6], &s.q[..]);
+                }
+            }
             assert!(
                 (all.count[i]..all.kmax)
                     .all(|k| !all.valid[i * all.kmax + k] && all.q[(i * all.kmax + k) * 6].is_nan())
