@@ -4,8 +4,8 @@ Toolbox for Python (`ik_LM`, `ikine_a`) and, where installed, py-opw-kinematics,
 
 Protocol: for `ur5` and `puma560`, N random joint vectors inside the limits (revolute ranges cut
 to [-pi, pi]; SplitMix64 seed 2024, as `ik_compare.py`) -> forward kinematics -> IK of every
-pose. Throughput is poses per second of wall time over the whole batch (conversion of the
-inputs included). reach is measured on one core (RAYON_NUM_THREADS=1, a separate process) and
+pose. Throughput is poses per second over the whole batch (conversion of the inputs included),
+of wall time and of CPU time (this process, all threads: the cost on a loaded machine). reach is measured on one core (RAYON_NUM_THREADS=1, a separate process) and
 on all cores; it returns every branch of every pose, each verified by FK. Correct = the
 generating configuration is among the returned solutions (reach, py-opw `inverse`), or the
 returned solution's pose is within 1e-6 m / 1e-6 rad of the target (rtb, py-opw `batch_inverse`).
@@ -45,14 +45,16 @@ def reach_throughput(name, poses, seed, repeats=3):
     q = np.array([random_q(qlim, rng) for _ in range(poses)])
     robot = reach.Robot.preset(name)
     T = robot.fk(q)
-    best = float("inf")
+    best, best_cpu = float("inf"), float("inf")
     for _ in range(repeats):
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         out = robot.ik_all(T)
         best = min(best, time.perf_counter() - t0)
+        best_cpu = min(best_cpu, time.process_time() - c0)
     d = np.abs(np.angle(np.exp(1j * (out["q"] - q[:, None, :])))).max(axis=2)
     hit = (np.where(out["valid"], d, np.inf).min(axis=1) < 1e-7).mean()
-    return {"poses_per_s": poses / best, "correct": float(hit), "solutions_per_pose": float(out["count"].mean())}
+    return {"poses_per_s": poses / best, "poses_per_cpu_s": poses / best_cpu, "correct": float(hit),
+            "solutions_per_pose": float(out["count"].mean())}
 
 
 def reach_in_subprocess(name, poses, seed, threads):
@@ -68,6 +70,20 @@ def reach_in_subprocess(name, poses, seed, threads):
     return json.loads(out.stdout)
 
 
+class Clock:
+    """Wall and CPU (this process, all threads) time of a block."""
+
+    def __enter__(self):
+        self.t0, self.c0 = time.perf_counter(), time.process_time()
+        return self
+
+    def __exit__(self, *exc):
+        self.wall, self.cpu = time.perf_counter() - self.t0, time.process_time() - self.c0
+
+    def rates(self, n):
+        return {"poses_per_s": n / self.wall, "poses_per_cpu_s": n / self.cpu}
+
+
 def rtb_throughput(name, poses, seed):
     import roboticstoolbox as rtb
     from ik_compare import SplitMix64, load_preset, pose_errors, random_q, within
@@ -80,22 +96,20 @@ def rtb_throughput(name, poses, seed):
     tool = robot.tool.A
     res = {}
     ok = 0
-    t0 = time.perf_counter()
-    sols = [robot.ik_LM(T @ tool, q0=home, tol=5e-13, joint_limits=True) for T in targets]
-    dt = time.perf_counter() - t0
+    with Clock() as clock:
+        sols = [robot.ik_LM(T @ tool, q0=home, tol=5e-13, joint_limits=True) for T in targets]
     for T, sol in zip(targets, sols):
         if sol.success:
             dp, da = pose_errors(T, robot.fkine(sol.q).A)
             ok += dp <= 1e-6 and da <= 1e-6 and within(qlim, sol.q)
-    res["rtb ik_LM (one solution)"] = {"poses_per_s": poses / dt, "correct": ok / poses, "poses": poses}
+    res["rtb ik_LM (one solution)"] = {**clock.rates(poses), "correct": ok / poses, "poses": poses}
     if name == "puma560":
         puma = rtb.models.DH.Puma560()
         Ts = [SE3(puma.fkine(q).A, check=False) for q in qs]
-        t0 = time.perf_counter()
-        sols = [puma.ikine_a(T, config="lun") for T in Ts]
-        dt = time.perf_counter() - t0
+        with Clock() as clock:
+            sols = [puma.ikine_a(T, config="lun") for T in Ts]
         ok = sum(bool(s.success) and pose_errors(T.A, puma.fkine(s.q).A)[0] <= 1e-6 for T, s in zip(Ts, sols))
-        res["rtb ikine_a (one configuration)"] = {"poses_per_s": poses / dt, "correct": ok / poses, "poses": poses}
+        res["rtb ikine_a (one configuration)"] = {**clock.rates(poses), "correct": ok / poses, "poses": poses}
     return res
 
 
@@ -114,20 +128,18 @@ def opw_throughput(poses, seed):
     q = np.array([random_q(qlim, rng) for _ in range(poses)])
     T = robot.batch_forward(q)
     res = {}
-    t0 = time.perf_counter()
-    one = np.asarray(robot.batch_inverse(T))
-    dt = time.perf_counter() - t0
+    with Clock() as clock:
+        one = np.asarray(robot.batch_inverse(T))
     back = robot.batch_forward(np.nan_to_num(one))
     err = np.linalg.norm(back.translation - T.translation, axis=1)
-    res["py-opw batch_inverse (one solution)"] = {"poses_per_s": poses / dt, "correct": float((err < 1e-6).mean()), "poses": poses}
+    res["py-opw batch_inverse (one solution)"] = {**clock.rates(poses), "correct": float((err < 1e-6).mean()), "poses": poses}
     n = min(poses, 2000)
-    t0 = time.perf_counter()
-    alls = [robot.inverse(T[i]) for i in range(n)]
-    dt = time.perf_counter() - t0
+    with Clock() as clock:
+        alls = [robot.inverse(T[i]) for i in range(n)]
     hit = np.mean([
         any(np.abs(np.angle(np.exp(1j * (np.array(s) - q[i])))).max() < 1e-7 for s in alls[i]) for i in range(n)
     ])
-    res["py-opw inverse (all solutions, Python loop)"] = {"poses_per_s": n / dt, "correct": float(hit), "poses": n}
+    res["py-opw inverse (all solutions, Python loop)"] = {**clock.rates(n), "correct": float(hit), "poses": n}
     return res
 
 
@@ -153,9 +165,9 @@ def main():
             pass
     for k, v in opw_throughput(args.poses, args.seed).items():
         rows.append(("puma560 (OPW)", k, v))
-    print(f"{'robot':<15} {'solver':<48} {'poses/s':>12} {'correct':>8}")
+    print(f"{'robot':<15} {'solver':<48} {'poses/s':>10} {'poses/CPU-s':>12} {'correct':>8}")
     for name, k, v in rows:
-        print(f"{name:<15} {k:<48} {v['poses_per_s']:>12,.0f} {100 * v['correct']:>7.2f}%")
+        print(f"{name:<15} {k:<48} {v['poses_per_s']:>10,.0f} {v['poses_per_cpu_s']:>12,.0f} {100 * v['correct']:>7.2f}%")
 
 
 if __name__ == "__main__":

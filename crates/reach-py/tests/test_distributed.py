@@ -34,3 +34,17 @@ def test_ik_dataset_on_ray_equals_one_process(local_ray):
     np.testing.assert_array_equal(one["q"], two["q"])
     np.testing.assert_array_equal(one["valid"], two["valid"])
     assert one["branch"] == two["branch"]
+
+
+def test_the_ray_example_runs_and_agrees(capsys):
+    import importlib.util
+    import pathlib
+
+    if ray.is_initialized():
+        ray.shutdown()
+    path = pathlib.Path(__file__).resolve().parents[1] / "examples" / "ray_workspace_map.py"
+    spec = importlib.util.spec_from_file_location("ray_workspace_map", path)
+    example = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(example)
+    assert example.main(["--points", "11", "--workers", "2", "--chunk", "300"]) == 0
+    assert "maps equal: True" in capsys.readouterr().out

@@ -74,7 +74,9 @@ def _map(fn: Any, robot: Robot, poses: npt.ArrayLike, chunk: int, workers: Optio
 
     if not ray.is_initialized():
         ray.init()
-    task = ray.remote(num_cpus=1)(fn)
+    # One core per task: the library's thread pool in the worker is sized to match, so
+    # `workers` tasks use `workers` cores.
+    task = ray.remote(num_cpus=1, runtime_env={"env_vars": {"RAYON_NUM_THREADS": "1"}})(fn)
     robot_ref = ray.put(robot)
     limit = workers if workers is not None else len(chunks)
     pending: Dict[Any, int] = {}
