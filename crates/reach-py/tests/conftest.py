@@ -25,7 +25,10 @@ def cli():
         pytest.skip("no reach binary: build it with `cargo build -p reach-cli` or set REACH_BIN")
 
     def run(*args):
-        out = subprocess.run([binary, *map(str, args), "--json"], capture_output=True, text=True)
+        args = [str(a) for a in args]
+        if "--format" not in args:
+            args.append("--json")
+        out = subprocess.run([binary, *args], capture_output=True, text=True)
         # 3: no solution within limits / infeasible — the report is still printed
         assert out.returncode in (0, 3), out.stderr
         return json.loads(out.stdout)

@@ -45,11 +45,22 @@ def test_track_is_a_tool_space_move():
     assert json.dumps(a, default=lambda x: x.tolist()) == json.dumps(b, default=lambda x: x.tolist())
 
 
-def test_plan_of_an_example_task_file(cli):
-    tasks = sorted((ROOT / "examples").glob("**/*task*.toml"))
-    if not tasks:
-        return
-    # any workflow is reachable through run(); the fk report equals the CLI's
+def test_plan_of_an_example_task_file_equals_the_cli(cli):
+    task = ROOT / "examples" / "seed001_tool_vs_joint.toml"
+    spbu6 = reach.Robot.preset("spbu6")
+    _same(spbu6.plan(task=task.read_text()), cli("plan", task))
+
+
+def test_drive_equals_the_cli(cli):
+    planar3 = reach.Robot.preset("planar3")
+    ours = planar3.drive(motion={"point_to_point": {"from": {"deg": [0, 0, 0]}, "to": {"deg": [30, -20, -10]}, "duration_s": 2.0}})
+    theirs = cli("drive", "planar3", "--from", "0,0,0", "--to", "30,-20,-10", "--duration", "2", "--format", "json")
+    _same(ours, theirs)
+
+
+def test_run_takes_any_request(cli):
     puma = reach.Robot.preset("puma560")
     ours = puma.run({"kind": "fk", "q": {"deg": [10, 20, 30, 40, 50, 60]}})
     _same(ours, cli("fk", "puma560", 10, 20, 30, 40, 50, 60))
+    again = puma.run('{"kind": "jacobian", "q": {"rad": [0.1, 0.2, 0.3, 0.4, 0.5, 0.6]}}')
+    np.testing.assert_allclose(again["jacobian"], puma.jacobian([0.1, 0.2, 0.3, 0.4, 0.5, 0.6]), atol=0)
