@@ -356,6 +356,15 @@ impl Robot {
         to_numpy(py, data, vec![joints.len(), 2])
     }
 
+    /// Joint limits as the Robotics Toolbox's `qlim`: `(2, dof)`, lower bounds then upper,
+    /// radians / metres.
+    #[getter]
+    fn qlim<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let joints = self.robot.joints();
+        let data = joints.iter().map(|j| j.limits.lower).chain(joints.iter().map(|j| j.limits.upper)).collect();
+        to_numpy(py, data, vec![2, joints.len()])
+    }
+
     /// The home configuration `(dof,)` (SI, or degrees with `degrees=True`).
     #[pyo3(signature = (degrees=false))]
     fn home<'py>(&self, py: Python<'py>, degrees: bool) -> PyResult<Bound<'py, PyAny>> {

@@ -35,6 +35,7 @@ def test_model_properties():
     assert puma.dof == 6 and puma.name == "puma560"
     assert puma.joint_names[0] == "waist" and puma.joint_kinds == ["revolute"] * 6
     np.testing.assert_allclose(puma.limits(degrees=True)[1], [-45.0, 225.0])
+    np.testing.assert_array_equal(puma.qlim, puma.limits().T)
     assert "ur5" in reach.Robot.presets()
 
 
