@@ -40,8 +40,7 @@ def grid_poses(
 
 
 def _chunk_summary(robot: Robot, poses: np.ndarray, ik_options: Dict[str, Any]) -> Dict[str, np.ndarray]:
-    """Per pose: solutions found, solutions within the joint limits, and the best manipulability
-    is not computed here (the map counts branches)."""
+    """Per pose of one chunk: IK solutions found (every branch) and those within the joint limits."""
     r = robot.ik_all(poses, **ik_options)
     return {
         "count": r["count"],
