@@ -41,6 +41,8 @@
 //! * [`effort`] — J1/J2/S functionals, dynamics and energy.
 //! * [`world`] — scenes, collision, detours, configuration space.
 //! * [`drive`] — stepper sequences, step schedules, G-code.
+//! * [`batch`] — FK, Jacobian and all-branch IK over many inputs at once, split over threads
+//!   (the Python package's numpy calls).
 //! * [`jobs`] — the application layer: one serde request and one report per workflow, and
 //!   a pure `run`; every front end (CLI, service, Python, viewer) is a thin adapter over it.
 //! * [`Error`] — the one error type, with stable failure codes.
@@ -63,6 +65,7 @@
 //! | self-motion samples per turn | [`ik::planar::MAX_SELF_MOTION_SAMPLES`] (3600) | — |
 //! | path planner iterations (two trees, one node each at most) | [`world::planner::PlanOptions::max_iterations`] (20 000) and its time budget | — |
 //! | stepper steps per joint (`drive`) | [`drive::MAX_STEPS_PER_JOINT`] (2 million) | — |
+//! | rows of one batch call ([`batch`]) | [`batch::MAX_BATCH`] (10 million) | — |
 //! | wall-time budgets | [`jobs::input::MAX_TIME_BUDGET_S`] (one day) | — |
 //!
 //! ## Example
@@ -79,6 +82,7 @@
 #![warn(missing_docs)]
 
 pub mod angle;
+pub mod batch;
 mod cancel;
 pub mod decide;
 pub mod drive;

@@ -579,8 +579,14 @@ fn joint_weights(robot: &Robot, weights: Option<&[f64]>) -> Result<Vec<f64>> {
     Ok(w.to_vec())
 }
 
-/// The solver options of a request.
-fn options(request: &IkRequest, from: &[f64]) -> Result<IkOptions> {
+/// The solver options of a request, starting from `from`: `free_angle_deg`, `step_deg` and
+/// `numeric` validated (whole numbers ≥ 1, the [`MAX_UNTIMED_ITERATIONS`] cap without a time
+/// budget, positive tolerances). Front ends that solve many targets with one request's
+/// options ([`crate::batch::ik_many`]) take them from here.
+///
+/// # Errors
+/// [`Error::Request`] naming the field (`numeric.restarts`, `step_deg`, …).
+pub fn solver_options(request: &IkRequest, from: &[f64]) -> Result<IkOptions> {
     let mut options = IkOptions { seed: Some(from.to_vec()), ..IkOptions::default() };
     if let Some(a) = request.free_angle_deg {
         if !a.is_finite() {
@@ -688,7 +694,7 @@ pub fn ik_with_cancel(robot: &Robot, request: &IkRequest, cancel: &Cancel) -> Re
     if let Some(choice) = &request.choose {
         choice.check(CHOICE_FIELDS)?;
     }
-    let options = IkOptions { cancel: cancel.clone(), ..options(request, &from)? };
+    let options = IkOptions { cancel: cancel.clone(), ..solver_options(request, &from)? };
     let kind = request.solver.unwrap_or_else(|| SolverKind::detect(robot));
     let mut all = kind.build(robot)?.solve(robot, &target, &options)?;
     all.express_near(robot, &from);
