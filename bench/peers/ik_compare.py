@@ -115,10 +115,15 @@ def stats(times, successes, n):
             "p95_us": float(np.percentile(t, 95)), "mean_us": float(t.mean())}
 
 
-def run_peer(name, poses, seed):
+def run_peer(name, poses, seed, random_start=False):
     robot, qlim, home = load_preset(name)
     rng = SplitMix64(seed)
     qs = [random_q(qlim, rng) for _ in range(poses)]
+    # --random-start: the same start sequence as ik_protocol.rs (its own SplitMix64 stream),
+    # one search per pose (slimit=1).
+    start_rng = SplitMix64(seed ^ 0x574741525453)
+    q0s = [random_q(qlim, start_rng) for _ in range(poses)] if random_start else [home] * poses
+    slimit = 1 if random_start else 100
     targets = [robot.fkine(q).A for q in qs]
     # rtb 1.5's ik_LM on a DHRobot with a tool ends at fkine(q) = Tep * tool^-1 (checked on
     # panda: the result misses T by exactly the tool), so it is given Tep = T * tool; success
@@ -126,16 +131,16 @@ def run_peer(name, poses, seed):
     tool = robot.tool.A
     results = {}
     times, ok = [], 0
-    for T in targets:
+    for T, q0 in zip(targets, q0s):
         t0 = time.perf_counter()
-        sol = robot.ik_LM(T @ tool, q0=home, tol=5e-13, joint_limits=True)
+        sol = robot.ik_LM(T @ tool, q0=q0, tol=5e-13, joint_limits=True, slimit=slimit)
         times.append((time.perf_counter() - t0) * 1e6)
         if sol.success:
             dp, da = pose_errors(T, robot.fkine(sol.q).A)
             if dp <= 1e-6 and da <= 1e-6 and within(qlim, sol.q):
                 ok += 1
     results["rtb ik_LM"] = stats(times, ok, poses)
-    if name == "puma560":
+    if name == "puma560" and not random_start:
         # ikine_a solves rtb's own Puma560 model, whose d1 is 0.67183 m (reach's preset:
         # 0.6718 m); its targets are that model's FK of the same joint vectors.
         puma = rtb.models.DH.Puma560()
@@ -158,6 +163,8 @@ def main():
     ap.add_argument("--poses", type=int, default=10000)
     ap.add_argument("--seed", type=int, default=2024)
     ap.add_argument("--robots", default="ur5,puma560,panda")
+    ap.add_argument("--random-start", action="store_true",
+                    help="one search per pose from a random start (reach: --restarts 1 --random-start; rtb: slimit=1)")
     ap.add_argument("--reach-json", help="reach protocol output (JSON) to use instead of running cargo")
     args = ap.parse_args()
     robots = args.robots.split(",")
@@ -167,7 +174,8 @@ def main():
             reach_rows = json.load(f)
     else:
         cmd = ["cargo", "run", "--release", "--quiet", "-p", "reach", "--example", "ik_protocol", "--",
-               "--json", "--poses", str(args.poses), "--seed", str(args.seed), "--robots", ",".join(robots)]
+               "--json", "--poses", str(args.poses),
+               *(["--restarts", "1", "--random-start"] if args.random_start else []), "--seed", str(args.seed), "--robots", ",".join(robots)]
         out = subprocess.run(cmd, cwd=REPO, check=True, capture_output=True, text=True)
         reach_rows = json.loads(out.stdout)
     reach = {r["robot"]: r for r in reach_rows}
@@ -175,7 +183,8 @@ def main():
     print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
           f"load {os.getloadavg()[0]:.1f}; python {platform.python_version()}, "
           f"roboticstoolbox {rtb.__version__}, numpy {np.__version__}")
-    print(f"protocol: {args.poses} random reachable poses per robot (seed {args.seed}), start = home, "
+    print(f"protocol: {args.poses} random reachable poses per robot (seed {args.seed}), "
+          f"start = {'random, one search' if args.random_start else 'home, restarts'}, "
           f"success = within limits and 1e-6 m / 1e-6 rad by FK")
     print()
     print("| robot | solver | success % | median µs | p95 µs | mean µs |")
@@ -185,7 +194,7 @@ def main():
         if r:
             print(f"| {name} | reach numeric (first found) | {100 * r['success_rate']:.2f} | "
                   f"{r['median_us']:.1f} | {r['p95_us']:.1f} | {r['mean_us']:.1f} |")
-        for solver, s in run_peer(name, args.poses, args.seed).items():
+        for solver, s in run_peer(name, args.poses, args.seed, args.random_start).items():
             print(f"| {name} | {solver} | {100 * s['success_rate']:.2f} | {s['median_us']:.1f} | "
                   f"{s['p95_us']:.1f} | {s['mean_us']:.1f} |")
     sys.stdout.flush()

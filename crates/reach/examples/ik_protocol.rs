@@ -12,6 +12,7 @@
 //! cargo run --release -p reach --example ik_protocol -- --poses 1000 --json
 //! cargo run --release -p reach --example ik_protocol -- --robots ur5,panda
 //! cargo run --release -p reach --example ik_protocol -- --restarts 1 --random-start  # one random start
+//! cargo run --release -p reach --example ik_protocol -- --restarts 1 --random-start --no-reseed  # one descent
 //! ```
 //!
 //! `bench/peers/ik_compare.py` runs this binary with `--json` and the same protocol on the
@@ -34,6 +35,8 @@ struct Protocol {
     max_iterations: usize,
     /// Start each solve from a random joint vector (its own sequence) instead of home.
     random_start: bool,
+    /// Re-seed a start that ends in a local minimum (the solver's default; `--no-reseed`).
+    reseed: bool,
 }
 
 /// Result for one robot.
@@ -99,6 +102,7 @@ fn run(robot: &Robot, position_only: bool, protocol: &Protocol) -> Row {
             orientation_tolerance: 1e-6,
             time_budget: None,
             mode: SearchMode::FirstFound,
+            reseed: protocol.reseed,
         },
         ..IkOptions::default()
     };
@@ -147,8 +151,14 @@ fn run(robot: &Robot, position_only: bool, protocol: &Protocol) -> Row {
 }
 
 fn main() {
-    let mut protocol =
-        Protocol { poses: 10_000, rng_seed: 2024, restarts: 32, max_iterations: 100, random_start: false };
+    let mut protocol = Protocol {
+        poses: 10_000,
+        rng_seed: 2024,
+        restarts: 32,
+        max_iterations: 100,
+        random_start: false,
+        reseed: true,
+    };
     let mut json = false;
     let mut robots = vec!["ur5".to_string(), "puma560".to_string(), "panda".to_string(), "varan4".to_string()];
     let mut args = std::env::args().skip(1);
@@ -157,13 +167,14 @@ fn main() {
         match a.as_str() {
             "--json" => json = true,
             "--random-start" => protocol.random_start = true,
+            "--no-reseed" => protocol.reseed = false,
             "--poses" => protocol.poses = value("--poses").parse().expect("--poses: a count"),
             "--seed" => protocol.rng_seed = value("--seed").parse().expect("--seed: an integer"),
             "--restarts" => protocol.restarts = value("--restarts").parse().expect("--restarts: a count"),
             "--iterations" => protocol.max_iterations = value("--iterations").parse().expect("--iterations: a count"),
             "--robots" => robots = value("--robots").split(',').map(str::to_string).collect(),
             other => panic!(
-                "unknown argument `{other}` (--json, --poses N, --seed N, --restarts N, --iterations N, --robots a,b, --random-start)"
+                "unknown argument `{other}` (--json, --poses N, --seed N, --restarts N, --iterations N, --robots a,b, --random-start, --no-reseed)"
             ),
         }
     }

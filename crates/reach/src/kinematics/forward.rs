@@ -32,7 +32,7 @@ impl Robot {
         Chain::apply_mimics(&mut t, &self.chain.first_mimics, q);
         for (link, &v) in self.chain.links.iter().zip(q) {
             apply_motion(&mut t, link.prismatic, link.sign * v);
-            t *= link.after;
+            link.apply_after(&mut t);
             Chain::apply_mimics(&mut t, &link.mimics, q);
         }
         Ok(t)

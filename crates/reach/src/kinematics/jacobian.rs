@@ -46,7 +46,7 @@ impl Robot {
             col.fixed_rows_mut::<3>(0).copy_from(&o);
             col.fixed_rows_mut::<3>(3).copy_from(&z);
             apply_motion(&mut t, link.prismatic, link.sign * v);
-            t *= link.after;
+            link.apply_after(&mut t);
             Chain::apply_mimics(&mut t, &link.mimics, q);
         }
         let p = t.translation.vector;

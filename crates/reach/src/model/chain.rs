@@ -42,8 +42,39 @@ pub(crate) struct ChainLink {
     /// Constant from the frame after the motion to the next motion frame (`Fi`: the next
     /// joint's, or the first of `mimics`); for the last motion it includes the tool transform.
     pub after: IsometryMatrix3<f64>,
+    /// `after` when it has the form `Tz(d)·Tx(a)·Rx(α)` (every standard-DH joint but one
+    /// with a tool): `[a, d, cos α, sin α]`, so that [`ChainLink::apply_after`] skips the zero
+    /// entries (12 + 6 products instead of 27 + 9).
+    pub dh_after: Option<[f64; 4]>,
     /// Mimic-joint motions between this joint and the next (empty for most robots).
     pub mimics: Vec<MimicStep>,
+}
+
+impl ChainLink {
+    /// Right-multiplies `t` by `after` in place.
+    #[inline(always)]
+    pub fn apply_after(&self, t: &mut IsometryMatrix3<f64>) {
+        let Some([a, d, c, s]) = self.dh_after else {
+            *t *= self.after;
+            return;
+        };
+        let m = t.rotation.matrix();
+        let (x, y, z) = (m.column(0).into_owned(), m.column(1).into_owned(), m.column(2).into_owned());
+        t.translation.vector += x * a + z * d;
+        // SAFETY of orthonormality: a rotation times Rx(α) is a rotation.
+        let m = t.rotation.matrix_mut_unchecked();
+        m.set_column(1, &(y * c + z * s));
+        m.set_column(2, &(z * c - y * s));
+    }
+}
+
+/// `[a, d, cos α, sin α]` when `after` is exactly `Tz(d)·Tx(a)·Rx(α)`.
+fn dh_form(after: &IsometryMatrix3<f64>) -> Option<[f64; 4]> {
+    let r = after.rotation.matrix();
+    let t = after.translation.vector;
+    let x_fixed = r[(0, 0)] == 1.0 && r[(0, 1)] == 0.0 && r[(0, 2)] == 0.0 && r[(1, 0)] == 0.0 && r[(2, 0)] == 0.0;
+    let rx = r[(2, 2)] == r[(1, 1)] && r[(1, 2)] == -r[(2, 1)];
+    (x_fixed && rx && t.y == 0.0).then_some([t.x, t.z, r[(1, 1)], r[(2, 1)]])
 }
 
 /// One mimic-joint motion: `M(multiplier·q[master] + offset) · after`.
@@ -179,6 +210,7 @@ impl Chain {
                     sign: if spec.joints[i].flip { -1.0 } else { 1.0 },
                     to_frame: to_frames[i],
                     after,
+                    dh_after: dh_form(&after),
                     mimics: Vec::new(),
                 }),
                 Err(m) => {
@@ -237,6 +269,27 @@ pub(crate) fn apply_motion(t: &mut IsometryMatrix3<f64>, prismatic: bool, v: f64
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_dh_shortcut_equals_the_general_product() {
+        let ur5 = crate::model::presets::get("ur5").unwrap();
+        assert!(ur5.chain.links.iter().all(|l| l.dh_after.is_some()));
+        for name in crate::model::presets::names() {
+            let robot = crate::model::presets::get(name).unwrap();
+            for k in 0..20 {
+                let q: Vec<f64> = (0..robot.dof()).map(|j| ((k * 7 + j * 3) as f64 * 0.37).sin() * 1.5).collect();
+                let mut general = robot.chain.first;
+                Chain::apply_mimics(&mut general, &robot.chain.first_mimics, &q);
+                for (link, &v) in robot.chain.links.iter().zip(&q) {
+                    apply_motion(&mut general, link.prismatic, link.sign * v);
+                    general *= link.after;
+                    Chain::apply_mimics(&mut general, &link.mimics, &q);
+                }
+                let fast = robot.fk_matrix(&q).unwrap();
+                assert!((fast.to_homogeneous() - general.to_homogeneous()).abs().max() < 1e-14, "{name}: {q:?}");
+            }
+        }
+    }
 
     #[test]
     fn z_onto_is_a_proper_rotation_taking_z_to_the_axis() {

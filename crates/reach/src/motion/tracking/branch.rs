@@ -61,11 +61,12 @@ pub(super) fn ik_target(pose: &Isometry3<f64>, position_only: bool) -> IkTarget 
 
 /// The IK options of one tracking solve: seeded from `seed` when given; a seeded solve of a
 /// solver that does not enumerate every branch (`by_label` false: a search) makes one start
-/// only — it follows the seed instead of searching afresh.
+/// only and does not re-seed — it follows the seed instead of searching afresh.
 pub(super) fn seeded_options(by_label: bool, seed: Option<&[f64]>) -> IkOptions {
     let mut options = IkOptions { seed: seed.map(<[f64]>::to_vec), ..IkOptions::default() };
     if !by_label && seed.is_some() {
         options.restarts = 1;
+        options.numeric.reseed = false;
     }
     options
 }

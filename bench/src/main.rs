@@ -1,0 +1,436 @@
+//! reach next to other Rust kinematics crates, in one process, on the same poses.
+//!
+//! ```text
+//! cargo run --release --manifest-path bench/Cargo.toml            # 1000 poses per arm
+//! cargo run --release --manifest-path bench/Cargo.toml -- --poses 200 --rounds 9
+//! ```
+//!
+//! Peers: [`rs-opw-kinematics`](https://crates.io/crates/rs-opw-kinematics) 3.0 (closed-form
+//! OPW kinematics: arms with an orthogonal parallel base and a spherical wrist, so the Puma 560
+//! only; its Jacobian is by finite differences) and [`k`](https://crates.io/crates/k) 0.32
+//! (general chains of nodes; Jacobian; a Jacobian-pseudo-inverse IK from the current joint
+//! values). Each peer is built from reach's own preset and checked against reach's forward
+//! kinematics to 1e-9 before anything is timed, so both solve the same chain.
+//!
+//! Timing: for every comparison, rounds alternate between reach and the peer (each round one
+//! pass over all poses), after a warm-up pass each; the reported time per call is the median
+//! over the rounds, the ratio is reach / peer of those medians. Absolute times drift with the
+//! load of the machine; the ratios of alternating rounds much less.
+
+use std::f64::consts::PI;
+use std::hint::black_box;
+use std::time::Instant;
+
+use nalgebra::{Isometry3, IsometryMatrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
+use reach::Robot;
+use reach::ik::numeric::{Numeric, NumericOptions, SearchMode};
+use reach::ik::{IkOptions, IkSolver, IkTarget, SolverKind};
+use reach::kinematics::Jacobian;
+use reach::model::{Convention, JointGeometry, JointKind, presets};
+use rs_opw_kinematics::glam::{DQuat, DVec3};
+use rs_opw_kinematics::kinematic_traits::{Joints, Kinematics, Pose};
+use rs_opw_kinematics::kinematics_impl::OPWKinematics;
+use rs_opw_kinematics::parameters::opw_kinematics::Parameters;
+
+/// SplitMix64 with the mapping of reach's IK protocol (`examples/ik_protocol.rs`).
+struct Rng(u64);
+
+impl Rng {
+    fn uniform(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// Random joint vectors inside the limits, revolute ranges cut to [−π, π] (the protocol's).
+fn random_qs(robot: &Robot, n: usize, seed: u64) -> Vec<Vec<f64>> {
+    let mut rng = Rng(seed);
+    (0..n)
+        .map(|_| {
+            robot
+                .joints()
+                .iter()
+                .map(|j| {
+                    let (lo, hi) = (j.limits.lower.max(-PI), j.limits.upper.min(PI));
+                    lo + (hi - lo) * rng.uniform()
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Median time per call (ns) of `a` and of `b`, alternating rounds over `n` items.
+fn race(n: usize, rounds: usize, mut a: impl FnMut(usize), mut b: impl FnMut(usize)) -> (f64, f64) {
+    let pass = |f: &mut dyn FnMut(usize)| {
+        let t0 = Instant::now();
+        for i in 0..n {
+            f(i);
+        }
+        t0.elapsed().as_secs_f64() * 1e9 / n as f64
+    };
+    pass(&mut a);
+    pass(&mut b);
+    let (mut ta, mut tb) = (Vec::with_capacity(rounds), Vec::with_capacity(rounds));
+    for _ in 0..rounds {
+        ta.push(pass(&mut a));
+        tb.push(pass(&mut b));
+    }
+    (median(&mut ta), median(&mut tb))
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+// ------------------------------------------------------------------------------------------
+// k: the chain built from reach's standard-DH preset.
+// ------------------------------------------------------------------------------------------
+
+fn to_k(iso: &IsometryMatrix3<f64>) -> k::Isometry3<f64> {
+    let t = iso.translation.vector;
+    let q = UnitQuaternion::from_rotation_matrix(&iso.rotation);
+    k::Isometry3::from_parts(
+        k::Translation3::new(t.x, t.y, t.z),
+        k::UnitQuaternion::from_quaternion(k::nalgebra::Quaternion::new(q.w, q.i, q.j, q.k)),
+    )
+}
+
+fn from_k(iso: &k::Isometry3<f64>) -> Isometry3<f64> {
+    let t = iso.translation.vector;
+    let q = iso.rotation;
+    Isometry3::from_parts(
+        Translation3::new(t.x, t.y, t.z),
+        UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q.w, q.i, q.j, q.k)),
+    )
+}
+
+/// A `k` serial chain of a standard-DH, all-revolute, unflipped robot:
+/// `base · Π Rz(θᵢ + offᵢ) Tz(dᵢ) Tx(aᵢ) Rx(αᵢ) · tool`, one rotational node per joint
+/// (origin: the previous joint's fixed part and this joint's offset), a fixed end node.
+fn k_chain(robot: &Robot) -> k::SerialChain<f64> {
+    assert_eq!(robot.convention(), Convention::Dh, "k_chain: standard DH only");
+    let base = robot.base();
+    let mut before = IsometryMatrix3::from_parts(base.translation, base.rotation.to_rotation_matrix());
+    let mut nodes: Vec<k::Node<f64>> = Vec::new();
+    for (i, j) in robot.joints().iter().enumerate() {
+        assert!(j.kind == JointKind::Revolute && !j.flip, "k_chain: unflipped revolute joints only");
+        let JointGeometry::Dh(p) = &j.geometry else { panic!("k_chain: DH joints only") };
+        let origin = before * Rotation3::from_axis_angle(&Vector3::z_axis(), p.theta_offset);
+        let node: k::Node<f64> = k::NodeBuilder::new()
+            .name(&format!("j{i}"))
+            .joint_type(k::JointType::Rotational { axis: k::Vector3::z_axis() })
+            .origin(to_k(&origin))
+            .limits(Some(k::joint::Range { min: j.limits.lower, max: j.limits.upper }))
+            .into_node();
+        if let Some(parent) = nodes.last() {
+            node.set_parent(parent);
+        }
+        nodes.push(node);
+        before = IsometryMatrix3::from_parts(Translation3::new(0.0, 0.0, p.d), Rotation3::identity())
+            * IsometryMatrix3::from_parts(Translation3::new(p.a, 0.0, 0.0), Rotation3::identity())
+            * IsometryMatrix3::from_parts(
+                Translation3::identity(),
+                Rotation3::from_axis_angle(&Vector3::x_axis(), p.alpha),
+            );
+    }
+    let tool = robot.tool();
+    let end = before * IsometryMatrix3::from_parts(tool.translation, tool.rotation.to_rotation_matrix());
+    let tip: k::Node<f64> =
+        k::NodeBuilder::new().name("tip").joint_type(k::JointType::Fixed).origin(to_k(&end)).into_node();
+    tip.set_parent(nodes.last().expect("joints"));
+    nodes.push(tip);
+    k::SerialChain::new_unchecked(k::Chain::from_nodes(nodes))
+}
+
+fn k_fk(arm: &k::SerialChain<f64>, q: &[f64]) -> k::Isometry3<f64> {
+    arm.set_joint_positions_unchecked(q);
+    arm.update_transforms();
+    arm.end_transform()
+}
+
+/// Largest position (m) and rotation (rad) difference.
+fn pose_gap(a: &Isometry3<f64>, b: &Isometry3<f64>) -> (f64, f64) {
+    ((a.translation.vector - b.translation.vector).norm(), a.rotation.angle_to(&b.rotation))
+}
+
+// ------------------------------------------------------------------------------------------
+// rs-opw-kinematics: the Puma 560 as OPW parameters, signs and offsets found by search.
+// ------------------------------------------------------------------------------------------
+
+fn opw_pose(p: &Pose) -> Isometry3<f64> {
+    let t = p.translation;
+    let r = p.rotation;
+    Isometry3::from_parts(
+        Translation3::new(t.x, t.y, t.z),
+        UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(r.w, r.x, r.y, r.z)),
+    )
+}
+
+fn to_opw_pose(p: &Isometry3<f64>) -> Pose {
+    let t = p.translation.vector;
+    let r = p.rotation;
+    Pose::from_parts(DVec3::new(t.x, t.y, t.z), DQuat::from_xyzw(r.i, r.j, r.k, r.w))
+}
+
+fn joints6(q: &[f64]) -> Joints {
+    [q[0], q[1], q[2], q[3], q[4], q[5]]
+}
+
+/// OPW parameters of reach's `puma560` preset, in reach's joint coordinates: geometry from the
+/// DH table (a1 = 0, a2 = ∓a3, b = ±d3, c1 = d1, c2 = a2, c3 = d4, c4 = d6); the signs of
+/// a2 and b and every joint's sign and offset are found by search so that rs-opw's forward
+/// kinematics equals reach's, up to a constant rotation of the flange frame, which is
+/// returned (`reach flange = opw flange · C`).
+fn opw_puma(robot: &Robot, qs: &[Vec<f64>]) -> (OPWKinematics, Rotation3<f64>) {
+    let dh: Vec<_> = robot
+        .joints()
+        .iter()
+        .map(|j| match &j.geometry {
+            JointGeometry::Dh(p) => *p,
+            _ => panic!("puma560 is DH"),
+        })
+        .collect();
+    let offsets = [0.0, PI / 2.0, PI, -PI / 2.0];
+    let probe = &qs[..5];
+    let reach_poses: Vec<Isometry3<f64>> = probe.iter().map(|q| robot.fk(q).expect("fk")).collect();
+    let choices = |k: usize| (k % 2, (k / 2) % 4); // (sign index, offset index)
+    let params = |s_a2: f64, s_b: f64, sign: [i8; 6], off: [f64; 6]| Parameters {
+        a1: 0.0,
+        a2: s_a2 * dh[2].a,
+        b: s_b * dh[2].d,
+        c1: dh[0].d,
+        c2: dh[1].a,
+        c3: dh[3].d,
+        c4: dh[5].d,
+        offsets: off,
+        sign_corrections: sign,
+        dof: 6,
+    };
+    for s_a2 in [1.0, -1.0] {
+        for s_b in [1.0, -1.0] {
+            for arm in 0..512 {
+                let mut sign = [1i8; 6];
+                let mut off = [0.0; 6];
+                for j in 0..3 {
+                    let (s, o) = choices(arm >> (3 * j));
+                    sign[j] = if s == 0 { 1 } else { -1 };
+                    off[j] = offsets[o];
+                }
+                let opw = OPWKinematics::new(params(s_a2, s_b, sign, off));
+                let positions_match = probe.iter().zip(&reach_poses).all(|(q, t)| {
+                    (opw_pose(&opw.forward(&joints6(q))).translation.vector - t.translation.vector).norm() < 1e-9
+                });
+                if !positions_match {
+                    continue;
+                }
+                for wrist in 0..512 {
+                    for j in 3..6 {
+                        let (s, o) = choices(wrist >> (3 * (j - 3)));
+                        sign[j] = if s == 0 { 1 } else { -1 };
+                        off[j] = offsets[o];
+                    }
+                    let opw = OPWKinematics::new(params(s_a2, s_b, sign, off));
+                    let c = |k: usize| {
+                        let r_opw = opw_pose(&opw.forward(&joints6(&probe[k]))).rotation.to_rotation_matrix();
+                        r_opw.inverse() * reach_poses[k].rotation.to_rotation_matrix()
+                    };
+                    let c0 = c(0);
+                    if (1..probe.len()).all(|k| c(k).angle_to(&c0) < 1e-9) {
+                        return (opw, c0);
+                    }
+                }
+            }
+        }
+    }
+    panic!("no OPW parameters reproduce reach's puma560");
+}
+
+fn main() {
+    let mut poses = 1000;
+    let mut rounds = 15;
+    let mut args = std::env::args().skip(1);
+    while let Some(a) = args.next() {
+        let mut value = || args.next().and_then(|v| v.parse().ok()).expect("a count");
+        match a.as_str() {
+            "--poses" => poses = value(),
+            "--rounds" => rounds = value(),
+            other => panic!("unknown argument `{other}` (--poses N, --rounds N)"),
+        }
+    }
+    println!(
+        "reach vs peers, {poses} random joint vectors per arm (SplitMix64 seed 2024), median of {rounds} alternating rounds; ratio = reach / peer (< 1: reach faster)"
+    );
+    println!("| arm | operation | peer | reach ns/call | peer ns/call | ratio | note |");
+    println!("|---|---|---|---|---|---|---|");
+    let row = |arm: &str, op: &str, peer: &str, (a, b): (f64, f64), note: &str| {
+        println!("| {arm} | {op} | {peer} | {a:.0} | {b:.0} | {:.2} | {note} |", a / b);
+    };
+
+    for name in ["ur5", "puma560"] {
+        let robot = presets::get(name).expect("preset");
+        let qs = random_qs(&robot, poses, 2024);
+        let n = qs.len();
+
+        // --- k: the same chain, checked.
+        let arm = k_chain(&robot);
+        for q in &qs {
+            let (dp, da) = pose_gap(&from_k(&k_fk(&arm, q)), &robot.fk(q).expect("fk"));
+            assert!(dp < 1e-9 && da < 1e-9, "{name}: k chain differs from reach by {dp} m, {da} rad");
+        }
+        let fk = race(
+            n,
+            rounds,
+            |i| {
+                black_box(robot.fk_matrix(black_box(&qs[i])).expect("fk"));
+            },
+            |i| {
+                black_box(k_fk(&arm, black_box(&qs[i])));
+            },
+        );
+        row(name, "FK", "k", fk, "k: set positions + update_transforms + end_transform");
+        let mut jac = Jacobian::zeros(robot.dof());
+        let jacobian = race(
+            n,
+            rounds,
+            |i| {
+                robot.jacobian_into(black_box(&qs[i]), &mut jac).expect("jacobian");
+                black_box(&jac);
+            },
+            |i| {
+                k_fk(&arm, black_box(&qs[i]));
+                black_box(k::jacobian(&arm));
+            },
+        );
+        row(name, "Jacobian", "k", jacobian, "both from joint values (k: FK update included)");
+
+        // Numeric IK from a seed 0.1 rad from the solution in every joint (tracking), 1e-6.
+        let solver = Numeric::from_robot(&robot).expect("numeric");
+        let targets: Vec<Isometry3<f64>> = qs.iter().map(|q| robot.fk(q).expect("fk")).collect();
+        let seeds: Vec<Vec<f64>> = qs
+            .iter()
+            .map(|q| {
+                q.iter().zip(robot.joints()).map(|(v, j)| (v + 0.1).clamp(j.limits.lower, j.limits.upper)).collect()
+            })
+            .collect();
+        let options = |i: usize| IkOptions {
+            seed: Some(seeds[i].clone()),
+            restarts: 1,
+            max_iterations: 100,
+            numeric: NumericOptions { mode: SearchMode::FirstFound, ..NumericOptions::default() },
+            ..IkOptions::default()
+        };
+        let k_solver = k::JacobianIkSolver::new(1e-6, 1e-6, 1.0, 100);
+        let (mut reach_ok, mut k_ok) = (0, 0);
+        for i in 0..n {
+            let all = solver.solve(&robot, &IkTarget::Pose(targets[i]), &options(i)).expect("solve");
+            reach_ok += usize::from(all.feasible().next().is_some());
+            arm.set_joint_positions_unchecked(&seeds[i]);
+            arm.update_transforms();
+            if k::InverseKinematicsSolver::solve(&k_solver, &arm, &to_k_iso(&targets[i])).is_ok() {
+                let (dp, da) = pose_gap(&robot.fk(&arm.joint_positions()).expect("fk"), &targets[i]);
+                k_ok += usize::from(dp <= 1e-6 && da <= 1e-6);
+            }
+        }
+        let ik = race(
+            n,
+            rounds.min(5),
+            |i| {
+                black_box(solver.solve(&robot, &IkTarget::Pose(targets[i]), &options(i)).expect("solve"));
+            },
+            |i| {
+                arm.set_joint_positions_unchecked(&seeds[i]);
+                arm.update_transforms();
+                let _ = black_box(k::InverseKinematicsSolver::solve(&k_solver, &arm, &to_k_iso(&targets[i])));
+            },
+        );
+        let note = format!(
+            "seed = solution + 0.1 rad, 1e-6 m / 1e-6 rad, ≤ 100 iterations; solved: reach {:.1} %, k {:.1} %",
+            100.0 * reach_ok as f64 / n as f64,
+            100.0 * k_ok as f64 / n as f64
+        );
+        row(name, "numeric IK", "k JacobianIkSolver", ik, &note);
+
+        if name != "puma560" {
+            continue;
+        }
+        // --- rs-opw-kinematics: Puma 560 only (OPW geometry).
+        let (opw, c) = opw_puma(&robot, &qs);
+        for q in &qs {
+            let t = opw_pose(&opw.forward(&joints6(q)));
+            let t = Isometry3::from_parts(t.translation, t.rotation * UnitQuaternion::from_rotation_matrix(&c));
+            let (dp, da) = pose_gap(&t, &robot.fk(q).expect("fk"));
+            assert!(dp < 1e-9 && da < 1e-9, "puma560: OPW parameters differ from reach by {dp} m, {da} rad");
+        }
+        let q6: Vec<Joints> = qs.iter().map(|q| joints6(q)).collect();
+        let fk = race(
+            n,
+            rounds,
+            |i| {
+                black_box(robot.fk_matrix(black_box(&qs[i])).expect("fk"));
+            },
+            |i| {
+                black_box(opw.forward(black_box(&q6[i])));
+            },
+        );
+        row(name, "FK", "rs-opw-kinematics", fk, "");
+        let mut jac = Jacobian::zeros(6);
+        let jacobian = race(
+            n,
+            rounds,
+            |i| {
+                robot.jacobian_into(black_box(&qs[i]), &mut jac).expect("jacobian");
+                black_box(&jac);
+            },
+            |i| {
+                black_box(rs_opw_kinematics::jacobian::Jacobian::new(&opw, black_box(&q6[i]), 1e-6));
+            },
+        );
+        row(name, "Jacobian", "rs-opw-kinematics", jacobian, "rs-opw: finite differences (6 extra FK)");
+        // Closed-form IK, every branch, each checked by FK in both libraries. rs-opw is given
+        // the same poses in its flange frame (reach flange · C⁻¹) and has no joint limits;
+        // reach drops branches outside the preset's limits.
+        let cform = SolverKind::SphericalWrist.build(&robot).expect("spherical wrist");
+        let options = IkOptions::default();
+        let reach_targets: Vec<IkTarget> = targets.iter().map(|t| IkTarget::Pose(*t)).collect();
+        let c_inv = UnitQuaternion::from_rotation_matrix(&c.inverse());
+        let opw_targets: Vec<Pose> =
+            targets.iter().map(|t| to_opw_pose(&Isometry3::from_parts(t.translation, t.rotation * c_inv))).collect();
+        let (mut reach_n, mut reach_feasible, mut opw_n) = (0usize, 0usize, 0usize);
+        for i in 0..n {
+            let all = cform.solve(&robot, &reach_targets[i], &options).expect("solve");
+            reach_n += all.solutions.len();
+            reach_feasible += all.feasible().count();
+            let sols = opw.inverse(&opw_targets[i]);
+            for s in &sols {
+                let (dp, da) = pose_gap(&robot.fk(s).expect("fk"), &targets[i]);
+                assert!(dp < 1e-6 && da < 1e-6, "rs-opw solution off by {dp} m, {da} rad");
+            }
+            opw_n += sols.len();
+        }
+        let ik = race(
+            n,
+            rounds,
+            |i| {
+                black_box(cform.solve(&robot, black_box(&reach_targets[i]), &options).expect("solve"));
+            },
+            |i| {
+                black_box(opw.inverse(black_box(&opw_targets[i])));
+            },
+        );
+        let note = format!(
+            "all branches, FK-checked; mean solutions per pose: reach {:.2} (of which within limits {:.2}; labelled), rs-opw {:.2} (no limits)",
+            reach_n as f64 / n as f64,
+            reach_feasible as f64 / n as f64,
+            opw_n as f64 / n as f64
+        );
+        row(name, "closed-form IK", "rs-opw-kinematics", ik, &note);
+    }
+}
+
+fn to_k_iso(t: &Isometry3<f64>) -> k::Isometry3<f64> {
+    to_k(&IsometryMatrix3::from_parts(t.translation, t.rotation.to_rotation_matrix()))
+}
