@@ -1,0 +1,95 @@
+//! Seed 004 (notes 004 §4 E, §8 "Performance and integration"): motion synthesis of the
+//! `varan4` arm next to the forbidden zones of the ceiling (Fig. 1c) and two-plane (Fig. 1d)
+//! scenes — 1 000 random reachable position goals per scene, every sample checked against
+//! the original (not grown) arm: allowed and at least the safe distance from the obstacle.
+
+use nalgebra::Point3;
+use reach::ik::IkTarget;
+use reach::model::presets;
+use reach::world::approach::{ApproachGoal, ApproachOptions, FastRegion, Outcome, approach, grown_robot};
+use reach::world::{CollisionChecker, Scene};
+
+use crate::common::Rng;
+
+const SAFE: f64 = 0.05;
+const GOALS: usize = 1000;
+
+fn scene(name: &str) -> Scene {
+    let path = format!("{}/../../examples/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+    Scene::from_toml_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+fn deg(v: [f64; 4]) -> Vec<f64> {
+    v.iter().map(|x| x.to_radians()).collect()
+}
+
+/// Random goal configurations (q1 = 0) that keep the safe distance, with their tool points.
+fn goals(robot: &reach::Robot, scene: &Scene, seed: u64) -> Vec<(Vec<f64>, Point3<f64>)> {
+    let grown = grown_robot(robot, SAFE).unwrap();
+    let mut checker = CollisionChecker::new(&grown, scene);
+    let mut rng = Rng::new(seed);
+    let mut out = Vec::new();
+    while out.len() < GOALS {
+        let q = deg([0.0, rng.uniform(0.0, 120.0), rng.uniform(-120.0, 120.0), rng.uniform(-120.0, 120.0)]);
+        if checker.check(&q).unwrap().is_free() {
+            let p = Point3::from(robot.fk(&q).unwrap().translation.vector);
+            out.push((q, p));
+        }
+    }
+    out
+}
+
+/// Shares of the outcomes over the goals, asserting the safety of every sample.
+fn run(scene_name: &str, fast: bool) -> [usize; 3] {
+    let robot = presets::get("varan4").unwrap();
+    let scene = scene(scene_name);
+    let start = deg([0.0, 30.0, 0.0, 0.0]);
+    let region = fast.then(|| FastRegion::fit(&robot, &scene, SAFE, &[(0, 0.0)], 15f64.to_radians(), 2.0).unwrap());
+    let mut exact = CollisionChecker::new(&robot, &scene);
+    let options = ApproachOptions { safe_distance: SAFE, ..ApproachOptions::default() };
+    let mut counts = [0; 3];
+    let (mut candidates, mut rejected, mut sweeps) = (0, 0, 0);
+    for (k, (_, p)) in goals(&robot, &scene, 4004).iter().enumerate() {
+        let goal = ApproachGoal::Target(IkTarget::Position(*p));
+        let a = approach(&robot, &scene, &start, &goal, &options, region.as_ref()).unwrap();
+        candidates += a.stats.candidates;
+        rejected += a.stats.fast_rejected;
+        sweeps += a.stats.exact_sweeps;
+        assert!(a.min_margin > 0.0, "goal {k}: margin {}", a.min_margin);
+        for q in &a.samples {
+            let r = exact.report(q).unwrap();
+            assert!(r.verdict.is_free(), "goal {k}: {q:?} {:?}", r.verdict);
+            let c = r.min_obstacle_clearance_m.unwrap();
+            assert!(c >= SAFE, "goal {k}: clearance {c} below the safe distance at {q:?}");
+        }
+        match a.outcome {
+            Outcome::Reached => {
+                let end = a.samples.last().unwrap();
+                let at = Point3::from(robot.fk(end).unwrap().translation.vector);
+                assert!((at - p).norm() <= options.tolerance, "goal {k}: {at} vs {p}");
+                counts[0] += 1;
+            }
+            Outcome::Deadlock => counts[1] += 1,
+            Outcome::Unreachable => counts[2] += 1,
+        }
+    }
+    println!(
+        "{scene_name} (fast region {fast}): reached {}, deadlock {}, unreachable {} of {GOALS}; candidates {candidates}, fast-rejected {rejected}, exact sweeps {sweeps}",
+        counts[0], counts[1], counts[2]
+    );
+    counts
+}
+
+#[test]
+fn ceiling_every_sample_keeps_the_safe_distance() {
+    let counts = run("seed004_ceiling", false);
+    assert_eq!(counts.iter().sum::<usize>(), GOALS);
+    assert!(counts[0] > GOALS / 2, "{counts:?}");
+}
+
+#[test]
+fn two_planes_every_sample_keeps_the_safe_distance() {
+    let counts = run("seed004_two_planes", false);
+    assert_eq!(counts.iter().sum::<usize>(), GOALS);
+    assert!(counts[0] > GOALS / 2, "{counts:?}");
+}
