@@ -58,8 +58,8 @@
 use nalgebra::{DMatrix, DVector, Vector3};
 use serde::Serialize;
 
-use super::cspace::{GridSpec, classify_grid};
-use super::fit::{FitOptions, fit_region};
+use super::cspace::{GridSpec, classify_grid, grid_node_count};
+use super::fit::{FitOptions, MAX_FIT_NODES, fit_region};
 use super::rfunction::Region;
 use super::sweep::SweepOptions;
 use super::{CollisionChecker, Scene, SweptPair, WorldError};
@@ -211,8 +211,9 @@ impl FastRegion {
     /// the joints in `fixed` held at their values, the others swept at `step` (radians).
     ///
     /// # Errors
-    /// [`WorldError::Input`] unless exactly three joints are swept, or for a negative safe
-    /// distance; as [`classify_grid`] and [`fit_region`].
+    /// [`WorldError::Input`] unless exactly three joints are swept, for a grid of more than
+    /// [`MAX_FIT_NODES`] nodes, or for a negative safe distance; as [`classify_grid`] and
+    /// [`fit_region`].
     pub fn fit(
         robot: &Robot,
         scene: &Scene,
@@ -225,6 +226,12 @@ impl FastRegion {
         let mut spec = GridSpec::new(robot.dof(), step);
         for &(j, v) in fixed {
             spec = spec.fix(j, v);
+        }
+        let nodes = grid_node_count(robot, &spec)?;
+        if nodes > MAX_FIT_NODES {
+            return Err(WorldError::Input(format!(
+                "the fitting grid would have {nodes} nodes, more than {MAX_FIT_NODES}: use a coarser step"
+            )));
         }
         let grid = classify_grid(&grown, scene, &spec)?;
         let fit = fit_region(&grid, &FitOptions::default())?;
