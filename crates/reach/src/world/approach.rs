@@ -85,6 +85,9 @@ const GRADIENT_STEP: f64 = 1e-6;
 /// Share `γ` of a clearance that one increment may consume (barrier condition).
 const BARRIER_RATE: f64 = 0.5;
 
+/// Least share of the barrier's push that must lie in the null space to be followed.
+const NULL_SPACE_SHARE: f64 = 1e-3;
+
 /// An increment shorter than this (joint-space norm) makes no motion: deadlock.
 const NO_MOTION: f64 = 1e-9;
 
@@ -558,8 +561,10 @@ pub fn approach(
                 weight = weight.max(w);
                 push.axpy(w, a, 1.0);
             }
-            let z = &null * push;
-            if z.norm() > f64::EPSILON {
+            let z = &null * &push;
+            // A push the task already controls (the tool point itself is the nearest point)
+            // has no self-motion part: its null-space remainder is rounding, not a direction.
+            if z.norm() > NULL_SPACE_SHARE * push.norm() {
                 tilt = z.normalize();
                 // Self-motion away from the nearest clearances, up to half the task step.
                 dq.axpy(0.5 * weight * dq.norm().max(0.1 * options.max_step), &tilt, 1.0);

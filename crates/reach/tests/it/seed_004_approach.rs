@@ -7,7 +7,9 @@ use nalgebra::Point3;
 use reach::ik::IkTarget;
 use reach::model::presets;
 use reach::world::approach::{ApproachGoal, ApproachOptions, FastRegion, Outcome, approach, grown_robot};
-use reach::world::{CollisionChecker, Scene};
+use reach::world::sweep::SweepOptions;
+use reach::world::{CollisionChecker, Goal, PlanOptions, Scene};
+use std::time::Duration;
 
 use crate::common::Rng;
 
@@ -39,15 +41,18 @@ fn goals(robot: &reach::Robot, scene: &Scene, seed: u64) -> Vec<(Vec<f64>, Point
     out
 }
 
-/// Shares of the outcomes over the goals, asserting the safety of every sample.
-fn run(scene_name: &str, fast: bool) -> [usize; 3] {
+/// Shares of the outcomes over the goals (reached, deadlock, unreachable, deadlocks the
+/// planner then solved), asserting the safety of every sample.
+fn run(scene_name: &str, fast: bool) -> [usize; 4] {
     let robot = presets::get("varan4").unwrap();
     let scene = scene(scene_name);
     let start = deg([0.0, 30.0, 0.0, 0.0]);
     let region = fast.then(|| FastRegion::fit(&robot, &scene, SAFE, &[(0, 0.0)], 15f64.to_radians(), 2.0).unwrap());
     let mut exact = CollisionChecker::new(&robot, &scene);
     let options = ApproachOptions { safe_distance: SAFE, ..ApproachOptions::default() };
-    let mut counts = [0; 3];
+    let grown = grown_robot(&robot, SAFE).unwrap();
+    let mut grown_checker = CollisionChecker::new(&grown, &scene);
+    let mut counts = [0; 4];
     let (mut candidates, mut rejected, mut sweeps) = (0, 0, 0);
     for (k, (_, p)) in goals(&robot, &scene, 4004).iter().enumerate() {
         let goal = ApproachGoal::Target(IkTarget::Position(*p));
@@ -69,13 +74,29 @@ fn run(scene_name: &str, fast: bool) -> [usize; 3] {
                 assert!((at - p).norm() <= options.tolerance, "goal {k}: {at} vs {p}");
                 counts[0] += 1;
             }
-            Outcome::Deadlock => counts[1] += 1,
+            Outcome::Deadlock => {
+                counts[1] += 1;
+                if k < 3 || counts[1] == 1 {
+                    println!("deadlock: goal {k} at {:?}: {:?}", p.coords.as_slice(), a.reason);
+                }
+                // The hand-over: the planner (links grown by the safe distance) from the
+                // deadlock configuration; its edges are proven clear by the swept check.
+                let from = a.samples.last().unwrap();
+                let options = PlanOptions { max_time: Some(Duration::from_millis(500)), ..PlanOptions::default() };
+                if let Ok(plan) =
+                    reach::world::plan(&grown, &scene, from, &Goal::Target(IkTarget::Position(*p)), &options)
+                {
+                    let swept = grown_checker.swept_path(&plan.waypoints, &SweepOptions::default()).unwrap();
+                    assert!(swept.is_none_or(|s| s.clear), "goal {k}: planner path not clear");
+                    counts[3] += 1;
+                }
+            }
             Outcome::Unreachable => counts[2] += 1,
         }
     }
     println!(
-        "{scene_name} (fast region {fast}): reached {}, deadlock {}, unreachable {} of {GOALS}; candidates {candidates}, fast-rejected {rejected}, exact sweeps {sweeps}",
-        counts[0], counts[1], counts[2]
+        "{scene_name} (fast region {fast}): reached {}, deadlock {} (planner then found a path for {}), unreachable {} of {GOALS}; candidates {candidates}, fast-rejected {rejected}, exact sweeps {sweeps}",
+        counts[0], counts[1], counts[3], counts[2]
     );
     counts
 }
@@ -83,13 +104,22 @@ fn run(scene_name: &str, fast: bool) -> [usize; 3] {
 #[test]
 fn ceiling_every_sample_keeps_the_safe_distance() {
     let counts = run("seed004_ceiling", false);
-    assert_eq!(counts.iter().sum::<usize>(), GOALS);
+    assert_eq!(counts[..3].iter().sum::<usize>(), GOALS);
     assert!(counts[0] > GOALS / 2, "{counts:?}");
 }
 
 #[test]
 fn two_planes_every_sample_keeps_the_safe_distance() {
     let counts = run("seed004_two_planes", false);
-    assert_eq!(counts.iter().sum::<usize>(), GOALS);
+    assert_eq!(counts[..3].iter().sum::<usize>(), GOALS);
     assert!(counts[0] > GOALS / 2, "{counts:?}");
+}
+
+#[test]
+fn the_fitted_region_as_first_test_keeps_every_sample_safe() {
+    for scene in ["seed004_ceiling", "seed004_two_planes"] {
+        let counts = run(scene, true);
+        assert_eq!(counts[..3].iter().sum::<usize>(), GOALS);
+        assert!(counts[0] > GOALS / 2, "{scene}: {counts:?}");
+    }
 }

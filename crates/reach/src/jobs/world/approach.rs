@@ -92,6 +92,27 @@ pub struct ApproachRequest {
     pub fast_region: Option<FastRegionRequest>,
 }
 
+impl ApproachRequest {
+    /// A request from `from` in `scene` with every default and no goal (set `to` or
+    /// `to_pose`).
+    #[must_use]
+    pub fn new(scene: String, from: Joints) -> Self {
+        ApproachRequest {
+            scene,
+            from,
+            to: None,
+            to_pose: None,
+            safe_distance_m: default_safe_distance_m(),
+            max_step_deg: default_max_step_deg(),
+            tolerance_m: default_tolerance_m(),
+            max_samples: default_max_samples(),
+            handover: true,
+            planner_time_budget_s: default_time_budget_s(),
+            fast_region: None,
+        }
+    }
+}
+
 /// The fitted region used as a fast first test.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -339,9 +360,9 @@ mod tests {
 
     #[test]
     fn a_deadlock_under_the_ceiling_is_handed_over_to_the_planner() {
-        // The goal needs the elbow below the links: the synthesis from the elbow-up start
-        // runs the arm into the barrier of the ceiling (z = 1.2 m); the planner goes around.
-        let Report::Approach(r) = job([1.0643, 0.0, 1.1296]).run().unwrap() else { panic!("not an approach report") };
+        // Goal 16 of the 1000 random goals of tests/it/seed_004_approach.rs: the increments
+        // towards it run into the barrier; the planner goes around.
+        let Report::Approach(r) = job([0.7231, 0.0, 0.5006]).run().unwrap() else { panic!("not an approach report") };
         assert_eq!(r.outcome, Outcome::Deadlock, "{r:?}");
         assert!(r.failed() && r.min_margin_m.unwrap() > 0.0);
         let h = r.handover.unwrap();
