@@ -85,7 +85,7 @@ impl ApproachArgs {
                 None => defaults.max_step_deg,
             },
             handover: !self.no_handover,
-            fast_region: self.fast_region.then(|| FastRegionRequest { joints: None, step_deg: 15.0, band: 2.0 }),
+            fast_region: self.fast_region.then(FastRegionRequest::default),
             ..defaults
         })
     }

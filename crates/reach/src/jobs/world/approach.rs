@@ -129,6 +129,12 @@ pub struct FastRegionRequest {
     pub band: f64,
 }
 
+impl Default for FastRegionRequest {
+    fn default() -> Self {
+        FastRegionRequest { joints: None, step_deg: default_region_step_deg(), band: default_band() }
+    }
+}
+
 /// The planner's attempt after a deadlock.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct HandoverReport {
