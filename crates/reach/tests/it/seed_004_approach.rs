@@ -123,3 +123,67 @@ fn the_fitted_region_as_first_test_keeps_every_sample_safe() {
         assert!(counts[0] > GOALS / 2, "{scene}: {counts:?}");
     }
 }
+
+/// Every sample of `a` is allowed for the original arm and keeps the safe distance.
+fn assert_safe(robot: &reach::Robot, scene: &Scene, samples: &[Vec<f64>], safe: f64) {
+    let mut exact = CollisionChecker::new(robot, scene);
+    for q in samples {
+        let r = exact.report(q).unwrap();
+        assert!(r.verdict.is_free(), "{q:?} {:?}", r.verdict);
+        assert!(r.min_obstacle_clearance_m.unwrap() >= safe, "{q:?}: {:?}", r.min_obstacle_clearance_m);
+    }
+}
+
+#[test]
+fn redundant_arms_resolve_the_redundancy_past_an_obstacle() {
+    use nalgebra::{Isometry3, Vector3};
+    use reach::world::Shape;
+    // planar3 (position goal in its plane: 3 joints, 2 task rows): a ball beside the straight
+    // way from the start to the goal.
+    let robot = presets::get("planar3").unwrap();
+    let ball = Shape::Sphere { center: Vector3::new(1.2, 0.5, 0.0), radius: 0.15 };
+    let scene = Scene::new().with_obstacle("ball", ball).unwrap();
+    let start = deg([60.0, -40.0, -30.0, 0.0])[..3].to_vec();
+    let target = Point3::new(2.4, 0.2, 0.0);
+    let a = approach(
+        &robot,
+        &scene,
+        &start,
+        &ApproachGoal::Target(IkTarget::Position(target)),
+        &ApproachOptions { safe_distance: 0.1, ..ApproachOptions::default() },
+        None,
+    )
+    .unwrap();
+    assert_eq!(a.outcome, Outcome::Reached, "{:?}", a.reason);
+    let end = Point3::from(robot.fk(a.samples.last().unwrap()).unwrap().translation.vector);
+    assert!((end - target).norm() <= 1e-4);
+    assert_safe(&robot, &scene, &a.samples, 0.1);
+    // Panda (a full pose: 7 joints, 6 task rows) past a box, 5 cm away.
+    let robot = presets::get("panda").unwrap();
+    let block = Shape::Box {
+        center: Vector3::new(0.45, 0.25, 0.3),
+        half_extents: Vector3::new(0.05, 0.05, 0.3),
+        rotation: nalgebra::Matrix3::identity(),
+    };
+    // Links 3 and 5 of the preset's capsules lie within twice the safe distance by
+    // construction (the grown links keep non-adjacent links 2·d apart): an allowed pair.
+    let scene = Scene::new().with_obstacle("block", block).unwrap().with_allowed_self_collision("link3", "link5");
+    let start = vec![0.0, -0.3, 0.0, -1.2, 0.0, 1.5, 0.8];
+    let mut goal_q = start.clone();
+    goal_q[0] = 0.9;
+    let goal: Isometry3<f64> = robot.fk(&goal_q).unwrap();
+    let a = approach(
+        &robot,
+        &scene,
+        &start,
+        &ApproachGoal::Target(IkTarget::Pose(goal)),
+        &ApproachOptions::default(),
+        None,
+    )
+    .unwrap();
+    assert_safe(&robot, &scene, &a.samples, 0.05);
+    assert_eq!(a.outcome, Outcome::Reached, "{:?}", a.reason);
+    let end = robot.fk(a.samples.last().unwrap()).unwrap();
+    assert!((end.translation.vector - goal.translation.vector).norm() <= 1e-4);
+    assert!(end.rotation.angle_to(&goal.rotation) <= 1e-3);
+}
