@@ -54,6 +54,7 @@ fn run(scene_name: &str, fast: bool) -> [usize; 4] {
     let mut grown_checker = CollisionChecker::new(&grown, &scene);
     let mut counts = [0; 4];
     let (mut candidates, mut rejected, mut sweeps) = (0, 0, 0);
+    let (mut planner_checks, mut planner_rejected) = (0, 0);
     for (k, (_, p)) in goals(&robot, &scene, 4004).iter().enumerate() {
         let goal = ApproachGoal::Target(IkTarget::Position(*p));
         let a = approach(&robot, &scene, &start, &goal, &options, region.as_ref()).unwrap();
@@ -82,10 +83,16 @@ fn run(scene_name: &str, fast: bool) -> [usize; 4] {
                 // The hand-over: the planner (links grown by the safe distance) from the
                 // deadlock configuration; its edges are proven clear by the swept check.
                 let from = a.samples.last().unwrap();
-                let options = PlanOptions { max_time: Some(Duration::from_millis(500)), ..PlanOptions::default() };
+                let options = PlanOptions {
+                    max_time: Some(Duration::from_millis(500)),
+                    first_test: region.clone(),
+                    ..PlanOptions::default()
+                };
                 if let Ok(plan) =
                     reach::world::plan(&grown, &scene, from, &Goal::Target(IkTarget::Position(*p)), &options)
                 {
+                    planner_checks += plan.stats.checks;
+                    planner_rejected += plan.stats.first_test_rejections;
                     let swept = grown_checker.swept_path(&plan.waypoints, &SweepOptions::default()).unwrap();
                     assert!(swept.is_none_or(|s| s.clear), "goal {k}: planner path not clear");
                     counts[3] += 1;
@@ -95,7 +102,7 @@ fn run(scene_name: &str, fast: bool) -> [usize; 4] {
         }
     }
     println!(
-        "{scene_name} (fast region {fast}): reached {}, deadlock {} (planner then found a path for {}), unreachable {} of {GOALS}; candidates {candidates}, fast-rejected {rejected}, exact sweeps {sweeps}",
+        "{scene_name} (fast region {fast}): reached {}, deadlock {} (planner then found a path for {}), unreachable {} of {GOALS}; candidates {candidates}, fast-rejected {rejected}, exact sweeps {sweeps}; planner: {planner_checks} exact checks, {planner_rejected} rejected by the first test",
         counts[0], counts[1], counts[3], counts[2]
     );
     counts

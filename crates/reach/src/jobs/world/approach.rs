@@ -140,6 +140,8 @@ impl Default for FastRegionRequest {
 pub struct HandoverReport {
     /// Whether the planner found a path from the deadlock configuration to the goal.
     pub found: bool,
+    /// Configurations the fitted region (`fast_region`) rejected before the exact check.
+    pub first_test_rejections: usize,
     /// Why not.
     pub reason: Option<String>,
     /// Its waypoints (joined by straight edges proven to keep the safe distance), degrees.
@@ -264,16 +266,20 @@ pub fn approach_with_cancel(robot: &Robot, request: &ApproachRequest, cancel: &C
             ApproachGoal::Target(t) => Goal::Target(t.clone()),
         };
         let ik = crate::ik::IkOptions { cancel: cancel.clone(), ..crate::ik::IkOptions::default() };
-        let options = PlanOptions { max_time: budget, ik, ..PlanOptions::default() };
+        let options = PlanOptions { max_time: budget, ik, first_test: fast.clone(), ..PlanOptions::default() };
         Some(match plan(&grown, &scene, &from, &target, &options) {
             Ok(p) => HandoverReport {
                 found: true,
+                first_test_rejections: p.stats.first_test_rejections,
                 reason: None,
                 waypoints_deg: p.waypoints.iter().map(|q| q_display(robot, q)).collect(),
             },
-            Err(e) => {
-                HandoverReport { found: false, reason: Some(crate::one_line(&e.to_string())), waypoints_deg: vec![] }
-            }
+            Err(e) => HandoverReport {
+                found: false,
+                first_test_rejections: 0,
+                reason: Some(crate::one_line(&e.to_string())),
+                waypoints_deg: vec![],
+            },
         })
     } else {
         None
