@@ -345,6 +345,25 @@ pub enum Command {
     )]
     Path(Box<crate::commands::path::PathArgs>),
 
+    /// Seed 004: a motion to a goal that keeps a safe distance from the obstacles.
+    #[command(
+        long_about = "Synthesises joint increments from --from to --to (degrees) or to a tool pose \
+            (--to-xyz alone: a position goal, redundant arms such as varan4 and planar3 resolve \
+            the redundancy in the null space of the task Jacobian) that keep --safe-distance \
+            metres from every obstacle of the scene, the distance acting as a barrier. Every \
+            increment is proven clear over its whole motion by the swept check, not only at the \
+            samples. When the goal direction and the barrier oppose (a deadlock) the report says \
+            so and the planner takes over from there (unless --no-handover). --fast-region fits \
+            seed 004's R-function region first and drops candidate increments clearly outside \
+            it before the exact check.\n\n\
+            Exit status 3 (after the report) when the goal is not reached: deadlock (even when \
+            the planner found a path) or unreachable goal.",
+        after_help = "Examples:\n  \
+            reach approach varan4 examples/seed004_ceiling.toml --from 0,30,0,0 --to-xyz 1.5,0,0.6\n  \
+            reach approach varan4 examples/seed004_ceiling.toml --from 0,30,0,0 --to-xyz 1.0643,0,1.1296 --json"
+    )]
+    Approach(Box<crate::commands::approach::ApproachArgs>),
+
     /// The control service: an HTTP + WebSocket API that queues jobs, plays them on simulated
     /// stepper drives and keeps the arm's state in a database (see the README's "The control
     /// service").

@@ -135,5 +135,87 @@ fn membership(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, collision, cspace, membership);
+/// Seed 004's fitted region as a fast first test (`reach::world::approach::FastRegion`, links
+/// grown by a 5 cm safe distance): a configuration clearly outside the region
+/// (`F_Λ < −2`) is dropped, every other one still gets the exact verdict. On the same 1000
+/// configurations as `membership`: the exact check alone against the first test plus the
+/// exact check where it does not drop; and for candidate increments (3° away, in a random
+/// direction) from the allowed ones of them the exact swept check alone against the first test at the increment's
+/// end plus the swept check.
+fn first_test(c: &mut Criterion) {
+    use reach::world::approach::{FastRegion, grown_robot};
+    use reach::world::sweep::SweepOptions;
+    let mut s = 11_u64;
+    let mut next = || {
+        s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let qs: Vec<Vec<f64>> = (0..1000)
+        .map(|_| {
+            vec![
+                0.0,
+                (120.0 * next()).to_radians(),
+                (240.0 * next() - 120.0).to_radians(),
+                (240.0 * next() - 120.0).to_radians(),
+            ]
+        })
+        .collect();
+    let ends: Vec<Vec<f64>> = qs
+        .iter()
+        .map(|q| {
+            let d: Vec<f64> = (0..3).map(|_| next() - 0.5).collect();
+            let n = d.iter().map(|x| x * x).sum::<f64>().sqrt().max(1e-9);
+            let mut e = q.clone();
+            for k in 0..3 {
+                e[k + 1] = (e[k + 1] + 3f64.to_radians() * d[k] / n)
+                    .clamp(if k == 0 { 0.0 } else { -120f64.to_radians() }, 120f64.to_radians());
+            }
+            e
+        })
+        .collect();
+    let varan = presets::get("varan4").unwrap();
+    let grown = grown_robot(&varan, 0.05).unwrap();
+    for (name, text) in [
+        ("ceiling", include_str!("../../../examples/seed004_ceiling.toml")),
+        ("two_planes", include_str!("../../../examples/seed004_two_planes.toml")),
+    ] {
+        let scene = Scene::from_toml_str(text).unwrap();
+        let fast = FastRegion::fit(&varan, &scene, 0.05, &[(0, 0.0)], 15f64.to_radians(), 2.0).unwrap();
+        let mut checker = CollisionChecker::new(&grown, &scene);
+        let exact: Vec<bool> = qs.iter().map(|q| checker.check(q).unwrap().is_free()).collect();
+        let dropped = qs.iter().filter(|q| fast.rejects(q)).count();
+        let lost = qs.iter().zip(&exact).filter(|(q, free)| **free && fast.rejects(q)).count();
+        eprintln!(
+            "seed004 {name}: the first test drops {dropped} of 1000 configurations ({lost} of them allowed: lost candidates, never a wrong 'allowed'); {} allowed by the exact check",
+            exact.iter().filter(|f| **f).count()
+        );
+        // Increments start from allowed configurations, as in the synthesis.
+        let pairs: Vec<(&Vec<f64>, &Vec<f64>)> =
+            qs.iter().zip(&ends).zip(&exact).filter(|(_, free)| **free).map(|(p, _)| p).collect();
+        let options = SweepOptions { closest: false, max_evaluations: 2000 };
+        let mut group = c.benchmark_group(format!("seed004_{name}_first_test"));
+        group.bench_function("exact_check_only", |b| {
+            b.iter(|| qs.iter().filter(|q| checker.check(black_box(q)).unwrap().is_free()).count())
+        });
+        group.bench_function("fitted_first_test_then_exact", |b| {
+            b.iter(|| qs.iter().filter(|q| !fast.rejects(black_box(q)) && checker.check(q).unwrap().is_free()).count())
+        });
+        group.bench_function("exact_swept_increments_only", |b| {
+            b.iter(|| {
+                qs.iter().zip(&ends).filter(|(a, e)| checker.swept(black_box(a), e, &options).unwrap().0.clear).count()
+            })
+        });
+        group.bench_function("fitted_first_test_then_swept_increments", |b| {
+            b.iter(|| {
+                pairs
+                    .iter()
+                    .filter(|(a, e)| !fast.rejects(black_box(e)) && checker.swept(a, e, &options).unwrap().0.clear)
+                    .count()
+            })
+        });
+        group.finish();
+    }
+}
+
+criterion_group!(benches, collision, cspace, membership, first_test);
 criterion_main!(benches);

@@ -2,6 +2,7 @@
 //! checks and computes everything first and writes to `out` last, so that an error leaves
 //! stdout empty.
 
+pub mod approach;
 pub mod avoid;
 pub mod check;
 pub mod cspace;

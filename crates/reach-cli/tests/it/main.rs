@@ -4,6 +4,7 @@
 mod common;
 
 mod cli;
+mod cli_approach;
 mod cli_bounds;
 mod cli_decide;
 mod cli_drive;

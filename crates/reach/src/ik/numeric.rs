@@ -601,7 +601,7 @@ fn tilt(r: &Matrix3<f64>, target_z: &Vector3<f64>) -> (Vector3<f64>, f64) {
 
 /// Rotation vector (axis · angle, angle in [0, π]) of a rotation matrix, and the angle;
 /// accurate near 0 and near π.
-fn rotation_log(r: &Matrix3<f64>) -> (Vector3<f64>, f64) {
+pub(crate) fn rotation_log(r: &Matrix3<f64>) -> (Vector3<f64>, f64) {
     let cos = ((r.trace() - 1.0) * 0.5).clamp(-1.0, 1.0);
     // vee(R − Rᵀ) = 2 sin θ · axis
     let vee = Vector3::new(r[(2, 1)] - r[(1, 2)], r[(0, 2)] - r[(2, 0)], r[(1, 0)] - r[(0, 1)]);

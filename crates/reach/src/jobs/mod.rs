@@ -41,8 +41,8 @@ pub use planar_scan::{PlanarScanReport, PlanarScanRequest};
 pub use tasks::{TasksReport, TasksRequest};
 pub use view::{ViewReport, ViewRequest};
 pub use world::{
-    AvoidReport, AvoidRequest, CheckReport, CheckRequest, CspaceReport, CspaceRequest, PathReport, PathRequest,
-    SenseReport, SenseRequest,
+    ApproachReport, ApproachRequest, AvoidReport, AvoidRequest, CheckReport, CheckRequest, CspaceReport, CspaceRequest,
+    PathReport, PathRequest, SenseReport, SenseRequest,
 };
 
 use crate::Robot;
@@ -82,6 +82,8 @@ pub enum Request {
     Cspace(CspaceRequest),
     /// A collision-free, timed joint-space path through a scene.
     Path(PathRequest),
+    /// Seed 004: a motion to a goal that keeps a safe distance from the obstacles.
+    Approach(ApproachRequest),
     /// Seed 001's collection and visiting tasks (sequencing, budgets).
     Tasks(TasksRequest),
     /// Stepper step schedules (and G-code, coil tables, step/direction events) for a motion.
@@ -120,6 +122,8 @@ pub enum Report {
     Cspace(CspaceReport),
     /// A collision-free, timed joint-space path through a scene.
     Path(PathReport),
+    /// Seed 004's motion that keeps a safe distance from the obstacles.
+    Approach(ApproachReport),
     /// Seed 001's collection and visiting tasks (sequencing, budgets).
     Tasks(TasksReport),
     /// Stepper step schedules for a motion.
@@ -168,6 +172,7 @@ pub fn run(robot: &Robot, request: &Request) -> Result<Report> {
         Request::Sense(r) => Report::Sense(world::sense(robot, r)?),
         Request::Cspace(r) => Report::Cspace(world::cspace(robot, r)?),
         Request::Path(r) => Report::Path(world::path(robot, r)?),
+        Request::Approach(r) => Report::Approach(world::approach(robot, r)?),
         Request::Tasks(r) => Report::Tasks(tasks::tasks(robot, r)?),
         Request::Drive(r) => Report::Drive(drive::drive(robot, r)?),
         Request::View(r) => Report::View(view::view(robot, r)?),
@@ -210,6 +215,8 @@ pub fn schemas() -> Vec<(&'static str, serde_json::Value)> {
         ("cspace.report", of::<CspaceReport>()),
         ("path.request", of::<PathRequest>()),
         ("path.report", of::<PathReport>()),
+        ("approach.request", of::<ApproachRequest>()),
+        ("approach.report", of::<ApproachReport>()),
         ("tasks.request", of::<TasksRequest>()),
         ("tasks.report", of::<TasksReport>()),
         ("drive.request", of::<DriveRequest>()),

@@ -11,6 +11,8 @@
 //! * [`detour`] — seed 000: the swept-area test of the last (and middle) link and the detour
 //!   through two waypoints on the `L/7` circle.
 //! * [`cspace`] — seed 004: joint-grid enumeration and classification of every node.
+//! * [`approach`] — seed 004: motion synthesis next to forbidden zones (safe distance as a
+//!   barrier, redundancy in the null space, deadlocks, the fitted region as a first test).
 //! * [`rfunction`] — seed 004: Rvachev's R-conjunction and the region primitives.
 //! * [`fit`] — seed 004: fitting those primitives to a classified grid; confusion counts.
 //! * [`sense`] — seed 000: an obstacle located from ultrasonic range readings (least squares,
@@ -26,6 +28,7 @@
 //! **open** (seed 004's `x > 500 mm, z > 0` are strict): the tool point must lie inside every
 //! zone shape by more than the tolerance.
 
+pub mod approach;
 mod collision;
 pub mod cspace;
 pub mod detour;

@@ -48,6 +48,10 @@ pub struct PlanOptions {
     pub shortcut_attempts: usize,
     /// Options for the IK of a [`Goal::Target`].
     pub ik: IkOptions,
+    /// Seed 004's fitted region as a fast first test: a configuration clearly outside it is
+    /// rejected without the exact check (only rejected: every edge kept is still proven by
+    /// the swept check). Default none.
+    pub first_test: Option<super::approach::FastRegion>,
 }
 
 impl Default for PlanOptions {
@@ -59,6 +63,7 @@ impl Default for PlanOptions {
             step: 0.5,
             shortcut_attempts: 100,
             ik: IkOptions::default(),
+            first_test: None,
         }
     }
 }
@@ -72,6 +77,8 @@ pub struct PlanStats {
     pub nodes: usize,
     /// Collision checks of single configurations.
     pub checks: usize,
+    /// Configurations the first test ([`PlanOptions::first_test`]) rejected without a check.
+    pub first_test_rejections: usize,
     /// Waypoints of the raw path, before shortcutting.
     pub raw_waypoints: usize,
     /// Length of the raw path before shortcutting, [`path_length`] (rad / m).
@@ -204,11 +211,17 @@ struct EdgeChecker<'c, 'a> {
     checker: &'c mut CollisionChecker<'a>,
     checks: usize,
     buf: Vec<f64>,
+    first_test: Option<&'c super::approach::FastRegion>,
+    rejected: usize,
 }
 
 impl EdgeChecker<'_, '_> {
-    /// Whether `q` is free (one cheap check).
+    /// Whether `q` is free (the first test, then one cheap check).
     fn is_free(&mut self, q: &[f64]) -> Result<bool, WorldError> {
+        if self.first_test.is_some_and(|f| f.rejects(q)) {
+            self.rejected += 1;
+            return Ok(false);
+        }
         self.checks += 1;
         Ok(self.checker.check(q)?.is_free())
     }
@@ -440,7 +453,13 @@ pub fn plan(
         }
     };
 
-    let mut edges = EdgeChecker { checker: &mut checker, checks: 0, buf: vec![0.0; dof] };
+    let mut edges = EdgeChecker {
+        checker: &mut checker,
+        checks: 0,
+        buf: vec![0.0; dof],
+        first_test: options.first_test.as_ref(),
+        rejected: 0,
+    };
     let mut rng = SplitMix64(options.seed);
 
     // The straight edge first, nearest goal first.
@@ -524,6 +543,7 @@ pub fn plan(
             iterations,
             nodes: start_tree.len() + goal_tree.len(),
             checks: edges.checks,
+            first_test_rejections: edges.rejected,
             raw_waypoints,
             raw_length,
             time_s: t0.elapsed().as_secs_f64(),

@@ -48,6 +48,7 @@ mod seed_003_criteria;
 mod seed_003_ik;
 mod seed_003_tracking;
 mod seed_003_welder6r_fk;
+mod seed_004_approach;
 mod seed_004_cspace;
 mod seed_004_fit;
 mod seed_004_ik_varan4;

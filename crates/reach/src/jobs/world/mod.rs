@@ -1,5 +1,6 @@
 //! The world workflows: a configuration checked against a scene (`check`), seed 000's planar
 //! detour (`avoid`), seed 004's configuration-space grid and its fitted region (`cspace`),
+//! seed 004's motion synthesis next to forbidden zones (`approach`),
 //! a collision-free, timed joint-space path through a scene (`path`), and seed 000's obstacle
 //! located from ultrasonic range readings (`sense`).
 //!
@@ -7,12 +8,16 @@
 //! docs/scene-format.md); it is parsed here ([`parse_scene`]), so a front end only reads the
 //! file.
 
+pub mod approach;
 pub mod avoid;
 pub mod check;
 pub mod cspace;
 pub mod path;
 pub mod sense;
 
+pub use approach::{
+    ApproachReport, ApproachRequest, FastRegionRequest, HandoverReport, approach, approach_with_cancel,
+};
 pub use avoid::{AvoidChoice, AvoidReport, AvoidRequest, AvoidRun, AvoidSide, avoid, avoid_run};
 pub use check::{CheckReport, CheckRequest, MotionCheckReport, SweptPathReport, SweptReport, check};
 pub use cspace::{
