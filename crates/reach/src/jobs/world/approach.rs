@@ -10,7 +10,7 @@ use super::check::swept_pair_text;
 use super::parse_scene;
 use crate::error::{Error, Result};
 use crate::ik::IkTarget;
-use crate::jobs::input::{Joints, Pose, q_display, require_within_limits, time_budget};
+use crate::jobs::input::{Joints, Pose, positive, q_display, require_within_limits, time_budget};
 use crate::world::approach::{
     ApproachGoal, ApproachOptions, ApproachStats, FastRegion, MAX_SAMPLES, Outcome, approach as synthesise, grown_robot,
 };
@@ -216,19 +216,20 @@ pub fn approach_with_cancel(robot: &Robot, request: &ApproachRequest, cancel: &C
     let start = request.from.si(robot, "from")?;
     require_within_limits(robot, &start, request.from.unit(), "from")?;
     let goal = match (&request.to, &request.to_pose) {
-        (Some(q), None) => ApproachGoal::Joints(q.si(robot, "to")?),
+        (Some(q), None) => {
+            let goal = q.si(robot, "to")?;
+            require_within_limits(robot, &goal, q.unit(), "to")?;
+            ApproachGoal::Joints(goal)
+        }
         (None, Some(p)) => ApproachGoal::Target(p.target("to_pose")?),
         _ => return Err(Error::request("to", "give exactly one of `to` and `to_pose`")),
-    };
-    let positive = |field: &str, v: f64| {
-        if v.is_finite() && v > 0.0 { Ok(()) } else { Err(Error::request(field, format!("must be positive, got {v}"))) }
     };
     let d = request.safe_distance_m;
     if !(d.is_finite() && d >= 0.0) {
         return Err(Error::request("safe_distance_m", format!("must be ≥ 0, got {d}")));
     }
-    positive("max_step_deg", request.max_step_deg)?;
-    positive("tolerance_m", request.tolerance_m)?;
+    positive("max_step_deg", Some(request.max_step_deg))?;
+    positive("tolerance_m", Some(request.tolerance_m))?;
     if !(2..=MAX_SAMPLES).contains(&request.max_samples) {
         return Err(Error::request(
             "max_samples",
