@@ -94,14 +94,10 @@ const NO_MOTION: f64 = 1e-9;
 /// Relative decrease of the task error that counts as progress within the stall window.
 const PROGRESS: f64 = 0.005;
 
-/// What the approach should reach.
-#[derive(Debug, Clone, PartialEq)]
-pub enum ApproachGoal {
-    /// A joint vector (radians / metres).
-    Joints(Vec<f64>),
-    /// A tool pose, or a tool position only (the task of `varan4` and `planar3`).
-    Target(IkTarget),
-}
+/// What the approach should reach: the planner's goal (a joint vector, or a tool pose or a
+/// tool position only, the task of `varan4` and `planar3`), so that a deadlock hands the same
+/// goal over to the planner.
+pub type ApproachGoal = crate::world::planner::Goal;
 
 /// Settings of [`approach`]. `Default` gives the documented defaults.
 #[derive(Debug, Clone, PartialEq)]

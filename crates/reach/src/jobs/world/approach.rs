@@ -10,11 +10,11 @@ use super::check::swept_pair_text;
 use super::parse_scene;
 use crate::error::{Error, Result};
 use crate::ik::IkTarget;
-use crate::jobs::input::{Joints, Pose, positive, q_display, require_within_limits, time_budget};
+use crate::jobs::input::{Joints, Pose, positive, q_display, time_budget};
 use crate::world::approach::{
     ApproachGoal, ApproachOptions, ApproachStats, FastRegion, MAX_SAMPLES, Outcome, approach as synthesise, grown_robot,
 };
-use crate::world::planner::{Goal, PlanOptions, plan};
+use crate::world::planner::{PlanOptions, plan};
 use crate::world::{CollisionChecker, SweptPair};
 use crate::{Cancel, Robot};
 
@@ -213,17 +213,7 @@ pub fn approach(robot: &Robot, request: &ApproachRequest) -> Result<ApproachRepo
 /// `planner_time_budget_s`, `fast_region`).
 pub fn approach_with_cancel(robot: &Robot, request: &ApproachRequest, cancel: &Cancel) -> Result<ApproachReport> {
     let scene = parse_scene(&request.scene)?;
-    let start = request.from.si(robot, "from")?;
-    require_within_limits(robot, &start, request.from.unit(), "from")?;
-    let goal = match (&request.to, &request.to_pose) {
-        (Some(q), None) => {
-            let goal = q.si(robot, "to")?;
-            require_within_limits(robot, &goal, q.unit(), "to")?;
-            ApproachGoal::Joints(goal)
-        }
-        (None, Some(p)) => ApproachGoal::Target(p.target("to_pose")?),
-        _ => return Err(Error::request("to", "give exactly one of `to` and `to_pose`")),
-    };
+    let (start, goal) = super::start_and_goal(robot, &request.from, request.to.as_ref(), request.to_pose.as_ref())?;
     let d = request.safe_distance_m;
     if !(d.is_finite() && d >= 0.0) {
         return Err(Error::request("safe_distance_m", format!("must be ≥ 0, got {d}")));
@@ -262,10 +252,7 @@ pub fn approach_with_cancel(robot: &Robot, request: &ApproachRequest, cancel: &C
     };
     let handover = if a.outcome == Outcome::Deadlock && request.handover {
         let from = a.samples.last().cloned().unwrap_or_else(|| start.clone());
-        let target = match &goal {
-            ApproachGoal::Joints(q) => Goal::Joints(q.clone()),
-            ApproachGoal::Target(t) => Goal::Target(t.clone()),
-        };
+        let target = goal.clone();
         let ik = crate::ik::IkOptions { cancel: cancel.clone(), ..crate::ik::IkOptions::default() };
         let options = PlanOptions { max_time: budget, ik, first_test: fast.clone(), ..PlanOptions::default() };
         Some(match plan(&grown, &scene, &from, &target, &options) {

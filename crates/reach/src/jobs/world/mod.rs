@@ -44,6 +44,34 @@ pub(crate) fn finite(field: &str, values: &[f64]) -> Result<()> {
     }
 }
 
+/// A request's start (`from`) and goal (`to` or `to_pose`, exactly one) in SI, joint vectors
+/// within the limits (the `path` and `approach` workflows).
+///
+/// # Errors
+/// [`Error::Request`] naming `from`, `to` or `to_pose` for bad values, a joint outside its
+/// limits, or both or neither goal.
+fn start_and_goal(
+    robot: &crate::Robot,
+    from: &crate::jobs::input::Joints,
+    to: Option<&crate::jobs::input::Joints>,
+    to_pose: Option<&crate::jobs::input::Pose>,
+) -> Result<(Vec<f64>, crate::world::planner::Goal)> {
+    use crate::jobs::input::require_within_limits;
+    use crate::world::planner::Goal;
+    let start = from.si(robot, "from")?;
+    require_within_limits(robot, &start, from.unit(), "from")?;
+    let goal = match (to, to_pose) {
+        (Some(q), None) => {
+            let goal = q.si(robot, "to")?;
+            require_within_limits(robot, &goal, q.unit(), "to")?;
+            Goal::Joints(goal)
+        }
+        (None, Some(p)) => Goal::Target(p.target("to_pose")?),
+        _ => return Err(Error::request("to", "give exactly one of `to` and `to_pose`")),
+    };
+    Ok((start, goal))
+}
+
 /// Parses a request's scene text.
 ///
 /// # Errors

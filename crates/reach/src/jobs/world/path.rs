@@ -16,7 +16,7 @@ use super::check::SweptPathReport;
 use super::parse_scene;
 use crate::error::{Error, Result};
 use crate::ik::IkOptions;
-use crate::jobs::input::{Joints, MotionSample, Pose, positive, q_display, require_within_limits, time_budget};
+use crate::jobs::input::{Joints, MotionSample, Pose, positive, q_display, time_budget};
 use crate::motion::{JointMotion, JointPath, JointRates, Profile};
 use crate::world::Scene;
 use crate::world::planner::{Goal, PlanError, PlanOptions, PlanStats, path_length, plan};
@@ -166,17 +166,7 @@ pub fn path_run(robot: &Robot, request: &PathRequest) -> Result<PathRun> {
 /// As [`path_run`].
 pub fn path_run_with_cancel(robot: &Robot, request: &PathRequest, cancel: &Cancel) -> Result<PathRun> {
     let scene = parse_scene(&request.scene)?;
-    let start = request.from.si(robot, "from")?;
-    require_within_limits(robot, &start, request.from.unit(), "from")?;
-    let goal = match (&request.to, &request.to_pose) {
-        (Some(q), None) => {
-            let goal = q.si(robot, "to")?;
-            require_within_limits(robot, &goal, q.unit(), "to")?;
-            Goal::Joints(goal)
-        }
-        (None, Some(p)) => Goal::Target(p.target("to_pose")?),
-        _ => return Err(Error::request("to", "give exactly one of `to` and `to_pose`")),
-    };
+    let (start, goal) = super::start_and_goal(robot, &request.from, request.to.as_ref(), request.to_pose.as_ref())?;
     let total = positive("duration_s", request.duration_s)?;
     let budget = time_budget("time_budget_s", Some(request.time_budget_s))?;
     let same = || Error::request("to", "the same configuration as `from`: nothing to plan");
