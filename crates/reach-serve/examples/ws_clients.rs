@@ -1,6 +1,8 @@
 //! Benchmark (not a test): N WebSocket clients watch one long move; each counts the joint
-//! states it receives while the arm moves and the largest gap between two of them. Then J
-//! jobs are queued at once and must run in submission order.
+//! states it receives while the arm moves, the largest gap between two of them as received,
+//! and the largest gap between their send times (`t_ms`, stamped by the service's publisher):
+//! the first includes the clients' own scheduling on the shared cores, the second is the
+//! service's. Then J jobs are queued at once and must run in submission order.
 //!
 //! `cargo run --release -p reach-serve --example ws_clients -- [CLIENTS] [SECONDS] [JOBS]`
 //! (defaults 100, 60, 1000).
@@ -32,6 +34,7 @@ fn main() {
             let (mut ws, _) = tungstenite::connect(format!("ws://{addr}/ws")).expect("connect");
             std::thread::spawn(move || {
                 let (mut count, mut max_gap, mut last, mut moving) = (0usize, Duration::ZERO, None::<Instant>, false);
+                let (mut last_sent, mut max_sent_gap, mut late) = (None::<i64>, 0i64, 0usize);
                 loop {
                     let Ok(message) = ws.read() else { break };
                     let Ok(text) = message.to_text() else { continue };
@@ -47,22 +50,32 @@ fn main() {
                         let now = Instant::now();
                         if let Some(l) = last {
                             max_gap = max_gap.max(now - l);
+                            late += usize::from(now - l > Duration::from_millis(30));
                         }
                         last = Some(now);
+                        let sent = v["t_ms"].as_i64();
+                        if let (Some(a), Some(b)) = (last_sent, sent) {
+                            max_sent_gap = max_sent_gap.max(b - a);
+                        }
+                        last_sent = sent;
                         count += 1;
                     }
                 }
-                (count, max_gap)
+                (count, max_gap, max_sent_gap, late)
             })
         })
         .collect();
     let body = format!(r#"{{"kind": "move", "to_deg": [90, -45, 30, 0, 0, 10], "duration_s": {seconds}}}"#);
     post(addr, &body);
-    let results: Vec<(usize, Duration)> = watchers.into_iter().map(|w| w.join().unwrap()).collect();
+    let results: Vec<(usize, Duration, i64, usize)> = watchers.into_iter().map(|w| w.join().unwrap()).collect();
     let min_count = results.iter().map(|r| r.0).min().unwrap_or(0);
     let worst_gap = results.iter().map(|r| r.1).max().unwrap_or_default();
+    let worst_sent_gap = results.iter().map(|r| r.2).max().unwrap_or_default();
+    let late: usize = results.iter().map(|r| r.3).sum();
+    let total: usize = results.iter().map(|r| r.0).sum();
     println!(
-        "{clients} clients, {seconds} s move: fewest states per client {min_count} ({:.1} Hz), largest gap {:.1} ms",
+        "{clients} clients, {seconds} s move: fewest states per client {min_count} ({:.1} Hz); largest gap as sent \
+         {worst_sent_gap} ms, as received {:.1} ms; {late} of {total} states received over 30 ms after the previous",
         min_count as f64 / seconds,
         worst_gap.as_secs_f64() * 1e3
     );

@@ -156,6 +156,22 @@ fn body_error(rejection: &BytesRejection) -> ApiError {
     }
 }
 
+/// Runs `work` on the blocking pool. The database's lock is shared with the executor, which
+/// holds it through each commit (an fsync); the async workers, which also feed the WebSocket
+/// streams, must never wait for it.
+async fn blocking<T: Send + 'static>(
+    shared: &Arc<Shared>,
+    work: impl FnOnce(&Shared) -> Result<T, ApiError> + Send + 'static,
+) -> Result<T, ApiError> {
+    let shared = shared.clone();
+    tokio::task::spawn_blocking(move || work(&shared)).await.map_err(|e| ApiError::internal(e.to_string()))?
+}
+
+/// The number of queued jobs.
+async fn queued(shared: &Arc<Shared>) -> Result<i64, ApiError> {
+    blocking(shared, |s| Ok(lock(&s.db).queued_count()?)).await
+}
+
 async fn not_found() -> ApiError {
     ApiError::not_found("no such endpoint; see GET /openapi.json")
 }
@@ -178,27 +194,32 @@ async fn schema(Path(name): Path<String>) -> Result<Json<Value>, ApiError> {
 /// following the service live: joint states over the WebSocket, the operator's questions
 /// answered with buttons.
 async fn live_page(State(shared): AppState) -> Result<Response, ApiError> {
-    let q = shared.q_deg(&lock(&shared.live).steps);
-    let scene = lock(&shared.db).scene()?;
-    let request =
-        reach::jobs::ViewRequest { q: Some(reach::jobs::Joints::Deg(q)), scene, ..reach::jobs::ViewRequest::default() };
-    let report = reach::jobs::view::view(&shared.robot, &request).map_err(|e| ApiError {
-        status: StatusCode::INTERNAL_SERVER_ERROR,
-        message: reach::one_line(&e.to_string()),
-    })?;
-    let json = serde_json::to_string(&report).unwrap_or_default();
-    let html = reach::jobs::view::page(&report.robot, &json, true);
+    let html = blocking(&shared, |shared| {
+        let q = shared.q_deg(&lock(&shared.live).steps);
+        let scene = lock(&shared.db).scene()?;
+        let request = reach::jobs::ViewRequest {
+            q: Some(reach::jobs::Joints::Deg(q)),
+            scene,
+            ..reach::jobs::ViewRequest::default()
+        };
+        let report = reach::jobs::view::view(&shared.robot, &request)
+            .map_err(|e| ApiError::internal(reach::one_line(&e.to_string())))?;
+        let json = serde_json::to_string(&report).unwrap_or_default();
+        Ok(reach::jobs::view::page(&report.robot, &json, true))
+    })
+    .await?;
     Ok(([(header::CONTENT_TYPE, "text/html; charset=utf-8")], html).into_response())
 }
 
-async fn state(State(shared): AppState) -> Json<Value> {
+async fn state(State(shared): AppState) -> Result<Json<Value>, ApiError> {
+    let queued = queued(&shared).await?;
     let live = lock(&shared.live);
     let mut state = shared.state(&live);
     drop(live);
     state["drives"] = shared.drives();
     state["speed"] = json!(shared.speed);
-    state["queued"] = json!(lock(&shared.db).queued_count().unwrap_or(0));
-    Json(state)
+    state["queued"] = json!(queued);
+    Ok(Json(state))
 }
 
 /// A job as the API shows it; one waiting for the operator adds its `questions`.
@@ -230,14 +251,14 @@ async fn list_jobs(
     Query(q): Query<std::collections::HashMap<String, String>>,
 ) -> Result<Json<Value>, ApiError> {
     let limit = q.get("limit").and_then(|l| l.parse::<i64>().ok()).unwrap_or(LIST_DEFAULT).clamp(1, LIST_LIMIT);
-    let rows = lock(&shared.db).jobs(limit)?;
+    let rows = blocking(&shared, move |s| Ok(lock(&s.db).jobs(limit)?)).await?;
     Ok(Json(Value::Array(rows.iter().map(job_json).collect())))
 }
 
 async fn job(State(shared): AppState, Path(id): Path<String>) -> Result<Json<Value>, ApiError> {
     let missing = || ApiError::not_found(format!("no job `{id}`"));
     let n: i64 = id.parse().map_err(|_| missing())?;
-    let row = lock(&shared.db).job(n)?.ok_or_else(missing)?;
+    let row = blocking(&shared, move |s| Ok(lock(&s.db).job(n)?)).await?.ok_or_else(missing)?;
     Ok(Json(job_json(&row)))
 }
 
@@ -253,7 +274,7 @@ async fn submit(State(shared): AppState, body: Result<Bytes, BytesRejection>) ->
     } else {
         submission.request
     };
-    if lock(&shared.db).queued_count()? >= MAX_QUEUED_JOBS {
+    if queued(&shared).await? >= MAX_QUEUED_JOBS {
         return Err(ApiError::conflict(format!("the queue is full ({MAX_QUEUED_JOBS} jobs); wait for it to drain")));
     }
     let (request, report) = plan(&shared, request).await?;
@@ -270,16 +291,14 @@ async fn submit(State(shared): AppState, body: Result<Bytes, BytesRejection>) ->
     let kind = intake::kind_of(&request);
     let request = serde_json::to_value(&request).unwrap_or_default();
     let report = serde_json::to_value(&report).unwrap_or_default();
-    let id = lock(&shared.db).insert_job(
-        &kind,
-        &request,
-        submission.from_current,
-        status,
-        Some(&report),
-        message.as_deref(),
-    )?;
-    shared.job_event(id, status, message.as_deref());
-    shared.wake.notify_all();
+    let (from_current, note) = (submission.from_current, message.clone());
+    let id = blocking(&shared, move |s| {
+        let id = lock(&s.db).insert_job(&kind, &request, from_current, status, Some(&report), note.as_deref())?;
+        s.job_event(id, status, note.as_deref());
+        s.wake.notify_all();
+        Ok(id)
+    })
+    .await?;
     let body = json!({"id": id, "status": status, "message": message});
     Ok((StatusCode::CREATED, Json(body)).into_response())
 }
@@ -290,15 +309,17 @@ async fn plan(
     shared: &Arc<Shared>,
     request: reach::jobs::Request,
 ) -> Result<(reach::jobs::Request, reach::jobs::Report), ApiError> {
-    let internal = |e: String| ApiError { status: StatusCode::INTERNAL_SERVER_ERROR, message: e };
-    let _permit = shared.planning.acquire().await.map_err(|e| internal(e.to_string()))?;
-    let planner = shared.clone();
-    tokio::task::spawn_blocking(move || {
-        let report = intake::plan(&planner.robot, &request)?;
-        Ok::<_, ApiError>((request, report))
+    let _permit = shared.planning.acquire().await.map_err(|e| ApiError::internal(e.to_string()))?;
+    blocking(shared, move |s| {
+        let report = intake::plan(&s.robot, &request)?;
+        Ok((request, report))
     })
     .await
-    .map_err(|e| internal(e.to_string()))?
+}
+
+/// 409: job `n` is `status`, no longer waiting for the operator.
+fn not_waiting(n: i64, status: JobStatus) -> ApiError {
+    ApiError::conflict(format!("job {n} is {}, not waiting for the operator", status.as_str()))
 }
 
 /// The body of `POST /jobs/{id}/choose`: the library's per-interval choices.
@@ -323,14 +344,12 @@ async fn choose(
     let n: i64 = id.parse().map_err(|_| missing())?;
     let answer: Answer =
         serde_json::from_slice(&body).map_err(|e| ApiError::bad_request(format!("the answer: {e}")))?;
-    let row = lock(&shared.db).job(n)?.ok_or_else(missing)?;
-    let not_waiting =
-        |status: JobStatus| ApiError::conflict(format!("job {n} is {}, not waiting for the operator", status.as_str()));
+    let row = blocking(&shared, move |s| Ok(lock(&s.db).job(n)?)).await?.ok_or_else(missing)?;
     if row.status != JobStatus::WaitingOperator {
-        return Err(not_waiting(row.status));
+        return Err(not_waiting(n, row.status));
     }
-    let request: reach::jobs::Request = serde_json::from_value(row.request.clone())
-        .map_err(|e| ApiError { status: StatusCode::INTERNAL_SERVER_ERROR, message: format!("stored request: {e}") })?;
+    let request: reach::jobs::Request =
+        serde_json::from_value(row.request.clone()).map_err(|e| ApiError::internal(format!("stored request: {e}")))?;
     let (request, report) = plan(&shared, intake::with_choices(&request, &answer.choices)).await?;
     if let Some(why) = intake::refusal(&report) {
         return Err(ApiError::bad_request(format!("with these choices the motion is infeasible: {why}")));
@@ -340,13 +359,17 @@ async fn choose(
     let message = format!("the operator chose {}", chosen.join(", "));
     let (rq, rp) =
         (serde_json::to_value(&request).unwrap_or_default(), serde_json::to_value(&report).unwrap_or_default());
-    if !lock(&shared.db).answer(n, &rq, &rp, &message)? {
-        let status = lock(&shared.db).job(n)?.map_or(JobStatus::Queued, |r| r.status);
-        return Err(not_waiting(status));
-    }
-    shared.job_event(n, JobStatus::Queued, Some(&message));
-    shared.wake.notify_all();
-    Ok(Json(json!({"id": n, "status": JobStatus::Queued, "message": message, "report": rp})))
+    blocking(&shared, move |s| {
+        let db = lock(&s.db);
+        if !db.answer(n, &rq, &rp, &message)? {
+            return Err(not_waiting(n, db.job(n)?.map_or(JobStatus::Queued, |r| r.status)));
+        }
+        drop(db);
+        s.job_event(n, JobStatus::Queued, Some(&message));
+        s.wake.notify_all();
+        Ok(Json(json!({"id": n, "status": JobStatus::Queued, "message": message, "report": rp})))
+    })
+    .await
 }
 
 /// Pauses the queue and asks the running job (if any) to stop.
@@ -369,18 +392,18 @@ fn halt(shared: &Shared, control: Control) -> Result<Json<Value>, ApiError> {
 }
 
 async fn stop(State(shared): AppState) -> Result<Json<Value>, ApiError> {
-    halt(&shared, Control::Stop)
+    blocking(&shared, |s| halt(s, Control::Stop)).await
 }
 
 async fn estop(State(shared): AppState) -> Result<Json<Value>, ApiError> {
-    halt(&shared, Control::Estop)
+    blocking(&shared, |s| halt(s, Control::Estop)).await
 }
 
 /// `POST /scene/obstacles`: one obstacle in the scene file's format as JSON (`{"name",
 /// "shape", ...}`, in the stored scene's units; metres for a service started without a
 /// scene), appended to the scene and checked by the library's scene parser (400 with its
-/// message). Jobs that start afterwards must be proven clear of it; the one executing is not
-/// re-checked.
+/// message). Jobs that start afterwards must be proven clear of it; the one executing
+/// re-checks the rest of its motion (and detours or stops).
 async fn add_obstacle(State(shared): AppState, body: Result<Bytes, BytesRejection>) -> Result<Response, ApiError> {
     let body = body.map_err(|e| body_error(&e))?;
     let value: Value =
@@ -390,7 +413,7 @@ async fn add_obstacle(State(shared): AppState, body: Result<Bytes, BytesRejectio
             "an obstacle is a JSON object: {\"name\", \"shape\", ...} (docs/scene-format.md)",
         ));
     }
-    let obstacles = append_obstacle(&shared, &value, None)?;
+    let obstacles = blocking(&shared, move |s| append_obstacle(s, &value, None)).await?;
     Ok((StatusCode::CREATED, Json(json!({"obstacles": obstacles}))).into_response())
 }
 
@@ -453,34 +476,40 @@ async fn sense(State(shared): AppState, body: Result<Bytes, BytesRejection>) -> 
     let body = body.map_err(|e| body_error(&e))?;
     let request: reach::jobs::world::sense::SenseRequest =
         serde_json::from_slice(&body).map_err(|e| ApiError::bad_request(format!("readings: {e}")))?;
-    let report =
-        reach::jobs::world::sense::sense(&shared.robot, &request).map_err(|e| ApiError::bad_request(e.to_string()))?;
-    let added = match (report.ambiguous, report.uncertainty_m) {
-        (false, Some(radius)) => {
-            let [x, y] = report.obstacle_m;
-            let name = format!("sensed {}", crate::db::now_ms());
-            let obstacle = json!({"name": name, "shape": "sphere", "center": [x, y, 0.0], "radius": radius});
-            Some(append_obstacle(&shared, &obstacle, Some(&["center", "radius"]))?)
-        }
-        _ => None,
-    };
-    Ok(Json(json!({"report": report, "added": added.is_some(), "obstacles": added})))
+    blocking(&shared, move |s| {
+        let report =
+            reach::jobs::world::sense::sense(&s.robot, &request).map_err(|e| ApiError::bad_request(e.to_string()))?;
+        let added = match (report.ambiguous, report.uncertainty_m) {
+            (false, Some(radius)) => {
+                let [x, y] = report.obstacle_m;
+                let name = format!("sensed {}", crate::db::now_ms());
+                let obstacle = json!({"name": name, "shape": "sphere", "center": [x, y, 0.0], "radius": radius});
+                Some(append_obstacle(s, &obstacle, Some(&["center", "radius"]))?)
+            }
+            _ => None,
+        };
+        Ok(Json(json!({"report": report, "added": added.is_some(), "obstacles": added})))
+    })
+    .await
 }
 
 /// Lets queued jobs run again; 409 while a job is still stopping.
 async fn resume(State(shared): AppState) -> Result<Json<Value>, ApiError> {
-    let mut live = lock(&shared.live);
-    if let Some(job) = live.job {
-        return Err(ApiError::conflict(format!("job {job} is still running; resume once it has stopped")));
-    }
-    live.paused = false;
-    lock(&shared.db).set_paused(false)?;
-    shared.wake.notify_all();
-    let state = shared.state(&live);
-    drop(live);
-    let _ = lock(&shared.db).add_event(None, "resume", "");
-    shared.publish(&json!({"type": "resume"}));
-    Ok(Json(state))
+    blocking(&shared, |shared| {
+        let mut live = lock(&shared.live);
+        if let Some(job) = live.job {
+            return Err(ApiError::conflict(format!("job {job} is still running; resume once it has stopped")));
+        }
+        live.paused = false;
+        lock(&shared.db).set_paused(false)?;
+        shared.wake.notify_all();
+        let state = shared.state(&live);
+        drop(live);
+        let _ = lock(&shared.db).add_event(None, "resume", "");
+        shared.publish(&json!({"type": "resume"}));
+        Ok(Json(state))
+    })
+    .await
 }
 
 async fn ws(State(shared): AppState, upgrade: WebSocketUpgrade) -> Response {

@@ -82,7 +82,13 @@ impl ApiError {
         ApiError { status: StatusCode::CONFLICT, message: message.into() }
     }
 
-    /// 401.
+    /// 500 with `message` (the service's own failure, not the request's).
+    #[must_use]
+    pub fn internal(message: impl Into<String>) -> Self {
+        ApiError { status: StatusCode::INTERNAL_SERVER_ERROR, message: message.into() }
+    }
+
+    /// 401: the token is missing or wrong.
     #[must_use]
     pub fn unauthorized() -> Self {
         ApiError {
