@@ -101,14 +101,14 @@ test('the live page follows a running job: joint states within 100 ms, the arm w
   // 2 s of motion at 50 Hz: about 100 joint states while moving.
   assert.ok(seen.received - before >= 80, `${seen.received - before} states during the job`);
   // The states sent while the job ran (the page's start-up before is not the job's).
-  // Latency from the service's send to the page's receipt. The issue asks for 100 ms; the
-  // median is asserted, the tail is reported: single stalls of 100–300 ms still occur (see
-  // docs/viewer.md), so "every state within 100 ms" is not claimed.
+  // Latency from the service's send to the page's receipt. The issue asks for 100 ms: 95 % of
+  // the states must arrive within it; the largest is reported (a 2-core machine shared with
+  // the service and the browser's GPU process still has single stalls; see docs/viewer.md).
   const sorted = seen.latencies.slice(before).sort((a, b) => a - b);
   const median = sorted[Math.floor(0.5 * (sorted.length - 1))];
   const p95 = sorted[Math.floor(0.95 * (sorted.length - 1))];
   console.log(`live page latency: median ${median} ms, p95 ${p95} ms, max ${sorted[sorted.length - 1]} ms`);
-  assert.ok(median <= 100, `median latency ${median} ms (slowest ${sorted.slice(-10)})`);
+  assert.ok(p95 <= 100, `95th percentile latency ${p95} ms (median ${median} ms, slowest ${sorted.slice(-10)})`);
   const fk = JSON.parse(execFileSync(REACH, ['fk', 'ur5', ...state.q_deg.map(String), '--json'], { encoding: 'utf8' }));
   for (let i = 0; i < 3; i++) {
     assert.ok(Math.abs(seen.tool[i] - fk.pose.xyz_m[i]) < 1e-6, `tool ${seen.tool} vs fk ${fk.pose.xyz_m}`);
