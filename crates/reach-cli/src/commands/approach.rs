@@ -7,40 +7,18 @@ use std::io::Write;
 use clap::Args;
 use reach::jobs::world::{ApproachReport, ApproachRequest, FastRegionRequest, approach_with_cancel};
 
-use crate::commands::check::{read_scene, scene_error};
+use crate::commands::path::{Ends, SceneMotionArgs};
 use crate::error::CliError;
 use crate::numbers::parse_finite;
 use crate::output::{Table, fixed, fixeds, write_json};
-use crate::pose_arg::{ToPoseArgs, flag_table, joints_arg};
-use crate::robot_arg::RobotArgs;
 
 /// Arguments of `reach approach`.
 #[derive(Debug, Clone, Args)]
 pub struct ApproachArgs {
-    /// The robot.
+    /// The robot, the scene, --from, and --to or a goal tool pose (--to-xyz alone is a
+    /// position goal: redundant arms, varan4, planar3).
     #[command(flatten)]
-    pub robot: RobotArgs,
-
-    /// Scene file (TOML: obstacles, tool zone, touching policy).
-    #[arg(value_name = "SCENE")]
-    pub scene: String,
-
-    /// Start joint values q1,..,qn (degrees, radians with --rad; prismatic in metres).
-    #[arg(long, value_name = "Q1,..,QN", allow_hyphen_values = true)]
-    pub from: String,
-
-    /// Goal joint values q1,..,qn.
-    #[arg(long, value_name = "Q1,..,QN", allow_hyphen_values = true)]
-    pub to: Option<String>,
-
-    /// Goal tool pose (instead of --to); --to-xyz alone is a position goal (redundant arms:
-    /// varan4, planar3).
-    #[command(flatten)]
-    pub to_pose: ToPoseArgs,
-
-    /// Joint values and roll, pitch, yaw are in radians instead of degrees.
-    #[arg(long)]
-    pub rad: bool,
+    pub motion: SceneMotionArgs,
 
     /// Safe distance from every obstacle, metres.
     #[arg(long, default_value = "0.05", value_name = "M", allow_hyphen_values = true)]
@@ -71,14 +49,11 @@ impl ApproachArgs {
     /// [`CliError::BadInput`] for an unreadable scene, malformed numbers, both or neither of
     /// `--to` and `--to-pose`.
     pub fn request(&self) -> Result<ApproachRequest, CliError> {
-        let pose = self.to_pose.flags();
-        if self.to.is_some() == pose.given() {
-            return Err(CliError::bad_input("give exactly one of --to and --to-xyz/--to-matrix"));
-        }
-        let defaults = ApproachRequest::new(read_scene(&self.scene)?, joints_arg("--from", &self.from, self.rad)?);
+        let Ends { scene, from, to, to_pose } = self.motion.ends()?;
+        let defaults = ApproachRequest::new(scene, from);
         Ok(ApproachRequest {
-            to: self.to.as_deref().map(|t| joints_arg("--to", t, self.rad)).transpose()?,
-            to_pose: if pose.given() { Some(pose.pose(self.rad)?) } else { None },
+            to,
+            to_pose,
             safe_distance_m: parse_finite("--safe-distance", &self.safe_distance)?,
             max_step_deg: match &self.max_step {
                 Some(s) => parse_finite("--max-step", s)?,
@@ -98,26 +73,17 @@ impl ApproachArgs {
 /// distance; [`CliError::NoSolution`] (after the report) when the goal is not reached
 /// (deadlock or unreachable).
 pub fn run(args: &ApproachArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let robot = args.robot.load()?.robot;
+    let robot = args.motion.robot.load()?.robot;
     let request = args.request()?;
-    let report = approach_with_cancel(&robot, &request, crate::interrupt::cancel()).map_err(|e| match e {
-        reach::Error::Request { .. } => {
-            let fixed = [
-                ("from", "--from"),
-                ("to", "--to"),
-                ("to_pose", "--to-xyz"),
-                ("safe_distance_m", "--safe-distance"),
-                ("max_step_deg", "--max-step"),
-                ("fast_region", "--fast-region"),
-            ];
-            crate::error::flagged(e, &flag_table(&fixed, &[(args.to_pose.flags(), "to_pose")]))
-        }
-        e => scene_error(&args.scene, e),
+    let report = approach_with_cancel(&robot, &request, crate::interrupt::cancel()).map_err(|e| {
+        let fixed =
+            [("safe_distance_m", "--safe-distance"), ("max_step_deg", "--max-step"), ("fast_region", "--fast-region")];
+        args.motion.error(e, &fixed)
     })?;
     if args.json {
         write_json(out, &report)?;
     } else {
-        write_report(out, &args.scene, &report)?;
+        write_report(out, &args.motion.scene, &report)?;
     }
     if report.failed() {
         out.flush()?;

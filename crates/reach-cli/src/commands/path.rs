@@ -7,6 +7,7 @@ use std::io::Write;
 use clap::Args;
 use reach::Robot;
 use reach::jobs::world::{PathReport, PathRequest, PathRun, TimedPath, path_run_with_cancel};
+use reach::jobs::{Joints, Pose};
 
 use crate::commands::check::{read_scene, scene_error};
 use crate::error::CliError;
@@ -15,9 +16,10 @@ use crate::output::{Table, fixed, fixeds, write_json};
 use crate::pose_arg::{ToPoseArgs, flag_table, joints_arg};
 use crate::robot_arg::RobotArgs;
 
-/// Arguments of `reach path`.
+/// The robot, the scene and the two ends of a motion through it: what `reach path` and
+/// `reach approach` both read.
 #[derive(Debug, Clone, Args)]
-pub struct PathArgs {
+pub struct SceneMotionArgs {
     /// The robot (its links need radii for meaningful clearances: `[[links]] radius`).
     #[command(flatten)]
     pub robot: RobotArgs,
@@ -34,14 +36,68 @@ pub struct PathArgs {
     #[arg(long, value_name = "Q1,..,QN", allow_hyphen_values = true)]
     pub to: Option<String>,
 
-    /// Goal tool pose (instead of --to): every feasible, collision-free IK solution is a goal;
-    /// the nearest reachable one wins.
+    /// Goal tool pose (instead of --to).
     #[command(flatten)]
     pub to_pose: ToPoseArgs,
 
     /// Joint values and roll, pitch, yaw are in radians instead of degrees.
     #[arg(long)]
     pub rad: bool,
+}
+
+/// The ends of a motion as the library's requests take them.
+pub struct Ends {
+    /// The scene file's text.
+    pub scene: String,
+    /// The start.
+    pub from: Joints,
+    /// The goal in joint values, or
+    pub to: Option<Joints>,
+    /// the goal as a tool pose.
+    pub to_pose: Option<Pose>,
+}
+
+impl SceneMotionArgs {
+    /// The scene read and the ends parsed.
+    ///
+    /// # Errors
+    /// [`CliError::BadInput`] for an unreadable scene, malformed numbers, both or neither of
+    /// `--to` and `--to-pose`.
+    pub fn ends(&self) -> Result<Ends, CliError> {
+        let pose = self.to_pose.flags();
+        if self.to.is_some() == pose.given() {
+            return Err(CliError::bad_input("give exactly one of --to and --to-xyz/--to-matrix"));
+        }
+        Ok(Ends {
+            scene: read_scene(&self.scene)?,
+            from: joints_arg("--from", &self.from, self.rad)?,
+            to: self.to.as_deref().map(|t| joints_arg("--to", t, self.rad)).transpose()?,
+            to_pose: if pose.given() { Some(pose.pose(self.rad)?) } else { None },
+        })
+    }
+
+    /// A library error of the request's fields named by the flags typed; others named with
+    /// the scene file.
+    #[must_use]
+    pub fn error(&self, e: reach::Error, fixed: &[(&str, &str)]) -> CliError {
+        match e {
+            reach::Error::Request { .. } => {
+                let mut table = vec![("from", "--from"), ("to", "--to"), ("to_pose", "--to-xyz")];
+                table.extend_from_slice(fixed);
+                crate::error::flagged(e, &flag_table(&table, &[(self.to_pose.flags(), "to_pose")]))
+            }
+            e => scene_error(&self.scene, e),
+        }
+    }
+}
+
+/// Arguments of `reach path`.
+#[derive(Debug, Clone, Args)]
+pub struct PathArgs {
+    /// The robot, the scene, --from, and --to or a goal tool pose: with a pose, every
+    /// feasible, collision-free IK solution is a goal; the nearest reachable one wins.
+    #[command(flatten)]
+    pub motion: SceneMotionArgs,
 
     /// Seed of the planner's random generator.
     #[arg(long, default_value = "1", value_name = "N")]
@@ -75,15 +131,12 @@ impl PathArgs {
     /// [`CliError::BadInput`] for an unreadable scene, malformed numbers, both or neither of
     /// `--to` and `--to-pose`.
     pub fn request(&self) -> Result<PathRequest, CliError> {
-        let pose = self.to_pose.flags();
-        if self.to.is_some() == pose.given() {
-            return Err(CliError::bad_input("give exactly one of --to and --to-xyz/--to-matrix"));
-        }
+        let Ends { scene, from, to, to_pose } = self.motion.ends()?;
         Ok(PathRequest {
-            scene: read_scene(&self.scene)?,
-            from: joints_arg("--from", &self.from, self.rad)?,
-            to: self.to.as_deref().map(|t| joints_arg("--to", t, self.rad)).transpose()?,
-            to_pose: if pose.given() { Some(pose.pose(self.rad)?) } else { None },
+            scene,
+            from,
+            to,
+            to_pose,
             seed: self.seed,
             time_budget_s: parse_finite("--time-budget", &self.time_budget)?,
             duration_s: self.duration.as_deref().map(|d| parse_finite("--duration", d)).transpose()?,
@@ -98,22 +151,11 @@ impl PathArgs {
 /// the report) when no path was found: budget exhausted, start or goal in collision, no IK
 /// solution for the goal pose.
 pub fn run(args: &PathArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let robot = args.robot.load()?.robot;
+    let robot = args.motion.robot.load()?.robot;
     let request = args.request()?;
     args.draw.check_files()?;
-    let run = path_run_with_cancel(&robot, &request, crate::interrupt::cancel()).map_err(|e| match e {
-        reach::Error::Request { .. } => {
-            let fixed = [
-                ("from", "--from"),
-                ("to", "--to"),
-                ("to_pose", "--to-xyz"),
-                ("duration_s", "--duration"),
-                ("time_budget_s", "--time-budget"),
-            ];
-            crate::error::flagged(e, &flag_table(&fixed, &[(args.to_pose.flags(), "to_pose")]))
-        }
-        e => scene_error(&args.scene, e),
-    })?;
+    let run = path_run_with_cancel(&robot, &request, crate::interrupt::cancel())
+        .map_err(|e| args.motion.error(e, &[("duration_s", "--duration"), ("time_budget_s", "--time-budget")]))?;
     if let (true, Some(timed)) = (args.draw.any(), &run.timed) {
         args.draw.write(&drawing(&robot, &run, timed))?;
     }
@@ -121,7 +163,7 @@ pub fn run(args: &PathArgs, out: &mut dyn Write) -> Result<(), CliError> {
     if args.json {
         write_json(out, report)?;
     } else {
-        write_report(out, &args.scene, report)?;
+        write_report(out, &args.motion.scene, report)?;
     }
     match (&report.reason, report.collision_free) {
         (Some(r), _) => {
