@@ -156,9 +156,9 @@ fn body_error(rejection: &BytesRejection) -> ApiError {
     }
 }
 
-/// Runs `work` on the blocking pool. The database's lock is shared with the executor, which
-/// holds it through each commit (an fsync); the async workers, which also feed the WebSocket
-/// streams, must never wait for it.
+/// Runs `work` on the blocking pool. The database's lock and the live state's are shared with
+/// the executor, which holds them through a commit (an fsync); the async workers, which also
+/// feed the WebSocket streams, must never wait for them.
 async fn blocking<T: Send + 'static>(
     shared: &Arc<Shared>,
     work: impl FnOnce(&Shared) -> Result<T, ApiError> + Send + 'static,
@@ -213,9 +213,7 @@ async fn live_page(State(shared): AppState) -> Result<Response, ApiError> {
 
 async fn state(State(shared): AppState) -> Result<Json<Value>, ApiError> {
     let queued = queued(&shared).await?;
-    let live = lock(&shared.live);
-    let mut state = shared.state(&live);
-    drop(live);
+    let mut state = blocking(&shared, |s| Ok(s.state(&lock(&s.live)))).await?;
     state["drives"] = shared.drives();
     state["speed"] = json!(shared.speed);
     state["queued"] = json!(queued);
@@ -269,7 +267,7 @@ async fn submit(State(shared): AppState, body: Result<Bytes, BytesRejection>) ->
     let body = body.map_err(|e| body_error(&e))?;
     let submission = intake::parse_request(&body)?;
     let request = if submission.from_current {
-        let q = shared.q_deg(&lock(&shared.live).steps);
+        let q = blocking(&shared, |s| Ok(s.q_deg(&lock(&s.live).steps))).await?;
         intake::start_here(&submission.request, &q)
     } else {
         submission.request
@@ -519,7 +517,7 @@ async fn ws(State(shared): AppState, upgrade: WebSocketUpgrade) -> Response {
 /// Sends the joint state now, then every state and job message as it is published.
 async fn stream(shared: Arc<Shared>, mut socket: WebSocket) {
     let mut rx = shared.events.subscribe();
-    let first = shared.state_message(&lock(&shared.live)).to_string();
+    let Ok(first) = blocking(&shared, |s| Ok(s.state_message(&lock(&s.live)).to_string())).await else { return };
     if socket.send(Message::text(first)).await.is_err() {
         return;
     }
