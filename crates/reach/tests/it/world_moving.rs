@@ -92,7 +92,7 @@ fn a_ball_approaching_the_resting_arm_is_met_at_distance_over_speed() {
     let (long, pair) = checker.swept_timed(&q, &q, [0.0, 2.5], &options).unwrap();
     assert!(!long.clear, "{long:?}");
     let t = 2.5 * long.at;
-    assert!(t <= 2.0 + 1e-12 && t >= 2.0 - SWEEP_FLOOR / 0.2, "contact at t = {t} s, expected 2 s");
+    assert!((2.0 - SWEEP_FLOOR / 0.2..=2.0 + 1e-12).contains(&t), "contact at t = {t} s, expected 2 s");
     assert_eq!(pair, SweptPair::Obstacle { link: 3, obstacle: 0 });
     assert_eq!(checker.check_at(&q, 2.0).unwrap(), Verdict::Obstacle { link: 3, obstacle: 0 });
     assert_eq!(checker.check_at(&q, 1.99).unwrap(), Verdict::Free);
@@ -139,7 +139,7 @@ fn an_arm_and_a_ball_crossing_meet_at_the_computed_instant() {
     let (swept, pair) = checker.swept_timed(&a, &b, [0.0, duration], &SweepOptions::default()).unwrap();
     assert!(!swept.clear, "{swept:?}");
     let t = duration * swept.at;
-    assert!(t <= t_star + 1e-9 && t >= t_star - 1e-5, "stopped at {t} s, contact at {t_star} s");
+    assert!((t_star - 1e-5..=t_star + 1e-9).contains(&t), "stopped at {t} s, contact at {t_star} s");
     assert_eq!(pair, SweptPair::Obstacle { link, obstacle: 0 });
     assert!(clearance(t).0 <= SWEEP_FLOOR + 1e-9, "the reference clearance there: {}", clearance(t).0);
 
@@ -179,7 +179,7 @@ fn a_ball_crossing_ahead_of_the_arm_is_proven_clear_and_a_slower_one_is_hit() {
         } else {
             let t_star = first_root(clearance, 0.0, duration).unwrap();
             let t = duration * swept.at;
-            assert!(t <= t_star + 1e-9 && t >= t_star - 1e-5, "stopped at {t} s, contact at {t_star} s");
+            assert!((t_star - 1e-5..=t_star + 1e-9).contains(&t), "stopped at {t} s, contact at {t_star} s");
         }
     }
 }
@@ -247,7 +247,7 @@ fn a_timed_path_is_checked_segment_by_segment_at_each_instant() {
         ball_clearance(&arm, &[FRAC_PI_2 * s, 0.0, 0.0], [1.5, 1.2 - 0.5 * t], 0.1).0
     };
     let t_star = first_root(reference, 0.0, 2.0).unwrap();
-    assert!(t > 1.0 && t <= t_star + 1e-9 && t >= t_star - 1e-5, "stopped at {t} s, contact at {t_star} s");
+    assert!(t > 1.0 && (t_star - 1e-5..=t_star + 1e-9).contains(&t), "stopped at {t} s, contact at {t_star} s");
     // Bad times are refused.
     let mut checker = CollisionChecker::new(&robot, &scene);
     for bad in [[0.0, 2.0, 1.0], [0.0, f64::NAN, 1.0]] {

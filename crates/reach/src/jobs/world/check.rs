@@ -242,7 +242,7 @@ pub fn check(robot: &Robot, request: &CheckRequest) -> Result<CheckReport> {
                     return Err(Error::request(
                         "duration_s",
                         format!(
-                            "obstacle `{}` moves: the motion to `to` is checked in time and needs its duration",
+                            "obstacle `{}` moves: the motion is checked against it in time, which needs the motion's duration",
                             o.name
                         ),
                     ));
