@@ -10,6 +10,7 @@ use reach::jobs::drive::{DriveMotion, DriveReport, DriveRequest};
 use reach::jobs::input::MotionSample;
 use reach::jobs::input::{AngleUnit, from_si, number_text, samples_si, unit_name};
 use reach::jobs::world::SweptPathReport;
+use reach::jobs::world::motion_times;
 use reach::jobs::{Report, Request};
 use reach::world::Scene;
 
@@ -187,9 +188,12 @@ pub fn require_clear(robot: &Robot, scene: &Scene, motion: &DriveMotion) -> Resu
     let DriveMotion::Samples(samples) = motion else {
         return Err("a plan job cannot be proven clear of the service's scene; submit its motions as move jobs".into());
     };
-    let q: Vec<Vec<f64>> =
-        samples_si(robot, samples, "motion").map_err(|e| e.to_string())?.into_iter().map(|s| s.q).collect();
-    match SweptPathReport::check(robot, scene, &q).map_err(|e| e.to_string())? {
+    let si = samples_si(robot, samples, "motion").map_err(|e| e.to_string())?;
+    // In time: moving obstacles of the scene are where they are when the motion (from its
+    // first sample) reaches each instant.
+    let times = motion_times(&si, "motion").map_err(|e| e.to_string())?;
+    let q: Vec<Vec<f64>> = si.into_iter().map(|s| s.q).collect();
+    match SweptPathReport::check(robot, scene, &q, Some(&times)).map_err(|e| e.to_string())? {
         Some(p) if !p.swept.clear => {
             // Segment k (1-based) runs from sample k to sample k + 1.
             let (a, b) = (&samples[p.segment - 1], &samples[p.segment]);

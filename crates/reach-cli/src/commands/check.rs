@@ -36,6 +36,12 @@ pub struct CheckArgs {
     #[arg(long, value_name = "Q1,..,QN", allow_hyphen_values = true)]
     pub to: Option<String>,
 
+    /// With --to: the motion's duration in seconds (the joints move linearly in time). Needed
+    /// when the scene has a moving obstacle (`velocity`): the motion is then checked in time,
+    /// the obstacle where it is at each instant.
+    #[arg(long, value_name = "S", requires = "to")]
+    pub duration: Option<f64>,
+
     /// Instead of --to: check a sampled motion continuously, the piecewise-linear joint path
     /// from the joint values through its samples (the path `reach drive` steps along). FILE is
     /// `reach move --json`'s output or any JSON {"samples": [{"t_s", "q_deg"}, ...]}.
@@ -91,12 +97,14 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<(), CliError> {
         scene: read_scene(&args.scene)?,
         q: args.joints.joints()?,
         to: args.to.as_deref().map(|t| joints_arg("--to", t, args.joints.rad)).transpose()?,
+        duration_s: args.duration,
         samples: args.motion.as_deref().map(read_motion_file).transpose()?,
     };
     let report = reach::jobs::world::check(robot, &request).map_err(|e| match e {
-        reach::Error::Request { .. } => {
-            crate::error::flagged(e, &[("q", "joint values"), ("to", "--to"), ("samples", "--motion")])
-        }
+        reach::Error::Request { .. } => crate::error::flagged(
+            e,
+            &[("q", "joint values"), ("to", "--to"), ("duration_s", "--duration"), ("samples", "--motion")],
+        ),
         e => scene_error(&args.scene, e),
     })?;
     if args.json {
@@ -112,6 +120,10 @@ pub fn swept_text(w: &SweptReport, segment: Option<usize>) -> String {
     let at = match segment {
         Some(k) => format!("{} % of segment {k}", fixed(100.0 * w.at, 1)),
         None => format!("{} % of the motion", fixed(100.0 * w.at, 1)),
+    };
+    let at = match w.t_s {
+        Some(t) => format!("{at}, t = {} s", fixed(t, 4)),
+        None => at,
     };
     match (w.clear, &w.pair_text, w.lower_bound_m, w.min_clearance_m) {
         (true, None, ..) => "proven clear (nothing to collide with)".to_string(),

@@ -164,6 +164,7 @@ fn check_avoid_and_cspace_json_are_the_library_reports_and_match_their_schemas()
             scene: repo_text("examples/seed004_two_planes.toml"),
             q: Joints::Deg(vec![0.0, 60.0, -30.0, -30.0]),
             to: None,
+            duration_s: None,
             samples: None,
         }),
     };
@@ -267,6 +268,7 @@ fn check_to_sweeps_the_joint_motion() {
             scene: repo_text(scene),
             q: Joints::Deg(vec![60.0, -40.0, -30.0]),
             to: Some(Joints::Deg(vec![99.381, -51.972, -38.454])),
+            duration_s: None,
             samples: None,
         }),
     };
@@ -342,4 +344,47 @@ fn moves_and_sampled_motions_are_checked_against_a_scene() {
     assert_eq!(v["motions"][0]["swept"]["clear"], false);
     let broken = common::temp_file("broken_post.toml", "[[obstacles]]\nshape = 1\n");
     fails(&[&through[..], &["--scene", broken.to_str().unwrap()]].concat(), 2, &["broken_post.toml"]);
+}
+
+/// A scene with a moving obstacle (a ball closing on `planar3`'s tool at 0.2 m/s, contact at
+/// 0.4 m / 0.2 m/s = 2 s): `check --to --duration` checks the motion in time (clear for 1.9 s,
+/// stopped at t = 2 s for 3 s, the report valid against its schema); without `--duration`,
+/// and in `path`, `cspace` and `approach` (untimed), the obstacle is refused by name.
+#[test]
+fn moving_obstacles_are_checked_in_time_or_refused() {
+    let scene = common::temp_file(
+        "moving_ball.toml",
+        "length_unit = \"mm\"\nangle_unit = \"deg\"\n\n[[obstacles]]\nname = \"ball\"\nshape = \"sphere\"\n\
+         center = [3500, 0, 0]\nradius = 100\nvelocity = [-200, 0, 0]\n",
+    );
+    let path = scene.to_str().unwrap();
+    let check = |duration: &str| {
+        let v = json(&["check", "planar3", path, "0", "0", "0", "--to", "0,0,0", "--duration", duration, "--json"]);
+        common::assert_valid("check.report", &v);
+        v["motion"].clone()
+    };
+    let clear = check("1.9");
+    assert_eq!(clear["clear"], true, "{clear}");
+    assert!((clear["min_clearance_m"].as_f64().unwrap() - 0.02).abs() < 1e-9, "{clear}");
+    let hit = check("3");
+    assert_eq!(hit["clear"], false, "{hit}");
+    assert!((hit["t_s"].as_f64().unwrap() - 2.0).abs() < 1e-5, "{hit}");
+    assert_eq!(hit["pair_text"], "link 3 and `ball`");
+    let text = ok(&["check", "planar3", path, "0", "0", "0", "--to", "0,0,0", "--duration", "3"]);
+    assert!(text.contains("NOT proven clear: link 3 and `ball` at") && text.contains("t = 2.0000 s"), "{text}");
+
+    fails(&["check", "planar3", path, "0", "0", "0", "--to", "0,0,0"], 2, &["--duration", "`ball` moves"]);
+    fails(&["check", "planar3", path, "0", "0", "0", "--to", "0,0,0", "--duration", "0"], 2, &["--duration"]);
+    let run = reach(&["path", "planar3", path, "--from", "10,-10,-10", "--to", "20,-10,-10"]);
+    assert_ne!(run.code, 0);
+    assert!(run.stderr.contains("`ball` moves") && run.stderr.contains("the planner"), "{}", run.stderr);
+    let run = reach(&["cspace", "planar3", path, "--step", "30"]);
+    assert_ne!(run.code, 0);
+    assert!(run.stderr.contains("`ball` moves"), "{}", run.stderr);
+    let run = reach(&["approach", "planar3", path, "--from", "10,-10,-10", "--to", "20,-10,-10"]);
+    assert_ne!(run.code, 0);
+    assert!(run.stderr.contains("`ball` moves"), "{}", run.stderr);
+    // A configuration alone is checked at time 0: the ball 0.4 m from the tool.
+    let v = json(&["check", "planar3", path, "0", "0", "0", "--json"]);
+    assert!((v["min_obstacle_clearance_m"].as_f64().unwrap() - 0.4).abs() < 1e-9, "{v}");
 }

@@ -337,7 +337,7 @@ impl Barrier<'_> {
         let rates = self.checker.prepare(q, q)?;
         self.h.resize(rates.len(), 0.0);
         self.shifted.resize(rates.len(), 0.0);
-        self.checker.evaluate(q, &mut self.h)?;
+        self.checker.evaluate(0.0, q, &mut self.h)?;
         let near: Vec<usize> = (0..self.h.len()).filter(|&i| self.h[i] < influence).collect();
         if near.is_empty() {
             return Ok(Vec::new());
@@ -347,10 +347,10 @@ impl Barrier<'_> {
         let mut x = q.to_vec();
         for j in 0..n {
             x[j] = q[j] + GRADIENT_STEP;
-            self.checker.evaluate(&x, &mut self.shifted)?;
+            self.checker.evaluate(0.0, &x, &mut self.shifted)?;
             let plus: Vec<f64> = near.iter().map(|&i| self.shifted[i]).collect();
             x[j] = q[j] - GRADIENT_STEP;
-            self.checker.evaluate(&x, &mut self.shifted)?;
+            self.checker.evaluate(0.0, &x, &mut self.shifted)?;
             for (k, &i) in near.iter().enumerate() {
                 grads[k][j] = (plus[k] - self.shifted[i]) / (2.0 * GRADIENT_STEP);
             }
@@ -427,7 +427,8 @@ fn clamp(robot: &Robot, q: &mut [f64]) {
 /// distance to an obstacle, no IK solution that keeps it) is an answer with one sample.
 ///
 /// # Errors
-/// [`WorldError::Input`] for bad options, a start of the wrong length, non-finite, outside
+/// [`WorldError::Input`] for bad options, a scene with a moving obstacle
+/// ([`Scene::require_fixed`]), a start of the wrong length, non-finite, outside
 /// the limits or closer than the safe distance; as [`CollisionChecker::try_new`] for a bad
 /// allowed-collision list; [`WorldError::Ik`] when the IK of a target goal fails on its
 /// input.
@@ -440,6 +441,7 @@ pub fn approach(
     fast: Option<&FastRegion>,
 ) -> Result<Approach, WorldError> {
     check_options(options)?;
+    scene.require_fixed("the motion synthesis (its increments are untimed)")?;
     let grown = grown_robot(robot, options.safe_distance)?;
     let mut checker = CollisionChecker::try_new(&grown, scene)?;
     if start.len() != robot.dof() || start.iter().any(|v| !v.is_finite()) {

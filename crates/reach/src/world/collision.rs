@@ -16,6 +16,20 @@ const MIN_SEGMENT: f64 = 1e-9;
 /// the bounding sphere alone (a lower bound of its distance).
 const FAR_BOX: f64 = 0.1;
 
+/// Refuses times of a timed swept check that are not finite and non-decreasing.
+fn check_times(times: &[f64]) -> Result<(), WorldError> {
+    if let Some(t) = times.iter().find(|t| !t.is_finite()) {
+        return Err(WorldError::Input(format!("swept check: the times must be finite seconds, got {t}")));
+    }
+    if let Some(w) = times.windows(2).find(|w| w[1] < w[0]) {
+        return Err(WorldError::Input(format!(
+            "swept check: the times must not decrease, got {} s after {} s",
+            w[1], w[0]
+        )));
+    }
+    Ok(())
+}
+
 /// The outcome of one collision check, in the order the checks run.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(tag = "verdict", rename_all = "snake_case")]
@@ -138,6 +152,12 @@ pub struct CollisionChecker<'a> {
     exempt_error: Option<WorldError>,
     /// The link pairs of the swept check in progress ([`Clearances::prepare`]).
     sweep_pairs: Vec<(usize, usize)>,
+    /// The instant of [`CollisionChecker::check_at`] and [`CollisionChecker::report_at`],
+    /// seconds from the start of the motion: where moving obstacles are.
+    time: f64,
+    /// The time interval `[t_a, t_b]` of the swept check in progress (`None`: untimed, only
+    /// for scenes without moving obstacles).
+    span: Option<(f64, f64)>,
 }
 
 /// How often one pair of non-adjacent links collides over random configurations
@@ -261,6 +281,8 @@ impl<'a> CollisionChecker<'a> {
             exempt: exempt.as_ref().map_or_else(|_| vec![0; n + 1], Clone::clone),
             exempt_error: exempt.err(),
             sweep_pairs: Vec::new(),
+            time: 0.0,
+            span: None,
         }
     }
 
@@ -335,13 +357,34 @@ impl<'a> CollisionChecker<'a> {
     }
 
     /// Checks `q`: tool zone, then self-collision, then obstacles; the first failure wins.
+    /// Moving obstacles are where they are at time 0 (the scene's shapes as given); see
+    /// [`CollisionChecker::check_at`].
     ///
     /// # Errors
     /// [`WorldError::Kinematics`] when `q` has the wrong length or a non-finite value;
     /// [`WorldError::Input`] when the scene's allowed-collision list names an unknown link.
     pub fn check(&mut self, q: &[f64]) -> Result<Verdict, WorldError> {
+        self.check_at(q, 0.0)
+    }
+
+    /// Checks `q` at time `t` (seconds from the start of the motion): as
+    /// [`CollisionChecker::check`], every moving obstacle translated by `velocity·t`.
+    ///
+    /// # Errors
+    /// As [`CollisionChecker::check`]; [`WorldError::Input`] for a non-finite `t`.
+    pub fn check_at(&mut self, q: &[f64], t: f64) -> Result<Verdict, WorldError> {
+        self.set_time(t)?;
         self.update(q)?;
         Ok(self.classify())
+    }
+
+    /// Sets the instant of the next configuration check.
+    fn set_time(&mut self, t: f64) -> Result<(), WorldError> {
+        if !t.is_finite() {
+            return Err(WorldError::Input(format!("the time of a check must be a finite number of seconds, got {t}")));
+        }
+        self.time = t;
+        Ok(())
     }
 
     /// Classifies the configuration in the buffers.
@@ -370,14 +413,17 @@ impl<'a> CollisionChecker<'a> {
             + self.max_radius
             + self.margin.max(0.0);
         for (o, obstacle) in self.scene.obstacles.iter().enumerate() {
+            // A moving obstacle at `time`: the link points taken relative to its displacement.
+            let shift = obstacle.displacement(self.time);
             if let Some((c, r)) = self.bounds[o] {
                 let gap = r + reach;
-                if (c - centre).norm_squared() > gap * gap {
+                if (c + shift - centre).norm_squared() > gap * gap {
                     continue;
                 }
             }
             for &k in act {
-                if obstacle.shape.segment_within(&self.points[k], &self.points[k + 1], self.radii[k], self.margin) {
+                let (a, b) = (self.points[k] - shift, self.points[k + 1] - shift);
+                if obstacle.shape.segment_within(&a, &b, self.radii[k], self.margin) {
                     return Verdict::Obstacle { link: k + 1, obstacle: o };
                 }
             }
@@ -448,11 +494,22 @@ impl<'a> CollisionChecker<'a> {
         Ok(out)
     }
 
-    /// Every clearance of `q` (allocates the report).
+    /// Every clearance of `q` (allocates the report), moving obstacles where they are at
+    /// time 0.
     ///
     /// # Errors
     /// As [`CollisionChecker::check`].
     pub fn report(&mut self, q: &[f64]) -> Result<Report, WorldError> {
+        self.report_at(q, 0.0)
+    }
+
+    /// Every clearance of `q` at time `t` (seconds from the start of the motion; moving
+    /// obstacles translated by `velocity·t`).
+    ///
+    /// # Errors
+    /// As [`CollisionChecker::check_at`].
+    pub fn report_at(&mut self, q: &[f64], t: f64) -> Result<Report, WorldError> {
+        self.set_time(t)?;
         self.update(q)?;
         let verdict = self.classify();
         let tool = self.points[self.points.len() - 1];
@@ -468,7 +525,8 @@ impl<'a> CollisionChecker<'a> {
         let mut links = Vec::new();
         for &k in &self.active {
             for o in &self.scene.obstacles {
-                let c = o.shape.segment_sdf(&self.points[k], &self.points[k + 1]) - self.radii[k];
+                let shift = o.displacement(self.time);
+                let c = o.shape.segment_sdf(&(self.points[k] - shift), &(self.points[k + 1] - shift)) - self.radii[k];
                 links.push(LinkClearance {
                     link: k + 1,
                     obstacle: o.name.clone(),
@@ -536,6 +594,9 @@ pub struct PathSweep {
     /// That segment's sweep: the closest approach of the path, or the first segment not
     /// proven clear.
     pub closest: Sweep,
+    /// A timed check ([`CollisionChecker::swept_path_timed`]): the instant of `closest.at`,
+    /// seconds from the start of the path.
+    pub t_s: Option<f64>,
     /// What `closest`'s smallest clearance measures.
     pub pair: SweptPair,
 }
@@ -547,10 +608,52 @@ impl CollisionChecker<'_> {
     /// (pairs that are non-adjacent at both ends, allowed-collision pairs excepted). Returns
     /// the sweep and what its smallest clearance measures.
     ///
+    /// The motion is untimed, so a scene with a moving obstacle is refused
+    /// ([`CollisionChecker::swept_timed`] checks it).
+    ///
     /// # Errors
-    /// As [`CollisionChecker::check`] at either end.
+    /// As [`CollisionChecker::check`] at either end; [`WorldError::Input`] for a scene with a
+    /// moving obstacle ([`Scene::require_fixed`]).
     pub fn swept(&mut self, a: &[f64], b: &[f64], options: &SweepOptions) -> Result<(Sweep, SweptPair), WorldError> {
-        let result = sweep(self, a, b, options)?;
+        self.scene.require_fixed("a swept check without the motion's timing")?;
+        self.swept_in(a, b, None, options)
+    }
+
+    /// The swept check of the straight joint motion `a → b` run from time `span[0]` to
+    /// `span[1]` (seconds from the start of the motion, at a constant rate in the fraction
+    /// `s` of the motion): as [`CollisionChecker::swept`], every obstacle where it is at each
+    /// instant. An obstacle moving at `v` travels `|v|·(span[1] − span[0])` during the motion;
+    /// that is added to every link's rate bound against it, so a clear verdict is proven for
+    /// the moving obstacle too (module [`super::sweep`]). A fixed obstacle gives exactly the
+    /// untimed check's result. Where the check stops (`Sweep::at`), the instant is
+    /// `span[0] + at·(span[1] − span[0])`.
+    ///
+    /// # Errors
+    /// As [`CollisionChecker::swept`] for the joint vectors; [`WorldError::Input`] for a
+    /// non-finite time or `span[1] < span[0]`.
+    pub fn swept_timed(
+        &mut self,
+        a: &[f64],
+        b: &[f64],
+        span: [f64; 2],
+        options: &SweepOptions,
+    ) -> Result<(Sweep, SweptPair), WorldError> {
+        check_times(&span)?;
+        self.swept_in(a, b, Some((span[0], span[1])), options)
+    }
+
+    /// The one swept check: untimed (`span = None`, fixed obstacles) or timed.
+    fn swept_in(
+        &mut self,
+        a: &[f64],
+        b: &[f64],
+        span: Option<(f64, f64)>,
+        options: &SweepOptions,
+    ) -> Result<(Sweep, SweptPair), WorldError> {
+        self.span = span;
+        let result = sweep(self, a, b, options);
+        self.span = None;
+        let result = result?;
         Ok((result, self.swept_pair(result.constraint)))
     }
 
@@ -563,24 +666,66 @@ impl CollisionChecker<'_> {
     /// segment that comes closest (or the first not proven clear).
     ///
     /// # Errors
-    /// As [`CollisionChecker::swept`].
+    /// As [`CollisionChecker::swept`] (a scene with a moving obstacle is refused: see
+    /// [`CollisionChecker::swept_path_timed`]).
     pub fn swept_path(&mut self, points: &[Vec<f64>], options: &SweepOptions) -> Result<Option<PathSweep>, WorldError> {
+        self.scene.require_fixed("a swept check without the motion's timing")?;
+        self.swept_path_in(points, None, options)
+    }
+
+    /// The swept check of the timed piecewise-straight joint path through `points`, reached
+    /// at `times` (seconds from the start of the motion, non-decreasing; the joints move
+    /// linearly in time between points, as a drive schedule interpolates them): each segment
+    /// as [`CollisionChecker::swept_timed`] over its interval, stopping at the first segment
+    /// not proven clear; [`PathSweep::t_s`] is the instant of the closest approach (or of
+    /// where the check stopped).
+    ///
+    /// # Errors
+    /// As [`CollisionChecker::swept_timed`]; [`WorldError::Input`] when `times` and `points`
+    /// differ in length or the times are not finite and non-decreasing.
+    pub fn swept_path_timed(
+        &mut self,
+        points: &[Vec<f64>],
+        times: &[f64],
+        options: &SweepOptions,
+    ) -> Result<Option<PathSweep>, WorldError> {
+        if times.len() != points.len() {
+            return Err(WorldError::Input(format!(
+                "swept check: {} times for {} points of the path",
+                times.len(),
+                points.len()
+            )));
+        }
+        check_times(times)?;
+        self.swept_path_in(points, Some(times), options)
+    }
+
+    /// The one path check: untimed or timed.
+    fn swept_path_in(
+        &mut self,
+        points: &[Vec<f64>],
+        times: Option<&[f64]>,
+        options: &SweepOptions,
+    ) -> Result<Option<PathSweep>, WorldError> {
         let mut path: Option<PathSweep> = None;
         for (k, w) in points.windows(2).enumerate() {
-            let (sweep, pair) = self.swept(&w[0], &w[1], options)?;
+            let span = times.map(|t| (t[k], t[k + 1]));
+            let (sweep, pair) = self.swept_in(&w[0], &w[1], span, options)?;
+            let t_s = span.map(|(ta, tb)| ta + sweep.at * (tb - ta));
             let p = path.get_or_insert(PathSweep {
                 clear: true,
                 lower_bound: f64::INFINITY,
                 evaluations: 0,
                 segment: k,
                 closest: sweep,
+                t_s,
                 pair,
             });
             p.clear &= sweep.clear;
             p.lower_bound = p.lower_bound.min(sweep.lower_bound);
             p.evaluations += sweep.evaluations;
             if !sweep.clear || sweep.min_clearance < p.closest.min_clearance {
-                (p.segment, p.closest, p.pair) = (k, sweep, pair);
+                (p.segment, p.closest, p.pair, p.t_s) = (k, sweep, pair, t_s);
             }
             if !sweep.clear {
                 break;
@@ -603,6 +748,11 @@ impl CollisionChecker<'_> {
             let (i, j) = self.sweep_pairs.get(c - zones - segments * obstacles).copied().unwrap_or((0, 0));
             SweptPair::SelfPair { link_a: i + 1, link_b: j + 1 }
         }
+    }
+
+    /// The time of the point `s` of the swept check in progress (0 when untimed).
+    fn time_of(&self, s: f64) -> f64 {
+        self.span.map_or(0.0, |(ta, tb)| ta + s * (tb - ta))
     }
 
     /// Lengths of the segments in the buffers, metres.
@@ -631,8 +781,13 @@ impl Clearances for CollisionChecker<'_> {
         let rate = |k: usize| segment_rate(&lengths, &revolute, &delta, 0, k, self.radii[k]);
         let tool = segment_rate(&lengths, &revolute, &delta, 0, segments - 1, 0.0);
         let mut rates = vec![tool; self.scene.tool_zone.len()];
+        // A moving obstacle travels |v|·(t_b − t_a) over the motion: relative to it every link
+        // point moves that much farther per unit of s (0 for a fixed obstacle).
+        let duration = self.span.map_or(0.0, |(ta, tb)| tb - ta);
+        let travel: Vec<f64> = self.scene.obstacles.iter().map(|o| o.velocity.norm() * duration).collect();
         for k in 0..segments {
-            rates.extend(std::iter::repeat_n(rate(k), self.scene.obstacles.len()));
+            let r = rate(k);
+            rates.extend(travel.iter().map(|t| r + t));
         }
         // Links i < j move relative to each other only by joints i..=j: the joints before i
         // move both rigidly (joint i does too in standard DH, not in modified DH or URDF).
@@ -642,8 +797,11 @@ impl Clearances for CollisionChecker<'_> {
         Ok(rates)
     }
 
-    fn evaluate(&mut self, q: &[f64], out: &mut [f64]) -> Result<(), WorldError> {
+    /// Moving obstacles where they are at the instant of `s` (the link points taken relative
+    /// to their displacement).
+    fn evaluate(&mut self, s: f64, q: &[f64], out: &mut [f64]) -> Result<(), WorldError> {
         self.update(q)?;
+        let time = self.time_of(s);
         let tool = self.points[self.points.len() - 1];
         let mut c = 0;
         for z in &self.scene.tool_zone {
@@ -651,8 +809,9 @@ impl Clearances for CollisionChecker<'_> {
             c += 1;
         }
         for k in 0..self.points.len() - 1 {
-            let (a, b) = (&self.points[k], &self.points[k + 1]);
             for (o, bound) in self.scene.obstacles.iter().zip(&self.bounds) {
+                let shift = o.displacement(time);
+                let (a, b) = (&(self.points[k] - shift), &(self.points[k + 1] - shift));
                 // A far box: the distance to its bounding sphere is a lower bound, which keeps
                 // the sweep sound and spares the exact box distance (up to 14 point/edge
                 // distances). Other shapes have cheap closed forms.

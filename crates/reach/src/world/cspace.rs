@@ -353,7 +353,8 @@ pub fn classify_grid_with_progress(
 /// chunk of [`PROGRESS_CHUNK`] nodes).
 ///
 /// # Errors
-/// See [`grid_axes`]; [`WorldError::Cancelled`] once `cancel` is set.
+/// See [`grid_axes`]; [`WorldError::Cancelled`] once `cancel` is set; [`WorldError::Input`]
+/// for a scene with a moving obstacle ([`Scene::require_fixed`]).
 ///
 /// # Example
 /// ```
@@ -372,6 +373,7 @@ pub fn classify_grid_with_cancel(
     progress: &(dyn Fn(usize, usize) + Sync),
     cancel: &Cancel,
 ) -> Result<CspaceGrid, WorldError> {
+    scene.require_fixed("the configuration-space grid (a map of fixed obstacles)")?;
     let axes = grid_axes(robot, spec)?;
     let total: usize = axes.iter().map(Vec::len).product();
     let mut classes = vec![NodeClass::Allowed; total];

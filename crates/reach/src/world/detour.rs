@@ -298,7 +298,7 @@ impl Clearances for PlanarClearances<'_> {
         Ok((0..3 * self.obstacles.len()).map(|c| segment_rate(&lengths, &[true; 3], &delta, 0, c % 3, 0.0)).collect())
     }
 
-    fn evaluate(&mut self, q: &[f64], out: &mut [f64]) -> Result<(), WorldError> {
+    fn evaluate(&mut self, _s: f64, q: &[f64], out: &mut [f64]) -> Result<(), WorldError> {
         let p = arm_points(self.arm, &[q[0], q[1], q[2]]);
         for (o, h) in self.obstacles.iter().enumerate() {
             for i in 0..3 {

@@ -378,7 +378,9 @@ fn sampling_ranges(robot: &Robot) -> Result<Vec<(f64, f64)>, PlanError> {
 /// [`PlanError::Input`] for a bad start/goal vector or option, [`PlanError::StartInCollision`]
 /// / [`PlanError::GoalInCollision`] naming the link and obstacle, [`PlanError::NoIkSolution`]
 /// when the goal pose has no solution within limits, [`PlanError::BudgetExhausted`] when the
-/// trees do not meet within the iteration or time budget.
+/// trees do not meet within the iteration or time budget; [`PlanError::World`] for a scene
+/// with a moving obstacle (the planner works in joint space, untimed:
+/// [`Scene::require_fixed`]).
 ///
 /// # Example
 /// ```
@@ -406,6 +408,7 @@ pub fn plan(
     if !(options.step.is_finite() && options.step > 0.0) {
         return Err(PlanError::Input(format!("step must be positive, got {}", options.step)));
     }
+    scene.require_fixed("the planner (it plans in joint space, not in time)")?;
     check_joints(robot, start, "start")?;
     let ranges = sampling_ranges(robot)?;
     let dof = robot.dof();

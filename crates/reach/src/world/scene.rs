@@ -18,13 +18,33 @@ pub enum Touching {
     Open,
 }
 
-/// A named obstacle (forbidden zone).
+/// A named obstacle (forbidden zone), fixed or moving at a known constant velocity.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Obstacle {
     /// Name from the file (or `obstacle{i}`).
     pub name: String,
-    /// The solid, SI units.
+    /// The solid, SI units, where it is at time 0 (the start of the motion checked).
     pub shape: Shape,
+    /// Constant velocity, m/s: at time `t` (seconds from the start of the motion checked) the
+    /// solid is `shape` translated by `velocity·t`. Zero for a fixed obstacle and for every
+    /// tool-zone entry.
+    #[serde(rename = "velocity_m_s")]
+    pub velocity: Vector3<f64>,
+}
+
+impl Obstacle {
+    /// Whether the obstacle moves (a non-zero velocity).
+    #[must_use]
+    pub fn moves(&self) -> bool {
+        self.velocity != Vector3::zeros()
+    }
+
+    /// How far the obstacle has moved at time `t` (seconds from the start of the motion),
+    /// metres: `velocity·t`.
+    #[must_use]
+    pub fn displacement(&self, t: f64) -> Vector3<f64> {
+        self.velocity * t
+    }
 }
 
 /// Obstacles, the tool's allowed zone and the touching policy.
@@ -47,6 +67,8 @@ pub struct Obstacle {
 /// point = [500, 0, 0]
 /// outward_normal = [-1, 0, 0]
 /// ```
+/// An obstacle may move: `velocity = [vx, vy, vz]` (in `length_unit` per second; constant,
+/// the shape's fields give its place at time 0, the start of the motion checked).
 /// Shapes and their fields: `point` (`at`), `sphere` (`center`, `radius`), `aabb` (`min`,
 /// `max`), `box` (`center`, `half_extents`, optional `rpy`), `capsule` (`a`, `b`, `radius`),
 /// `halfspace` (`point`, `outward_normal`), `rectangle` (`center`, `half_extents = [hx, hy]`,
@@ -105,6 +127,7 @@ struct ShapeField {
     b: Option<[f64; 3]>,
     point: Option<[f64; 3]>,
     outward_normal: Option<[f64; 3]>,
+    velocity: Option<[f64; 3]>,
 }
 
 impl ShapeField {
@@ -174,11 +197,31 @@ impl Scene {
         for (i, f) in file.obstacles.into_iter().enumerate() {
             let name = f.name.clone().unwrap_or_else(|| format!("obstacle{}", i + 1));
             let shape = build_shape("obstacle", &name, &f, ls, an)?;
-            scene.obstacles.push(Obstacle { name, shape });
+            let velocity = match f.velocity {
+                None => Vector3::zeros(),
+                Some(v) if v.iter().all(|x| x.is_finite()) => Vector3::from(v) * ls,
+                Some(v) => {
+                    return Err(shape_error(
+                        "obstacle",
+                        &name,
+                        &f.shape,
+                        format!("`velocity` must be finite numbers, got {v:?}"),
+                    ));
+                }
+            };
+            scene.obstacles.push(Obstacle { name, shape, velocity });
         }
         for (i, f) in file.tool_zone.into_iter().enumerate() {
             let name = f.name.clone().unwrap_or_else(|| format!("zone{}", i + 1));
             let shape = build_shape("tool zone", &name, &f, ls, an)?;
+            if f.velocity.is_some() {
+                return Err(shape_error(
+                    "tool zone",
+                    &name,
+                    &f.shape,
+                    "`velocity` applies to obstacles only; the tool zone is fixed",
+                ));
+            }
             if matches!(shape, Shape::Point { .. }) {
                 return Err(WorldError::Shape {
                     what: "tool zone",
@@ -187,7 +230,7 @@ impl Scene {
                     message: "a point has no inside; use a solid shape".into(),
                 });
             }
-            scene.tool_zone.push(Obstacle { name, shape });
+            scene.tool_zone.push(Obstacle { name, shape, velocity: Vector3::zeros() });
         }
         Ok(scene)
     }
@@ -199,8 +242,58 @@ impl Scene {
     pub fn with_obstacle(mut self, name: impl Into<String>, shape: Shape) -> Result<Self, WorldError> {
         let name = name.into();
         validate("obstacle", &name, &shape)?;
-        self.obstacles.push(Obstacle { name, shape });
+        self.obstacles.push(Obstacle { name, shape, velocity: Vector3::zeros() });
         Ok(self)
+    }
+
+    /// Adds an obstacle moving at the constant `velocity` (m/s; `shape` is its place at time
+    /// 0) after checking its numbers (builder style).
+    ///
+    /// # Errors
+    /// [`WorldError::Shape`] for NaN/infinity (in the shape or the velocity) or a degenerate
+    /// shape.
+    pub fn with_moving_obstacle(
+        mut self,
+        name: impl Into<String>,
+        shape: Shape,
+        velocity: Vector3<f64>,
+    ) -> Result<Self, WorldError> {
+        let name = name.into();
+        validate("obstacle", &name, &shape)?;
+        if !velocity.iter().all(|x| x.is_finite()) {
+            return Err(shape_error(
+                "obstacle",
+                &name,
+                shape.kind(),
+                format!("`velocity` must be finite numbers, got {:?} m/s", velocity.as_slice()),
+            ));
+        }
+        self.obstacles.push(Obstacle { name, shape, velocity });
+        Ok(self)
+    }
+
+    /// The first obstacle that moves, if any.
+    #[must_use]
+    pub fn moving_obstacle(&self) -> Option<&Obstacle> {
+        self.obstacles.iter().find(|o| o.moves())
+    }
+
+    /// Refuses a scene with a moving obstacle for a computation that treats obstacles as
+    /// fixed (`what`: the computation, e.g. "the planner"), rather than silently taking the
+    /// obstacle where it is at time 0.
+    ///
+    /// # Errors
+    /// [`WorldError::Input`] naming the first moving obstacle and its velocity.
+    pub fn require_fixed(&self, what: &str) -> Result<(), WorldError> {
+        match self.moving_obstacle() {
+            None => Ok(()),
+            Some(o) => Err(WorldError::Input(format!(
+                "obstacle `{}` moves (velocity [{}, {}, {}] m/s), but {what} treats obstacles as fixed; \
+                 check a timed motion against moving obstacles instead (`reach check --to … --duration`, \
+                 `reach check --motion`, `reach move --scene`)",
+                o.name, o.velocity.x, o.velocity.y, o.velocity.z
+            ))),
+        }
     }
 
     /// Exempts the link pair `(a, b)` from the self-collision check (builder style); names as
@@ -218,7 +311,7 @@ impl Scene {
     pub fn with_tool_zone(mut self, name: impl Into<String>, shape: Shape) -> Result<Self, WorldError> {
         let name = name.into();
         validate("tool zone", &name, &shape)?;
-        self.tool_zone.push(Obstacle { name, shape });
+        self.tool_zone.push(Obstacle { name, shape, velocity: Vector3::zeros() });
         Ok(self)
     }
 }

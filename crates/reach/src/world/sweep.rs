@@ -13,6 +13,13 @@
 //! distance between sets moves no faster than the points of the sets,
 //! `|d_c(s') − d_c(s)| ≤ B_c·|s' − s|`.
 //!
+//! **In time.** When the motion is timed, `s` running over `[t_a, t_b]` at a constant rate,
+//! an obstacle moving at a constant velocity `v` is at `p0 + v·t` at `t = t_a + s·(t_b − t_a)`:
+//! relative to it every link point moves by at most `|v|·(t_b − t_a)` more per unit `s`, so
+//! its clearances' rates are `B_c + |v|·(t_b − t_a)` and the same advancement proves the
+//! motion clear of the moving obstacle (a fixed one is `v = 0`). The clearances are evaluated
+//! with the obstacle where it is at the instant of each evaluated point.
+//!
 //! From `s` the sweep advances by `Δs = min_c d_c(s)/B_c`: no clearance can reach zero inside
 //! the step. Between two evaluated points the clearance is at least
 //! `(d_c(s) + d_c(s + Δs) − B_c·Δs)/2` (the two Lipschitz cones meet there), so the sweep
@@ -47,11 +54,13 @@ pub trait Clearances {
     /// As [`Clearances::evaluate`].
     fn prepare(&mut self, a: &[f64], b: &[f64]) -> Result<Vec<f64>, WorldError>;
 
-    /// Every clearance at `q`, metres, into `out` (≤ 0: touching or penetrating).
+    /// Every clearance at `q`, the point `s ∈ [0, 1]` of the motion prepared last, metres,
+    /// into `out` (≤ 0: touching or penetrating). `s` places what moves with time along the
+    /// motion (an obstacle at a known velocity); clearances of fixed things depend on `q` only.
     ///
     /// # Errors
     /// [`WorldError`] for a configuration the model rejects (wrong length, NaN).
-    fn evaluate(&mut self, q: &[f64], out: &mut [f64]) -> Result<(), WorldError>;
+    fn evaluate(&mut self, s: f64, q: &[f64], out: &mut [f64]) -> Result<(), WorldError>;
 }
 
 /// The outcome of a swept check.
@@ -138,7 +147,7 @@ pub fn sweep<C: Clearances + ?Sized>(
             *o = x + s * (y - x);
         }
         let mut d = vec![0.0; n];
-        clearances.evaluate(&q, &mut d)?;
+        clearances.evaluate(s, &q, &mut d)?;
         result.evaluations += 1;
         let (c, &m) = d.iter().enumerate().min_by(|x, y| x.1.total_cmp(y.1)).unwrap_or((0, &f64::INFINITY));
         if m < result.min_clearance {
@@ -262,7 +271,7 @@ mod tests {
         fn prepare(&mut self, a: &[f64], b: &[f64]) -> Result<Vec<f64>, WorldError> {
             Ok(vec![(b[0] - a[0]).abs()])
         }
-        fn evaluate(&mut self, q: &[f64], out: &mut [f64]) -> Result<(), WorldError> {
+        fn evaluate(&mut self, _s: f64, q: &[f64], out: &mut [f64]) -> Result<(), WorldError> {
             out[0] = (q[0] - self.c).abs() - self.gap;
             Ok(())
         }

@@ -56,6 +56,7 @@ mod urdf_import;
 mod urdf_panda;
 mod world_allowed_collisions;
 mod world_geometry;
+mod world_moving;
 mod world_planner;
 mod world_rfunction;
 mod world_sweep;

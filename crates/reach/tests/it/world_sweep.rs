@@ -270,7 +270,7 @@ fn a_move_through_a_scene_is_checked_continuously() {
     // The report is the swept check of the samples' joint path, recomputed independently.
     let scene = Scene::from_toml_str(&post_scene()).unwrap();
     let q: Vec<Vec<f64>> = through.samples.iter().map(|s| s.q_deg.iter().map(|d| d.to_radians()).collect()).collect();
-    let again = SweptPathReport::check(&robot, &scene, &q).unwrap().unwrap();
+    let again = SweptPathReport::check(&robot, &scene, &q, None).unwrap().unwrap();
     assert_eq!(again.segment, swept.segment);
     assert!((again.swept.at - swept.swept.at).abs() < 1e-9);
     // Around the post: feasible, proven clear.

@@ -79,16 +79,14 @@ pub fn move_motion_with_progress(
     let mut reasons: Vec<String> =
         intervals.iter().filter(|i| !i.feasible).flat_map(|i| i.reasons.iter().cloned()).collect();
     let swept = match &scene {
-        Some(scene) => SweptPathReport::check(robot, scene, &q)?,
+        Some(scene) => SweptPathReport::check(robot, scene, &q, Some(&times))?,
         None => None,
     };
     if let Some(s) = swept.as_ref().filter(|s| !s.swept.clear) {
-        // Segment k (1-based) runs from sample k to sample k + 1.
-        let (a, b) = (times[s.segment - 1], times[s.segment]);
         reasons.push(format!(
             "not proven clear of the scene: {} at t = {} s",
             s.swept.pair_text.as_deref().unwrap_or("-"),
-            number_text(a + s.swept.at * (b - a))
+            number_text(s.swept.t_s.unwrap_or(f64::NAN))
         ));
     }
     let feasible =

@@ -10,7 +10,8 @@ use super::parse_scene;
 use crate::Robot;
 use crate::error::Error;
 use crate::error::Result;
-use crate::jobs::input::{Joints, MotionSample, samples_si};
+use crate::jobs::input::{Joints, MotionSample, positive, samples_si};
+use crate::motion::sample::JointSample;
 use crate::world::sweep::{Sweep, SweepOptions};
 use crate::world::{CollisionChecker, Contact, LinkClearance, PathSweep, Scene, SelfClearance, SweptPair, Verdict};
 
@@ -26,9 +27,16 @@ pub struct CheckRequest {
     /// continuously ([`CollisionChecker::swept`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub to: Option<Joints>,
+    /// With `to`: the motion's duration, seconds, the joints moving linearly in time from `q`
+    /// (at time 0) to `to`. Needed when the scene has a moving obstacle (the check is then in
+    /// time, [`CollisionChecker::swept_timed`]); with fixed obstacles it changes nothing.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub duration_s: Option<f64>,
     /// Instead of `to`: a sampled motion (`reach move --json`'s `samples`, every sample within
     /// the joints' limits). The piecewise-linear joint path from `q` through the samples is
-    /// checked continuously ([`CollisionChecker::swept_path`]); `q` is usually the first sample.
+    /// checked continuously in time ([`CollisionChecker::swept_path_timed`]; `q` is at the first
+    /// sample's time, and moving obstacles are at their scene position at that time); `q` is
+    /// usually the first sample.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub samples: Option<Vec<MotionSample>>,
 }
@@ -45,6 +53,10 @@ pub struct SweptReport {
     pub min_clearance_m: Option<f64>,
     /// Where, as the fraction of the motion (where it stopped when not clear).
     pub at: f64,
+    /// A timed check (a duration or sample times): the instant of `at`, seconds from the
+    /// start of the motion (moving obstacles are where they are at that time).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub t_s: Option<f64>,
     /// What that clearance measures (`null` as above).
     pub pair: Option<SweptPair>,
     /// The same in words, with the names of the obstacle or zone.
@@ -54,15 +66,17 @@ pub struct SweptReport {
 }
 
 impl SweptReport {
-    /// The report of a sweep in `scene`.
+    /// The report of a sweep in `scene`; `span`: the motion's time interval, seconds, when
+    /// timed.
     #[must_use]
-    pub fn of(sweep: &Sweep, pair: SweptPair, scene: &Scene) -> Self {
+    pub fn of(sweep: &Sweep, pair: SweptPair, scene: &Scene, span: Option<[f64; 2]>) -> Self {
         let checked = sweep.evaluations > 0 && sweep.min_clearance.is_finite();
         SweptReport {
             clear: sweep.clear,
             lower_bound_m: checked.then_some(sweep.lower_bound),
             min_clearance_m: checked.then_some(sweep.min_clearance),
             at: sweep.at,
+            t_s: span.map(|[a, b]| a + sweep.at * (b - a)),
             pair: checked.then_some(pair),
             pair_text: checked.then(|| swept_pair_text(&pair, scene)),
             evaluations: sweep.evaluations,
@@ -86,19 +100,28 @@ pub struct SweptPathReport {
 
 impl SweptPathReport {
     /// The swept check of the path through `points` in `scene` (`None` for fewer than two
-    /// points).
+    /// points), in time when the points' `times` (seconds from the start of the motion) are
+    /// given ([`CollisionChecker::swept_path_timed`]: moving obstacles are checked where they
+    /// are at each instant; fixed obstacles give the same verdict as without times).
     ///
     /// # Errors
-    /// As [`CollisionChecker::swept_path`].
-    pub fn check(robot: &Robot, scene: &Scene, points: &[Vec<f64>]) -> Result<Option<Self>> {
+    /// As [`CollisionChecker::swept_path`] (without times a scene with a moving obstacle is
+    /// refused) and [`CollisionChecker::swept_path_timed`].
+    pub fn check(robot: &Robot, scene: &Scene, points: &[Vec<f64>], times: Option<&[f64]>) -> Result<Option<Self>> {
         let mut checker = CollisionChecker::new(robot, scene);
-        Ok(checker.swept_path(points, &SweepOptions::default())?.map(|p| Self::of(&p, scene)))
+        let options = SweepOptions::default();
+        let path = match times {
+            Some(times) => checker.swept_path_timed(points, times, &options)?,
+            None => checker.swept_path(points, &options)?,
+        };
+        Ok(path.map(|p| Self::of(&p, scene)))
     }
 
     /// The report of a path sweep in `scene`.
     #[must_use]
     pub fn of(path: &PathSweep, scene: &Scene) -> Self {
-        let mut swept = SweptReport::of(&path.closest, path.pair, scene);
+        let mut swept = SweptReport::of(&path.closest, path.pair, scene, None);
+        swept.t_s = path.t_s;
         swept.clear = path.clear;
         if swept.lower_bound_m.is_some() {
             swept.lower_bound_m = Some(path.lower_bound);
@@ -173,22 +196,65 @@ pub fn swept_pair_text(pair: &SweptPair, scene: &Scene) -> String {
     }
 }
 
+/// The times of a sampled motion from its start (the first sample at 0 s), seconds: where
+/// moving obstacles are when the motion reaches each sample.
+///
+/// # Errors
+/// [`Error::Request`] naming `field` and the sample when a time is not finite or decreases.
+pub fn motion_times(samples: &[JointSample], field: &str) -> Result<Vec<f64>> {
+    let t0 = samples.first().map_or(0.0, |s| s.t);
+    let mut times: Vec<f64> = Vec::with_capacity(samples.len());
+    for (k, s) in samples.iter().enumerate() {
+        let t = s.t - t0;
+        if !(t.is_finite() && times.last().is_none_or(|last| t >= *last)) {
+            return Err(Error::request(
+                format!("{field}: sample {k}"),
+                format!("`t_s` must be finite and not decrease, got {} s", s.t),
+            ));
+        }
+        times.push(t);
+    }
+    Ok(times)
+}
+
 /// Checks the configuration: whatever the verdict, it is in the report.
 ///
 /// # Errors
 /// [`crate::Error::World`] for a malformed scene (line and column); [`crate::Error::Request`]
 /// for a wrong joint count or a non-finite value (field `q`, `to`, `samples`), a sample
-/// outside the joints' limits, or both `to` and `samples`.
+/// outside the joints' limits, both `to` and `samples`, sample times that decrease, a
+/// `duration_s` that is not a positive number or comes without `to`, or a scene with a moving
+/// obstacle and `to` without `duration_s` (the check needs the motion's timing).
 pub fn check(robot: &Robot, request: &CheckRequest) -> Result<CheckReport> {
     let scene = parse_scene(&request.scene)?;
     let q = request.q.si(robot, "q")?;
+    if positive("duration_s", request.duration_s)?.is_some() && request.to.is_none() {
+        return Err(Error::request("duration_s", "a duration needs a motion `to`"));
+    }
     let mut checker = CollisionChecker::new(robot, &scene);
     let motion = match &request.to {
         None => None,
         Some(to) => {
             let target = to.si(robot, "to")?;
-            let (swept, pair) = checker.swept(&q, &target, &SweepOptions::default())?;
-            Some(MotionCheckReport { to_deg: to.display(robot), swept: SweptReport::of(&swept, pair, &scene) })
+            let span = match (request.duration_s, scene.moving_obstacle()) {
+                (Some(d), _) => Some([0.0, d]),
+                (None, Some(o)) => {
+                    return Err(Error::request(
+                        "duration_s",
+                        format!(
+                            "obstacle `{}` moves: the motion is checked against it in time, which needs the motion's duration",
+                            o.name
+                        ),
+                    ));
+                }
+                (None, None) => None,
+            };
+            let options = SweepOptions::default();
+            let (swept, pair) = match span {
+                Some(span) => checker.swept_timed(&q, &target, span, &options)?,
+                None => checker.swept(&q, &target, &options)?,
+            };
+            Some(MotionCheckReport { to_deg: to.display(robot), swept: SweptReport::of(&swept, pair, &scene, span) })
         }
     };
     let samples = match (&request.samples, &request.to) {
@@ -198,10 +264,11 @@ pub fn check(robot: &Robot, request: &CheckRequest) -> Result<CheckReport> {
             return Err(Error::request("samples", "give at least one sample"));
         }
         (Some(samples), None) => {
-            let path: Vec<Vec<f64>> = std::iter::once(q.clone())
-                .chain(samples_si(robot, samples, "samples")?.into_iter().map(|s| s.q))
-                .collect();
-            SweptPathReport::check(robot, &scene, &path)?
+            let samples = samples_si(robot, samples, "samples")?;
+            // `q` at the first sample's time, the start of the motion.
+            let times: Vec<f64> = std::iter::once(0.0).chain(motion_times(&samples, "samples")?).collect();
+            let path: Vec<Vec<f64>> = std::iter::once(q.clone()).chain(samples.into_iter().map(|s| s.q)).collect();
+            SweptPathReport::check(robot, &scene, &path, Some(&times))?
         }
     };
     let report = checker.report(&q)?;

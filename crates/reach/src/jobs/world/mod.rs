@@ -19,7 +19,7 @@ pub use approach::{
     ApproachReport, ApproachRequest, FastRegionRequest, HandoverReport, approach, approach_with_cancel,
 };
 pub use avoid::{AvoidChoice, AvoidReport, AvoidRequest, AvoidRun, AvoidSide, avoid, avoid_run};
-pub use check::{CheckReport, CheckRequest, MotionCheckReport, SweptPathReport, SweptReport, check};
+pub use check::{CheckReport, CheckRequest, MotionCheckReport, SweptPathReport, SweptReport, check, motion_times};
 pub use cspace::{
     CspaceReport, CspaceRequest, CspaceSection, FitPrimitive, FitReport, cspace, cspace_axes, cspace_with_cancel,
     cspace_with_grid,

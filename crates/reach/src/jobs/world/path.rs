@@ -219,7 +219,7 @@ pub fn path_run_with_cancel(robot: &Robot, request: &PathRequest, cancel: &Cance
             let (durations, timed) = timed_path(robot, &p.waypoints, total)?;
             report.duration_s = timed.times.last().copied();
             report.segment_durations_s = durations;
-            report.swept = SweptPathReport::check(robot, &scene, &p.waypoints)?;
+            report.swept = SweptPathReport::check(robot, &scene, &p.waypoints, None)?;
             report.collision_free = Some(report.swept.as_ref().is_none_or(|s| s.swept.clear));
             let waypoints_tool_xyz_m = tool_points(robot, &p.waypoints)?;
             return Ok(PathRun { report, scene, waypoints: p.waypoints, waypoints_tool_xyz_m, timed: Some(timed) });
