@@ -435,6 +435,7 @@ fn append_obstacle(shared: &Shared, value: &Value, metres: Option<&[&str]>) -> R
     let table = toml::to_string(&value).map_err(|e| ApiError::bad_request(format!("obstacle: {e}")))?;
     let text = format!("{old}\n[[obstacles]]\n{table}");
     let scene = reach::jobs::world::parse_scene(&text).map_err(|e| ApiError::bad_request(e.to_string()))?;
+    scene.require_fixed(FIXED_SCENE).map_err(|e| ApiError::bad_request(e.to_string()))?;
     db.set_scene(&text)?;
     let obstacles = scene.obstacles.len();
     // Replaced while the database lock is held: concurrent additions keep their order.
@@ -453,6 +454,10 @@ fn append_obstacle(shared: &Shared, value: &Value, metres: Option<&[&str]>) -> R
     shared.publish(&json!({"type": "obstacle", "name": name, "obstacles": obstacles}));
     Ok(obstacles)
 }
+
+/// What the service's scene is, for the refusal of moving obstacles: the service keeps no
+/// clock for them (an obstacle's time 0 would be each job's start).
+pub const FIXED_SCENE: &str = "the service's scene (obstacles stay where they are put)";
 
 /// `value` with every number multiplied by `scale` (numbers and arrays of numbers).
 fn scale_numbers(value: &Value, scale: f64) -> Value {

@@ -189,8 +189,8 @@ pub fn require_clear(robot: &Robot, scene: &Scene, motion: &DriveMotion) -> Resu
         return Err("a plan job cannot be proven clear of the service's scene; submit its motions as move jobs".into());
     };
     let si = samples_si(robot, samples, "motion").map_err(|e| e.to_string())?;
-    // In time: moving obstacles of the scene are where they are when the motion (from its
-    // first sample) reaches each instant.
+    // Timed from the first sample (the service's scene has no moving obstacles: it refuses
+    // them; the times keep the check the library's one for timed motions).
     let times = motion_times(&si, "motion").map_err(|e| e.to_string())?;
     let q: Vec<Vec<f64>> = si.into_iter().map(|s| s.q).collect();
     match SweptPathReport::check(robot, scene, &q, Some(&times)).map_err(|e| e.to_string())? {

@@ -194,7 +194,9 @@ impl Shared {
         let home: Vec<i64> = axes.iter().zip(robot.home()).map(|(a, q)| a.quantise(q)).collect();
         let robot_json = serde_json::to_string(&config.robot).map_err(|e| ServeError::Config(e.to_string()))?;
         if let Some(text) = &config.scene {
-            reach::jobs::world::parse_scene(text)?;
+            reach::jobs::world::parse_scene(text)?
+                .require_fixed(crate::api::FIXED_SCENE)
+                .map_err(|e| ServeError::Config(format!("--scene: {e}")))?;
         }
         let (db, recovery) = Db::open(&config.state_dir, &robot_json, &names, &home, config.scene.as_deref())?;
         let scene = db.scene()?.map(|t| reach::jobs::world::parse_scene(&t)).transpose()?;

@@ -69,6 +69,11 @@ async fn an_obstacle_added_at_run_time_refuses_the_moves_through_it() {
             .await;
     assert_eq!(status, axum::http::StatusCode::BAD_REQUEST, "{reply}");
     assert!(reply["error"].as_str().unwrap_or_default().contains("post"), "{reply}");
+    // The service keeps no clock for obstacles: one that moves is refused, named.
+    let moving = r#"{"name": "ball", "shape": "sphere", "center": [2, 0, 0], "radius": 0.1, "velocity": [0, 0.1, 0]}"#;
+    let (status, reply) = call(&router, "POST", "/scene/obstacles", Some(moving), None).await;
+    assert_eq!(status, axum::http::StatusCode::BAD_REQUEST, "{reply}");
+    assert!(reply["error"].as_str().unwrap_or_default().contains("`ball` moves"), "{reply}");
     // The post of examples/path_planar3_post.toml (metres).
     let post =
         r#"{"name": "post", "shape": "capsule", "a": [2.68, -0.16, -0.5], "b": [2.68, -0.16, 0.5], "radius": 0.15}"#;

@@ -254,7 +254,7 @@ pub(crate) fn apply_motion(t: &mut IsometryMatrix3<f64>, prismatic: bool, v: f64
         let z = t.rotation.matrix().column(2).into_owned();
         t.translation.vector += z * v;
     } else {
-        let (s, c) = v.sin_cos();
+        let (s, c) = crate::angle::sin_cos(v);
         // SAFETY of orthonormality: a rotation times Rz(v) is a rotation.
         let m = t.rotation.matrix_mut_unchecked();
         for r in 0..3 {
