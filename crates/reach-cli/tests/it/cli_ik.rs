@@ -105,7 +105,7 @@ fn named_numeric_solver_reaches_the_fk_pose() {
 #[test]
 fn a_urdf_arm_gets_its_closed_form_and_all_eight_solutions() {
     let kr16 = "examples/urdf/kuka_kr16_support/urdf/kr16_2.urdf";
-    let q = [20.0, -60.0, 30.0, 45.0, -50.0, 70.0];
+    let q = [20.0, -100.0, 120.0, 45.0, -50.0, 70.0];
     let q_text: Vec<String> = q.iter().map(|v| v.to_string()).collect();
     let mut args = vec!["fk", kr16, "--tip", "tool0", "--json"];
     args.extend(q_text.iter().map(String::as_str));

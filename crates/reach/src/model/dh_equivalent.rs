@@ -15,11 +15,13 @@
 //!   first axis points up (non-negative world z) where it can; every other axis keeps its own
 //!   direction. `σ_k = −1` makes the DH joint *flipped* ([`Joint::flip`]: the model turns by
 //!   `−q` where the user gives `q`), so the equivalent takes the robot's own joint values;
-//! * **common normals**: `x_k` is the common normal from axis *k* to axis *k + 1*:
-//!   `z_{k−1} × z_k` normalised for axes that are skew or meet (α_k ∈ (0°, 180°)), the
-//!   perpendicular from the previous origin `O_{k−1}` to the next axis for parallel axes (so
-//!   d_k = 0 there, the usual choice — it gives the UR5 its published table), and `x_{k−1}` for
-//!   coincident axes; `O_k` is where the normal meets axis *k + 1*;
+//! * **common normals**: `x_k` is the common normal from axis *k* to axis *k + 1*, pointing
+//!   from the one to the other (a_k ≥ 0, so that a shoulder `front` label means the arm
+//!   reaches towards the target): `±z_{k−1} × z_k` normalised for skew axes, `z_{k−1} × z_k`
+//!   for axes that meet, the perpendicular from the previous origin `O_{k−1}` to the next axis
+//!   for parallel axes (so d_k = 0 there, the usual choice; the UR5 gets its published table
+//!   up to the signs of a2, a3), and `x_{k−1}` for coincident axes; `O_k` is where the normal
+//!   meets axis *k + 1*;
 //! * **parameters**: `d_k = (foot on axis k − O_{k−1})·z_{k−1}`, `a_k = (O_k − foot)·x_k`,
 //!   `α_k` the angle from `z_{k−1}` to `z_k` about `x_k`, and the θ offset the angle from
 //!   `x_{k−1}` to `x_k` about `z_{k−1}` at q = 0;
@@ -186,7 +188,12 @@ impl Robot {
                     let denom = 1.0 - b * b;
                     let s = (b * e - d) / denom;
                     let t = (e - b * d) / denom;
-                    (a_line.point + a_line.dir * s, c.normalize(), b_line.point + b_line.dir * t)
+                    let (foot, next) = (a_line.point + a_line.dir * s, b_line.point + b_line.dir * t);
+                    // Pointing from axis k to axis k + 1 (a_k ≥ 0), so that the closed forms'
+                    // labels (`front`: the arm reaches towards the target) mean what they say.
+                    let x = c.normalize();
+                    let x = if (next - foot).dot(&x) < -DH_EQUIVALENT { -x } else { x };
+                    (foot, x, next)
                 } else {
                     // Parallel axes: the perpendicular from the previous origin (d = 0).
                     let foot = prev_origin;
