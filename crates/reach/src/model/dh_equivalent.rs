@@ -2,50 +2,7 @@
 //! where a robot described otherwise (URDF joint origins with any rpy and axis signs, an MDH
 //! table) gets the DH table the closed-form IK solvers read ([`Robot::dh_equivalent`]).
 //!
-//! # The derivation
-//!
-//! The joint axes are taken as lines in the base (world) frame at q = 0, each signed as its
-//! joint value turns ([`Robot::joint_axes`]), and the tool pose at q = 0 ([`Robot::fk_matrix`]).
-//! Frame *k* of the DH chain has its z axis on the axis of joint *k + 1*; joint *k* turns about
-//! `z_{k−1}`, as standard DH wants ([`Convention::Dh`]):
-//!
-//! * **directions**: `z_{k−1} = σ_k·u_k` with `u_k` the joint's own axis direction and
-//!   `σ_k = ±1`: an axis parallel to the previous one takes its direction (so that parallel
-//!   axes have α = 0°, as the closed forms of PUMA- and UR-type arms expect, never 180°); the
-//!   first axis points up (non-negative world z) where it can; every other axis keeps its own
-//!   direction. `σ_k = −1` makes the DH joint *flipped* ([`Joint::flip`]: the model turns by
-//!   `−q` where the user gives `q`), so the equivalent takes the robot's own joint values;
-//! * **common normals**: `x_k` is the common normal from axis *k* to axis *k + 1*, pointing
-//!   from the one to the other (a_k ≥ 0, so that a shoulder `front` label means the arm
-//!   reaches towards the target): `±z_{k−1} × z_k` normalised for skew axes, `z_{k−1} × z_k`
-//!   for axes that meet, the perpendicular from the previous origin `O_{k−1}` to the next axis
-//!   for parallel axes (so d_k = 0 there, the usual choice; the UR5 gets its published table
-//!   up to the signs of a2, a3), and `x_{k−1}` for coincident axes; `O_k` is where the normal
-//!   meets axis *k + 1*;
-//! * **parameters**: `d_k = (foot on axis k − O_{k−1})·z_{k−1}`, `a_k = (O_k − foot)·x_k`,
-//!   `α_k` the angle from `z_{k−1}` to `z_k` about `x_k`, and the θ offset the angle from
-//!   `x_{k−1}` to `x_k` about `z_{k−1}` at q = 0;
-//! * **ends**: frame 0 sits on the first axis at the foot of the perpendicular from the base
-//!   origin, with `x_0 = x_1` (θ1 offset 0); the last frame continues the last axis
-//!   (`a_n = 0`, `α_n = 0`, `x_n = x_{n−1}`) to the foot of the perpendicular from the tool
-//!   point, so that a spherical wrist has `a_n = 0`, `α_n = 0`; the **base** transform is
-//!   frame 0 in the world and the **tool** transform the original tool pose in frame *n*.
-//!
-//! Twists within [`DH_EQUIVALENT`] of a multiple of 90° and lengths within it of zero are
-//! made exact (URDF files print π/2 with 7 to 10 digits: `1.570796325` is 1.8e-9 rad off),
-//! then the equivalent is **checked**: its forward kinematics must agree with the robot's to
-//! [`DH_EQUIVALENT`] (every entry of the homogeneous transforms, metres and cosines) at q = 0
-//! and at four more joint vectors. A chain that fails, or has a prismatic or mimic joint, has
-//! no equivalent.
-//!
-//! # Limits
-//!
-//! Revolute joints only (a prismatic joint's DH `d` would carry its variable, which this
-//! derivation does not place); no mimic joints (their motion is not a DH row); the
-//! equivalent describes kinematics only (no mass properties: the DH link frames differ from
-//! the description's).
-//!
-//! [`DH_EQUIVALENT`]: crate::tolerance::DH_EQUIVALENT
+//! The derivation and its limits are documented on [`Robot::dh_equivalent`].
 
 use nalgebra::{Isometry3, IsometryMatrix3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
 
@@ -102,10 +59,52 @@ impl Robot {
     /// The standard-DH robot with the same kinematics as this one: same joints (names, kinds,
     /// limits, home, speed limits, drives), joint values taken as this robot takes them, and
     /// the same tool pose for every joint vector (to [`DH_EQUIVALENT`]), with a DH table
-    /// derived from the joint axes as described in the [module docs](self) — for a robot
-    /// described by URDF or MDH, so that the closed-form IK solvers, which read a DH table,
-    /// solve it. A robot in standard DH gets the table derived afresh from its geometry (it
+    /// derived from the joint axes as described below — for a robot described by URDF or MDH,
+    /// so that the closed-form IK solvers, which read a DH table, solve it. A robot in standard DH gets the table derived afresh from its geometry (it
     /// may differ from its own table by the free choices of the convention).
+    ///
+    /// # Derivation
+    ///
+    /// The joint axes are taken as lines in the base (world) frame at q = 0, each signed as its
+    /// joint value turns ([`Robot::joint_axes`]), and the tool pose at q = 0 ([`Robot::fk_matrix`]).
+    /// Frame *k* of the DH chain has its z axis on the axis of joint *k + 1*; joint *k* turns about
+    /// `z_{k−1}`, as standard DH wants ([`Convention::Dh`]):
+    ///
+    /// * **directions**: `z_{k−1} = σ_k·u_k` with `u_k` the joint's own axis direction and
+    ///   `σ_k = ±1`: an axis parallel to the previous one takes its direction (so that parallel
+    ///   axes have α = 0°, as the closed forms of PUMA- and UR-type arms expect, never 180°); the
+    ///   first axis points up (non-negative world z) where it can; every other axis keeps its own
+    ///   direction. `σ_k = −1` makes the DH joint *flipped* ([`Joint::flip`]: the model turns by
+    ///   `−q` where the user gives `q`), so the equivalent takes the robot's own joint values;
+    /// * **common normals**: `x_k` is the common normal from axis *k* to axis *k + 1*, pointing
+    ///   from the one to the other (a_k ≥ 0, so that a shoulder `front` label means the arm
+    ///   reaches towards the target): `±z_{k−1} × z_k` normalised for skew axes, `z_{k−1} × z_k`
+    ///   for axes that meet, the perpendicular from the previous origin `O_{k−1}` to the next axis
+    ///   for parallel axes (so d_k = 0 there, the usual choice; the UR5 gets its published table
+    ///   up to the signs of a2, a3), and `x_{k−1}` for coincident axes; `O_k` is where the normal
+    ///   meets axis *k + 1*;
+    /// * **parameters**: `d_k = (foot on axis k − O_{k−1})·z_{k−1}`, `a_k = (O_k − foot)·x_k`,
+    ///   `α_k` the angle from `z_{k−1}` to `z_k` about `x_k`, and the θ offset the angle from
+    ///   `x_{k−1}` to `x_k` about `z_{k−1}` at q = 0;
+    /// * **ends**: frame 0 sits on the first axis at the foot of the perpendicular from the base
+    ///   origin, with `x_0 = x_1` (θ1 offset 0); the last frame continues the last axis
+    ///   (`a_n = 0`, `α_n = 0`, `x_n = x_{n−1}`) to the foot of the perpendicular from the tool
+    ///   point, so that a spherical wrist has `a_n = 0`, `α_n = 0`; the **base** transform is
+    ///   frame 0 in the world and the **tool** transform the original tool pose in frame *n*.
+    ///
+    /// Twists within [`DH_EQUIVALENT`] of a multiple of 90° and lengths within it of zero are
+    /// made exact (URDF files print π/2 with 7 to 10 digits: `1.570796325` is 1.8e-9 rad off),
+    /// then the equivalent is **checked**: its forward kinematics must agree with the robot's to
+    /// [`DH_EQUIVALENT`] (every entry of the homogeneous transforms, metres and cosines) at q = 0
+    /// and at four more joint vectors. A chain that fails, or has a prismatic or mimic joint, has
+    /// no equivalent.
+    ///
+    /// # Limits
+    ///
+    /// Revolute joints only (a prismatic joint's DH `d` would carry its variable, which this
+    /// derivation does not place); no mimic joints (their motion is not a DH row); the
+    /// equivalent describes kinematics only (no mass properties: the DH link frames differ from
+    /// the description's).
     ///
     /// # Errors
     /// [`ModelError::NoDhEquivalent`] naming the reason: a prismatic or mimic joint, or forward
@@ -115,8 +114,8 @@ impl Robot {
     /// ```
     /// use reach::model::{Convention, Robot, UrdfChain};
     /// let urdf = std::fs::read_to_string(concat!(
-    ///     env!("CARGO_MANIFEST_DIR"),
-    ///     "/../../examples/urdf/kuka_kr16_support/urdf/kr16_2.urdf"
+    ///    env!("CARGO_MANIFEST_DIR"),
+    ///    "/../../examples/urdf/kuka_kr16_support/urdf/kr16_2.urdf"
     /// ))
     /// .unwrap();
     /// let chain = UrdfChain { base: None, tip: Some("tool0".into()) };
@@ -263,7 +262,7 @@ impl Robot {
             let (mine, theirs) =
                 (self.fk_matrix(&q).map_err(kinematics)?, equivalent.fk_matrix(&q).map_err(kinematics)?);
             let gap = (mine.to_homogeneous() - theirs.to_homogeneous()).abs().max();
-            if !(gap <= DH_EQUIVALENT) {
+            if gap.is_nan() || gap > DH_EQUIVALENT {
                 return Err(fail(format!(
                     "the derived DH chain's forward kinematics differ by {gap:.3e} at q = {q:?} (more than {DH_EQUIVALENT:e})"
                 )));
