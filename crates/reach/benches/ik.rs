@@ -7,7 +7,9 @@
 //!   branch of the generic configuration (`IkSolver::solve_branch`);
 //! * `planar_scan` — seed 000's α scan at 0.01° (`PlanarRedundant::paper_scan`);
 //! * `numeric` — first-found from the home configuration, first-found from a nearby seed
-//!   (tracking) and all distinct solutions (16 starts), for ur5 and panda.
+//!   (tracking) and all distinct solutions (16 starts), for ur5 and panda;
+//! * `from_geometry` — the KUKA KR 16-2 URDF (closed form through its standard-DH equivalent)
+//!   against that equivalent as a DH robot.
 //!
 //! The success rate and time distribution over 10 000 random poses are measured by the
 //! example `ik_protocol` (`cargo run --release -p reach --example ik_protocol`).
@@ -117,5 +119,27 @@ fn numeric(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, closed_form, planar_scan, numeric);
+/// Issue 16: the KUKA KR 16-2 as its URDF file (`examples/urdf/`, solved through its
+/// standard-DH equivalent) against that equivalent as a DH robot: the same closed form, all
+/// solutions of one pose; the URDF path adds only its longer forward kinematics in the check.
+fn from_geometry(c: &mut Criterion) {
+    let mut group = c.benchmark_group("from_geometry");
+    let text = include_str!("../../../examples/urdf/kuka_kr16_support/urdf/kr16_2.urdf");
+    let chain = reach::model::UrdfChain { base: None, tip: Some("tool0".into()) };
+    let urdf = Robot::from_urdf_str(text, &chain).expect("urdf");
+    let dh = urdf.dh_equivalent().expect("equivalent");
+    let q = [0.35, -1.75, 2.1, 0.8, -0.9, 1.2];
+    let target = IkTarget::Pose(urdf.fk(&q).expect("fk"));
+    let options = IkOptions::default();
+    for (name, robot) in [("kr16_urdf", &urdf), ("kr16_dh_equivalent", &dh)] {
+        let solver = SolverKind::detect(robot).build(robot).expect("closed form fits");
+        let n = solver.solve(robot, &target, &options).expect("solve").solutions.len();
+        group.bench_function(format!("{name}/all_{n}_solutions"), |b| {
+            b.iter(|| solver.solve(black_box(robot), black_box(&target), black_box(&options)).expect("solve"));
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, closed_form, planar_scan, numeric, from_geometry);
 criterion_main!(benches);

@@ -78,6 +78,20 @@ pub const STRUCTURE_ANGLE: f64 = 1e-9;
 /// Tolerance (metres) when a closed-form solver checks that a DH length is zero.
 pub const STRUCTURE_LENGTH: f64 = 1e-9;
 
+/// Tolerance of the standard-DH equivalent of a chain ([`Robot::dh_equivalent`](crate::model::Robot::dh_equivalent)):
+/// derived twists within this (radians) of a multiple of 90° and lengths within this (metres)
+/// of zero are made exact, and the equivalent's forward kinematics must agree with the
+/// robot's to this (every entry of the homogeneous transform, metres and cosines). URDF files
+/// print π/2 with 7 to 10 digits (`1.570796325` is 1.8e-9 rad off, a few 1e-9 m at the tool
+/// of a 1 m arm); a real design deviation is many orders larger.
+pub const DH_EQUIVALENT: f64 = 1e-8;
+
+/// A standard-DH equivalent whose forward kinematics agree with the robot's to this (metres
+/// and cosines; rounding is ~1e-16) is exact. Above it (twists or lengths made exact, up to
+/// [`DH_EQUIVALENT`]) the closed-form solutions computed on it are refined by Newton steps on
+/// the robot itself, so that they meet a pose target to rounding, not to the equivalent's gap.
+pub const DH_EQUIVALENT_EXACT: f64 = 1e-12;
+
 /// Fraction of a step by which the last value of a scanned grid may overshoot the end of
 /// the scanned range and still count (seed 000's α scan, `α_min + i·Δα ≤ 180°`): absorbs the
 /// rounding of `i·Δα` so that an exact end value (e.g. 90° + 9000 · 0.01° = 180°) is kept.

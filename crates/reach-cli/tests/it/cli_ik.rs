@@ -99,6 +99,33 @@ fn named_numeric_solver_reaches_the_fk_pose() {
     assert!(human.contains("numeric (--solver)"), "{human}");
 }
 
+/// A URDF file gets the closed form its axes fit (issue 16): the KUKA KR 16-2 from
+/// `examples/urdf/`, a pose from `reach fk`, all 8 solutions by the spherical-wrist solver,
+/// each within 1e-9 of the pose, the original configuration among them.
+#[test]
+fn a_urdf_arm_gets_its_closed_form_and_all_eight_solutions() {
+    let kr16 = "examples/urdf/kuka_kr16_support/urdf/kr16_2.urdf";
+    let q = [20.0, -100.0, 120.0, 45.0, -50.0, 70.0];
+    let q_text: Vec<String> = q.iter().map(|v| v.to_string()).collect();
+    let mut args = vec!["fk", kr16, "--tip", "tool0", "--json"];
+    args.extend(q_text.iter().map(String::as_str));
+    let fk = json(&args);
+    let rows: Vec<Vec<f64>> = fk["pose"]["matrix"].as_array().unwrap().iter().map(nums).collect();
+    let m = matrix_arg(&rows);
+    let report = json(&["ik", kr16, "--tip", "tool0", "--matrix", &m, "--all", "--json"]);
+    assert_eq!(report["status"], "ok", "{report}");
+    assert_eq!(report["solver"], "spherical-wrist", "{report}");
+    let all = solutions(&report);
+    assert_eq!(all.len(), 8, "{all:#?}");
+    assert!(all.iter().any(|s| same_angles(s, &q, 1e-6)), "{q:?} not among {all:#?}");
+    for s in report["solutions"].as_array().unwrap() {
+        assert!(s["position_error_m"].as_f64().unwrap() < 1e-9, "{s}");
+        assert!(s["orientation_error_rad"].as_f64().unwrap() < 1e-9, "{s}");
+    }
+    let human = ok(&["ik", kr16, "--tip", "tool0", "--matrix", &m, "--all"]);
+    assert!(human.contains("spherical-wrist"), "{human}");
+}
+
 // ---------------------------------------------------------------------------------------
 // The seeds' examples
 

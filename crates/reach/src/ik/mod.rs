@@ -19,6 +19,21 @@
 //! [`solve`] picks a solver from the robot's structure ([`SolverKind::detect`]) or uses the
 //! one named; a robot with no closed form falls back to the numeric solver.
 //!
+//! # Closed forms from the geometry
+//!
+//! The 6R closed forms ([`two_link_wrist`], [`spherical_wrist`], [`parallel_axes`]) read a
+//! standard DH table. A robot described otherwise (URDF with any joint origins, rpy and axis
+//! signs; MDH) is read through its standard-DH equivalent ([`Robot::dh_equivalent`]: the table
+//! of the common normals of its joint axes at q = 0, with a base and a tool transform, θ
+//! offsets and flipped joints, checked by forward kinematics to
+//! [`DH_EQUIVALENT`](crate::tolerance::DH_EQUIVALENT)), so a solver fits whatever file the
+//! robot came from when its axes fit. The joint values are the robot's own (the equivalent's
+//! joints are the robot's, flipped and offset), and every solution is verified against the
+//! robot itself by the same FK check as any other (`finish`), with its limits. A robot in
+//! standard DH is read by its own table. Limits: revolute chains without mimic joints; a
+//! chain whose equivalent does not fit (or does not exist) gets the numeric solver, and
+//! [`SolverKind::build`]'s error names the failed condition "in the standard-DH equivalent".
+//!
 //! Path tracking ([`crate::motion::tracking`]) asks a solver, through [`IkSolver`], what it
 //! needs to know of it: the configurations to track ([`IkSolver::configurations`]), whether
 //! labels name branches ([`IkSolver::enumerates_all_branches`]) and any closed-form
@@ -36,7 +51,7 @@ pub mod yaw_planar3;
 pub mod yaw_two_link;
 
 pub use solution::{Branch, IkFailure, IkSolution, IkSolutions, Label, LimitViolation, SingularityKind};
-pub(crate) use solution::{Candidate, chain_target, finish};
+pub(crate) use solution::{Candidate, ChainFrame, finish};
 
 use nalgebra::{Isometry3, Point3};
 use thiserror::Error;

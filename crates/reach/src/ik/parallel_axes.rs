@@ -88,12 +88,13 @@
 use nalgebra::{Isometry3, Rotation3, Vector3};
 use serde::Serialize;
 
+use super::spherical_wrist::{Dh6, revolute_dh6};
 use super::{
-    Branch, Candidate, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind,
-    SingularityMeasures, chain_target, finish,
+    Branch, Candidate, ChainFrame, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind,
+    SingularityMeasures, finish,
 };
 use crate::kinematics::check_q;
-use crate::model::{Convention, Joint, JointKind, Robot};
+use crate::model::Robot;
 use crate::tolerance::{BOUNDARY, IK_AXIS_DISTANCE, IK_PARALLEL_SINE, STRUCTURE_ANGLE, STRUCTURE_LENGTH};
 
 const NAME: &str = "parallel-axes";
@@ -303,6 +304,8 @@ pub struct ParallelAxes {
     /// θ offsets and joint signs (−1 for flipped joints): θ = sign·q + offset.
     offset: [f64; 6],
     sign: [f64; 6],
+    /// The DH chain relative to the robot's base and tool.
+    frame: ChainFrame,
 }
 
 /// A root of the shoulder equation.
@@ -353,35 +356,18 @@ impl ParallelAxes {
     /// # Errors
     /// [`IkError::Unsupported`] naming the failed condition.
     pub fn from_robot(robot: &Robot) -> Result<Self, IkError> {
+        let table = revolute_dh6(robot, NAME)?;
+        Self::from_table(robot, &table).map_err(|e| table.explain(e))
+    }
+
+    fn from_table(robot: &Robot, table: &Dh6) -> Result<Self, IkError> {
         let unsupported =
             |reason: String| IkError::Unsupported { solver: NAME, robot: robot.name().to_string(), reason };
-        if robot.convention() != Convention::Dh {
-            return Err(unsupported(format!(
-                "the robot is described in `{}`; this solver reads a standard DH table",
-                robot.convention().as_str()
-            )));
-        }
-        if robot.dof() != 6 {
-            return Err(unsupported(format!("needs 6 joints, the robot has {}", robot.dof())));
-        }
-        let mut a = [0.0; 6];
-        let mut d = [0.0; 6];
-        let mut alpha = [0.0; 6];
-        let mut offset = [0.0; 6];
-        let mut sign = [1.0; 6];
-        for (i, joint) in robot.joints().iter().enumerate() {
-            if joint.kind != JointKind::Revolute {
-                return Err(unsupported(format!("joint {} ({}) is not revolute", i + 1, joint.name)));
-            }
-            let Some(p) = joint.dh() else {
-                return Err(unsupported(format!("joint {} ({}) has no DH parameters", i + 1, joint.name)));
-            };
-            a[i] = p.a;
-            d[i] = p.d;
-            alpha[i] = p.alpha;
-            offset[i] = p.theta_offset;
-            sign[i] = if joint.flip { -1.0 } else { 1.0 };
-        }
+        let a = table.joints.map(|j| j.a);
+        let d = table.joints.map(|j| j.d);
+        let alpha = table.joints.map(|j| j.alpha);
+        let offset = table.joints.map(|j| j.offset);
+        let sign = table.joints.map(|j| j.sign);
         let deg = |i: usize| alpha[i].to_degrees();
         let right = std::f64::consts::FRAC_PI_2;
         let pm90 = |i: usize, what: &str| -> Result<f64, IkError> {
@@ -440,6 +426,7 @@ impl ParallelAxes {
             lateral: d[1] + d[2] * c_alpha2 + d[3] * c_alpha2 * c_alpha3,
             offset,
             sign,
+            frame: table.frame,
         })
     }
 
@@ -473,7 +460,7 @@ impl ParallelAxes {
     ) -> Result<TargetMeasures, IkError> {
         IkTarget::Pose(*target).validate()?;
         let seed = self.seed_theta(robot, options)?;
-        let frame = frame_of(&chain_target(robot, target));
+        let frame = frame_of(&self.frame.target(robot, target));
         let (z5, c) = self.wrist_point(&frame);
         let rho = c.x.hypot(c.y);
         let mut out = TargetMeasures { column_distance: rho, lateral_offset: self.lateral.abs(), arms: [None; 4] };
@@ -766,8 +753,9 @@ impl IkSolver for ParallelAxes {
     fn solve(&self, robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError> {
         target.validate()?;
         let seed = self.seed_theta(robot, options)?;
-        let frame = frame_of(&chain_target(robot, &Self::pose_of(robot, target, options)?));
-        let (candidates, failure) = self.candidates(&frame, &seed);
+        let frame = frame_of(&self.frame.target(robot, &Self::pose_of(robot, target, options)?));
+        let (mut candidates, failure) = self.candidates(&frame, &seed);
+        self.frame.refine(robot, target, &mut candidates);
         let if_empty = failure.unwrap_or_else(|| {
             let kind =
                 candidates.iter().find_map(|c| c.singularities.first().copied()).unwrap_or(SingularityKind::Jacobian);
@@ -804,12 +792,14 @@ impl IkSolver for ParallelAxes {
             _ => None,
         };
         if let Some(((shoulder, config), wrist)) = parsed {
-            let frame = frame_of(&chain_target(robot, &Self::pose_of(robot, target, options)?));
+            let frame = frame_of(&self.frame.target(robot, &Self::pose_of(robot, target, options)?));
             if let Some(cand) = self.branch_candidate(&frame, &seed, shoulder, config, wrist)
                 && cand.singularities.is_empty()
             {
                 let if_empty = IkFailure::Singular { kind: SingularityKind::Jacobian };
-                let sols = finish(robot, target, vec![cand], NAME, if_empty)?;
+                let mut candidates = vec![cand];
+                self.frame.refine(robot, target, &mut candidates);
+                let sols = finish(robot, target, candidates, NAME, if_empty)?;
                 if !sols.solutions.is_empty() {
                     return Ok(sols);
                 }
@@ -834,8 +824,8 @@ impl IkSolver for ParallelAxes {
     }
 
     /// Seed 003's measures ([`PathMeasures`]).
-    fn singularity_measures(&self, robot: &Robot, configurations: &[Branch]) -> Option<Box<dyn SingularityMeasures>> {
-        Some(Box::new(PathMeasures::new(self.clone(), robot, configurations)))
+    fn singularity_measures(&self, _robot: &Robot, configurations: &[Branch]) -> Option<Box<dyn SingularityMeasures>> {
+        Some(Box::new(PathMeasures::new(self.clone(), configurations)))
     }
 }
 
@@ -844,7 +834,7 @@ impl IkSolver for ParallelAxes {
 /// configuration without a `shoulder` or `wrist` pair uses both of that pair), the elbow
 /// measure `sign(m)·√|m|` with `m = 1 − |cos θ_elbow|` (0 where |Δ| = 1, negative out of
 /// reach) and the wrist measure `sin∠(w, e6)`; then the shoulder measure `(ρ − |D|)/L`, `L`
-/// the sum of the robot's DH lengths `|a| + |d|` (at least 1 mm).
+/// the sum of the DH lengths `|a| + |d|` (at least 1 mm).
 #[derive(Debug, Clone)]
 pub struct PathMeasures {
     solver: ParallelAxes,
@@ -856,7 +846,7 @@ pub struct PathMeasures {
 impl PathMeasures {
     /// The measures of the shoulder/wrist branches `configurations` use.
     #[must_use]
-    pub fn new(solver: ParallelAxes, robot: &Robot, configurations: &[Branch]) -> Self {
+    pub fn new(solver: ParallelAxes, configurations: &[Branch]) -> Self {
         let mut arms = Vec::new();
         let mut kinds = Vec::new();
         for shoulder in [Shoulder::W, Shoulder::MinusW] {
@@ -872,8 +862,7 @@ impl PathMeasures {
             }
         }
         kinds.push(SingularityKind::Shoulder);
-        let length_scale =
-            robot.joints().iter().filter_map(Joint::dh).map(|p| p.a.abs() + p.d.abs()).sum::<f64>().max(1e-3);
+        let length_scale = solver.a.iter().zip(&solver.d).map(|(a, d)| a.abs() + d.abs()).sum::<f64>().max(1e-3);
         PathMeasures { solver, arms, kinds, length_scale }
     }
 }
@@ -902,8 +891,8 @@ impl SingularityMeasures for PathMeasures {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::Joint;
     use crate::model::presets;
+    use crate::model::{Joint, JointKind};
 
     #[test]
     fn chace_solves_non_orthogonal_tetrahedra() {
@@ -941,7 +930,7 @@ mod tests {
             let robot = presets::get(name).unwrap();
             ParallelAxes::from_robot(&robot).unwrap_or_else(|e| panic!("{name}: {e}"));
         }
-        for (name, needle) in [("puma560", "α3"), ("spbu6", "α3"), ("planar3", "6 joints"), ("panda", "mdh")] {
+        for (name, needle) in [("puma560", "α3"), ("spbu6", "α3"), ("planar3", "6 joints"), ("panda", "7")] {
             let robot = presets::get(name).unwrap();
             let err = ParallelAxes::from_robot(&robot).unwrap_err().to_string();
             assert!(err.contains(needle), "{name}: {err}");

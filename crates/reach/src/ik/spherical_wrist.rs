@@ -94,7 +94,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use nalgebra::{Isometry3, IsometryMatrix3, Matrix3, Point3, Rotation3, Translation3, Vector3};
 
 use super::{
-    Branch, Candidate, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, chain_target,
+    Branch, Candidate, ChainFrame, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind,
     finish,
 };
 use crate::angle::wrap;
@@ -157,23 +157,49 @@ pub(crate) fn unsupported(solver: &'static str, robot: &Robot, reason: String) -
     IkError::Unsupported { solver, robot: robot.name().to_string(), reason }
 }
 
-/// The six joints of a 6R standard-DH robot, or why the robot is not one.
-pub(crate) fn revolute_dh6(robot: &Robot, solver: &'static str) -> Result<[DhJoint; 6], IkError> {
-    if robot.convention() != Convention::Dh {
-        return Err(unsupported(
-            solver,
-            robot,
-            format!(
-                "the robot is described in `{}`; this solver reads a standard DH table",
-                robot.convention().as_str()
-            ),
-        ));
+/// The DH table a closed form of 6R arms reads: six revolute joints and where their chain
+/// sits relative to the robot's base and tool.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Dh6 {
+    pub joints: [DhJoint; 6],
+    pub frame: ChainFrame,
+}
+
+impl Dh6 {
+    /// `error` (a structure condition that failed on this table) with a note that the table is
+    /// the standard-DH equivalent when the robot is not described in standard DH.
+    pub fn explain(&self, error: IkError) -> IkError {
+        match error {
+            IkError::Unsupported { solver, robot, reason } if !self.frame.is_own() => IkError::Unsupported {
+                solver,
+                robot,
+                reason: format!("{reason} (in the standard-DH equivalent derived from the joint axes)"),
+            },
+            other => other,
+        }
     }
+}
+
+/// The six joints of a 6R robot as a standard-DH table, or why the robot is not one: a robot
+/// described in standard DH gives its own table; any other its standard-DH equivalent derived
+/// from the joint axes ([`Robot::dh_equivalent`], with the robot's own joint values: flipped
+/// joints and θ offsets), whose base and tool relative to the robot's are in the returned
+/// [`ChainFrame`].
+pub(crate) fn revolute_dh6(robot: &Robot, solver: &'static str) -> Result<Dh6, IkError> {
     if robot.dof() != 6 {
         return Err(unsupported(solver, robot, format!("needs 6 joints, the robot has {}", robot.dof())));
     }
+    let derived;
+    let (table, frame) = if robot.convention() == Convention::Dh {
+        (robot, ChainFrame::default())
+    } else {
+        derived = robot.dh_equivalent_and_gap().map_err(|e| {
+            unsupported(solver, robot, format!("the robot is described in `{}` and {e}", robot.convention().as_str()))
+        })?;
+        (&derived.0, ChainFrame::between(robot, &derived.0, derived.1))
+    };
     let mut out = [DhJoint { a: 0.0, alpha: 0.0, d: 0.0, offset: 0.0, sign: 1.0, sin_cos_alpha: (0.0, 1.0) }; 6];
-    for (i, (joint, slot)) in robot.joints().iter().zip(out.iter_mut()).enumerate() {
+    for (i, (joint, slot)) in table.joints().iter().zip(out.iter_mut()).enumerate() {
         if joint.kind != JointKind::Revolute {
             return Err(unsupported(solver, robot, format!("joint {} ({}) is not revolute", i + 1, joint.name)));
         }
@@ -189,8 +215,9 @@ pub(crate) fn revolute_dh6(robot: &Robot, solver: &'static str) -> Result<[DhJoi
             sign: if joint.flip { -1.0 } else { 1.0 },
         };
     }
-    Ok(out)
+    Ok(Dh6 { joints: out, frame })
 }
+
 /// Checks that axes 4, 5 and 6 meet in one point: a4 = d5 = a5 = a6 = 0.
 pub(crate) fn require_spherical_wrist(
     robot: &Robot,
@@ -279,11 +306,13 @@ pub(crate) fn free_theta(joints: &[DhJoint; 6], seed: Option<&[f64; 6]>, i: usiz
     seed.map_or(joints[i].offset, |s| s[i])
 }
 
-/// The flange pose to solve, in the chain frame: the pose target with base and tool removed;
+/// The flange pose to solve, in the chain frame: the pose target with base and tool removed
+/// (and the DH chain's own base and tool, `frame`);
 /// for a position target, the tool orientation of the seed (else of the home configuration)
 /// at the target position.
 pub(crate) fn flange_goal(
     robot: &Robot,
+    frame: &ChainFrame,
     target: &IkTarget,
     options: &IkOptions,
 ) -> Result<IsometryMatrix3<f64>, IkError> {
@@ -295,7 +324,7 @@ pub(crate) fn flange_goal(
             Isometry3::from_parts(Translation3::from(p.coords), current.rotation)
         }
     };
-    let t = chain_target(robot, &pose);
+    let t = frame.target(robot, &pose);
     Ok(IsometryMatrix3::from_parts(t.translation, t.rotation.to_rotation_matrix()))
 }
 
@@ -373,6 +402,7 @@ pub(crate) fn fallback_failure(arms: &[Arm]) -> IkFailure {
 /// when no or several arms carry the labels, or when the branch has no verified solution.
 pub(crate) fn arm_branch(
     robot: &Robot,
+    frame: &ChainFrame,
     target: &IkTarget,
     branch: &Branch,
     solver: &'static str,
@@ -398,6 +428,7 @@ pub(crate) fn arm_branch(
     if candidates.is_empty() {
         return Ok(None);
     }
+    frame.refine(robot, target, &mut candidates);
     let sols = finish(robot, target, candidates, solver, fallback_failure(arms))?;
     Ok((!sols.solutions.is_empty()).then_some(sols))
 }
@@ -420,6 +451,8 @@ pub(crate) fn arm_branch(
 #[derive(Debug, Clone)]
 pub struct SphericalWrist {
     joints: [DhJoint; 6],
+    /// The DH chain relative to the robot's base and tool.
+    frame: ChainFrame,
     /// sgn α1, sgn α3, sgn α4, sgn α5.
     s1: f64,
     s3: f64,
@@ -440,7 +473,12 @@ impl SphericalWrist {
     /// [`IkError::Unsupported`] naming the failed condition (convention, joint count or kind,
     /// non-spherical wrist, a twist that is not 0°/±90°, a2 = 0 or L2 = 0).
     pub fn from_robot(robot: &Robot) -> Result<Self, IkError> {
-        let joints = revolute_dh6(robot, NAME)?;
+        let table = revolute_dh6(robot, NAME)?;
+        Self::from_table(robot, &table).map_err(|e| table.explain(e))
+    }
+
+    fn from_table(robot: &Robot, table: &Dh6) -> Result<Self, IkError> {
+        let joints = table.joints;
         let fail = |reason: String| Err(unsupported(NAME, robot, reason));
         require_spherical_wrist(robot, NAME, &joints)?;
         let [s1, s3, s4, s5] = wrist_arm_twists(
@@ -457,7 +495,17 @@ impl SphericalWrist {
         if is_zero_length(l2) {
             return fail("a3 = d4 = 0: no forearm (the wrist centre is on the elbow axis)".into());
         }
-        Ok(SphericalWrist { joints, s1, s3, s4, s5, lateral: joints[1].d + joints[2].d, l2, alpha: d4.atan2(a3) })
+        Ok(SphericalWrist {
+            joints,
+            frame: table.frame,
+            s1,
+            s3,
+            s4,
+            s5,
+            lateral: joints[1].d + joints[2].d,
+            l2,
+            alpha: d4.atan2(a3),
+        })
     }
 
     /// The lateral (shoulder) offset d = d2 + d3, metres.
@@ -636,7 +684,7 @@ impl IkSolver for SphericalWrist {
     fn solve(&self, robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError> {
         target.validate()?;
         let seed = seed_thetas(&self.joints, options)?;
-        let flange = flange_goal(robot, target, options)?;
+        let flange = flange_goal(robot, &self.frame, target, options)?;
         let w = wrist_centre(&flange, self.joints[5].d);
         let arms = match self.arms(&w, seed.as_ref()) {
             Ok(arms) => arms,
@@ -646,6 +694,7 @@ impl IkSolver for SphericalWrist {
         for arm in &arms {
             self.wrists(arm, &flange, seed.as_ref(), None, &mut candidates);
         }
+        self.frame.refine(robot, target, &mut candidates);
         finish(robot, target, candidates, NAME, fallback_failure(&arms))
     }
 
@@ -660,10 +709,10 @@ impl IkSolver for SphericalWrist {
     ) -> Result<IkSolutions, IkError> {
         target.validate()?;
         let seed = seed_thetas(&self.joints, options)?;
-        let flange = flange_goal(robot, target, options)?;
+        let flange = flange_goal(robot, &self.frame, target, options)?;
         let w = wrist_centre(&flange, self.joints[5].d);
         if let Ok(arms) = self.arms(&w, seed.as_ref())
-            && let Some(sols) = arm_branch(robot, target, branch, NAME, &arms, |arm, out| {
+            && let Some(sols) = arm_branch(robot, &self.frame, target, branch, NAME, &arms, |arm, out| {
                 self.wrists(arm, &flange, seed.as_ref(), branch.get("wrist"), out);
             })?
         {
@@ -760,7 +809,7 @@ mod tests {
 
     #[test]
     fn rejects_robots_outside_the_family() {
-        for (name, needle) in [("ur5", "d5"), ("panda", "`mdh`"), ("planar3", "6 joints")] {
+        for (name, needle) in [("ur5", "d5"), ("panda", "7"), ("planar3", "6 joints")] {
             let robot = presets::get(name).unwrap();
             let err = SphericalWrist::from_robot(&robot).unwrap_err().to_string();
             assert!(err.contains(needle), "{name}: {err}");

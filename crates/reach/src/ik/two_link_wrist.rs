@@ -87,12 +87,13 @@ use std::f64::consts::PI;
 use nalgebra::{IsometryMatrix3, Point3};
 
 use super::spherical_wrist::{
-    Arm, DhJoint, arm_branch, arm_configurations, elbow_label, fallback_failure, flange_goal, free_theta,
+    Arm, Dh6, DhJoint, arm_branch, arm_configurations, elbow_label, fallback_failure, flange_goal, free_theta,
     is_zero_length, joint_values, require_spherical_wrist, revolute_dh6, seed_thetas, unsupported, wrist_arm_twists,
     wrist_centre, wrist_label,
 };
 use super::{
-    Branch, Candidate, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind, finish,
+    Branch, Candidate, ChainFrame, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind,
+    finish,
 };
 use crate::model::Robot;
 use crate::tolerance::{BOUNDARY, IK_AXIS_DISTANCE, IK_PARALLEL_SINE};
@@ -117,6 +118,8 @@ const NAME: &str = "two-link-wrist";
 #[derive(Debug, Clone)]
 pub struct TwoLinkWrist {
     joints: [DhJoint; 6],
+    /// The DH chain relative to the robot's base and tool.
+    frame: ChainFrame,
     /// sgn α1, sgn α3, sgn α4.
     s1: f64,
     s3: f64,
@@ -134,7 +137,12 @@ impl TwoLinkWrist {
     /// non-spherical wrist, a twist that is not 0°/±90°, a shoulder or forearm offset, a zero
     /// link).
     pub fn from_robot(robot: &Robot) -> Result<Self, IkError> {
-        let joints = revolute_dh6(robot, NAME)?;
+        let table = revolute_dh6(robot, NAME)?;
+        Self::from_table(robot, &table).map_err(|e| table.explain(e))
+    }
+
+    fn from_table(robot: &Robot, table: &Dh6) -> Result<Self, IkError> {
+        let joints = table.joints;
         let fail = |reason: String| Err(unsupported(NAME, robot, reason));
         require_spherical_wrist(robot, NAME, &joints)?;
         let [s1, s3, s4, s5] = wrist_arm_twists(
@@ -159,7 +167,7 @@ impl TwoLinkWrist {
         if is_zero_length(joints[3].d) {
             return fail("d4 = 0: no link 2".into());
         }
-        Ok(TwoLinkWrist { joints, s1, s3, s4, s6: if s5 == -s4 { 1.0 } else { -1.0 } })
+        Ok(TwoLinkWrist { joints, frame: table.frame, s1, s3, s4, s6: if s5 == -s4 { 1.0 } else { -1.0 } })
     }
 
     /// Length of link 1 (`a2`), metres.
@@ -297,7 +305,7 @@ impl IkSolver for TwoLinkWrist {
     fn solve(&self, robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError> {
         target.validate()?;
         let seed = seed_thetas(&self.joints, options)?;
-        let flange = flange_goal(robot, target, options)?;
+        let flange = flange_goal(robot, &self.frame, target, options)?;
         let w = wrist_centre(&flange, self.joints[5].d);
         let arms = match self.arms(&w, seed.as_ref()) {
             Ok(arms) => arms,
@@ -307,6 +315,7 @@ impl IkSolver for TwoLinkWrist {
         for arm in &arms {
             self.wrists(arm, &flange, seed.as_ref(), &mut candidates);
         }
+        self.frame.refine(robot, target, &mut candidates);
         finish(robot, target, candidates, NAME, fallback_failure(&arms))
     }
 
@@ -321,10 +330,10 @@ impl IkSolver for TwoLinkWrist {
     ) -> Result<IkSolutions, IkError> {
         target.validate()?;
         let seed = seed_thetas(&self.joints, options)?;
-        let flange = flange_goal(robot, target, options)?;
+        let flange = flange_goal(robot, &self.frame, target, options)?;
         let w = wrist_centre(&flange, self.joints[5].d);
         if let Ok(arms) = self.arms(&w, seed.as_ref())
-            && let Some(sols) = arm_branch(robot, target, branch, NAME, &arms, |arm, out| {
+            && let Some(sols) = arm_branch(robot, &self.frame, target, branch, NAME, &arms, |arm, out| {
                 self.wrists(arm, &flange, seed.as_ref(), out);
             })?
         {
@@ -363,7 +372,7 @@ mod tests {
 
     #[test]
     fn rejects_offset_arms() {
-        for (name, needle) in [("puma560", "d3"), ("ur5", "d5"), ("panda", "`mdh`"), ("log-loader", "6 joints")] {
+        for (name, needle) in [("puma560", "d3"), ("ur5", "d5"), ("panda", "7"), ("log-loader", "6 joints")] {
             let err = TwoLinkWrist::from_robot(&presets::get(name).unwrap()).unwrap_err().to_string();
             assert!(err.contains(needle), "{name}: {err}");
         }

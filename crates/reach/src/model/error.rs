@@ -98,6 +98,14 @@ pub enum ModelError {
     /// A URDF file could not be read or does not describe a usable serial chain.
     #[error("URDF: {0}")]
     Urdf(String),
+    /// The chain has no standard-DH equivalent ([`Robot::dh_equivalent`](super::Robot::dh_equivalent)).
+    #[error("robot `{robot}` has no standard-DH equivalent: {reason}")]
+    NoDhEquivalent {
+        /// The robot's name.
+        robot: String,
+        /// Why (a prismatic or mimic joint, or forward kinematics that disagree).
+        reason: String,
+    },
     /// No preset robot has this name.
     #[error("unknown robot preset `{name}` (known: {known})")]
     UnknownPreset {

@@ -7,6 +7,7 @@
 //! [`Robot::from_toml_str`] and [`Robot::from_urdf_str`]; the shipped presets are in
 //! [`presets`].
 
+mod dh_equivalent;
 mod error;
 mod inertia;
 mod joint;

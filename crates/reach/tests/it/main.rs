@@ -24,6 +24,7 @@ mod dynamics_reference;
 mod fuzz;
 mod ik_branch;
 mod ik_detect;
+mod ik_from_geometry;
 mod ik_numeric;
 mod ik_round_trip;
 mod jobs_view;
