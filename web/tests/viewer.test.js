@@ -9,7 +9,7 @@
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { mkdtempSync, writeFileSync, mkdirSync } from 'node:fs';
+import { mkdtempSync, writeFileSync, mkdirSync, statSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, dirname, resolve } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
@@ -86,6 +86,58 @@ test('a UR5 motion: no console error, one object per link, tool where reach fk p
     return window.reachViewer.state().t_s;
   }, (report.samples[3].t_s + report.samples[4].t_s) / 2);
   assert.equal(between, report.samples[3].t_s);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+const KR16 = 'examples/urdf/kuka_kr16_support/urdf/kr16_2.urdf';
+
+test('the KUKA KR 16-2 from its URDF: meshes on every link, tool where reach fk puts it', async () => {
+  const move = ['move', KR16, '--tip', 'tool0', '--from', '0,-90,90,0,45,0', '--to', '60,-50,40,90,-60,120', '--profile', 'quintic', '--duration', '2', '--dt', '0.1', '--json'];
+  const text = reach(...move);
+  const report = JSON.parse(text);
+  const motion = join(dir, 'kr16_motion.json');
+  writeFileSync(motion, text);
+  const html = join(dir, 'kr16.html');
+  reach('view', KR16, '--tip', 'tool0', '--motion', motion, '-o', html);
+  const started = Date.now();
+  const { page, errors } = await open(html);
+  console.log(`KR16 page: ${(statSync(html).size / 1e6).toFixed(2)} MB, ready in ${Date.now() - started} ms`);
+
+  // Every link with a <visual> in the document holds mesh objects; the others none.
+  const counts = await page.evaluate(() => window.reachViewer.meshCounts());
+  for (const link of ['base_link', 'link_1', 'link_2', 'link_3', 'link_4', 'link_5', 'link_6']) {
+    assert.ok(counts[link] > 0, `link ${link}: ${counts[link]} meshes`);
+  }
+  assert.equal(counts.tool0, 0);
+  assert.equal(await page.evaluate(() => window.reachViewer.linkCount()), 7);
+
+  // The slider: the state shown is a sample of the motion, and urdf-loader's tip link (posed
+  // by joint name from that sample's q) is where `reach fk` puts the tool.
+  for (const v of [0, 180, 500, 730, 1000]) {
+    const shown = await page.evaluate((value) => {
+      const slider = document.getElementById('reach-slider');
+      slider.value = String(value);
+      slider.dispatchEvent(new Event('input'));
+      const s = window.reachViewer.state();
+      return { t: s.t_s, q: s.q_deg, tool: window.reachViewer.toolPosition() };
+    }, v);
+    const sample = report.samples.find((s) => Math.abs(s.t_s - shown.t) < 1e-9);
+    assert.ok(sample, `slider ${v}: t = ${shown.t} is a sample time`);
+    assert.deepEqual(shown.q.map((q) => +q.toFixed(9)), sample.q_deg.map((q) => +q.toFixed(9)));
+    const fk = JSON.parse(reach('fk', KR16, '--tip', 'tool0', ...sample.q_deg.map(String), '--json')).pose.xyz_m;
+    for (let i = 0; i < 3; i++) {
+      assert.ok(Math.abs(shown.tool[i] - fk[i]) < 1e-6, `slider ${v}, t=${shown.t}: tool ${shown.tool} vs fk ${fk}`);
+    }
+  }
+  if (process.env.REACH_SCREENSHOTS) {
+    await page.evaluate(() => {
+      const v = window.reachViewer;
+      v.setTime(v.startTime() + 0.6 * v.duration());
+    });
+    mkdirSync(SHOTS, { recursive: true });
+    await page.screenshot({ path: join(SHOTS, 'view_kr16.png') });
+  }
   assert.deepEqual(errors, []);
   await page.close();
 });

@@ -131,3 +131,33 @@ fn bad_requests_name_their_field() {
     let empty = ViewRequest { samples: Some(Vec::new()), ..ViewRequest::default() };
     assert_eq!(view(&robot, &empty).unwrap_err().to_string(), "samples: no sample");
 }
+
+#[test]
+fn a_urdf_view_carries_its_document_and_meshes_for_the_robots_own_chain() {
+    use reach::jobs::view::ViewUrdf;
+    use reach::model::UrdfChain;
+    let text = example("urdf/kuka_kr16_support/urdf/kr16_2.urdf");
+    let tool0 = UrdfChain { base: None, tip: Some("tool0".into()) };
+    let robot = reach::Robot::from_urdf_str(&text, &tool0).unwrap();
+    let mut asked = Vec::new();
+    let urdf = ViewUrdf::read(&text, &tool0, |f| {
+        asked.push(f.to_string());
+        Ok(vec![1, 2, 3])
+    })
+    .unwrap();
+    assert_eq!(asked.len(), 7, "the visual meshes, each once: {asked:?}");
+    assert!(asked.iter().all(|f| f.contains("/visual/")), "{asked:?}");
+    assert_eq!((urdf.base_link.as_str(), urdf.tip_link.as_str()), ("base_link", "tool0"));
+    assert_eq!(urdf.meshes[0].base64, "AQID");
+    let report = view(&robot, &ViewRequest { urdf: Some(urdf), ..ViewRequest::default() }).unwrap();
+    assert_eq!(report.urdf.as_ref().unwrap().meshes.len(), 7);
+
+    // A document whose chain moves other joints than the robot's is refused.
+    let link4 = UrdfChain { base: None, tip: Some("link_4".into()) };
+    let short = ViewUrdf::read(&text, &link4, |_| Ok(Vec::new())).unwrap();
+    let err = view(&robot, &ViewRequest { urdf: Some(short), ..ViewRequest::default() }).unwrap_err().to_string();
+    assert!(err.starts_with("urdf: the chain base_link → link_4 moves joints [joint_a1"), "{err}");
+    // The reader's error stops the reading.
+    let failing = ViewUrdf::read(&text, &tool0, |f| Err(reach::Error::request("mesh", f.to_string())));
+    assert!(failing.unwrap_err().to_string().contains("visual/base_link.dae"));
+}
