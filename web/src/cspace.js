@@ -104,16 +104,23 @@ export class CspacePanel {
     g.fill();
   }
 
-  /** What the panel drew: cells, cells whose centre shows a forbidden class's colour, path
-   * vertices (for tests). */
+  /** What the panel drew (for tests): `cells`, `forbidden` (cells whose centre shows another
+   * colour than the allowed one), `pathPoints` (vertices of the path) and `pathDrawn` (vertices
+   * whose pixel the path or the dot changed over the grid). */
   summary() {
     const data = this.grid.getContext('2d').getImageData(0, 0, this.grid.width, this.grid.height).data;
+    const shown = this.canvas.getContext('2d').getImageData(0, 0, this.canvas.width, this.canvas.height).data;
+    let pathDrawn = 0;
+    for (const [x, y] of this.path) {
+      const p = 4 * (Math.floor(y) * this.grid.width + Math.floor(x));
+      if ([0, 1, 2].some((c) => data[p + c] !== shown[p + c])) pathDrawn += 1;
+    }
     let forbidden = 0;
     const allowed = CLASS_COLORS[0];
     for (const [x, y] of this.centres) {
       const p = 4 * (y * this.grid.width + x);
       if (data[p] !== allowed[0] || data[p + 1] !== allowed[1] || data[p + 2] !== allowed[2]) forbidden += 1;
     }
-    return { cells: this.centres.length, forbidden, pathPoints: this.path.length };
+    return { cells: this.centres.length, forbidden, pathPoints: this.path.length, pathDrawn };
   }
 }

@@ -118,7 +118,15 @@ class Viewer {
 
     const b = report.base.xyz_m;
     const centre = new THREE.Vector3(b[0], b[1], b[2] + 0.3 * size);
-    this.camera.position.set(b[0] + 1.2 * size, b[1] - 1.7 * size, b[2] + 1.1 * size);
+    // An arm that moves in the base's x–y plane (seed 000's planar arms) is seen from above.
+    const planar = report.states.every((st) => [...st.frames, st.tool].every((f) => Math.abs(f.xyz_m[2] - b[2]) < 1e-9));
+    if (planar) {
+      // Centred between the base and the mean tool point.
+      const tools = report.states.map((st) => st.tool.xyz_m);
+      const mean = [0, 1].map((i) => tools.reduce((a, p) => a + p[i], 0) / tools.length);
+      centre.set((b[0] + mean[0]) / 2, (b[1] + mean[1]) / 2, b[2]);
+      this.camera.position.set(centre.x + 0.15 * size, centre.y - 0.6 * size, b[2] + 1.9 * size);
+    } else this.camera.position.set(b[0] + 1.2 * size, b[1] - 1.7 * size, b[2] + 1.1 * size);
     this.camera.near = size / 100;
     this.camera.far = size * 100;
     this.controls.target.copy(centre);

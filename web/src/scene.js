@@ -132,7 +132,7 @@ export function shapeMesh(shape, size) {
   let mesh;
   switch (shape.shape) {
     case 'point':
-      mesh = new THREE.Mesh(new THREE.SphereGeometry(0.01 * size, 12, 8), material);
+      mesh = new THREE.Mesh(new THREE.SphereGeometry(0.02 * size, 12, 8), material);
       mesh.position.set(...shape.at_m);
       break;
     case 'sphere':
