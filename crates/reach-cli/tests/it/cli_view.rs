@@ -57,6 +57,9 @@ fn bad_input_is_one_line_and_exit_2() {
     fails(&["view", "ur5", "0", "0", "-o", out], 2, &["6 joints, got 2"]);
     fails(&["view", "ur5", "--motion", "/nonexistent/m.json", "-o", out], 2, &["/nonexistent/m.json"]);
     fails(&["view", "ur5", "--ik-xyz", "0.4,0.2", "-o", out], 2, &["--ik-xyz"]);
+    let scene = format!("{REPO_ROOT}/examples/seed004_ceiling.toml");
+    fails(&["view", "varan4", "--scene", &scene, "--cspace", "2", "-o", out], 2, &["--cspace: two joints"]);
+    fails(&["view", "varan4", "--scene", &scene, "--cspace", "2,7", "-o", out], 2, &["joints 2 and 7"]);
     assert!(!std::path::Path::new(out).exists(), "nothing written on bad input");
 }
 
