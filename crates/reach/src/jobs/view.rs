@@ -1,5 +1,6 @@
 //! The `view` workflow: everything the 3-D viewer draws, precomputed, so the viewer (three.js,
-//! `web/`) does no kinematics of its own.
+//! `web/`) does no kinematics of its own (except that urdf-loader places a URDF robot's
+//! meshes from its document's joints at each state's joint values, [`ViewUrdf`]).
 //!
 //! A view holds the robot's states — one configuration, or the samples of a motion (a sampled
 //! motion such as `reach move --json`'s, or every motion of a task file planned here) — each
