@@ -8,7 +8,11 @@
 //   startTime(), duration()   the motion's first time and length, seconds
 //   state()          the state shown (t_s, q_deg, frames, tool, axes), as in the report
 //   toolPosition()   world position [x, y, z] (metres) of the drawn tool point
-//   linkCount()      number of link objects of the arm (one per link segment)
+//   linkCount()      number of link objects of the arm (one per link segment; for a URDF robot
+//                    drawn with its meshes, the links of its document that hold a mesh)
+//   cspace()         with a C-space section: { cells, forbidden, pathPoints } as drawn (cells whose
+//                    centre shows a forbidden class's colour)
+//   meshCounts()     URDF robots drawn with their meshes: per link name, its mesh objects
 //   play() / pause()
 //   live             on the page `reach serve` serves at `/`: received(), latencies() (ms from
 //                    the service's send to the page's receipt of each joint state), lastState()
@@ -18,6 +22,8 @@ import { Arm, extent, shapeMesh, toolPath, ghostArms } from './scene.js';
 import { JointPlot } from './plot.js';
 import { el } from './dom.js';
 import { startLive } from './live.js';
+import { UrdfArm } from './urdf.js';
+import { CspacePanel } from './cspace.js';
 
 const CSS = `
 html, body { margin: 0; height: 100%; font: 13px sans-serif; }
@@ -35,6 +41,7 @@ html, body { margin: 0; height: 100%; font: 13px sans-serif; }
 #reach-side { width: 340px; border-left: 1px solid #ccc; padding: 8px; overflow: auto; }
 #reach-q { font-family: monospace; white-space: pre; }
 #reach-events { font-size: 12px; }
+#reach-cspace-caption { font-size: 11px; margin-bottom: 6px; }
 `;
 
 class Viewer {
@@ -53,6 +60,8 @@ class Viewer {
     this.side = side;
     this.plotCanvas = el('canvas', { id: 'reach-plot', width: 320, height: 200 }, side);
     this.qText = el('div', { id: 'reach-q' }, side);
+    this.cspaceCanvas = el('canvas', { id: 'reach-cspace', width: 320, height: 280 }, side);
+    this.cspaceCaption = el('div', { id: 'reach-cspace-caption' }, side);
     this.eventList = el('div', { id: 'reach-events' }, side);
 
     this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
@@ -100,13 +109,24 @@ class Viewer {
       target.quaternion.set(q[1], q[2], q[3], q[0]);
       this.scene.add(target);
     }
-    this.arm = new Arm(report, { scale: size });
+    // A URDF robot with its document: its meshes; the capsules otherwise.
+    this.urdfArm = report.urdf ? new UrdfArm(report) : null;
+    if (this.urdfArm) this.scene.add(this.urdfArm.group);
+    this.arm = new Arm(report, { scale: size, links: !this.urdfArm });
     this.arm.group.name = 'arm';
     this.scene.add(this.arm.group);
 
     const b = report.base.xyz_m;
     const centre = new THREE.Vector3(b[0], b[1], b[2] + 0.3 * size);
-    this.camera.position.set(b[0] + 1.2 * size, b[1] - 1.7 * size, b[2] + 1.1 * size);
+    // An arm that moves in the base's x–y plane (seed 000's planar arms) is seen from above.
+    const planar = report.states.every((st) => [...st.frames, st.tool].every((f) => Math.abs(f.xyz_m[2] - b[2]) < 1e-9));
+    if (planar) {
+      // Centred between the base and the mean tool point.
+      const tools = report.states.map((st) => st.tool.xyz_m);
+      const mean = [0, 1].map((i) => tools.reduce((a, p) => a + p[i], 0) / tools.length);
+      centre.set((b[0] + mean[0]) / 2, (b[1] + mean[1]) / 2, b[2]);
+      this.camera.position.set(centre.x + 0.15 * size, centre.y - 0.6 * size, b[2] + 1.9 * size);
+    } else this.camera.position.set(b[0] + 1.2 * size, b[1] - 1.7 * size, b[2] + 1.1 * size);
     this.camera.near = size / 100;
     this.camera.far = size * 100;
     this.controls.target.copy(centre);
@@ -117,6 +137,9 @@ class Viewer {
     this.title.textContent = `${report.robot}` + (report.ik_status ? ` — IK: ${report.ik_status}, ${report.ghosts.length} solution(s)` : '');
     this.plot = new JointPlot(this.plotCanvas, report);
     this.plotCanvas.style.display = report.states.length > 1 ? '' : 'none';
+    this.cspace = report.cspace ? new CspacePanel(this.cspaceCanvas, this.cspaceCaption, report) : null;
+    this.cspaceCanvas.style.display = this.cspace ? '' : 'none';
+    if (!this.cspace) this.cspaceCaption.textContent = '';
     this.drawTimeline();
     this.resize();
     this.setTime(this.t0);
@@ -173,6 +196,7 @@ class Viewer {
     this.liveState = null;
     this.draw(s);
     this.plot.draw(s.t_s);
+    if (this.cspace) this.cspace.draw(this.index);
   }
 
   render() {
@@ -188,6 +212,7 @@ class Viewer {
   // The arm at state `s`, its joint values and tool position beside it.
   draw(s) {
     this.arm.set(s);
+    if (this.urdfArm) this.urdfArm.set(s);
     const lines = this.report.joint_names.map((n, j) => {
       const unit = this.report.prismatic[j] ? 'm' : '°';
       return `${n.padEnd(12)} ${s.q_deg[j].toFixed(3).padStart(10)} ${unit}`;
@@ -232,8 +257,13 @@ function start() {
     startTime: () => viewer.t0,
     duration: () => viewer.duration,
     state: () => viewer.liveState || viewer.report.states[viewer.index],
-    toolPosition: () => viewer.arm.tip.position.toArray(),
-    linkCount: () => viewer.arm.group.children.filter((c) => c.userData.link !== undefined).length,
+    toolPosition: () => (viewer.urdfArm ? viewer.urdfArm.toolPosition() : viewer.arm.tip.position.toArray()),
+    linkCount: () =>
+      viewer.urdfArm
+        ? Object.values(viewer.urdfArm.meshCounts()).filter((n) => n > 0).length
+        : viewer.arm.group.children.filter((c) => c.userData.link !== undefined).length,
+    cspace: () => (viewer.cspace ? viewer.cspace.summary() : null),
+    meshCounts: () => (viewer.urdfArm ? viewer.urdfArm.meshCounts() : {}),
     play: () => viewer.play(),
     pause: () => viewer.pause(),
   };

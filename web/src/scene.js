@@ -48,9 +48,10 @@ export function extent(report) {
   return r;
 }
 
-/** An arm: one capsule per link segment, a sphere per joint, axis lines, frames. */
+/** An arm: one capsule per link segment, a sphere per joint (`links: false`: neither, when the
+ * links are drawn otherwise), axis lines, frames, the tool point. */
 export class Arm {
-  constructor(report, { color = COLORS.link, opacity = 1, axes = true, frames = true, scale = 1 }) {
+  constructor(report, { color = COLORS.link, opacity = 1, axes = true, frames = true, links = true, scale = 1 }) {
     this.report = report;
     this.group = new THREE.Group();
     const n = report.link_radii_m.length;
@@ -64,7 +65,7 @@ export class Arm {
     const jointMaterial = new THREE.MeshStandardMaterial({ color: COLORS.joint, transparent: opacity < 1, opacity });
     this.links = [];
     this.joints = [];
-    for (let k = 0; k < n; k++) {
+    for (let k = 0; k < (links ? n : 0); k++) {
       const r = report.link_radii_m[k] > 0 ? report.link_radii_m[k] : visual;
       const mesh = new THREE.Mesh(new THREE.CylinderGeometry(r, r, 1, 20), material);
       mesh.name = k < n - 1 ? report.joint_names[k] : 'tool';
@@ -131,7 +132,7 @@ export function shapeMesh(shape, size) {
   let mesh;
   switch (shape.shape) {
     case 'point':
-      mesh = new THREE.Mesh(new THREE.SphereGeometry(0.01 * size, 12, 8), material);
+      mesh = new THREE.Mesh(new THREE.SphereGeometry(0.02 * size, 12, 8), material);
       mesh.position.set(...shape.at_m);
       break;
     case 'sphere':

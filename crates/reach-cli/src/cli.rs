@@ -403,13 +403,20 @@ pub enum Command {
             --plan, a task file planned for ROBOT) with a time slider, play/pause, the events \
             (K-codes, infeasible intervals) marked on the timeline and a joint plot; the tool \
             path; the obstacles and tool zone of --scene; and with --ik-xyz (and --ik-rpy or \
-            --ik-quat) every IK solution of that target as a ghost arm. At most 2000 states are \
-            shipped (a longer motion is thinned evenly). See docs/viewer.md.",
+            --ik-quat) every IK solution of that target as a ghost arm. A URDF robot is drawn \
+            with its visual meshes (STL, Collada), inlined: package://NAME/.. resolves to the \
+            directory NAME above the URDF file, other addresses to the file's directory; a \
+            missing mesh is an error (--no-meshes: capsules). --cspace I,J adds a C-space \
+            section of joints I and J over --scene (the other joints at the first state's \
+            values) with the motion's path in it. At most 2000 states are shipped (a longer \
+            motion is thinned evenly). See docs/viewer.md.",
         after_help = "Examples:\n  \
             reach view ur5 0 -90 90 0 90 0 -o ur5.html\n  \
             reach view ur5 --ik-xyz 0.4,0.2,0.3 --ik-rpy 180,0,0 -o ik.html\n  \
             reach view welder6r --plan examples/seed003_welding.toml -o weld.html\n  \
-            reach view varan4 0 30 -45 10 --scene examples/seed004_two_planes.toml -o zones.html"
+            reach view varan4 0 30 -45 10 --scene examples/seed004_two_planes.toml -o zones.html\n  \
+            reach view varan4 0 30 0 0 --scene examples/seed004_ceiling.toml --cspace 2,3 -o cspace.html\n  \
+            reach view examples/urdf/kuka_kr16_support/urdf/kr16_2.urdf --tip tool0 -o kr16.html"
     )]
     View(crate::commands::view::ViewArgs),
 }

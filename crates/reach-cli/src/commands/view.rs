@@ -1,20 +1,21 @@
 //! `reach view` — one self-contained HTML file that shows the robot in 3-D
 //! (`reach::jobs::view::view` computes every pose; the embedded viewer bundle,
 //! `web/dist/viewer.js`, only draws them). The file needs no network: the bundle and the data
-//! are inlined.
+//! are inlined. A robot read from a URDF file is drawn with its visual meshes, inlined too.
 
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::Args;
 use reach::jobs::ViewRequest;
+use reach::jobs::view::{ViewCspaceRequest, ViewUrdf};
 
 use crate::commands::check::{read_valid_scene, scene_error};
 use crate::error::CliError;
 use crate::numbers::JointArgs;
 use crate::output::{read_file, read_motion_file, write_file};
 use crate::pose_arg::PoseFlags;
-use crate::robot_arg::RobotArgs;
+use crate::robot_arg::{FileFormat, LoadedRobot, RobotArgs, RobotSource};
 
 /// Arguments of `reach view`.
 #[derive(Debug, Clone, Args)]
@@ -52,6 +53,20 @@ pub struct ViewArgs {
     #[arg(long, value_name = "W,X,Y,Z", allow_hyphen_values = true, requires = "ik_xyz", conflicts_with = "ik_rpy")]
     pub ik_quat: Option<String>,
 
+    /// A C-space section beside the 3-D view: joints I,J (1-based) swept over their limits,
+    /// the others fixed at the first state's values; forbidden cells by the scene (needs
+    /// --scene), the motion's path in it.
+    #[arg(long, value_name = "I,J", value_delimiter = ',', requires = "scene")]
+    pub cspace: Option<Vec<usize>>,
+    /// Grid step of --cspace, degrees.
+    #[arg(long, value_name = "DEG", default_value_t = 5.0, requires = "cspace")]
+    pub cspace_step: f64,
+
+    /// URDF robots: draw the chain as link capsules, without the document's meshes (e.g. when
+    /// the mesh files are not at hand).
+    #[arg(long)]
+    pub no_meshes: bool,
+
     /// The HTML file to write.
     #[arg(short = 'o', long = "output", value_name = "FILE.html")]
     pub output: PathBuf,
@@ -88,6 +103,14 @@ pub fn run(args: &ViewArgs, out: &mut dyn Write) -> Result<(), CliError> {
         task: args.plan.as_deref().map(read_file).transpose()?,
         scene: scene.clone(),
         ik_target: if ik.given() { Some(ik.pose(args.joints.rad)?) } else { None },
+        urdf: if args.no_meshes { None } else { urdf_with_meshes(args, &loaded)? },
+        cspace: match args.cspace.as_deref() {
+            None => None,
+            Some(&[a, b]) => Some(ViewCspaceRequest { joints: [a, b], step_deg: args.cspace_step }),
+            Some(other) => {
+                return Err(CliError::bad_input(format!("--cspace: two joints I,J, got {}", other.len())));
+            }
+        },
     };
     let report = reach::jobs::view::view(robot, &request).map_err(|e| match &args.scene {
         Some(path) => scene_error(path, e),
@@ -97,13 +120,63 @@ pub fn run(args: &ViewArgs, out: &mut dyn Write) -> Result<(), CliError> {
     write_file("-o", &args.output, html)?;
     writeln!(
         out,
-        "wrote {} ({} states of {} samples, {} events, {} shapes, {} IK ghosts)",
+        "wrote {} ({} states of {} samples, {} events, {} shapes, {} IK ghosts, {} meshes)",
         args.output.display(),
         report.states.len(),
         report.samples_total,
         report.events.len(),
         report.shapes.len(),
-        report.ghosts.len()
+        report.ghosts.len(),
+        report.urdf.as_ref().map_or(0, |u| u.meshes.len())
     )?;
     Ok(())
+}
+
+/// For a robot read from a URDF file: the document with every visual mesh it references, read
+/// from disk ([`mesh_path`] resolves the addresses); `None` for other robots.
+fn urdf_with_meshes(args: &ViewArgs, loaded: &LoadedRobot) -> Result<Option<ViewUrdf>, CliError> {
+    let RobotSource::File { path, format: FileFormat::Urdf } = &loaded.source else {
+        return Ok(None);
+    };
+    let text = read_file(path)?;
+    let urdf = ViewUrdf::read(&text, &args.robot.urdf_chain(), |filename| {
+        let fail = |message: String| reach::Error::File { what: "mesh file", message };
+        let file = mesh_path(path, filename).map_err(|why| fail(format!("`{filename}`: {why}")))?;
+        std::fs::read(&file).map_err(|e| fail(format!("`{filename}` ({}): {e}", file.display())))
+    })
+    .map_err(|e| {
+        CliError::bad_input(format!(
+            "{}: {} (--no-meshes draws the arm without its meshes)",
+            path.display(),
+            reach::one_line(&e.to_string())
+        ))
+    })?;
+    Ok(Some(urdf))
+}
+
+/// The file a URDF mesh address names: `package://NAME/REST` is `REST` below the nearest
+/// directory named `NAME` above the URDF file (the ROS package layout, examples/urdf/README.md);
+/// `file:///PATH` is `/PATH`; an address without a scheme is relative to the URDF file's
+/// directory.
+///
+/// # Errors
+/// A reason for another scheme or a package with no such directory above the URDF file.
+fn mesh_path(urdf: &Path, filename: &str) -> Result<PathBuf, String> {
+    let urdf = std::fs::canonicalize(urdf).unwrap_or_else(|_| urdf.to_path_buf());
+    let dir = urdf.parent().unwrap_or(Path::new("."));
+    if let Some(rest) = filename.strip_prefix("package://") {
+        let (package, rest) = rest.split_once('/').ok_or("no file after the package name")?;
+        return dir
+            .ancestors()
+            .find(|a| a.file_name().is_some_and(|n| n == package))
+            .map(|root| root.join(rest))
+            .ok_or_else(|| format!("no directory `{package}` above {}", urdf.display()));
+    }
+    if let Some(abs) = filename.strip_prefix("file://") {
+        return Ok(PathBuf::from(abs));
+    }
+    if filename.contains("://") {
+        return Err("only package://, file:// and relative addresses can be read".into());
+    }
+    Ok(dir.join(filename))
 }

@@ -1,5 +1,6 @@
 //! The `view` workflow: everything the 3-D viewer draws, precomputed, so the viewer (three.js,
-//! `web/`) does no kinematics of its own.
+//! `web/`) does no kinematics of its own (except that urdf-loader places a URDF robot's
+//! meshes from its document's joints at each state's joint values, [`ViewUrdf`]).
 //!
 //! A view holds the robot's states — one configuration, or the samples of a motion (a sampled
 //! motion such as `reach move --json`'s, or every motion of a task file planned here) — each
@@ -12,7 +13,8 @@
 //! At most [`MAX_VIEW_INPUT_SAMPLES`] samples are accepted; at most [`MAX_VIEW_SAMPLES`] are
 //! shipped: a longer motion is thinned to evenly spaced samples that keep the first and the last
 //! (`samples_total` tells how many there were). Events beyond [`MAX_VIEW_EVENTS`] are dropped
-//! (the count is in `events_total`).
+//! (the count is in `events_total`). The visual meshes of a URDF robot are inlined up to
+//! [`MAX_VIEW_MESH_BYTES`] in all.
 
 use nalgebra::{IsometryMatrix3, UnitQuaternion, Vector3};
 use schemars::JsonSchema;
@@ -21,10 +23,12 @@ use serde::{Deserialize, Serialize};
 use super::ik::{IkRequest, ik};
 use super::input::{Joints, MotionSample, Pose, q_display, quat_wxyz, samples_si};
 use super::motion::{MoveEvent, MoveInterval, MoveReport, PlanRequest, plan};
-use super::world::parse_scene;
+use super::world::{CspaceRequest, cspace_with_grid, parse_scene};
 use crate::Robot;
 use crate::error::{Error, Result};
+use crate::model::{UrdfChain, urdf_chain_links, urdf_visual_meshes};
 use crate::world::Shape;
+use crate::world::cspace::GridCounts;
 
 /// Most motion samples a view request accepts.
 pub const MAX_VIEW_INPUT_SAMPLES: usize = 1_000_000;
@@ -32,6 +36,10 @@ pub const MAX_VIEW_INPUT_SAMPLES: usize = 1_000_000;
 pub const MAX_VIEW_SAMPLES: usize = 2_000;
 /// Most timeline events a view report ships.
 pub const MAX_VIEW_EVENTS: usize = 1_000;
+/// Most grid nodes of a view's C-space section.
+pub const MAX_VIEW_CSPACE_NODES: usize = 250_000;
+/// Most bytes of mesh files a view inlines (their sum, before base64): 64 MiB.
+pub const MAX_VIEW_MESH_BYTES: usize = 64 << 20;
 
 /// What to show.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
@@ -57,6 +65,187 @@ pub struct ViewRequest {
     /// An IK target: every solution is shown as a ghost arm.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ik_target: Option<Pose>,
+    /// For a robot read from a URDF document: the document and its meshes, drawn instead of
+    /// the link capsules ([`ViewUrdf::read`]). Its chain must have the robot's joints.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub urdf: Option<ViewUrdf>,
+    /// A two-joint section of the configuration space over `scene` (seed 004's forbidden
+    /// cells), drawn beside the 3-D view with the motion's path in it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cspace: Option<ViewCspaceRequest>,
+}
+
+fn default_cspace_step_deg() -> f64 {
+    5.0
+}
+
+/// Which C-space section to draw.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ViewCspaceRequest {
+    /// The two swept joints, 1-based (`[2, 3]`); the others are fixed at the first state's
+    /// values.
+    pub joints: [usize; 2],
+    /// Grid step, degrees (default 5; prismatic joints: the same number converted like an
+    /// angle, as `reach cspace` does).
+    #[serde(default = "default_cspace_step_deg")]
+    pub step_deg: f64,
+}
+
+/// A two-joint section of the configuration space: the scene's grid classification
+/// ([`crate::jobs::world::cspace_with_grid`], as `reach cspace`) with every joint but two
+/// fixed at the first state's values.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ViewCspace {
+    /// The two swept joints, 1-based, ascending: the panel's horizontal and vertical axes.
+    pub joints: [usize; 2],
+    /// Grid step, degrees.
+    pub step_deg: f64,
+    /// The grid values of the two joints (revolute degrees, prismatic metres).
+    pub axes_deg: [Vec<f64>; 2],
+    /// The configuration the section goes through (the first state's): the other joints
+    /// are fixed at its values.
+    pub through_q_deg: Vec<f64>,
+    /// Class of every node, the first joint's index varying slowest (`classes[i·n₂ + k]` at
+    /// `axes_deg[0][i]`, `axes_deg[1][k]`): 0 allowed, 1 outside the joint limits, 2 tool
+    /// outside the zone, 3 self-collision, 4 obstacle collision.
+    pub classes: Vec<u8>,
+    /// Counts per class.
+    pub counts: GridCounts,
+    /// Largest departure of the other joints from the section over the states (revolute
+    /// degrees, prismatic metres): 0 when the whole motion lies in the section.
+    pub off_section_deg: f64,
+}
+
+/// The C-space section of `request` through the first of `states`.
+fn view_cspace(
+    robot: &Robot,
+    scene: Option<&str>,
+    request: &ViewCspaceRequest,
+    states: &[ViewState],
+) -> Result<ViewCspace> {
+    let scene = scene.ok_or_else(|| Error::request("cspace", "needs a scene"))?;
+    let [a, b] = request.joints;
+    let dof = robot.dof();
+    if a == b || !(1..=dof).contains(&a) || !(1..=dof).contains(&b) {
+        return Err(Error::request("cspace", format!("joints {a} and {b}: two different joints of 1..{dof}")));
+    }
+    let joints = [a.min(b), a.max(b)];
+    let through = states.first().map(|s| s.q_deg.clone()).ok_or_else(|| Error::request("cspace", "no state"))?;
+    let fix = (1..=dof).filter(|j| !joints.contains(j)).map(|j| (format!("q{j}"), through[j - 1])).collect();
+    let grid_request = CspaceRequest {
+        scene: scene.to_string(),
+        step_deg: request.step_deg,
+        fix,
+        fit: false,
+        max_nodes: Some(MAX_VIEW_CSPACE_NODES),
+    };
+    let (report, grid) = cspace_with_grid(robot, &grid_request, &|_, _| {}).map_err(|e| match e {
+        Error::Request { field, reason } => Error::request(format!("cspace.{field}"), reason),
+        e => e,
+    })?;
+    let display = |j: usize, v: &f64| match robot.joints()[j].kind {
+        crate::model::JointKind::Revolute => v.to_degrees(),
+        crate::model::JointKind::Prismatic => *v,
+    };
+    let axis = |j: usize| grid.axes[j - 1].iter().map(|v| display(j - 1, v)).collect::<Vec<_>>();
+    let off_section_deg = states
+        .iter()
+        .flat_map(|s| (1..=dof).filter(|j| !joints.contains(j)).map(|j| (s.q_deg[j - 1] - through[j - 1]).abs()))
+        .fold(0.0, f64::max);
+    Ok(ViewCspace {
+        joints,
+        step_deg: request.step_deg,
+        axes_deg: [axis(joints[0]), axis(joints[1])],
+        through_q_deg: through,
+        classes: grid.classes.iter().map(|c| *c as u8).collect(),
+        counts: report.counts,
+        off_section_deg,
+    })
+}
+
+/// A URDF robot as its own description draws it: the document and its visual meshes, from
+/// which the viewer builds the robot (with the `urdf-loader` package of three.js) and poses it
+/// by joint name at every state.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ViewUrdf {
+    /// The URDF document's text.
+    pub text: String,
+    /// The chain's base link: its frame is the robot's base frame (the report's `base`).
+    pub base_link: String,
+    /// The chain's tip link: its origin is the tool point.
+    pub tip_link: String,
+    /// Every visual mesh of the document (STL or Collada), each once.
+    pub meshes: Vec<ViewMesh>,
+}
+
+/// A mesh file, inlined.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ViewMesh {
+    /// The `filename` attribute as the URDF document writes it (`package://…`, relative, …).
+    pub filename: String,
+    /// The file's bytes, base64 (standard alphabet, padded).
+    pub base64: String,
+}
+
+impl ViewUrdf {
+    /// The document `text`, the chain `chain` selects in it and every visual mesh it
+    /// references: `read(filename)` gives a mesh file's bytes (the caller resolves the address
+    /// as written — `package://NAME/…`, relative, `file://` — and reads the file).
+    ///
+    /// # Errors
+    /// The document's and the chain's errors ([`crate::model::urdf_chain_links`]); a mesh
+    /// that is neither STL nor Collada (`.dae`) ([`Error::File`] naming it); the errors of
+    /// `read`; meshes of more than [`MAX_VIEW_MESH_BYTES`] in all ([`Error::Request`], field
+    /// `urdf`).
+    pub fn read(text: &str, chain: &UrdfChain, mut read: impl FnMut(&str) -> Result<Vec<u8>>) -> Result<ViewUrdf> {
+        use base64::Engine as _;
+        let (base_link, tip_link) = urdf_chain_links(text, chain)?;
+        let mut total = 0usize;
+        let mut meshes = Vec::new();
+        for filename in urdf_visual_meshes(text)? {
+            let ext = filename.rsplit_once('.').map(|(_, e)| e.to_ascii_lowercase());
+            if !matches!(ext.as_deref(), Some("stl" | "dae")) {
+                return Err(Error::File {
+                    what: "mesh file",
+                    message: format!("`{filename}`: only STL and Collada (.dae) meshes can be shown"),
+                });
+            }
+            let bytes = read(&filename)?;
+            total += bytes.len();
+            if total > MAX_VIEW_MESH_BYTES {
+                return Err(Error::request(
+                    "urdf",
+                    format!("the meshes exceed the {} MiB a view inlines (at `{filename}`)", MAX_VIEW_MESH_BYTES >> 20),
+                ));
+            }
+            meshes.push(ViewMesh { base64: base64::engine::general_purpose::STANDARD.encode(&bytes), filename });
+        }
+        Ok(ViewUrdf { text: text.to_string(), base_link, tip_link, meshes })
+    }
+
+    /// Checks that the chain `base_link` → `tip_link` of the document moves the joints of
+    /// `robot`, in its order (the viewer poses the document's joints by these names).
+    fn check(&self, robot: &Robot) -> Result<()> {
+        let chain = UrdfChain { base: Some(self.base_link.clone()), tip: Some(self.tip_link.clone()) };
+        let own = Robot::from_urdf_str(&self.text, &chain)?;
+        let names = |r: &Robot| r.joints().iter().map(|j| j.name.clone()).collect::<Vec<_>>();
+        if names(&own) != names(robot) {
+            return Err(Error::request(
+                "urdf",
+                format!(
+                    "the chain {} → {} moves joints [{}], the robot has [{}]",
+                    self.base_link,
+                    self.tip_link,
+                    names(&own).join(", "),
+                    names(robot).join(", ")
+                ),
+            ));
+        }
+        Ok(())
+    }
 }
 
 /// The viewer bundle built from `web/src` (`npm run build` in `web/`), committed (so that
@@ -311,6 +500,12 @@ pub struct ViewReport {
     pub ik_status: Option<String>,
     /// One ghost arm per IK solution.
     pub ghosts: Vec<ViewGhost>,
+    /// A URDF robot's document and meshes (drawn instead of the link capsules), when given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub urdf: Option<ViewUrdf>,
+    /// The C-space section, when asked for.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cspace: Option<ViewCspace>,
 }
 
 /// The robot at `q` (SI) and time `t_s`.
@@ -352,6 +547,9 @@ fn thinned(n: usize, cap: usize) -> Vec<usize> {
 pub fn view(robot: &Robot, request: &ViewRequest) -> Result<ViewReport> {
     if request.samples.is_some() && request.task.is_some() {
         return Err(Error::request("task", "give either samples or a task, not both"));
+    }
+    if let Some(urdf) = &request.urdf {
+        urdf.check(robot)?;
     }
     let mut events = request.events.clone();
     let (times_q, samples_total) = if let Some(samples) = &request.samples {
@@ -416,6 +614,9 @@ pub fn view(robot: &Robot, request: &ViewRequest) -> Result<ViewReport> {
         }
     }
 
+    let cspace =
+        request.cspace.as_ref().map(|c| view_cspace(robot, request.scene.as_deref(), c, &states)).transpose()?;
+
     let (mut ik_target, mut ik_status, mut ghosts) = (None, None, Vec::new());
     if let Some(target) = &request.ik_target {
         let pose = target.isometry("ik_target")?;
@@ -454,6 +655,8 @@ pub fn view(robot: &Robot, request: &ViewRequest) -> Result<ViewReport> {
         ik_target,
         ik_status,
         ghosts,
+        urdf: request.urdf.clone(),
+        cspace,
     })
 }
 

@@ -58,97 +58,7 @@ impl Robot {
     /// joint — each naming the joint; plus the validation errors of [`Robot::new`].
     pub fn from_urdf_str(text: &str, chain: &UrdfChain) -> Result<Robot, ModelError> {
         let urdf = urdf_rs::read_from_string(text).map_err(|e| ModelError::Urdf(one_line(&e.to_string())))?;
-        let links: BTreeSet<&str> = urdf.links.iter().map(|l| l.name.as_str()).collect();
-        let mut parent_joint: BTreeMap<&str, &urdf_rs::Joint> = BTreeMap::new();
-        let mut children: BTreeMap<&str, Vec<&str>> = BTreeMap::new();
-        for j in &urdf.joints {
-            for (role, link) in [("parent", &j.parent.link), ("child", &j.child.link)] {
-                if !links.contains(link.as_str()) {
-                    return Err(ModelError::Urdf(format!(
-                        "joint `{}`: its {role} link `{link}` is not declared (no <link name=\"{link}\">)",
-                        j.name
-                    )));
-                }
-            }
-            if parent_joint.insert(j.child.link.as_str(), j).is_some() {
-                return Err(ModelError::Urdf(format!("link `{}` has two parent joints", j.child.link)));
-            }
-            children.entry(j.parent.link.as_str()).or_default().push(j.child.link.as_str());
-        }
-        check_acyclic(&links, &parent_joint)?;
-        let known = |name: &str| -> Result<(), ModelError> {
-            if links.contains(name) {
-                Ok(())
-            } else {
-                let list: Vec<&str> = links.iter().copied().collect();
-                Err(ModelError::Urdf(format!("no link named `{name}` (links: {})", list.join(", "))))
-            }
-        };
-        let base: &str = match &chain.base {
-            Some(b) => {
-                known(b)?;
-                b
-            }
-            None => {
-                let roots: Vec<&str> = links.iter().copied().filter(|l| !parent_joint.contains_key(l)).collect();
-                match roots.as_slice() {
-                    [root] => root,
-                    [] => {
-                        return Err(ModelError::Urdf("the link tree has no root (a cycle?)".into()));
-                    }
-                    many => {
-                        return Err(ModelError::Urdf(format!(
-                            "several root links ({}); choose the base link",
-                            many.join(", ")
-                        )));
-                    }
-                }
-            }
-        };
-        let tip: &str = match &chain.tip {
-            Some(t) => {
-                known(t)?;
-                t
-            }
-            None => {
-                // Walk down from the base while the chain does not branch. A path visits each
-                // joint at most once, so more steps than joints means a cycle.
-                let mut link = base;
-                let mut steps = 0;
-                loop {
-                    match children.get(link).map(Vec::as_slice) {
-                        None | Some([]) => break link,
-                        Some([_]) if steps > urdf.joints.len() => return Err(cycle(link)),
-                        Some([only]) => {
-                            link = only;
-                            steps += 1;
-                        }
-                        Some(many) => {
-                            return Err(ModelError::Urdf(format!(
-                                "the tree branches at link `{link}` (children: {}); choose the tip link",
-                                many.join(", ")
-                            )));
-                        }
-                    }
-                }
-            }
-        };
-        // Walk up from the tip to the base.
-        let mut path: Vec<&urdf_rs::Joint> = Vec::new();
-        let mut link = tip;
-        while link != base {
-            match parent_joint.get(link) {
-                Some(_) if path.len() > urdf.joints.len() => return Err(cycle(link)),
-                Some(j) => {
-                    path.push(j);
-                    link = j.parent.link.as_str();
-                }
-                None => {
-                    return Err(ModelError::Urdf(format!("link `{tip}` is not below link `{base}`")));
-                }
-            }
-        }
-        path.reverse();
+        let (base, tip, path) = chain_path(&urdf, chain)?;
 
         let link_inertial = |name: &str| -> LinkInertial {
             urdf.links.iter().find(|l| l.name == name).map_or_else(LinkInertial::zero, |l| {
@@ -286,6 +196,135 @@ impl Robot {
         };
         Robot::new(spec)
     }
+}
+
+/// The serial chain `chain` selects in a parsed URDF tree: its base link, its tip link and the
+/// joints from base to tip (the errors of [`Robot::from_urdf_str`] about the tree and the chain).
+fn chain_path<'a>(
+    urdf: &'a urdf_rs::Robot,
+    chain: &'a UrdfChain,
+) -> Result<(&'a str, &'a str, Vec<&'a urdf_rs::Joint>), ModelError> {
+    let links: BTreeSet<&str> = urdf.links.iter().map(|l| l.name.as_str()).collect();
+    let mut parent_joint: BTreeMap<&str, &urdf_rs::Joint> = BTreeMap::new();
+    let mut children: BTreeMap<&str, Vec<&str>> = BTreeMap::new();
+    for j in &urdf.joints {
+        for (role, link) in [("parent", &j.parent.link), ("child", &j.child.link)] {
+            if !links.contains(link.as_str()) {
+                return Err(ModelError::Urdf(format!(
+                    "joint `{}`: its {role} link `{link}` is not declared (no <link name=\"{link}\">)",
+                    j.name
+                )));
+            }
+        }
+        if parent_joint.insert(j.child.link.as_str(), j).is_some() {
+            return Err(ModelError::Urdf(format!("link `{}` has two parent joints", j.child.link)));
+        }
+        children.entry(j.parent.link.as_str()).or_default().push(j.child.link.as_str());
+    }
+    check_acyclic(&links, &parent_joint)?;
+    let known = |name: &str| -> Result<(), ModelError> {
+        if links.contains(name) {
+            Ok(())
+        } else {
+            let list: Vec<&str> = links.iter().copied().collect();
+            Err(ModelError::Urdf(format!("no link named `{name}` (links: {})", list.join(", "))))
+        }
+    };
+    let base: &str = match &chain.base {
+        Some(b) => {
+            known(b)?;
+            b
+        }
+        None => {
+            let roots: Vec<&str> = links.iter().copied().filter(|l| !parent_joint.contains_key(l)).collect();
+            match roots.as_slice() {
+                [root] => root,
+                [] => {
+                    return Err(ModelError::Urdf("the link tree has no root (a cycle?)".into()));
+                }
+                many => {
+                    return Err(ModelError::Urdf(format!(
+                        "several root links ({}); choose the base link",
+                        many.join(", ")
+                    )));
+                }
+            }
+        }
+    };
+    let tip: &str = match &chain.tip {
+        Some(t) => {
+            known(t)?;
+            t
+        }
+        None => {
+            // Walk down from the base while the chain does not branch. A path visits each
+            // joint at most once, so more steps than joints means a cycle.
+            let mut link = base;
+            let mut steps = 0;
+            loop {
+                match children.get(link).map(Vec::as_slice) {
+                    None | Some([]) => break link,
+                    Some([_]) if steps > urdf.joints.len() => return Err(cycle(link)),
+                    Some([only]) => {
+                        link = only;
+                        steps += 1;
+                    }
+                    Some(many) => {
+                        return Err(ModelError::Urdf(format!(
+                            "the tree branches at link `{link}` (children: {}); choose the tip link",
+                            many.join(", ")
+                        )));
+                    }
+                }
+            }
+        }
+    };
+    // Walk up from the tip to the base.
+    let mut path: Vec<&urdf_rs::Joint> = Vec::new();
+    let mut link = tip;
+    while link != base {
+        match parent_joint.get(link) {
+            Some(_) if path.len() > urdf.joints.len() => return Err(cycle(link)),
+            Some(j) => {
+                path.push(j);
+                link = j.parent.link.as_str();
+            }
+            None => {
+                return Err(ModelError::Urdf(format!("link `{tip}` is not below link `{base}`")));
+            }
+        }
+    }
+    path.reverse();
+    Ok((base, tip, path))
+}
+
+/// The base and tip links of the chain `chain` selects in a URDF document (the defaults
+/// resolved as [`Robot::from_urdf_str`] resolves them).
+///
+/// # Errors
+/// As [`Robot::from_urdf_str`] for the document and the chain.
+pub fn urdf_chain_links(text: &str, chain: &UrdfChain) -> Result<(String, String), ModelError> {
+    let urdf = urdf_rs::read_from_string(text).map_err(|e| ModelError::Urdf(one_line(&e.to_string())))?;
+    let (base, tip, _) = chain_path(&urdf, chain)?;
+    Ok((base.to_string(), tip.to_string()))
+}
+
+/// The `filename` of every `<visual>` mesh of a URDF document (every link, in document order,
+/// each once), as written (`package://…`, relative or `file://` addresses).
+///
+/// # Errors
+/// [`ModelError::Urdf`] for XML errors.
+pub fn urdf_visual_meshes(text: &str) -> Result<Vec<String>, ModelError> {
+    let urdf = urdf_rs::read_from_string(text).map_err(|e| ModelError::Urdf(one_line(&e.to_string())))?;
+    let mut files: Vec<String> = Vec::new();
+    for visual in urdf.links.iter().flat_map(|l| &l.visual) {
+        if let urdf_rs::Geometry::Mesh { filename, .. } = &visual.geometry
+            && !files.contains(filename)
+        {
+            files.push(filename.clone());
+        }
+    }
+    Ok(files)
 }
 
 fn cycle(link: &str) -> ModelError {

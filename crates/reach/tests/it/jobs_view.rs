@@ -131,3 +131,73 @@ fn bad_requests_name_their_field() {
     let empty = ViewRequest { samples: Some(Vec::new()), ..ViewRequest::default() };
     assert_eq!(view(&robot, &empty).unwrap_err().to_string(), "samples: no sample");
 }
+
+#[test]
+fn a_urdf_view_carries_its_document_and_meshes_for_the_robots_own_chain() {
+    use reach::jobs::view::ViewUrdf;
+    use reach::model::UrdfChain;
+    let text = example("urdf/kuka_kr16_support/urdf/kr16_2.urdf");
+    let tool0 = UrdfChain { base: None, tip: Some("tool0".into()) };
+    let robot = reach::Robot::from_urdf_str(&text, &tool0).unwrap();
+    let mut asked = Vec::new();
+    let urdf = ViewUrdf::read(&text, &tool0, |f| {
+        asked.push(f.to_string());
+        Ok(vec![1, 2, 3])
+    })
+    .unwrap();
+    assert_eq!(asked.len(), 7, "the visual meshes, each once: {asked:?}");
+    assert!(asked.iter().all(|f| f.contains("/visual/")), "{asked:?}");
+    assert_eq!((urdf.base_link.as_str(), urdf.tip_link.as_str()), ("base_link", "tool0"));
+    assert_eq!(urdf.meshes[0].base64, "AQID");
+    let report = view(&robot, &ViewRequest { urdf: Some(urdf), ..ViewRequest::default() }).unwrap();
+    assert_eq!(report.urdf.as_ref().unwrap().meshes.len(), 7);
+
+    // A document whose chain moves other joints than the robot's is refused.
+    let link4 = UrdfChain { base: None, tip: Some("link_4".into()) };
+    let short = ViewUrdf::read(&text, &link4, |_| Ok(Vec::new())).unwrap();
+    let err = view(&robot, &ViewRequest { urdf: Some(short), ..ViewRequest::default() }).unwrap_err().to_string();
+    assert!(err.starts_with("urdf: the chain base_link → link_4 moves joints [joint_a1"), "{err}");
+    // The reader's error stops the reading.
+    let failing = ViewUrdf::read(&text, &tool0, |f| Err(reach::Error::request("mesh", f.to_string())));
+    assert!(failing.unwrap_err().to_string().contains("visual/base_link.dae"));
+}
+
+#[test]
+fn a_cspace_section_is_the_cspace_grid_through_the_first_state() {
+    use reach::jobs::view::ViewCspaceRequest;
+    use reach::jobs::world::{CspaceRequest, cspace};
+    let robot = presets::get("varan4").unwrap();
+    let scene = example("seed004_ceiling.toml");
+    let samples = vec![
+        MotionSample { t_s: 0.0, q_deg: vec![0.0, 30.0, 0.0, 0.0] },
+        MotionSample { t_s: 1.0, q_deg: vec![0.0, 60.0, -50.0, 12.5] },
+    ];
+    let request = ViewRequest {
+        samples: Some(samples),
+        scene: Some(scene.clone()),
+        cspace: Some(ViewCspaceRequest { joints: [3, 2], step_deg: 10.0 }),
+        ..ViewRequest::default()
+    };
+    let section = view(&robot, &request).unwrap().cspace.unwrap();
+    let fix = [("q1".to_string(), 0.0), ("q4".to_string(), 0.0)].into_iter().collect();
+    let grid = cspace(&robot, &CspaceRequest { scene, step_deg: 10.0, fix, fit: false, max_nodes: None }).unwrap();
+    assert_eq!(section.joints, [2, 3]);
+    assert_eq!(section.counts, grid.counts);
+    assert_eq!(section.classes.len(), grid.counts.nodes);
+    assert_eq!(section.axes_deg[0].len() * section.axes_deg[1].len(), grid.counts.nodes);
+    let forbidden = section.classes.iter().filter(|&&c| c != 0).count();
+    assert_eq!(forbidden, grid.counts.nodes - grid.counts.allowed);
+    assert!(forbidden > 0 && grid.counts.allowed > 0);
+    // The first joint varies slowest: the sections of `reach cspace` by q2 are the rows.
+    let per_row = section.axes_deg[1].len();
+    for (row, s) in grid.sections.iter().enumerate() {
+        let allowed = section.classes[row * per_row..(row + 1) * per_row].iter().filter(|&&c| c == 0).count();
+        assert_eq!(allowed, s.counts.allowed, "q2 = {}", s.value_deg);
+    }
+    assert!((section.off_section_deg - 12.5).abs() < 1e-9);
+
+    let bad = ViewRequest { cspace: Some(ViewCspaceRequest { joints: [2, 2], step_deg: 5.0 }), ..request.clone() };
+    assert!(view(&robot, &bad).unwrap_err().to_string().starts_with("cspace: joints 2 and 2"));
+    let no_scene = ViewRequest { scene: None, ..request };
+    assert_eq!(view(&robot, &no_scene).unwrap_err().to_string(), "cspace: needs a scene");
+}
