@@ -2,7 +2,7 @@
 //! states it receives while the arm moves, the largest gap between two of them as received,
 //! and the largest gap between their send times (`t_ms`, stamped by the service's publisher):
 //! the first includes the clients' own scheduling on the shared cores, the second is the
-//! service's. Then J jobs are queued at once and must run in submission order.
+//! service's; and the delivery delay of every state (receipt minus send stamp). Then J jobs are queued at once and must run in submission order.
 //!
 //! `cargo run --release -p reach-serve --example ws_clients -- [CLIENTS] [SECONDS] [JOBS]`
 //! (defaults 100, 60, 1000).
@@ -35,6 +35,7 @@ fn main() {
             std::thread::spawn(move || {
                 let (mut count, mut max_gap, mut last, mut moving) = (0usize, Duration::ZERO, None::<Instant>, false);
                 let (mut last_sent, mut max_sent_gap, mut late) = (None::<i64>, 0i64, 0usize);
+                let mut delays: Vec<i64> = Vec::new();
                 loop {
                     let Ok(message) = ws.read() else { break };
                     let Ok(text) = message.to_text() else { continue };
@@ -54,6 +55,9 @@ fn main() {
                         }
                         last = Some(now);
                         let sent = v["t_ms"].as_i64();
+                        if let Some(t) = sent {
+                            delays.push(reach_serve::db::now_ms() - t);
+                        }
                         if let (Some(a), Some(b)) = (last_sent, sent) {
                             max_sent_gap = max_sent_gap.max(b - a);
                         }
@@ -61,13 +65,17 @@ fn main() {
                         count += 1;
                     }
                 }
-                (count, max_gap, max_sent_gap, late)
+                (count, max_gap, max_sent_gap, late, delays)
             })
         })
         .collect();
     let body = format!(r#"{{"kind": "move", "to_deg": [90, -45, 30, 0, 0, 10], "duration_s": {seconds}}}"#);
     post(addr, &body);
-    let results: Vec<(usize, Duration, i64, usize)> = watchers.into_iter().map(|w| w.join().unwrap()).collect();
+    let results: Vec<(usize, Duration, i64, usize, Vec<i64>)> =
+        watchers.into_iter().map(|w| w.join().unwrap()).collect();
+    let mut delays: Vec<i64> = results.iter().flat_map(|r| r.4.iter().copied()).collect();
+    delays.sort_unstable();
+    let at = |p: f64| delays.get(((delays.len().saturating_sub(1)) as f64 * p) as usize).copied().unwrap_or(0);
     let min_count = results.iter().map(|r| r.0).min().unwrap_or(0);
     let worst_gap = results.iter().map(|r| r.1).max().unwrap_or_default();
     let worst_sent_gap = results.iter().map(|r| r.2).max().unwrap_or_default();
@@ -78,6 +86,13 @@ fn main() {
          {worst_sent_gap} ms, as received {:.1} ms; {late} of {total} states received over 30 ms after the previous",
         min_count as f64 / seconds,
         worst_gap.as_secs_f64() * 1e3
+    );
+    println!(
+        "delivery (receipt - send stamp, ms): median {}, p99 {}, p99.9 {}, max {}",
+        at(0.5),
+        at(0.99),
+        at(0.999),
+        delays.last().copied().unwrap_or(0)
     );
 
     // J jobs queued at once, run in order (fast: a 10 ms move each at 100x).
