@@ -52,6 +52,7 @@ const SIN_COS_FAST_RANGE: f64 = 128.0;
 /// ```
 #[must_use]
 #[inline]
+#[allow(clippy::excessive_precision, reason = "fdlibm's constants as published; each parses to the intended double")]
 pub fn sin_cos(x: f64) -> (f64, f64) {
     // π/2 in three 33-bit parts (fdlibm's pio2_1, pio2_2, pio2_3): j·part is exact for |j| < 2^20.
     const PIO2_1: f64 = 1.570_796_326_734_125_614_17e+00;

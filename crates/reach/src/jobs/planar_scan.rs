@@ -53,8 +53,8 @@ pub struct PlanarScanReport {
 /// Scans and chooses.
 ///
 /// # Errors
-/// [`Error::Request`] for a non-finite position, a step that is not a positive angle
-/// (`step_deg`), a bad `from`; [`Error::Ik`] for a robot that is not a planar arm of 3 to 6
+/// [`Error::Request`](crate::Error::Request) for a non-finite position, a step that is not a positive angle
+/// (`step_deg`), a bad `from`; [`Error::Ik`](crate::Error::Ik) for a robot that is not a planar arm of 3 to 6
 /// links, or a grid beyond the node cap.
 pub fn planar_scan(robot: &Robot, request: &PlanarScanRequest) -> Result<PlanarScanReport> {
     let step = request.step_deg;

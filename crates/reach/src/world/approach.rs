@@ -2,7 +2,7 @@
 //! while the arm keeps a safe distance from the obstacles, with deadlocks detected and
 //! handed to the planner (notes 004 §4 E, §8 "Performance and integration").
 //!
-//! The paper leaves the velocity law to [5] and only says that the increment vector is
+//! The paper leaves the velocity law to \[5\] and only says that the increment vector is
 //! computed "taking into account a given safe distance" and that analysing motions against
 //! the allowed region "allows predicting deadlocks". This module fills that gap.
 //!
