@@ -86,6 +86,8 @@ pub struct LoadedRobot {
     pub source: RobotSource,
     /// Units of the TOML description (`None` for URDF, which is always metres and radians).
     pub units: Option<FileUnits>,
+    /// What the robot was read from (a file's text as read, once).
+    pub input: RobotInput,
 }
 
 impl RobotArgs {
@@ -153,7 +155,7 @@ pub fn load_robot(arg: &str, chain: &UrdfChain) -> Result<LoadedRobot, CliError>
         }
         (RobotSource::File { .. }, _) => CliError::bad_input(format!("{arg}: {}", one_line(&e.to_string()))),
     })?;
-    Ok(LoadedRobot { robot: loaded.robot, source, units: loaded.units })
+    Ok(LoadedRobot { robot: loaded.robot, source, units: loaded.units, input })
 }
 
 /// Loads a preset by name (with its file units).

@@ -202,8 +202,7 @@ async fn live_page(State(shared): AppState) -> Result<Response, ApiError> {
             scene,
             ..reach::jobs::ViewRequest::default()
         };
-        let report = reach::jobs::view::view(&shared.robot, &request)
-            .map_err(|e| ApiError::internal(reach::one_line(&e.to_string())))?;
+        let report = reach::jobs::view::view(&shared.robot, &request).map_err(|e| ApiError::internal(e.to_string()))?;
         let json = serde_json::to_string(&report).unwrap_or_default();
         Ok(reach::jobs::view::page(&report.robot, &json, true))
     })

@@ -82,10 +82,10 @@ impl ApiError {
         ApiError { status: StatusCode::CONFLICT, message: message.into() }
     }
 
-    /// 500 with `message` (the service's own failure, not the request's).
+    /// 500 with `message` on one line (the service's own failure, not the request's).
     #[must_use]
     pub fn internal(message: impl Into<String>) -> Self {
-        ApiError { status: StatusCode::INTERNAL_SERVER_ERROR, message: message.into() }
+        ApiError { status: StatusCode::INTERNAL_SERVER_ERROR, message: reach::one_line(&message.into()) }
     }
 
     /// 401: the token is missing or wrong.
@@ -102,7 +102,7 @@ impl ApiError {
 
 impl From<ServeError> for ApiError {
     fn from(e: ServeError) -> Self {
-        ApiError { status: StatusCode::INTERNAL_SERVER_ERROR, message: reach::one_line(&e.to_string()) }
+        ApiError::internal(e.to_string())
     }
 }
 

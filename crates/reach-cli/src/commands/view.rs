@@ -7,15 +7,15 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
-use reach::jobs::ViewRequest;
 use reach::jobs::view::{ViewCspaceRequest, ViewUrdf};
+use reach::jobs::{RobotInput, ViewRequest};
 
 use crate::commands::check::{read_valid_scene, scene_error};
 use crate::error::CliError;
 use crate::numbers::JointArgs;
 use crate::output::{read_file, read_motion_file, write_file};
 use crate::pose_arg::PoseFlags;
-use crate::robot_arg::{FileFormat, LoadedRobot, RobotArgs, RobotSource};
+use crate::robot_arg::{LoadedRobot, RobotArgs, RobotSource};
 
 /// Arguments of `reach view`.
 #[derive(Debug, Clone, Args)]
@@ -132,14 +132,14 @@ pub fn run(args: &ViewArgs, out: &mut dyn Write) -> Result<(), CliError> {
     Ok(())
 }
 
-/// For a robot read from a URDF file: the document with every visual mesh it references, read
-/// from disk ([`mesh_path`] resolves the addresses); `None` for other robots.
+/// For a robot read from a URDF file: the document (as read for the robot) with every visual
+/// mesh it references, read from disk ([`mesh_path`] resolves the addresses); `None` for other
+/// robots.
 fn urdf_with_meshes(args: &ViewArgs, loaded: &LoadedRobot) -> Result<Option<ViewUrdf>, CliError> {
-    let RobotSource::File { path, format: FileFormat::Urdf } = &loaded.source else {
+    let (RobotSource::File { path, .. }, RobotInput::Urdf { text, .. }) = (&loaded.source, &loaded.input) else {
         return Ok(None);
     };
-    let text = read_file(path)?;
-    let urdf = ViewUrdf::read(&text, &args.robot.urdf_chain(), |filename| {
+    let urdf = ViewUrdf::read(text, &args.robot.urdf_chain(), |filename| {
         let fail = |message: String| reach::Error::File { what: "mesh file", message };
         let file = mesh_path(path, filename).map_err(|why| fail(format!("`{filename}`: {why}")))?;
         std::fs::read(&file).map_err(|e| fail(format!("`{filename}` ({}): {e}", file.display())))
