@@ -112,6 +112,10 @@ impl Drop for Service {
 
 /// Serves `service` on `listener` until `shutdown` resolves.
 ///
+/// Every connection is set `TCP_NODELAY`: a joint state is one small WebSocket frame every
+/// 20 ms, and Nagle's algorithm would hold it until the client's (delayed) acknowledgement
+/// of the previous one, up to 40 ms later.
+///
 /// # Errors
 /// [`ServeError::Io`] when the server fails.
 pub async fn serve_on(
@@ -119,6 +123,11 @@ pub async fn serve_on(
     service: &Service,
     shutdown: impl std::future::Future<Output = ()> + Send + 'static,
 ) -> Result<(), ServeError> {
+    use axum::serve::ListenerExt as _;
+    let listener = listener.tap_io(|tcp| {
+        // Without it the service still works, only with Nagle's delays.
+        let _ = tcp.set_nodelay(true);
+    });
     axum::serve(listener, service.router())
         .with_graceful_shutdown(shutdown)
         .await
