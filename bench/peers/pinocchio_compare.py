@@ -1,0 +1,115 @@
+#!/usr/bin/env python3
+"""reach next to Pinocchio (C++): forward kinematics and the frame Jacobian of real URDF arms.
+
+Both libraries load the same URDF file and are timed on the same joint vectors (numpy seed
+2024, uniform inside the URDF's limits cut to [-pi, pi]), each in its own compiled program:
+reach's `bench/src/bin/urdf_timing.rs` (release) and `bench/peers/pinocchio/fk_jacobian.cpp`
+(g++ -O3 -DNDEBUG against the headers and libraries of the `pin` wheels; the wheels ship no
+urdfdom headers, so Pinocchio's Python loader builds the model from the URDF and the C++ program
+reads it back with `Model::loadFromBinary`). Rounds alternate between the two programs; each
+program reports the median over its passes; the ratio is reach / Pinocchio of the medians over
+rounds. Before timing, the tool pose of the first joint vector must agree to 1e-9.
+
+What is timed per call:
+  FK        reach `Robot::fk_matrix(q)`;  Pinocchio `forwardKinematics` + `updateFramePlacement`
+  Jacobian  reach `Robot::jacobian_into(q, J)` (geometric, tool point, world axes);
+            Pinocchio `computeFrameJacobian(..., LOCAL_WORLD_ALIGNED, J)` (the same matrix; it
+            runs its forward kinematics itself)
+
+Run from the repository root (see bench/peers/README.md):
+    python3 -m venv /tmp/pin-venv
+    /tmp/pin-venv/bin/pip install -r bench/peers/requirements-urdf.txt
+    /tmp/pin-venv/bin/python bench/peers/pinocchio_compare.py [--poses 1000] [--rounds 11]
+"""
+
+import argparse
+import json
+import os
+import pathlib
+import statistics
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+import pinocchio as pin
+
+ARMS = [
+    ("ur5", "examples/urdf/ur_description/urdf/ur5.urdf", "ee_link"),
+    ("puma560", "examples/urdf/unimation_puma560_description/urdf/puma560_robot.urdf", "link7"),
+    ("kr16_2", "examples/urdf/kuka_kr16_support/urdf/kr16_2.urdf", "tool0"),
+    ("panda", "examples/panda.urdf", "panda_hand"),
+]
+
+
+def build(work):
+    """Builds both programs; returns their paths."""
+    subprocess.run(
+        ["cargo", "build", "--release", "--quiet", "--manifest-path", "bench/Cargo.toml", "--bin", "urdf_timing"],
+        check=True,
+    )
+    reach = "bench/target/release/urdf_timing"
+    prefix = pathlib.Path(pin.__file__).resolve()  # cmeel.prefix/lib/python3.X/site-packages/pinocchio
+    while prefix.name != "cmeel.prefix":
+        prefix = prefix.parent
+    cpp = os.path.join(work, "fk_jacobian")
+    subprocess.run(
+        ["g++", "-O3", "-DNDEBUG", "-std=c++17",
+         # Pinocchio's exported compile definitions (lib/cmake/pinocchio/pinocchioTargets.cmake)
+         "-DBOOST_MPL_LIMIT_LIST_SIZE=30", "-DBOOST_MPL_LIMIT_VECTOR_SIZE=30",
+         "-DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS", "-DBOOST_FUSION_INVOKE_MAX_ARITY=12",
+         f"-I{prefix}/include", f"-I{prefix}/include/eigen3", "bench/peers/pinocchio/fk_jacobian.cpp",
+         "-o", cpp, f"-L{prefix}/lib", "-lpinocchio_default", "-lboost_serialization", f"-Wl,-rpath,{prefix}/lib"],
+        check=True,
+    )
+    return reach, cpp
+
+
+def run(cmd):
+    return json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--poses", type=int, default=1000)
+    ap.add_argument("--rounds", type=int, default=11, help="alternating rounds (each program: 3 passes per round)")
+    args = ap.parse_args()
+    work = tempfile.mkdtemp(prefix="reach-pin-")
+    reach, cpp = build(work)
+    print(f"reach vs Pinocchio {pin.__version__} (C++), {args.poses} joint vectors per arm, median of "
+          f"{args.rounds} alternating rounds; ratio = reach / Pinocchio (< 1: reach faster)")
+    print("| arm (URDF) | operation | reach ns/call | Pinocchio ns/call | ratio |")
+    print("|---|---|---|---|---|")
+    for name, urdf, tip in ARMS:
+        model = pin.buildModelFromUrdf(urdf)
+        if name == "panda":
+            # reach's chain ends at the hand; Pinocchio's model also has the two finger joints:
+            # lock them (at 0) so both move the same 7 joints.
+            fingers = [model.getJointId(j) for j in ("panda_finger_joint1", "panda_finger_joint2")]
+            model = pin.buildReducedModel(model, fingers, pin.neutral(model))
+        model_file = os.path.join(work, f"{name}.bin")
+        model.saveToBinary(model_file)
+        rng = np.random.default_rng(2024)
+        lo = np.maximum(model.lowerPositionLimit, -np.pi)
+        hi = np.minimum(model.upperPositionLimit, np.pi)
+        qs = lo + (hi - lo) * rng.random((args.poses, model.nq))
+        qs_file = os.path.join(work, f"{name}.txt")
+        np.savetxt(qs_file, qs, fmt="%.17g")
+        a = run([reach, urdf, tip, qs_file, "1"])
+        b = run([cpp, model_file, tip, qs_file, "1"])
+        gap = max(abs(x - y) for x, y in zip(a["tip0"], b["tip0"]))
+        if a["nq"] != b["nq"] or gap > 1e-9:
+            sys.exit(f"{name}: the two models differ (nq {a['nq']} / {b['nq']}, tool pose by {gap:g})")
+        times = {"reach": {"fk_ns": [], "jacobian_ns": []}, "pin": {"fk_ns": [], "jacobian_ns": []}}
+        for _ in range(args.rounds):
+            for who, cmd in (("reach", [reach, urdf, tip, qs_file, "3"]), ("pin", [cpp, model_file, tip, qs_file, "3"])):
+                out = run(cmd)
+                for key in ("fk_ns", "jacobian_ns"):
+                    times[who][key].append(out[key])
+        for key, op in (("fk_ns", "FK"), ("jacobian_ns", "Jacobian")):
+            r, p = statistics.median(times["reach"][key]), statistics.median(times["pin"][key])
+            print(f"| {name} | {op} | {r:.0f} | {p:.0f} | {r / p:.2f} |")
+
+
+if __name__ == "__main__":
+    main()
