@@ -4,6 +4,9 @@
 //! stdout, and turns errors into one line on stderr and an exit status ([`error`]).
 //! Reusable pieces for later commands: [`robot_arg`] (the `ROBOT` argument and loading),
 //! [`numbers`] (joint values, units, finiteness), [`output`] (formatting, JSON, tables).
+// The doc comments of the options are clap's help texts, where `[m]` and `[deg]` are units,
+// not links.
+#![allow(rustdoc::broken_intra_doc_links)]
 
 mod argv;
 mod cli;

@@ -111,7 +111,7 @@ pub fn display_unit(kind: JointKind) -> &'static str {
     reach::jobs::input::unit_name(kind, AngleUnit::Deg)
 }
 
-/// A joint vector in display units (see [`JointValues::deg`]) for people: `0 -90 45 [deg]`
+/// A joint vector in display units (see [`display_unit`]) for people: `0 -90 45 [deg]`
 /// when all joints share a unit, else `90 deg, 0.25 m`.
 #[must_use]
 pub fn q_text(robot: &Robot, shown: &[f64]) -> String {
