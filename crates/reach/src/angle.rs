@@ -14,6 +14,10 @@ use std::f64::consts::{PI, TAU};
 #[must_use]
 #[inline]
 pub fn wrap(angle: f64) -> f64 {
+    // Already in (−π, π]: the `fmod` below would return it unchanged; skip it.
+    if angle > -PI && angle <= PI {
+        return angle;
+    }
     let mut a = angle % TAU; // in (−2π, 2π)
     if a > PI {
         a -= TAU;
