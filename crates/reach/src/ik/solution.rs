@@ -454,7 +454,7 @@ impl Check {
                 let m = r.matrix();
                 let vee = Vector3::new(m[(2, 1)] - m[(1, 2)], m[(0, 2)] - m[(2, 0)], m[(1, 0)] - m[(0, 1)]);
                 let sin = 0.5 * vee.norm();
-                (dp, sin.atan2(0.5 * (m.trace() - 1.0)))
+                (dp, crate::angle::atan2(sin, 0.5 * (m.trace() - 1.0)))
             }
             Check::Position(p) => ((Point3::from(t.translation.vector) - p).norm(), 0.0),
         }
@@ -476,7 +476,7 @@ impl Check {
 pub(crate) fn finish(
     robot: &Robot,
     target: &IkTarget,
-    candidates: impl IntoIterator<Item = Candidate>,
+    candidates: &mut [Candidate],
     solver: &'static str,
     if_empty: IkFailure,
 ) -> Result<IkSolutions, IkError> {
@@ -488,16 +488,17 @@ pub(crate) fn finish(
 pub(crate) fn finish_within(
     robot: &Robot,
     target: &IkTarget,
-    candidates: impl IntoIterator<Item = Candidate>,
+    candidates: &mut [Candidate],
     solver: &'static str,
     if_empty: IkFailure,
     (position_tolerance, orientation_tolerance): (f64, f64),
 ) -> Result<IkSolutions, IkError> {
     let check = Check::new(target);
-    let candidates = candidates.into_iter();
-    let mut solutions: Vec<IkSolution> = Vec::with_capacity(candidates.size_hint().0);
+    let mut solutions: Vec<IkSolution> = Vec::with_capacity(candidates.len());
     let mut prefix = FkPrefix::default();
-    for mut c in candidates {
+    // By reference, moving out only the labels of kept candidates: a closed form's
+    // fixed-capacity set is not copied.
+    for c in candidates.iter_mut() {
         if c.q.iter().any(|v| !v.is_finite()) {
             continue;
         }
@@ -511,7 +512,7 @@ pub(crate) fn finish_within(
             continue;
         }
         if let Some(existing) = solutions.iter_mut().find(|s| same_q(robot, &s.q, &c.q)) {
-            for k in c.singularities {
+            for &k in &c.singularities {
                 if !existing.singularities.contains(&k) {
                     existing.singularities.push(k);
                 }
@@ -533,13 +534,13 @@ pub(crate) fn finish_within(
             })
             .collect();
         solutions.push(IkSolution {
-            q: c.q.into_vec(),
-            branch: Branch(c.branch.into_vec()),
+            q: c.q.to_vec(),
+            branch: Branch(std::mem::take(&mut c.branch).into_vec()),
             position_error,
             orientation_error,
             within_limits: violations.is_empty(),
             violations,
-            singularities: c.singularities,
+            singularities: std::mem::take(&mut c.singularities),
         });
     }
     let failure = if solutions.is_empty() { Some(if_empty) } else { limits_failure(&solutions) };
@@ -675,11 +676,11 @@ mod tests {
         let robot = yaw_slide();
         let pi = std::f64::consts::PI;
         let target = IkTarget::Position(robot.fk(&[0.0, 4.0]).unwrap().translation.vector.into());
-        let candidates = vec![
+        let mut candidates = vec![
             Candidate::new(vec![0.0, 4.0], Branch::new([("side", "front")])),
             Candidate::new(vec![pi, -4.0], Branch::new([("side", "back")])),
         ];
-        let all = finish(&robot, &target, candidates, "test", IkFailure::OrientationUnreachable).unwrap();
+        let all = finish(&robot, &target, &mut candidates, "test", IkFailure::OrientationUnreachable).unwrap();
         assert_eq!(all.solutions.len(), 2, "{all:?}");
         // From (0, −4): "front" moves the slide 8 m (cost 8), "back" turns the base by π (cost π).
         // Wrapping the slide's 8 m as an angle (8 − 2π ≈ 1.72) would wrongly prefer "front".
@@ -702,11 +703,11 @@ mod tests {
         .unwrap();
         let tau = std::f64::consts::TAU;
         let target = IkTarget::Position(robot.fk(&[0.0, tau]).unwrap().translation.vector.into());
-        let candidates = vec![
+        let mut candidates = vec![
             Candidate::new(vec![0.0, tau], Branch::new([("slide", "2")])),
             Candidate::new(vec![tau, 0.0], Branch::new([("slide", "1")])),
         ];
-        let all = finish(&robot, &target, candidates, "test", IkFailure::OrientationUnreachable).unwrap();
+        let all = finish(&robot, &target, &mut candidates, "test", IkFailure::OrientationUnreachable).unwrap();
         assert_eq!(all.solutions.len(), 2, "{all:?}");
     }
 
@@ -721,11 +722,11 @@ mod tests {
         .unwrap();
         let pi = std::f64::consts::PI;
         let target = IkTarget::Position(robot.fk(&[0.0, 4.0]).unwrap().translation.vector.into());
-        let candidates = vec![
+        let mut candidates = vec![
             Candidate::new(vec![pi, -4.0], Branch::new([("side", "back")])),
             Candidate::new(vec![0.0, 4.0], Branch::new([("side", "front")])),
         ];
-        let all = finish(&robot, &target, candidates, "test", IkFailure::OrientationUnreachable).unwrap();
+        let all = finish(&robot, &target, &mut candidates, "test", IkFailure::OrientationUnreachable).unwrap();
         assert_eq!(all.solutions.len(), 2, "{all:?}");
         let back = all.solutions.iter().position(|s| s.branch.get("side") == Some("back")).unwrap();
         assert!(!all.solutions[back].within_limits, "{all:?}");

@@ -99,7 +99,7 @@ use super::{
     Branch, Candidate, Candidates, ChainFrame, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget,
     SingularityKind, finish,
 };
-use crate::angle::{sin_cos, wrap};
+use crate::angle::{atan2, sin_cos, wrap};
 use crate::kinematics::check_q;
 use crate::model::{Convention, JointKind, Robot};
 use crate::tolerance::{BOUNDARY, IK_AXIS_DISTANCE, IK_PARALLEL_SINE, STRUCTURE_ANGLE, STRUCTURE_LENGTH};
@@ -435,7 +435,7 @@ pub(crate) fn arm_branch(
         return Ok(None);
     }
     frame.refine(robot, target, &mut candidates);
-    let sols = finish(robot, target, candidates, solver, fallback_failure(arms))?;
+    let sols = finish(robot, target, &mut candidates, solver, fallback_failure(arms))?;
     Ok((!sols.solutions.is_empty()).then_some(sols))
 }
 
@@ -559,7 +559,7 @@ impl SphericalWrist {
             let theta1 = if shoulder_singular && is_zero_length(d) {
                 free_theta(&self.joints, seed, 0)
             } else {
-                w.y.atan2(w.x) - (-self.s1 * d).atan2(hs)
+                atan2(w.y, w.x) - atan2(-self.s1 * d, hs)
             };
             // P11 = A1⁻¹·P_m (eq. 9): (u, v) in the arm plane, the third component is d.
             let p11 = j1.transform(theta1).inverse_transform_point(w);
@@ -581,7 +581,7 @@ impl SphericalWrist {
                 // so that the two angles stay consistent near the stretched or folded elbow,
                 // where two independent `acos` disagree by ~1e-8 rad (√ of the round-off).
                 let (sin_phi, cos_phi) = sin_cos(phi);
-                (u.atan2(v), (l2 * sin_phi).atan2(a2 - l2 * cos_phi))
+                (atan2(u, v), atan2(l2 * sin_phi, a2 - l2 * cos_phi))
             } else {
                 // Wrist centre on axis 2 (a2 = L2, folded): θ2 undetermined, keep the seed's.
                 (FRAC_PI_2 - free_theta(&self.joints, seed, 1), 0.0)
@@ -622,7 +622,7 @@ impl SphericalWrist {
         let v = t03.rotation.matrix().tr_mul(n);
         let v = self.joints[3].transform(theta4).rotation.matrix().tr_mul(&v);
         let v = self.joints[4].transform(theta5).rotation.matrix().tr_mul(&v);
-        v.y.atan2(v.x)
+        atan2(v.y, v.x)
     }
 
     /// The wrist solutions of one arm branch (only the one labelled `wrist` when given),
@@ -672,9 +672,9 @@ impl SphericalWrist {
         }
         // θ5 ∈ (0, π) (the `acos` branch, sin θ5 = |z4'| > 0) and eq. 23 with the arguments in
         // the corrected order (notes 002 §6 item 3), generalised to the α4/α5 signs.
-        let theta5 = sin5.atan2(cos5);
+        let theta5 = atan2(sin5, cos5);
         let g = -self.s5;
-        let theta4 = (g * z4.dot(&x3)).atan2(-g * z4.dot(&y3)); // eqs. 23–25
+        let theta4 = atan2(g * z4.dot(&x3), -g * z4.dot(&y3)); // eqs. 23–25
         let theta6 = self.theta6(&t03, theta4, theta5, &n);
         for (label, theta) in [
             ("noflip", [t1, t2, t3, theta4, theta5, theta6]),
@@ -699,14 +699,14 @@ impl IkSolver for SphericalWrist {
         let w = wrist_centre(&flange, self.joints[5].d);
         let arms = match self.arms(&w, seed.as_ref()) {
             Ok(arms) => arms,
-            Err(failure) => return finish(robot, target, Vec::new(), NAME, failure),
+            Err(failure) => return finish(robot, target, &mut [], NAME, failure),
         };
         let mut candidates = Candidates::new();
         for arm in &arms {
             self.wrists(arm, &flange, seed.as_ref(), None, &mut candidates);
         }
         self.frame.refine(robot, target, &mut candidates);
-        finish(robot, target, candidates, NAME, fallback_failure(&arms))
+        finish(robot, target, &mut candidates, NAME, fallback_failure(&arms))
     }
 
     /// Only the requested branch's arm and wrist are computed and verified (see

@@ -95,7 +95,7 @@ use super::{
     Branch, Candidate, Candidates, ChainFrame, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget,
     SingularityKind, finish,
 };
-use crate::angle::sin_cos;
+use crate::angle::{atan2, sin_cos};
 use crate::model::Robot;
 use crate::tolerance::{BOUNDARY, IK_AXIS_DISTANCE, IK_PARALLEL_SINE};
 
@@ -199,7 +199,7 @@ impl TwoLinkWrist {
         let shoulder_singular = rho < IK_AXIS_DISTANCE;
         // (θ1, u): the thesis's q1 = atan2(p2, p1) with u = ρ, and the back shoulder; on the
         // base axis θ1 is undetermined (kept from the seed) and both coincide.
-        let q1 = p.y.atan2(p.x);
+        let q1 = atan2(p.y, p.x);
         let shoulders: &[(f64, f64, &str)] = if shoulder_singular {
             &[(free_theta(&self.joints, seed, 0), 0.0, "front")]
         } else {
@@ -215,7 +215,7 @@ impl TwoLinkWrist {
                 let (s, c) = sin_cos(theta3);
                 let (x, y) = (l1 + self.s3 * l2 * s, -self.s3 * l2 * c);
                 let theta2 = if r > IK_AXIS_DISTANCE {
-                    v.atan2(u) - y.atan2(x)
+                    atan2(v, u) - atan2(y, x)
                 } else {
                     // Folded onto the shoulder centre (l1 = l2): θ2 undetermined.
                     free_theta(&self.joints, seed, 1)
@@ -268,15 +268,15 @@ impl TwoLinkWrist {
             // r33 = ±1: only q4 ± q6 is determined; keep q6 (seed, else 0 — the thesis's rule).
             let chi = self.s6 * free_theta(&self.joints, seed, 5);
             if m[(2, 2)] > 0.0 {
-                push([m[(1, 0)].atan2(m[(0, 0)]) - chi, 0.0, chi], true);
+                push([atan2(m[(1, 0)], m[(0, 0)]) - chi, 0.0, chi], true);
             } else {
-                push([(-m[(0, 1)]).atan2(-m[(0, 0)]) + chi, PI, chi], true);
+                push([atan2(-m[(0, 1)], -m[(0, 0)]) + chi, PI, chi], true);
             }
             return;
         }
         for k in [1.0, -1.0] {
-            let psi = (k * hyp).atan2(m[(2, 2)]);
-            let phi = (k * m[(1, 2)]).atan2(k * m[(0, 2)]);
+            let psi = atan2(k * hyp, m[(2, 2)]);
+            let phi = atan2(k * m[(1, 2)], k * m[(0, 2)]);
             // The thesis's q6 = atan2(±r32, ∓r31), taken from the residual rotation
             // Ry(ψ)ᵀ·Rz(φ)ᵀ·R̃ = Rz(χ) instead: identical for exact data, and it absorbs the
             // round-off of φ near the singularity (≈ 1e-16/sin ψ), keeping the pose exact.
@@ -284,7 +284,7 @@ impl TwoLinkWrist {
             let (ss, cs) = sin_cos(psi);
             let p00 = cp * m[(0, 0)] + sp * m[(1, 0)];
             let p10 = -sp * m[(0, 0)] + cp * m[(1, 0)];
-            let chi = p10.atan2(cs * p00 - ss * m[(2, 0)]);
+            let chi = atan2(p10, cs * p00 - ss * m[(2, 0)]);
             debug_assert!(
                 crate::angle::wrap(chi - (k * m[(2, 1)]).atan2(-k * m[(2, 0)])).abs() < 1e-6 || hyp < 1e-6,
                 "residual χ agrees with the thesis's formula"
@@ -306,14 +306,14 @@ impl IkSolver for TwoLinkWrist {
         let w = wrist_centre(&flange, self.joints[5].d);
         let arms = match self.arms(&w, seed.as_ref()) {
             Ok(arms) => arms,
-            Err(failure) => return finish(robot, target, Vec::new(), NAME, failure),
+            Err(failure) => return finish(robot, target, &mut [], NAME, failure),
         };
         let mut candidates = Candidates::new();
         for arm in &arms {
             self.wrists(arm, &flange, seed.as_ref(), &mut candidates);
         }
         self.frame.refine(robot, target, &mut candidates);
-        finish(robot, target, candidates, NAME, fallback_failure(&arms))
+        finish(robot, target, &mut candidates, NAME, fallback_failure(&arms))
     }
 
     /// Only the requested branch's arm and wrist are verified (see
