@@ -419,8 +419,10 @@ fn same_angle(a: f64, b: f64) -> bool {
 
 /// Whether two joint vectors are the same solution: revolute values by [`same_angle`], prismatic
 /// ones literally (`|a − b| < IK_DUPLICATE` metres — 0 m and 2π m are different).
+/// Compared from the last joint: branches of an arm share their first joints (the two wrist
+/// solutions of one arm differ first in the wrist), so distinct ones part at once.
 fn same_q(robot: &Robot, a: &[f64], b: &[f64]) -> bool {
-    a.iter().zip(b).zip(robot.joints()).all(|((a, b), j)| match j.kind {
+    a.iter().zip(b).zip(robot.joints()).rev().all(|((a, b), j)| match j.kind {
         JointKind::Revolute => same_angle(*a, *b),
         JointKind::Prismatic => (a - b).abs() < IK_DUPLICATE,
     })
