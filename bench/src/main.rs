@@ -17,8 +17,10 @@
 //! over the rounds, the ratio is reach / peer of those medians. Absolute times drift with the
 //! load of the machine; the ratios of alternating rounds much less.
 
+use std::alloc::{GlobalAlloc, Layout, System};
 use std::f64::consts::PI;
 use std::hint::black_box;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::Instant;
 
 use nalgebra::{Isometry3, IsometryMatrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
@@ -31,6 +33,51 @@ use rs_opw_kinematics::glam::{DQuat, DVec3};
 use rs_opw_kinematics::kinematic_traits::{Joints, Kinematics, Pose};
 use rs_opw_kinematics::kinematics_impl::OPWKinematics;
 use rs_opw_kinematics::parameters::opw_kinematics::Parameters;
+
+/// The system allocator, counting allocations (and reallocations) while [`COUNTING`] is set:
+/// the evidence for "no allocation" claims. Off during the timed rounds.
+struct CountingAlloc;
+
+static COUNTING: AtomicBool = AtomicBool::new(false);
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+// SAFETY: forwards every call to `System` unchanged; the counter has no effect on memory.
+unsafe impl GlobalAlloc for CountingAlloc {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        if COUNTING.load(Ordering::Relaxed) {
+            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        }
+        // SAFETY: the caller's contract is System's.
+        unsafe { System.alloc(layout) }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: the caller's contract is System's.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        if COUNTING.load(Ordering::Relaxed) {
+            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        }
+        // SAFETY: the caller's contract is System's.
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: CountingAlloc = CountingAlloc;
+
+/// Allocations per call of `f` over `n` items (mean).
+fn allocations_per_call(n: usize, mut f: impl FnMut(usize)) -> f64 {
+    ALLOCATIONS.store(0, Ordering::Relaxed);
+    COUNTING.store(true, Ordering::Relaxed);
+    for i in 0..n {
+        f(i);
+    }
+    COUNTING.store(false, Ordering::Relaxed);
+    ALLOCATIONS.load(Ordering::Relaxed) as f64 / n as f64
+}
 
 /// SplitMix64 with the mapping of reach's IK protocol (`examples/ik_protocol.rs`).
 struct Rng(u64);
@@ -252,14 +299,31 @@ fn opw_puma(robot: &Robot, qs: &[Vec<f64>]) -> (OPWKinematics, Rotation3<f64>) {
 fn main() {
     let mut poses = 1000;
     let mut rounds = 15;
+    let mut profile = None;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         let mut value = || args.next().and_then(|v| v.parse().ok()).expect("a count");
         match a.as_str() {
             "--poses" => poses = value(),
             "--rounds" => rounds = value(),
-            other => panic!("unknown argument `{other}` (--poses N, --rounds N)"),
+            // Only reach's Puma 560 closed-form IK, N passes over the poses: for a profiler.
+            "--profile-ik" => profile = Some(value()),
+            other => panic!("unknown argument `{other}` (--poses N, --rounds N, --profile-ik N)"),
         }
+    }
+    if let Some(passes) = profile {
+        let robot = presets::get("puma560").expect("preset");
+        let targets: Vec<IkTarget> =
+            random_qs(&robot, poses, 2024).iter().map(|q| IkTarget::Pose(robot.fk(q).expect("fk"))).collect();
+        let cform = SolverKind::SphericalWrist.build(&robot).expect("spherical wrist");
+        let t0 = Instant::now();
+        for _ in 0..passes {
+            for t in &targets {
+                black_box(cform.solve(&robot, black_box(t), &IkOptions::default()).expect("solve"));
+            }
+        }
+        println!("{:.0} ns per solve", t0.elapsed().as_secs_f64() * 1e9 / (passes * targets.len()) as f64);
+        return;
     }
     println!(
         "reach vs peers, {poses} random joint vectors per arm (SplitMix64 seed 2024), median of {rounds} alternating rounds; ratio = reach / peer (< 1: reach faster)"
@@ -411,6 +475,12 @@ fn main() {
             }
             opw_n += sols.len();
         }
+        let reach_allocs = allocations_per_call(n, |i| {
+            black_box(cform.solve(&robot, &reach_targets[i], &options).expect("solve"));
+        });
+        let opw_allocs = allocations_per_call(n, |i| {
+            black_box(opw.inverse(&opw_targets[i]));
+        });
         let ik = race(
             n,
             rounds,
@@ -422,7 +492,7 @@ fn main() {
             },
         );
         let note = format!(
-            "all branches, FK-checked; mean solutions per pose: reach {:.2} (of which within limits {:.2}; labelled), rs-opw {:.2} (no limits)",
+            "all branches, FK-checked; mean solutions per pose: reach {:.2} (of which within limits {:.2}; labelled), rs-opw {:.2} (no limits); heap allocations per solve: reach {reach_allocs:.2} (the returned vectors), rs-opw {opw_allocs:.2}",
             reach_n as f64 / n as f64,
             reach_feasible as f64 / n as f64,
             opw_n as f64 / n as f64

@@ -51,7 +51,7 @@ pub mod yaw_planar3;
 pub mod yaw_two_link;
 
 pub use solution::{Branch, IkFailure, IkSolution, IkSolutions, Label, LimitViolation, SingularityKind};
-pub(crate) use solution::{Candidate, ChainFrame, finish};
+pub(crate) use solution::{Candidate, Candidates, ChainFrame, finish};
 
 use nalgebra::{Isometry3, Point3};
 use thiserror::Error;

@@ -339,7 +339,7 @@ impl IkSolver for Numeric {
         let distance = (target.position().coords - self.anchor).norm();
         if distance > self.reach * (1.0 + BOUNDARY) + opts.position_tolerance {
             let failure = IkFailure::Unreachable { distance, reach: self.reach };
-            return finish_within(robot, target, Vec::new(), self.name(), failure, criteria.acceptance());
+            return finish_within(robot, target, &mut [], self.name(), failure, criteria.acceptance());
         }
 
         let goal = Goal::new(target, axes, self.length_scale);
@@ -386,10 +386,12 @@ impl IkSolver for Numeric {
             IkFailure::NoConvergence { iterations, residual: best_residual }
         };
         match axes {
-            TaskAxes::Pose => finish_within(robot, target, candidates, self.name(), failure, criteria.acceptance()),
+            TaskAxes::Pose => {
+                finish_within(robot, target, &mut candidates, self.name(), failure, criteria.acceptance())
+            }
             TaskAxes::Position => {
                 let target = IkTarget::Position(target.position());
-                finish_within(robot, &target, candidates, self.name(), failure, criteria.acceptance())
+                finish_within(robot, &target, &mut candidates, self.name(), failure, criteria.acceptance())
             }
             TaskAxes::PositionApproach => {
                 // `finish` checks the position; the approach axis is checked here.
@@ -398,14 +400,14 @@ impl IkSolver for Numeric {
                     let (_, _, angle) = goal.error(&robot.fk_matrix(&c.q)?);
                     approach_errors.push((c.q.clone(), angle));
                 }
-                let kept: Vec<Candidate> = candidates
+                let mut kept: Vec<Candidate> = candidates
                     .into_iter()
                     .zip(&approach_errors)
                     .filter(|(_, (_, angle))| *angle <= criteria.accept_orientation)
                     .map(|(c, _)| c)
                     .collect();
                 let position = IkTarget::Position(target.position());
-                let mut out = finish_within(robot, &position, kept, self.name(), failure, criteria.acceptance())?;
+                let mut out = finish_within(robot, &position, &mut kept, self.name(), failure, criteria.acceptance())?;
                 for s in &mut out.solutions {
                     // `finish` may have moved revolute angles by whole turns: same pose.
                     s.orientation_error = approach_errors

@@ -90,9 +90,10 @@ use serde::Serialize;
 
 use super::spherical_wrist::{Dh6, revolute_dh6};
 use super::{
-    Branch, Candidate, ChainFrame, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind,
-    SingularityMeasures, finish,
+    Branch, Candidate, Candidates, ChainFrame, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget,
+    SingularityKind, SingularityMeasures, finish,
 };
+use crate::angle::{atan2, sin_cos};
 use crate::kinematics::check_q;
 use crate::model::Robot;
 use crate::tolerance::{BOUNDARY, IK_AXIS_DISTANCE, IK_PARALLEL_SINE, STRUCTURE_ANGLE, STRUCTURE_LENGTH};
@@ -321,13 +322,15 @@ struct ShoulderRoot {
 struct Arm {
     x1: Vector3<f64>,
     z1: Vector3<f64>,
-    z4: Vector3<f64>,
     x4: Vector3<f64>,
     /// In-plane vector r2·e_r2 (perpendicular to z1).
     v: Vector3<f64>,
     r2: f64,
     wrist_sine: f64,
     wrist_singular: bool,
+    /// θ1, θ5 and θ6 (eq. 21): they do not depend on the elbow configuration, so both
+    /// configurations of the arm share them.
+    theta_156: [f64; 3],
 }
 
 /// The chain-frame target: tool point and axes.
@@ -342,7 +345,7 @@ struct Frame {
 /// atan2(axis·(from × to), from·to): the angle from `from` to `to` about `axis` (eq. 21).
 #[inline]
 fn angle_about(axis: &Vector3<f64>, from: &Vector3<f64>, to: &Vector3<f64>) -> f64 {
-    axis.dot(&from.cross(to)).atan2(from.dot(to))
+    atan2(axis.dot(&from.cross(to)), from.dot(to))
 }
 
 fn is_angle(value: f64, target: f64) -> bool {
@@ -527,7 +530,7 @@ impl ParallelAxes {
         }
         let singular = ratio.abs() >= 1.0 - BOUNDARY;
         let gamma = ratio.clamp(-1.0, 1.0).asin();
-        let phi = c.y.atan2(c.x);
+        let phi = atan2(c.y, c.x);
         let near = phi + gamma; // z1·(C × k) = sin α1·ρ·cos γ: the paper's `w` when sin α1 > 0
         let far = phi + std::f64::consts::PI - gamma;
         let (w, minus_w) = if self.s_alpha1 > 0.0 { (near, far) } else { (far, near) };
@@ -547,7 +550,7 @@ impl ParallelAxes {
         wrist: Wrist,
         seed_theta6: f64,
     ) -> Arm {
-        let (s1, c1) = root.theta1.sin_cos();
+        let (s1, c1) = sin_cos(root.theta1);
         let x1 = Vector3::new(c1, s1, 0.0);
         let z1 = Vector3::new(s1, -c1, 0.0) * self.s_alpha1;
         let z2 = z1 * self.c_alpha2;
@@ -559,7 +562,7 @@ impl ParallelAxes {
         let z4 = if wrist_singular {
             // e6 ∥ w: e5 is any vector ⟂ w; the seed's θ6 fixes frame 5 and with it
             // e5 = sin α5·y5 (z_{i−1} = sin α_i·y_i + cos α_i·z_i, α5 = ±90°).
-            let (s6, c6) = seed_theta6.sin_cos();
+            let (s6, c6) = sin_cos(seed_theta6);
             let x5 = f.x6 * c6 - (f.y6 * self.c_alpha6 - f.z6 * self.s_alpha6) * s6;
             let y5 = z5.cross(&x5);
             let e5 = y5 * self.s_alpha5;
@@ -574,18 +577,15 @@ impl ParallelAxes {
         let o1 = Vector3::new(0.0, 0.0, self.d[0]) + x1 * self.a[0];
         let v = o3 - o1 - z1 * self.d[1] - z2 * self.d[2];
         let v = v - z1 * v.dot(&z1); // exact in-plane part (the residue is round-off or ≤ ρ at the shoulder singularity)
-        Arm { x1, z1, z4, x4, v, r2: v.norm(), wrist_sine, wrist_singular }
+        let x5 = z4.cross(z5) * self.s_alpha5;
+        let x5 = x5 / x5.norm();
+        let theta_156 =
+            [angle_about(&Vector3::z(), &Vector3::x(), &x1), angle_about(&z4, &x4, &x5), angle_about(z5, &x5, &f.x6)];
+        Arm { x1, z1, x4, v, r2: v.norm(), wrist_sine, wrist_singular, theta_156 }
     }
 
     /// Steps 5–8 for one arm and configuration: DH angles θ1…θ6, or `Err` = out of reach.
-    fn angles(
-        &self,
-        f: &Frame,
-        z5: &Vector3<f64>,
-        arm: &Arm,
-        config: Config,
-        seed_theta2: f64,
-    ) -> Result<([f64; 6], bool), IkFailure> {
+    fn angles(&self, arm: &Arm, config: Config, seed_theta2: f64) -> Result<([f64; 6], bool), IkFailure> {
         let (l2, l3) = (self.a[1].abs(), self.a[2].abs());
         let z1 = arm.z1;
         let z2 = z1 * self.c_alpha2;
@@ -596,7 +596,7 @@ impl ParallelAxes {
             if (l2 - l3).abs() > IK_AXIS_DISTANCE {
                 return Err(IkFailure::Unreachable { distance: arm.r2, reach: (l2 - l3).abs() });
             }
-            let (s2, c2) = seed_theta2.sin_cos();
+            let (s2, c2) = sin_cos(seed_theta2);
             let x2 = arm.x1 * c2 + z1.cross(&arm.x1) * s2;
             (x2 * self.a[1].signum(), true)
         } else {
@@ -628,35 +628,32 @@ impl ParallelAxes {
         let x2 = link2 * self.a[1].signum();
         // a3 = (r2·e_r2 − l2·a2)/l3  (eq. 18), with signed DH lengths.
         let x3 = ((arm.v - x2 * self.a[1]) / self.a[2]).normalize();
-        let x5 = arm.z4.cross(z5) * self.s_alpha5;
-        let x5 = x5 / x5.norm();
-        let x0 = Vector3::x();
-        let z0 = Vector3::z();
+        let [theta1, theta5, theta6] = arm.theta_156;
         let theta = [
-            angle_about(&z0, &x0, &arm.x1),
+            theta1,
             angle_about(&z1, &arm.x1, &x2),
             angle_about(&z2, &x2, &x3),
             angle_about(&z3, &x3, &arm.x4),
-            angle_about(&arm.z4, &arm.x4, &x5),
-            angle_about(z5, &x5, &f.x6),
+            theta5,
+            theta6,
         ];
         Ok((theta, elbow_singular))
     }
 
     /// Every candidate (up to 8) for a chain-frame target, and the failure reason if none.
-    fn candidates(&self, frame: &Frame, seed: &[f64; 6]) -> (Vec<Candidate>, Option<IkFailure>) {
+    fn candidates(&self, frame: &Frame, seed: &[f64; 6]) -> (Candidates, Option<IkFailure>) {
         let (z5, c) = self.wrist_point(frame);
         let roots = match self.shoulder_roots(&c, seed[0]) {
             Ok(r) => r,
-            Err(failure) => return (Vec::new(), Some(failure)),
+            Err(failure) => return (Candidates::new(), Some(failure)),
         };
-        let mut out = Vec::with_capacity(8);
+        let mut out = Candidates::new();
         let mut failure: Option<(f64, IkFailure)> = None;
         for root in &roots {
             for wrist in [Wrist::E5, Wrist::MinusE5] {
                 let arm = self.arm(frame, &z5, &c, root, wrist, seed[5]);
                 for config in [Config::PlusBeta, Config::MinusBeta] {
-                    match self.angles(frame, &z5, &arm, config, seed[1]) {
+                    match self.angles(&arm, config, seed[1]) {
                         Ok((theta, elbow_singular)) => {
                             out.push(self.candidate(&theta, root, config, wrist, &arm, elbow_singular));
                         }
@@ -689,7 +686,7 @@ impl ParallelAxes {
         let roots = self.shoulder_roots(&c, seed[0]).ok()?;
         let root = roots.iter().find(|r| r.label == shoulder)?;
         let arm = self.arm(frame, &z5, &c, root, wrist, seed[5]);
-        let (theta, elbow_singular) = self.angles(frame, &z5, &arm, config, seed[1]).ok()?;
+        let (theta, elbow_singular) = self.angles(&arm, config, seed[1]).ok()?;
         Some(self.candidate(&theta, root, config, wrist, &arm, elbow_singular))
     }
 
@@ -703,10 +700,10 @@ impl ParallelAxes {
         arm: &Arm,
         elbow_singular: bool,
     ) -> Candidate {
-        let q: Vec<f64> = (0..6).map(|i| self.sign[i] * (theta[i] - self.offset[i])).collect();
-        let mut cand = Candidate::new(
-            q,
-            Branch::new([("shoulder", root.label.label()), ("config", config.label()), ("wrist", wrist.label())]),
+        let q: [f64; 6] = std::array::from_fn(|i| self.sign[i] * (theta[i] - self.offset[i]));
+        let mut cand = Candidate::labelled(
+            &q,
+            [("shoulder", root.label.label()), ("config", config.label()), ("wrist", wrist.label())],
         );
         if root.singular {
             cand.singularities.push(SingularityKind::Shoulder);
@@ -761,7 +758,7 @@ impl IkSolver for ParallelAxes {
                 candidates.iter().find_map(|c| c.singularities.first().copied()).unwrap_or(SingularityKind::Jacobian);
             IkFailure::Singular { kind }
         });
-        finish(robot, target, candidates, NAME, if_empty)
+        finish(robot, target, &mut candidates, NAME, if_empty)
     }
 
     /// Only the requested branch is computed and verified (see [`IkSolver::solve_branch`]).
@@ -797,9 +794,9 @@ impl IkSolver for ParallelAxes {
                 && cand.singularities.is_empty()
             {
                 let if_empty = IkFailure::Singular { kind: SingularityKind::Jacobian };
-                let mut candidates = vec![cand];
+                let mut candidates = [cand];
                 self.frame.refine(robot, target, &mut candidates);
-                let sols = finish(robot, target, candidates, NAME, if_empty)?;
+                let sols = finish(robot, target, &mut candidates, NAME, if_empty)?;
                 if !sols.solutions.is_empty() {
                     return Ok(sols);
                 }

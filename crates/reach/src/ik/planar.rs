@@ -720,7 +720,7 @@ impl IkSolver for PlanarRedundant {
         let (x, y, offset) = self.plane_coordinates(&target.position());
         if offset.abs() > IK_POSITION {
             let failure = IkFailure::Unreachable { distance: offset.abs(), reach: 0.0 };
-            return finish(robot, target, Vec::new(), NAME, failure);
+            return finish(robot, target, &mut [], NAME, failure);
         }
         let p = [x, y];
         let seed_phi1 = options.seed.as_ref().map_or(0.0, |s| self.chain.link_angles(s)[0]);
@@ -744,7 +744,7 @@ impl IkSolver for PlanarRedundant {
             },
         }
         let if_empty = self.unreachable(p).unwrap_or(IkFailure::OrientationUnreachable);
-        finish(robot, target, candidates, NAME, if_empty)
+        finish(robot, target, &mut candidates, NAME, if_empty)
     }
 
     /// The two elbows, `elbow=up` first (the bend `−e` of `two_link`, the order of

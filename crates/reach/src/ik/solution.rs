@@ -3,11 +3,13 @@
 use std::borrow::Cow;
 use std::fmt;
 
-use nalgebra::{Isometry3, Point3, Rotation3, Vector3};
+use nalgebra::{Isometry3, IsometryMatrix3, Point3, Rotation3, Vector3};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
+use smallvec::SmallVec;
 
 use crate::angle::fit_into_limits;
+use crate::kinematics::FkPrefix;
 use crate::model::{JointKind, Robot};
 use crate::tolerance::{DH_EQUIVALENT_EXACT, IK_DUPLICATE, IK_ORIENTATION, IK_POSITION, LIMIT_SLACK};
 
@@ -355,30 +357,54 @@ fn limits_failure(solutions: &[IkSolution]) -> Option<IkFailure> {
     }
 }
 
+/// Joint values of a [`Candidate`]: inline up to 8 joints (every closed form), on the heap
+/// beyond (long chains, numeric solver only).
+pub(crate) type JointValues = SmallVec<[f64; 8]>;
+
+/// The `key=value` pairs of a [`Candidate`]'s branch label, inline up to 3 pairs (every 6R
+/// closed form's `shoulder elbow wrist`); a [`Branch`] once the candidate is verified.
+pub(crate) type Labels = SmallVec<[(Label, Label); 3]>;
+
 /// A raw solver output before verification.
 #[derive(Debug, Clone)]
 pub(crate) struct Candidate {
-    pub q: Vec<f64>,
-    pub branch: Branch,
+    pub q: JointValues,
+    pub branch: Labels,
     pub singularities: Vec<SingularityKind>,
 }
 
 impl Candidate {
     pub fn new(q: Vec<f64>, branch: Branch) -> Self {
-        Candidate { q, branch, singularities: Vec::new() }
+        Candidate { q: SmallVec::from_vec(q), branch: SmallVec::from_vec(branch.0), singularities: Vec::new() }
+    }
+
+    /// A candidate with a label of static names, built without allocating (the closed forms'
+    /// hot path; the `Vec`s of the public [`IkSolution`] are made only for verified ones).
+    pub fn labelled<const N: usize>(q: &[f64], pairs: [(&'static str, &'static str); N]) -> Self {
+        Candidate {
+            q: SmallVec::from_slice(q),
+            branch: pairs.into_iter().map(|(k, v)| (Label::from(k), Label::from(v))).collect(),
+            singularities: Vec::new(),
+        }
+    }
+
+    /// Whether the candidate is labelled exactly `branch`.
+    pub fn is_on(&self, branch: &Branch) -> bool {
+        self.branch.as_slice() == branch.0.as_slice()
     }
 }
 
-/// [`fit_into_limits`] with a fast path: an angle already in (−π, π] is its own wrap (the
-/// `fmod` in `wrap` returns it unchanged), so when it is also within the limits it is returned
-/// without the `fmod`. Same result as `fit_into_limits(angle, limits, LIMIT_SLACK)`, bit for bit.
+/// The candidates of one solve: a fixed-capacity set of up to 8 on the stack (every closed
+/// form of a 6R arm has at most 8 solutions), spilling to the heap beyond (sampled
+/// self-motions, numeric starts).
+pub(crate) type Candidates = SmallVec<[Candidate; 8]>;
+
+/// [`fit_into_limits`] with the IK slack: revolute values as the solvers report them
+/// (wrapped into (−π, π], or moved by whole turns into the joint range). An angle already in
+/// (−π, π] and within the limits costs two comparisons ([`crate::angle::wrap`]'s fast path).
 #[inline]
 pub(crate) fn fit_revolute(angle: f64, limits: &crate::model::Limits) -> f64 {
-    if angle > -std::f64::consts::PI && angle <= std::f64::consts::PI && limits.contains(angle, LIMIT_SLACK) {
-        angle
-    } else {
-        fit_into_limits(angle, limits, LIMIT_SLACK)
-    }
+    fit_into_limits(angle, limits, LIMIT_SLACK)
 }
 
 /// Whether two joint values are equal within `IK_DUPLICATE` modulo whole turns
@@ -393,8 +419,10 @@ fn same_angle(a: f64, b: f64) -> bool {
 
 /// Whether two joint vectors are the same solution: revolute values by [`same_angle`], prismatic
 /// ones literally (`|a − b| < IK_DUPLICATE` metres — 0 m and 2π m are different).
+/// Compared from the last joint: branches of an arm share their first joints (the two wrist
+/// solutions of one arm differ first in the wrist), so distinct ones part at once.
 fn same_q(robot: &Robot, a: &[f64], b: &[f64]) -> bool {
-    a.iter().zip(b).zip(robot.joints()).all(|((a, b), j)| match j.kind {
+    a.iter().zip(b).zip(robot.joints()).rev().all(|((a, b), j)| match j.kind {
         JointKind::Revolute => same_angle(*a, *b),
         JointKind::Prismatic => (a - b).abs() < IK_DUPLICATE,
     })
@@ -417,10 +445,9 @@ impl Check {
         }
     }
 
-    /// Pose error of `q`: (position metres, orientation radians).
-    fn error(&self, robot: &Robot, q: &[f64]) -> Result<(f64, f64), IkError> {
-        let t = robot.fk_matrix(q)?;
-        Ok(match self {
+    /// Pose error of the tool pose `t`: (position metres, orientation radians).
+    fn error(&self, t: &IsometryMatrix3<f64>) -> (f64, f64) {
+        match self {
             Check::Pose(p, r_inv) => {
                 let dp = (t.translation.vector - p).norm();
                 let r = r_inv * t.rotation;
@@ -429,10 +456,10 @@ impl Check {
                 let m = r.matrix();
                 let vee = Vector3::new(m[(2, 1)] - m[(1, 2)], m[(0, 2)] - m[(2, 0)], m[(1, 0)] - m[(0, 1)]);
                 let sin = 0.5 * vee.norm();
-                (dp, sin.atan2(0.5 * (m.trace() - 1.0)))
+                (dp, crate::angle::atan2(sin, 0.5 * (m.trace() - 1.0)))
             }
             Check::Position(p) => ((Point3::from(t.translation.vector) - p).norm(), 0.0),
-        })
+        }
     }
 }
 
@@ -444,10 +471,14 @@ impl Check {
 /// * candidates equal within `IK_DUPLICATE` are merged (their singularity flags united);
 /// * `if_empty` is the reason reported when no candidate survives; when some survive but all
 ///   violate limits the reason is [`IkFailure::OutsideLimits`].
+///
+/// Every candidate's tool pose is its full forward kinematics ([`Robot::fk_matrix`]);
+/// candidates that share their leading joint values (the two wrist solutions of one arm) share
+/// the product of those joints' transforms ([`FkPrefix`]), with the same result bit for bit.
 pub(crate) fn finish(
     robot: &Robot,
     target: &IkTarget,
-    candidates: Vec<Candidate>,
+    candidates: &mut [Candidate],
     solver: &'static str,
     if_empty: IkFailure,
 ) -> Result<IkSolutions, IkError> {
@@ -459,14 +490,17 @@ pub(crate) fn finish(
 pub(crate) fn finish_within(
     robot: &Robot,
     target: &IkTarget,
-    candidates: Vec<Candidate>,
+    candidates: &mut [Candidate],
     solver: &'static str,
     if_empty: IkFailure,
     (position_tolerance, orientation_tolerance): (f64, f64),
 ) -> Result<IkSolutions, IkError> {
     let check = Check::new(target);
     let mut solutions: Vec<IkSolution> = Vec::with_capacity(candidates.len());
-    for mut c in candidates {
+    let mut prefix = FkPrefix::default();
+    // By reference, moving out only the labels of kept candidates: a closed form's
+    // fixed-capacity set is not copied.
+    for c in candidates.iter_mut() {
         if c.q.iter().any(|v| !v.is_finite()) {
             continue;
         }
@@ -475,12 +509,12 @@ pub(crate) fn finish_within(
                 *v = fit_revolute(*v, &joint.limits);
             }
         }
-        let (position_error, orientation_error) = check.error(robot, &c.q)?;
+        let (position_error, orientation_error) = check.error(&robot.fk_matrix_sharing(&c.q, &mut prefix)?);
         if position_error > position_tolerance || orientation_error > orientation_tolerance {
             continue;
         }
         if let Some(existing) = solutions.iter_mut().find(|s| same_q(robot, &s.q, &c.q)) {
-            for k in c.singularities {
+            for &k in &c.singularities {
                 if !existing.singularities.contains(&k) {
                     existing.singularities.push(k);
                 }
@@ -502,13 +536,13 @@ pub(crate) fn finish_within(
             })
             .collect();
         solutions.push(IkSolution {
-            q: c.q,
-            branch: c.branch,
+            q: c.q.to_vec(),
+            branch: Branch(std::mem::take(&mut c.branch).into_vec()),
             position_error,
             orientation_error,
             within_limits: violations.is_empty(),
             violations,
-            singularities: c.singularities,
+            singularities: std::mem::take(&mut c.singularities),
         });
     }
     let failure = if solutions.is_empty() { Some(if_empty) } else { limits_failure(&solutions) };
@@ -571,7 +605,7 @@ impl ChainFrame {
                 let Some((e, size)) = error(&c.q) else { break };
                 let Ok(jac) = robot.jacobian(&c.q) else { break };
                 let Some(dq) = nalgebra::Matrix6::from_iterator(jac.iter().copied()).lu().solve(&e) else { break };
-                let trial: Vec<f64> = c.q.iter().zip(dq.iter()).map(|(q, d)| q + d).collect();
+                let trial: JointValues = c.q.iter().zip(dq.iter()).map(|(q, d)| q + d).collect();
                 match error(&trial) {
                     Some((_, smaller)) if smaller < size => c.q = trial,
                     _ => break,
@@ -644,11 +678,11 @@ mod tests {
         let robot = yaw_slide();
         let pi = std::f64::consts::PI;
         let target = IkTarget::Position(robot.fk(&[0.0, 4.0]).unwrap().translation.vector.into());
-        let candidates = vec![
+        let mut candidates = vec![
             Candidate::new(vec![0.0, 4.0], Branch::new([("side", "front")])),
             Candidate::new(vec![pi, -4.0], Branch::new([("side", "back")])),
         ];
-        let all = finish(&robot, &target, candidates, "test", IkFailure::OrientationUnreachable).unwrap();
+        let all = finish(&robot, &target, &mut candidates, "test", IkFailure::OrientationUnreachable).unwrap();
         assert_eq!(all.solutions.len(), 2, "{all:?}");
         // From (0, −4): "front" moves the slide 8 m (cost 8), "back" turns the base by π (cost π).
         // Wrapping the slide's 8 m as an angle (8 − 2π ≈ 1.72) would wrongly prefer "front".
@@ -671,11 +705,11 @@ mod tests {
         .unwrap();
         let tau = std::f64::consts::TAU;
         let target = IkTarget::Position(robot.fk(&[0.0, tau]).unwrap().translation.vector.into());
-        let candidates = vec![
+        let mut candidates = vec![
             Candidate::new(vec![0.0, tau], Branch::new([("slide", "2")])),
             Candidate::new(vec![tau, 0.0], Branch::new([("slide", "1")])),
         ];
-        let all = finish(&robot, &target, candidates, "test", IkFailure::OrientationUnreachable).unwrap();
+        let all = finish(&robot, &target, &mut candidates, "test", IkFailure::OrientationUnreachable).unwrap();
         assert_eq!(all.solutions.len(), 2, "{all:?}");
     }
 
@@ -690,11 +724,11 @@ mod tests {
         .unwrap();
         let pi = std::f64::consts::PI;
         let target = IkTarget::Position(robot.fk(&[0.0, 4.0]).unwrap().translation.vector.into());
-        let candidates = vec![
+        let mut candidates = vec![
             Candidate::new(vec![pi, -4.0], Branch::new([("side", "back")])),
             Candidate::new(vec![0.0, 4.0], Branch::new([("side", "front")])),
         ];
-        let all = finish(&robot, &target, candidates, "test", IkFailure::OrientationUnreachable).unwrap();
+        let all = finish(&robot, &target, &mut candidates, "test", IkFailure::OrientationUnreachable).unwrap();
         assert_eq!(all.solutions.len(), 2, "{all:?}");
         let back = all.solutions.iter().position(|s| s.branch.get("side") == Some("back")).unwrap();
         assert!(!all.solutions[back].within_limits, "{all:?}");

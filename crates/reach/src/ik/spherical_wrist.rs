@@ -93,11 +93,13 @@ use std::f64::consts::{FRAC_PI_2, PI};
 
 use nalgebra::{Isometry3, IsometryMatrix3, Matrix3, Point3, Rotation3, Translation3, Vector3};
 
+use smallvec::SmallVec;
+
 use super::{
-    Branch, Candidate, ChainFrame, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind,
-    finish,
+    Branch, Candidate, Candidates, ChainFrame, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget,
+    SingularityKind, finish,
 };
-use crate::angle::wrap;
+use crate::angle::{atan2, sin_cos, wrap};
 use crate::kinematics::check_q;
 use crate::model::{Convention, JointKind, Robot};
 use crate::tolerance::{BOUNDARY, IK_AXIS_DISTANCE, IK_PARALLEL_SINE, STRUCTURE_ANGLE, STRUCTURE_LENGTH};
@@ -136,8 +138,9 @@ impl DhJoint {
     }
 
     /// `A = Rz(θ)·Tz(d)·Tx(a)·Rx(α)`.
+    #[inline]
     pub fn transform(&self, theta: f64) -> IsometryMatrix3<f64> {
-        let (st, ct) = theta.sin_cos();
+        let (st, ct) = sin_cos(theta);
         let (sa, ca) = self.sin_cos_alpha;
         #[rustfmt::skip]
         let r = Matrix3::new(
@@ -346,13 +349,16 @@ pub(crate) fn elbow_label(s_alpha1: f64, h: f64, u: f64, v: f64, e: (f64, f64)) 
 
 /// `noflip` when DH θ5 ∈ [0, π], else `flip`.
 pub(crate) fn wrist_label(theta5: f64) -> &'static str {
-    if theta5.sin() >= 0.0 { "noflip" } else { "flip" }
+    if sin_cos(theta5).0 >= 0.0 { "noflip" } else { "flip" }
 }
 
 /// The user's joint values of DH angles.
-pub(crate) fn joint_values(joints: &[DhJoint; 6], theta: &[f64; 6]) -> Vec<f64> {
-    joints.iter().zip(theta).map(|(j, &t)| j.q(t)).collect()
+pub(crate) fn joint_values(joints: &[DhJoint; 6], theta: &[f64; 6]) -> [f64; 6] {
+    std::array::from_fn(|i| joints[i].q(theta[i]))
 }
+
+/// The arm solutions of one target: at most 2 shoulders × 2 elbows, on the stack.
+pub(crate) type Arms = SmallVec<[Arm; 4]>;
 
 /// The arm angles θ1…θ3 of one shoulder/elbow branch.
 #[derive(Debug, Clone, Copy)]
@@ -407,7 +413,7 @@ pub(crate) fn arm_branch(
     branch: &Branch,
     solver: &'static str,
     arms: &[Arm],
-    wrists: impl FnOnce(&Arm, &mut Vec<Candidate>),
+    wrists: impl FnOnce(&Arm, &mut Candidates),
 ) -> Result<Option<IkSolutions>, IkError> {
     let (Some(shoulder), Some(elbow)) = (branch.get("shoulder"), branch.get("elbow")) else {
         return Ok(None);
@@ -422,14 +428,14 @@ pub(crate) fn arm_branch(
     if arms.iter().any(|other| !std::ptr::eq(other, arm) && close(other)) {
         return Ok(None);
     }
-    let mut candidates = Vec::with_capacity(2);
+    let mut candidates = Candidates::new();
     wrists(arm, &mut candidates);
-    candidates.retain(|c| c.branch == *branch);
+    candidates.retain(|c| c.is_on(branch));
     if candidates.is_empty() {
         return Ok(None);
     }
     frame.refine(robot, target, &mut candidates);
-    let sols = finish(robot, target, candidates, solver, fallback_failure(arms))?;
+    let sols = finish(robot, target, &mut candidates, solver, fallback_failure(arms))?;
     Ok((!sols.solutions.is_empty()).then_some(sols))
 }
 
@@ -529,7 +535,7 @@ impl SphericalWrist {
     }
 
     /// Every arm solution (θ1, θ2, θ3) for the wrist centre `w`, or why there is none.
-    fn arms(&self, w: &Point3<f64>, seed: Option<&[f64; 6]>) -> Result<Vec<Arm>, IkFailure> {
+    fn arms(&self, w: &Point3<f64>, seed: Option<&[f64; 6]>) -> Result<Arms, IkFailure> {
         let [j1, j2, ..] = &self.joints;
         let d = self.lateral;
         let rho2 = w.x * w.x + w.y * w.y;
@@ -544,7 +550,7 @@ impl SphericalWrist {
         let shoulder_singular = h < IK_AXIS_DISTANCE;
         let roots: &[f64] = if shoulder_singular { &[0.0] } else { &[1.0, -1.0] };
         let (a2, l2) = (j2.a, self.l2);
-        let mut arms = Vec::with_capacity(4);
+        let mut arms = Arms::new();
         let mut failure = None;
         for &side in roots {
             let hs = side * h;
@@ -553,7 +559,7 @@ impl SphericalWrist {
             let theta1 = if shoulder_singular && is_zero_length(d) {
                 free_theta(&self.joints, seed, 0)
             } else {
-                w.y.atan2(w.x) - (-self.s1 * d).atan2(hs)
+                atan2(w.y, w.x) - atan2(-self.s1 * d, hs)
             };
             // P11 = A1⁻¹·P_m (eq. 9): (u, v) in the arm plane, the third component is d.
             let p11 = j1.transform(theta1).inverse_transform_point(w);
@@ -574,7 +580,8 @@ impl SphericalWrist {
                 // cos γ = (a2 − L2·cos φ)/R = (a2² + R² − L2²)/(2·a2·R), sin γ = L2·sin φ/R —
                 // so that the two angles stay consistent near the stretched or folded elbow,
                 // where two independent `acos` disagree by ~1e-8 rad (√ of the round-off).
-                (u.atan2(v), (l2 * phi.sin()).atan2(a2 - l2 * phi.cos()))
+                let (sin_phi, cos_phi) = sin_cos(phi);
+                (atan2(u, v), atan2(l2 * sin_phi, a2 - l2 * cos_phi))
             } else {
                 // Wrist centre on axis 2 (a2 = L2, folded): θ2 undetermined, keep the seed's.
                 (FRAC_PI_2 - free_theta(&self.joints, seed, 1), 0.0)
@@ -591,7 +598,8 @@ impl SphericalWrist {
                 } else {
                     "left"
                 };
-                let e = (a2 * theta2.cos(), a2 * theta2.sin());
+                let (s2, c2) = sin_cos(theta2);
+                let e = (a2 * c2, a2 * s2);
                 arms.push(Arm {
                     theta: [theta1, theta2, theta3],
                     shoulder,
@@ -608,21 +616,26 @@ impl SphericalWrist {
     }
 
     /// θ6 = atan2(n·y5, n·x5) (eqs. 31–37, corrected: x6 = n, arguments swapped).
+    /// `n·x5` and `n·y5` are the first two components of `R05ᵀ·n = R5ᵀ·R4ᵀ·R03ᵀ·n`: three
+    /// matrix-vector products instead of two matrix products of `T05`.
     fn theta6(&self, t03: &IsometryMatrix3<f64>, theta4: f64, theta5: f64, n: &Vector3<f64>) -> f64 {
-        let t05 = t03 * self.joints[3].transform(theta4) * self.joints[4].transform(theta5);
-        let m = t05.rotation.matrix();
-        n.dot(&m.column(1)).atan2(n.dot(&m.column(0)))
+        let v = t03.rotation.matrix().tr_mul(n);
+        let v = self.joints[3].transform(theta4).rotation.matrix().tr_mul(&v);
+        let v = self.joints[4].transform(theta5).rotation.matrix().tr_mul(&v);
+        atan2(v.y, v.x)
     }
 
     /// The wrist solutions of one arm branch (only the one labelled `wrist` when given),
-    /// appended to `out`.
+    /// appended to `out`. The flipped wrist is `(θ4 + π, −θ5, θ6 + π)` of the other (eqs.
+    /// 22–37 with sin θ5 negated: both arguments of θ4's and of θ6's atan2 change sign), so
+    /// θ4, θ5 and θ6 are computed once per arm.
     fn wrists(
         &self,
         arm: &Arm,
         flange: &IsometryMatrix3<f64>,
         seed: Option<&[f64; 6]>,
         wrist: Option<&str>,
-        out: &mut Vec<Candidate>,
+        out: &mut Candidates,
     ) {
         let wanted = |label: &str| wrist.is_none_or(|w| w == label);
         let [t1, t2, t3] = arm.theta;
@@ -635,7 +648,17 @@ impl SphericalWrist {
         let z4 = z3.cross(&a); // eq. 26: sin θ5 times the joint-5 axis (up to sign)
         let sin5 = z4.norm();
         let cos5 = -self.s4 * self.s5 * a.dot(&z3); // eq. 22, generalised sign
-        let shoulder_elbow = [("shoulder", arm.shoulder), ("elbow", arm.elbow)];
+        let push = |out: &mut Candidates, theta: [f64; 6], label: &'static str, wrist_singular: bool| {
+            let mut c = Candidate::labelled(
+                &joint_values(&self.joints, &theta),
+                [("shoulder", arm.shoulder), ("elbow", arm.elbow), ("wrist", label)],
+            );
+            c.singularities = arm.flags();
+            if wrist_singular {
+                c.singularities.push(SingularityKind::Wrist);
+            }
+            out.push(c);
+        };
         if sin5 < IK_PARALLEL_SINE {
             // Wrist singularity: θ4 undetermined; keep the seed's, θ6 takes the rest.
             if !wanted("noflip") {
@@ -644,34 +667,22 @@ impl SphericalWrist {
             let theta5 = if cos5 >= 0.0 { 0.0 } else { PI };
             let theta4 = free_theta(&self.joints, seed, 3);
             let theta6 = self.theta6(&t03, theta4, theta5, &n);
-            let mut c = Candidate::new(
-                joint_values(&self.joints, &[t1, t2, t3, theta4, theta5, theta6]),
-                Branch::new(shoulder_elbow.into_iter().chain([("wrist", "noflip")])),
-            );
-            c.singularities = arm.flags();
-            c.singularities.push(SingularityKind::Wrist);
-            out.push(c);
+            push(out, [t1, t2, t3, theta4, theta5, theta6], "noflip", true);
             return;
         }
-        let sq_x = z4.dot(&x3); // eq. 25
-        let sq_y = -z4.dot(&y3); // eq. 24
-        for k in [1.0, -1.0] {
-            let theta5 = (k * sin5).atan2(cos5);
-            let label = wrist_label(theta5);
-            if !wanted(label) {
-                continue;
+        // θ5 ∈ (0, π) (the `acos` branch, sin θ5 = |z4'| > 0) and eq. 23 with the arguments in
+        // the corrected order (notes 002 §6 item 3), generalised to the α4/α5 signs.
+        let theta5 = atan2(sin5, cos5);
+        let g = -self.s5;
+        let theta4 = atan2(g * z4.dot(&x3), -g * z4.dot(&y3)); // eqs. 23–25
+        let theta6 = self.theta6(&t03, theta4, theta5, &n);
+        for (label, theta) in [
+            ("noflip", [t1, t2, t3, theta4, theta5, theta6]),
+            ("flip", [t1, t2, t3, theta4 + PI, -theta5, theta6 + PI]),
+        ] {
+            if wanted(label) {
+                push(out, theta, label, false);
             }
-            // eq. 23 with the arguments in the corrected order (notes 002 §6 item 3),
-            // generalised to the α4/α5 signs and to the flipped wrist (sin θ5 < 0).
-            let g = -self.s5 * k;
-            let theta4 = (g * sq_x).atan2(g * sq_y);
-            let theta6 = self.theta6(&t03, theta4, theta5, &n);
-            let mut c = Candidate::new(
-                joint_values(&self.joints, &[t1, t2, t3, theta4, theta5, theta6]),
-                Branch::new(shoulder_elbow.into_iter().chain([("wrist", label)])),
-            );
-            c.singularities = arm.flags();
-            out.push(c);
         }
     }
 }
@@ -688,14 +699,14 @@ impl IkSolver for SphericalWrist {
         let w = wrist_centre(&flange, self.joints[5].d);
         let arms = match self.arms(&w, seed.as_ref()) {
             Ok(arms) => arms,
-            Err(failure) => return finish(robot, target, Vec::new(), NAME, failure),
+            Err(failure) => return finish(robot, target, &mut [], NAME, failure),
         };
-        let mut candidates = Vec::with_capacity(2 * arms.len());
+        let mut candidates = Candidates::new();
         for arm in &arms {
             self.wrists(arm, &flange, seed.as_ref(), None, &mut candidates);
         }
         self.frame.refine(robot, target, &mut candidates);
-        finish(robot, target, candidates, NAME, fallback_failure(&arms))
+        finish(robot, target, &mut candidates, NAME, fallback_failure(&arms))
     }
 
     /// Only the requested branch's arm and wrist are computed and verified (see

@@ -87,14 +87,15 @@ use std::f64::consts::PI;
 use nalgebra::{IsometryMatrix3, Point3};
 
 use super::spherical_wrist::{
-    Arm, Dh6, DhJoint, arm_branch, arm_configurations, elbow_label, fallback_failure, flange_goal, free_theta,
+    Arm, Arms, Dh6, DhJoint, arm_branch, arm_configurations, elbow_label, fallback_failure, flange_goal, free_theta,
     is_zero_length, joint_values, require_spherical_wrist, revolute_dh6, seed_thetas, unsupported, wrist_arm_twists,
     wrist_centre, wrist_label,
 };
 use super::{
-    Branch, Candidate, ChainFrame, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, SingularityKind,
-    finish,
+    Branch, Candidate, Candidates, ChainFrame, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget,
+    SingularityKind, finish,
 };
+use crate::angle::{atan2, sin_cos};
 use crate::model::Robot;
 use crate::tolerance::{BOUNDARY, IK_AXIS_DISTANCE, IK_PARALLEL_SINE};
 
@@ -183,7 +184,7 @@ impl TwoLinkWrist {
     }
 
     /// The arm solutions for the wrist centre `w` (steps 1–4 of the module docs).
-    fn arms(&self, w: &Point3<f64>, seed: Option<&[f64; 6]>) -> Result<Vec<Arm>, IkFailure> {
+    fn arms(&self, w: &Point3<f64>, seed: Option<&[f64; 6]>) -> Result<Arms, IkFailure> {
         let (l1, l2) = (self.l1(), self.l2());
         let p = w.coords - nalgebra::Vector3::new(0.0, 0.0, self.joints[0].d);
         let r = p.norm();
@@ -198,7 +199,7 @@ impl TwoLinkWrist {
         let shoulder_singular = rho < IK_AXIS_DISTANCE;
         // (θ1, u): the thesis's q1 = atan2(p2, p1) with u = ρ, and the back shoulder; on the
         // base axis θ1 is undetermined (kept from the seed) and both coincide.
-        let q1 = p.y.atan2(p.x);
+        let q1 = atan2(p.y, p.x);
         let shoulders: &[(f64, f64, &str)] = if shoulder_singular {
             &[(free_theta(&self.joints, seed, 0), 0.0, "front")]
         } else {
@@ -208,18 +209,19 @@ impl TwoLinkWrist {
         let sin3 = (self.s3 * (r * r - l1 * l1 - l2 * l2) / (2.0 * l1 * l2)).clamp(-1.0, 1.0);
         let elbow_singular = 1.0 - sin3.abs() <= BOUNDARY || r <= IK_AXIS_DISTANCE;
         let t3 = sin3.asin();
-        let mut arms = Vec::with_capacity(4);
+        let mut arms = Arms::new();
         for &(theta1, u, shoulder) in shoulders {
             for theta3 in [t3, PI - t3] {
-                let (s, c) = theta3.sin_cos();
+                let (s, c) = sin_cos(theta3);
                 let (x, y) = (l1 + self.s3 * l2 * s, -self.s3 * l2 * c);
                 let theta2 = if r > IK_AXIS_DISTANCE {
-                    v.atan2(u) - y.atan2(x)
+                    atan2(v, u) - atan2(y, x)
                 } else {
                     // Folded onto the shoulder centre (l1 = l2): θ2 undetermined.
                     free_theta(&self.joints, seed, 1)
                 };
-                let e = (l1 * theta2.cos(), l1 * theta2.sin());
+                let (s2, c2) = sin_cos(theta2);
+                let e = (l1 * c2, l1 * s2);
                 arms.push(Arm {
                     theta: [theta1, theta2, theta3],
                     shoulder,
@@ -233,7 +235,7 @@ impl TwoLinkWrist {
     }
 
     /// The wrist solutions of one arm branch (step 5), appended to `out`.
-    fn wrists(&self, arm: &Arm, flange: &IsometryMatrix3<f64>, seed: Option<&[f64; 6]>, out: &mut Vec<Candidate>) {
+    fn wrists(&self, arm: &Arm, flange: &IsometryMatrix3<f64>, seed: Option<&[f64; 6]>, out: &mut Candidates) {
         let [t1, t2, t3] = arm.theta;
         let t03 = self.joints[0].transform(t1) * self.joints[1].transform(t2) * self.joints[2].transform(t3);
         // R̃ = (A1·A2·A3)⁻¹·T6, the correct order (notes 001 §6.1 item 1).
@@ -253,14 +255,9 @@ impl TwoLinkWrist {
             let [phi, psi, chi] = euler;
             let theta5 = -self.s4 * psi;
             let theta = [t1, t2, t3, phi, theta5, self.s6 * chi];
-            let mut c = Candidate::new(
-                joint_values(&self.joints, &theta),
-                Branch::new(
-                    shoulder_elbow
-                        .into_iter()
-                        .chain([("wrist", if singular { "noflip" } else { wrist_label(theta5) })]),
-                ),
-            );
+            let [shoulder, elbow] = shoulder_elbow;
+            let wrist = ("wrist", if singular { "noflip" } else { wrist_label(theta5) });
+            let mut c = Candidate::labelled(&joint_values(&self.joints, &theta), [shoulder, elbow, wrist]);
             c.singularities = arm.flags();
             if singular {
                 c.singularities.push(SingularityKind::Wrist);
@@ -271,23 +268,23 @@ impl TwoLinkWrist {
             // r33 = ±1: only q4 ± q6 is determined; keep q6 (seed, else 0 — the thesis's rule).
             let chi = self.s6 * free_theta(&self.joints, seed, 5);
             if m[(2, 2)] > 0.0 {
-                push([m[(1, 0)].atan2(m[(0, 0)]) - chi, 0.0, chi], true);
+                push([atan2(m[(1, 0)], m[(0, 0)]) - chi, 0.0, chi], true);
             } else {
-                push([(-m[(0, 1)]).atan2(-m[(0, 0)]) + chi, PI, chi], true);
+                push([atan2(-m[(0, 1)], -m[(0, 0)]) + chi, PI, chi], true);
             }
             return;
         }
         for k in [1.0, -1.0] {
-            let psi = (k * hyp).atan2(m[(2, 2)]);
-            let phi = (k * m[(1, 2)]).atan2(k * m[(0, 2)]);
+            let psi = atan2(k * hyp, m[(2, 2)]);
+            let phi = atan2(k * m[(1, 2)], k * m[(0, 2)]);
             // The thesis's q6 = atan2(±r32, ∓r31), taken from the residual rotation
             // Ry(ψ)ᵀ·Rz(φ)ᵀ·R̃ = Rz(χ) instead: identical for exact data, and it absorbs the
             // round-off of φ near the singularity (≈ 1e-16/sin ψ), keeping the pose exact.
-            let (sp, cp) = phi.sin_cos();
-            let (ss, cs) = psi.sin_cos();
+            let (sp, cp) = sin_cos(phi);
+            let (ss, cs) = sin_cos(psi);
             let p00 = cp * m[(0, 0)] + sp * m[(1, 0)];
             let p10 = -sp * m[(0, 0)] + cp * m[(1, 0)];
-            let chi = p10.atan2(cs * p00 - ss * m[(2, 0)]);
+            let chi = atan2(p10, cs * p00 - ss * m[(2, 0)]);
             debug_assert!(
                 crate::angle::wrap(chi - (k * m[(2, 1)]).atan2(-k * m[(2, 0)])).abs() < 1e-6 || hyp < 1e-6,
                 "residual χ agrees with the thesis's formula"
@@ -309,14 +306,14 @@ impl IkSolver for TwoLinkWrist {
         let w = wrist_centre(&flange, self.joints[5].d);
         let arms = match self.arms(&w, seed.as_ref()) {
             Ok(arms) => arms,
-            Err(failure) => return finish(robot, target, Vec::new(), NAME, failure),
+            Err(failure) => return finish(robot, target, &mut [], NAME, failure),
         };
-        let mut candidates = Vec::with_capacity(2 * arms.len());
+        let mut candidates = Candidates::new();
         for arm in &arms {
             self.wrists(arm, &flange, seed.as_ref(), &mut candidates);
         }
         self.frame.refine(robot, target, &mut candidates);
-        finish(robot, target, candidates, NAME, fallback_failure(&arms))
+        finish(robot, target, &mut candidates, NAME, fallback_failure(&arms))
     }
 
     /// Only the requested branch's arm and wrist are verified (see

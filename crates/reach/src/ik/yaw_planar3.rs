@@ -171,7 +171,7 @@ impl IkSolver for YawPlanar3 {
         }
         let branches = match self.yaw.branches(&t, fallback) {
             Ok(b) => b,
-            Err(failure) => return finish(robot, target, Vec::new(), NAME, failure),
+            Err(failure) => return finish(robot, target, &mut [], NAME, failure),
         };
         let mut candidates = Vec::new();
         let mut failure = None;
@@ -199,7 +199,7 @@ impl IkSolver for YawPlanar3 {
         } else {
             failure.unwrap_or(IkFailure::OrientationUnreachable)
         };
-        finish(robot, target, candidates, NAME, if_empty)
+        finish(robot, target, &mut candidates, NAME, if_empty)
     }
 
     /// The four base and elbow branches in the order [`IkSolver::solve`] returns them

@@ -311,7 +311,7 @@ impl IkSolver for YawTwoLink {
         let seed_phi = seed.map_or(0.0, |s| self.chain.link_angles(&s[1..])[0] + self.yaw.kappa);
         let branches = match self.yaw.branches(&t, fallback) {
             Ok(b) => b,
-            Err(failure) => return finish(robot, target, Vec::new(), NAME, failure),
+            Err(failure) => return finish(robot, target, &mut [], NAME, failure),
         };
         let [la, lb] = self.lengths();
         let mut candidates = Vec::with_capacity(4);
@@ -353,7 +353,7 @@ impl IkSolver for YawTwoLink {
             Some(f) if candidates.is_empty() => f,
             _ => IkFailure::OrientationUnreachable,
         };
-        finish(robot, target, candidates, NAME, if_empty)
+        finish(robot, target, &mut candidates, NAME, if_empty)
     }
 
     /// The four branches in the order [`IkSolver::solve`] returns them (`yaw_configurations`).

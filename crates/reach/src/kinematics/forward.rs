@@ -4,6 +4,29 @@ use super::{KinematicsError, check_q};
 use crate::model::Robot;
 use crate::model::chain::{Chain, apply_motion};
 
+/// The frame after the first joints of a chain, kept between forward-kinematics calls
+/// ([`Robot::fk_matrix_sharing`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct FkPrefix {
+    /// Number of leading joints `frame` covers (0: nothing kept yet).
+    len: usize,
+    /// Their values.
+    q: [f64; FkPrefix::MAX],
+    /// The base times their transforms.
+    frame: IsometryMatrix3<f64>,
+}
+
+impl FkPrefix {
+    /// Most joints a prefix covers.
+    pub const MAX: usize = 4;
+}
+
+impl Default for FkPrefix {
+    fn default() -> Self {
+        FkPrefix { len: 0, q: [0.0; FkPrefix::MAX], frame: IsometryMatrix3::identity() }
+    }
+}
+
 /// A joint axis in the world frame: `(point on the axis, unit direction)`.
 pub type JointAxis = (Vector3<f64>, Vector3<f64>);
 
@@ -31,9 +54,45 @@ impl Robot {
         let mut t = self.chain.first;
         Chain::apply_mimics(&mut t, &self.chain.first_mimics, q);
         for (link, &v) in self.chain.links.iter().zip(q) {
-            apply_motion(&mut t, link.prismatic, link.sign * v);
-            link.apply_after(&mut t);
+            link.advance(&mut t, v);
             Chain::apply_mimics(&mut t, &link.mimics, q);
+        }
+        Ok(t)
+    }
+
+    /// [`Robot::fk_matrix`], sharing the product over the first half of the joints (at most
+    /// [`FkPrefix::MAX`]) with the previous call given the same `prefix` when those joints'
+    /// values are the same, bit for bit: the IK check of two solutions that differ only in the
+    /// wrist. The result is that of [`Robot::fk_matrix`] bit for bit (same operations in the
+    /// same order). Chains with mimic joints take the full product every time.
+    ///
+    /// # Errors
+    /// [`KinematicsError`] when `q` has the wrong length or a non-finite value.
+    pub(crate) fn fk_matrix_sharing(
+        &self,
+        q: &[f64],
+        prefix: &mut FkPrefix,
+    ) -> Result<IsometryMatrix3<f64>, KinematicsError> {
+        let k = (self.dof() / 2).min(FkPrefix::MAX);
+        if k == 0 || self.chain.has_mimics() {
+            return self.fk_matrix(q);
+        }
+        check_q(self.dof(), q)?;
+        let (head, tail) = q.split_at(k);
+        let (links_head, links_tail) = self.chain.links.split_at(k);
+        let same = prefix.len == k && prefix.q[..k].iter().zip(head).all(|(a, b)| a.to_bits() == b.to_bits());
+        if !same {
+            let mut t = self.chain.first;
+            for (link, &v) in links_head.iter().zip(head) {
+                link.advance(&mut t, v);
+            }
+            prefix.len = k;
+            prefix.q[..k].copy_from_slice(head);
+            prefix.frame = t;
+        }
+        let mut t = prefix.frame;
+        for (link, &v) in links_tail.iter().zip(tail) {
+            link.advance(&mut t, v);
         }
         Ok(t)
     }

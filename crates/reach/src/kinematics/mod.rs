@@ -20,6 +20,7 @@ mod forward;
 mod jacobian;
 mod manipulability;
 
+pub(crate) use forward::FkPrefix;
 pub use forward::JointAxis;
 pub use jacobian::Jacobian;
 pub use manipulability::{JacobianAxes, Manipulability};

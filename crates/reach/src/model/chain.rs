@@ -51,6 +51,14 @@ pub(crate) struct ChainLink {
 }
 
 impl ChainLink {
+    /// Right-multiplies `t` by this joint's motion for joint value `q` and by `after`:
+    /// the step of forward kinematics over one joint (mimic motions excluded).
+    #[inline(always)]
+    pub fn advance(&self, t: &mut IsometryMatrix3<f64>, q: f64) {
+        apply_motion(t, self.prismatic, self.sign * q);
+        self.apply_after(t);
+    }
+
     /// Right-multiplies `t` by `after` in place.
     #[inline(always)]
     pub fn apply_after(&self, t: &mut IsometryMatrix3<f64>) {
