@@ -3,10 +3,13 @@
 //!
 //! Run with `cargo bench -p reach --bench kinematics`. Targets for a 6-joint arm:
 //! FK ≤ 150 ns, Jacobian ≤ 250 ns per call.
+//!
+//! The batch groups (`fk_many`, `jacobian_many`) time 10 000 joint vectors per call on a pool
+//! of one thread (the per-core figure) and of two; criterion reports them as poses per second.
 
 use std::hint::black_box;
 
-use criterion::{Criterion, criterion_group, criterion_main};
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use reach::Jacobian;
 use reach::model::presets;
 
@@ -48,5 +51,36 @@ fn jacobian(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, forward_kinematics, jacobian);
+/// Rows per batch call.
+const BATCH: usize = 10_000;
+
+/// `BATCH` joint vectors spread over ±1.5 rad (prismatic joints: ±1.5 m), deterministic.
+fn batch_q(dof: usize) -> Vec<f64> {
+    (0..BATCH * dof).map(|k| (k as f64 * 0.37).sin() * 1.5).collect()
+}
+
+/// Times `f` (a batch call over `BATCH` rows of `name`'s joint vectors) on pools of one and
+/// two threads.
+fn batch_group(c: &mut Criterion, group: &str, f: fn(&reach::Robot, &[f64]) -> reach::Result<Vec<f64>>) {
+    let mut group = c.benchmark_group(group);
+    group.throughput(Throughput::Elements(BATCH as u64));
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        for &(name, _) in CASES {
+            let robot = presets::get(name).unwrap();
+            let q = batch_q(robot.dof());
+            group.bench_function(BenchmarkId::new(name, format!("{threads} thread(s)")), |b| {
+                b.iter(|| pool.install(|| f(black_box(&robot), black_box(&q)).unwrap()))
+            });
+        }
+    }
+    group.finish();
+}
+
+fn batches(c: &mut Criterion) {
+    batch_group(c, "fk_many", reach::batch::fk_many);
+    batch_group(c, "jacobian_many", reach::batch::jacobian_many);
+}
+
+criterion_group!(benches, forward_kinematics, jacobian, batches);
 criterion_main!(benches);

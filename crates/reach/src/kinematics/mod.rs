@@ -18,11 +18,14 @@
 
 mod forward;
 mod jacobian;
+mod lanes;
 mod manipulability;
 
 pub use forward::JointAxis;
 pub use jacobian::Jacobian;
 pub use manipulability::{JacobianAxes, Manipulability};
+
+pub(crate) use lanes::Lanes;
 
 use thiserror::Error;
 
