@@ -38,9 +38,9 @@ const SIN_COS_FAST_RANGE: f64 = 128.0;
 ///
 /// For |x| ≤ 128 rad it is branch-free: Cody–Waite reduction by π/2 in three parts (exact
 /// products for these multiples) and fdlibm's `__kernel_sin` / `__kernel_cos` polynomials on
-/// [−π/4, π/4], the quadrant chosen by bit masks. Against the standard library it differs by
-/// at most 2.3e-16 absolute and, where |sin x| and |cos x| exceed 1e-3, by at most 2 units in
-/// the last place (1 for |x| ≤ 25); checked in this module's tests. It costs about a third of
+/// [−π/4, π/4], the quadrant chosen by selects. Against the standard library it differs by at
+/// most 2.3e-16 absolute and, where |sin x| and |cos x| exceed 1e-3, by at most 2 units in the
+/// last place (1 for |x| ≤ 25); checked in this module's tests. It costs about a third of
 /// `f64::sin_cos` (≈ 5 ns against ≈ 15 ns on the 2-core test machine), which is most of a 6R
 /// arm's forward kinematics. Beyond 128 rad, and for NaN or infinities, it is
 /// `f64::sin_cos`. [`sin_cos_lanes`] is the same function over several values at once.
@@ -56,15 +56,20 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     if !in_fast_range(x) {
         return x.sin_cos();
     }
-    sin_cos_reduced(x)
+    let (sin_r, cos_r, quadrant) = sin_cos_kernels(x);
+    let (s, c) = if quadrant & 1 == 0 { (sin_r, cos_r) } else { (cos_r, sin_r) };
+    let s = if quadrant & 2 == 0 { s } else { -s };
+    let c = if (quadrant + 1) & 2 == 0 { c } else { -c };
+    (s, c)
 }
 
 /// [`sin_cos`] of every lane of `x`: `(sin, cos)` lane by lane, equal to [`sin_cos`] of each
 /// lane bit for bit.
 ///
 /// The lanes go through the branch-free evaluation together (a loop without branches over
-/// `L` lanes, which the compiler turns into vector instructions); only when a lane is beyond
-/// 128 rad, NaN or infinite is that lane recomputed by `f64::sin_cos`.
+/// `L` lanes, which the compiler turns into vector instructions: the quadrant's swap and signs
+/// are integer masks here, where [`sin_cos`] selects, which is faster for one value); only
+/// when a lane is beyond 128 rad, NaN or infinite is that lane recomputed by `f64::sin_cos`.
 ///
 /// # Example
 /// ```
@@ -81,7 +86,15 @@ pub fn sin_cos_lanes<const L: usize>(x: &[f64; L]) -> ([f64; L], [f64; L]) {
     let mut c = [0.0; L];
     let mut all_fast = true;
     for l in 0..L {
-        (s[l], c[l]) = sin_cos_reduced(x[l]);
+        let (sin_r, cos_r, quadrant) = sin_cos_kernels(x[l]);
+        // Quadrants 1 and 3 swap sine and cosine (mask all ones or zero); 2 and 3 negate the
+        // sine, 1 and 2 the cosine (bit 1 of the quadrant moved to the sign bit).
+        let swap = 0u64.wrapping_sub(quadrant & 1);
+        let (sin_bits, cos_bits) = (sin_r.to_bits(), cos_r.to_bits());
+        let sin_bits_q = (sin_bits & !swap) | (cos_bits & swap);
+        let cos_bits_q = (cos_bits & !swap) | (sin_bits & swap);
+        s[l] = f64::from_bits(sin_bits_q ^ ((quadrant & 2) << 62));
+        c[l] = f64::from_bits(cos_bits_q ^ (((quadrant + 1) & 2) << 62));
         all_fast &= in_fast_range(x[l]);
     }
     if !all_fast {
@@ -94,17 +107,18 @@ pub fn sin_cos_lanes<const L: usize>(x: &[f64; L]) -> ([f64; L], [f64; L]) {
     (s, c)
 }
 
-/// Whether [`sin_cos_reduced`] is accurate for `x` (false for NaN).
+/// Whether [`sin_cos_kernels`] is accurate for `x` (false for NaN).
 #[inline(always)]
 fn in_fast_range(x: f64) -> bool {
     x.abs() <= SIN_COS_FAST_RANGE
 }
 
-/// The branch-free part of [`sin_cos`]: accurate for |x| ≤ 128 rad; a meaningless value
-/// (never a panic) beyond, for NaN and for infinities.
+/// The branch-free part of [`sin_cos`]: `(sin r, cos r, j mod 4)` for `x = j·π/2 + r`,
+/// |r| ≤ π/4; accurate for |x| ≤ 128 rad, a meaningless value (never a panic) beyond, for NaN
+/// and for infinities.
 #[inline(always)]
 #[allow(clippy::excessive_precision, reason = "fdlibm's constants as published; each parses to the intended double")]
-fn sin_cos_reduced(x: f64) -> (f64, f64) {
+fn sin_cos_kernels(x: f64) -> (f64, f64, u64) {
     // π/2 in three 33-bit parts (fdlibm's pio2_1, pio2_2, pio2_3): j·part is exact for |j| < 2^20.
     const PIO2_1: f64 = 1.570_796_326_734_125_614_17e+00;
     const PIO2_2: f64 = 6.077_100_506_303_965_976_60e-11;
@@ -137,16 +151,7 @@ fn sin_cos_reduced(x: f64) -> (f64, f64) {
     let half = 0.5 * z;
     let one_minus = 1.0 - half;
     let cos_r = one_minus + (((1.0 - one_minus) - half) + z * tail);
-    // Quadrants 1 and 3 swap sine and cosine; 2 and 3 negate the sine, 1 and 2 the cosine.
-    // As integer masks (all ones or zero) rather than branches, so that lanes vectorise.
-    let swap = 0u64.wrapping_sub(quadrant & 1);
-    let (sin_bits, cos_bits) = (sin_r.to_bits(), cos_r.to_bits());
-    let s = (sin_bits & !swap) | (cos_bits & swap);
-    let c = (cos_bits & !swap) | (sin_bits & swap);
-    // (bit 1 of the quadrant moved to the sign bit)
-    let s = s ^ ((quadrant & 2) << 62);
-    let c = c ^ (((quadrant + 1) & 2) << 62);
-    (f64::from_bits(s), f64::from_bits(c))
+    (sin_r, cos_r, quadrant)
 }
 
 /// Degrees to radians.

@@ -1,7 +1,7 @@
 //! The batch kernels (`reach::batch::fk_many`, `jacobian_many`) against the one-row functions
 //! (`Robot::fk_matrix`, `Robot::jacobian`), row by row to 1e-12: blocks of rows go through the
-//! structure-of-arrays kernel, the last `N mod 4` rows through the one-row path, so the row
-//! counts below cover both, on every preset, on URDF arms (tilted axes, prismatic and mimic
+//! structure-of-arrays kernel (8 rows for FK, 4 for the Jacobian), the remainder through the
+//! one-row path, so the row counts below cover both, on every preset, on URDF arms (tilted axes, prismatic and mimic
 //! joints) and on random DH / MDH / URDF chains with prismatic and flipped joints, with joint
 //! values beyond the fast sine range in some rows.
 
@@ -70,7 +70,7 @@ fn joint_rows(robot: &Robot, n: usize, rng: &mut Rng) -> Vec<f64> {
 
 /// Row counts: within one block, one block plus the remainder, across the parallel chunks
 /// (64 rows) with a remainder.
-const ROW_COUNTS: [usize; 6] = [1, 3, 4, 7, 64, 203];
+const ROW_COUNTS: [usize; 8] = [1, 3, 4, 7, 8, 13, 64, 203];
 
 fn urdf_robot(text: &str, base: Option<&str>, tip: &str) -> Robot {
     Robot::from_urdf_str(text, &UrdfChain { base: base.map(Into::into), tip: Some(tip.into()) }).unwrap()
