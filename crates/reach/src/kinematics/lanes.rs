@@ -13,6 +13,10 @@
 //!
 //! The kernels do not check their input: the callers reject non-finite joint values first (a
 //! NaN lane would only give NaN in that lane).
+#![allow(
+    clippy::needless_range_loop,
+    reason = "the lane loops index several arrays by the same lane: the form that vectorises"
+)]
 
 use nalgebra::IsometryMatrix3;
 

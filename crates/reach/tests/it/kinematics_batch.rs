@@ -61,7 +61,7 @@ fn joint_rows(robot: &Robot, n: usize, rng: &mut Rng) -> Vec<f64> {
     for i in 0..n {
         for (j, joint) in robot.joints().iter().enumerate() {
             let v = if joint.kind == JointKind::Prismatic { rng.uniform(-1.0, 1.0) } else { rng.uniform(-3.2, 3.2) };
-            let far = i % 7 == 3 && (i * dof + j) % 5 == 0 && joint.kind == JointKind::Revolute;
+            let far = i % 7 == 3 && (i * dof + j).is_multiple_of(5) && joint.kind == JointKind::Revolute;
             q.push(if far { v.signum() * 10f64.powf(rng.uniform(2.3, 15.0)) } else { v });
         }
     }
@@ -130,7 +130,7 @@ fn axis(rng: &mut Rng) -> Unit<Vector3<f64>> {
     let k = rng.next_u64() % 8;
     if k < 3 {
         let mut v = Vector3::zeros();
-        v[k as usize] = if rng.next_u64() % 2 == 0 { 1.0 } else { -1.0 };
+        v[k as usize] = if rng.next_u64().is_multiple_of(2) { 1.0 } else { -1.0 };
         return Unit::new_unchecked(v);
     }
     Unit::new_normalize(Vector3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(0.05, 1.0)))
@@ -157,7 +157,7 @@ fn random_robot(convention: usize, dof: usize, seed: u64) -> Robot {
                 1 => (a, 0.0),
                 _ => (a, alpha),
             };
-            let mut joint = if rng.next_u64() % 3 == 0 {
+            let mut joint = if rng.next_u64().is_multiple_of(3) {
                 Joint::prismatic(a, alpha, d, offset)
             } else {
                 Joint::revolute(a, alpha, d, offset)
@@ -165,7 +165,7 @@ fn random_robot(convention: usize, dof: usize, seed: u64) -> Robot {
             if convention == 2 {
                 joint.geometry = JointGeometry::Axis { origin: pose(&mut rng), axis: axis(&mut rng) };
             }
-            joint.flip = rng.next_u64() % 4 == 0;
+            joint.flip = rng.next_u64().is_multiple_of(4);
             joint.named(format!("j{}", i + 1))
         })
         .collect();
@@ -181,7 +181,7 @@ fn random_robot(convention: usize, dof: usize, seed: u64) -> Robot {
             .enumerate()
             .map(|(k, position)| MimicJoint {
                 name: format!("m{}", k + 1),
-                kind: if rng.next_u64() % 3 == 0 { JointKind::Prismatic } else { JointKind::Revolute },
+                kind: if rng.next_u64().is_multiple_of(3) { JointKind::Prismatic } else { JointKind::Revolute },
                 position,
                 origin: pose(&mut rng),
                 axis: axis(&mut rng),
