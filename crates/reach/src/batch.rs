@@ -88,8 +88,8 @@ fn map_rows<S, T: Send>(
 /// Joint vectors per structure-of-arrays block of [`fk_many`] and of [`jacobian_many`]
 /// ([`CHUNK`] is a multiple of both): the fastest of 2, 4 and 8 on the 2-core test machine
 /// (x86_64 with SSE2 only, as the crate is built by default; best of 60 calls of 10 000 rows
-/// on one thread, 2026-12-02): for FK 8 lanes ran ≈ 10 % faster than 4 (and 4 ≈ 2× faster
-/// than 2), for the Jacobian (twice the live values) 4 ran ≈ 5 % faster than 8.
+/// on one thread, 2026-12-02): for FK 8 lanes ran ≈ 10 % faster than 4 (and 4 1.5–2.2×
+/// faster than 2), for the Jacobian (twice the live values) 4 ran ≈ 5 % faster than 8.
 const FK_LANES: usize = 8;
 /// See [`FK_LANES`].
 const JACOBIAN_LANES: usize = 4;
