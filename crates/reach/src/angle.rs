@@ -47,7 +47,7 @@ const SIN_COS_FAST_RANGE: f64 = 128.0;
 /// last place (1 for |x| ≤ 25); checked in this module's tests. It costs about a third of
 /// `f64::sin_cos` (≈ 5 ns against ≈ 15 ns on the 2-core test machine), which is most of a 6R
 /// arm's forward kinematics. Beyond 128 rad, and for NaN or infinities, it is
-/// `f64::sin_cos`.
+/// `f64::sin_cos`. [`sin_cos_lanes`] is the same function over several values at once.
 ///
 /// # Example
 /// ```
@@ -56,8 +56,73 @@ const SIN_COS_FAST_RANGE: f64 = 128.0;
 /// ```
 #[must_use]
 #[inline]
-#[allow(clippy::excessive_precision, reason = "fdlibm's constants as published; each parses to the intended double")]
 pub fn sin_cos(x: f64) -> (f64, f64) {
+    if !in_fast_range(x) {
+        return x.sin_cos();
+    }
+    let (sin_r, cos_r, quadrant) = sin_cos_kernels(x);
+    let (s, c) = if quadrant & 1 == 0 { (sin_r, cos_r) } else { (cos_r, sin_r) };
+    let s = if quadrant & 2 == 0 { s } else { -s };
+    let c = if (quadrant + 1) & 2 == 0 { c } else { -c };
+    (s, c)
+}
+
+/// [`sin_cos`] of every lane of `x`: `(sin, cos)` lane by lane, equal to [`sin_cos`] of each
+/// lane bit for bit.
+///
+/// The lanes go through the branch-free evaluation together (a loop without branches over
+/// `L` lanes, which the compiler turns into vector instructions: the quadrant's swap and signs
+/// are integer masks here, where [`sin_cos`] selects, which is faster for one value); only
+/// when a lane is beyond 128 rad, NaN or infinite is that lane recomputed by `f64::sin_cos`.
+///
+/// # Example
+/// ```
+/// let (s, c) = reach::angle::sin_cos_lanes(&[0.5, -2.0, 1e6, f64::NAN]);
+/// for (k, x) in [0.5, -2.0, 1e6].into_iter().enumerate() {
+///     assert_eq!((s[k], c[k]), reach::angle::sin_cos(x));
+/// }
+/// assert!(s[3].is_nan() && c[3].is_nan());
+/// ```
+#[must_use]
+#[inline]
+pub fn sin_cos_lanes<const L: usize>(x: &[f64; L]) -> ([f64; L], [f64; L]) {
+    let mut s = [0.0; L];
+    let mut c = [0.0; L];
+    let mut all_fast = true;
+    for l in 0..L {
+        let (sin_r, cos_r, quadrant) = sin_cos_kernels(x[l]);
+        // Quadrants 1 and 3 swap sine and cosine (mask all ones or zero); 2 and 3 negate the
+        // sine, 1 and 2 the cosine (bit 1 of the quadrant moved to the sign bit).
+        let swap = 0u64.wrapping_sub(quadrant & 1);
+        let (sin_bits, cos_bits) = (sin_r.to_bits(), cos_r.to_bits());
+        let sin_bits_q = (sin_bits & !swap) | (cos_bits & swap);
+        let cos_bits_q = (cos_bits & !swap) | (sin_bits & swap);
+        s[l] = f64::from_bits(sin_bits_q ^ ((quadrant & 2) << 62));
+        c[l] = f64::from_bits(cos_bits_q ^ (((quadrant + 1) & 2) << 62));
+        all_fast &= in_fast_range(x[l]);
+    }
+    if !all_fast {
+        for l in 0..L {
+            if !in_fast_range(x[l]) {
+                (s[l], c[l]) = x[l].sin_cos();
+            }
+        }
+    }
+    (s, c)
+}
+
+/// Whether [`sin_cos_kernels`] is accurate for `x` (false for NaN).
+#[inline(always)]
+fn in_fast_range(x: f64) -> bool {
+    x.abs() <= SIN_COS_FAST_RANGE
+}
+
+/// The branch-free part of [`sin_cos`]: `(sin r, cos r, j mod 4)` for `x = j·π/2 + r`,
+/// |r| ≤ π/4; accurate for |x| ≤ 128 rad, a meaningless value (never a panic) beyond, for NaN
+/// and for infinities.
+#[inline(always)]
+#[allow(clippy::excessive_precision, reason = "fdlibm's constants as published; each parses to the intended double")]
+fn sin_cos_kernels(x: f64) -> (f64, f64, u64) {
     // π/2 in three 33-bit parts (fdlibm's pio2_1, pio2_2, pio2_3): j·part is exact for |j| < 2^20.
     const PIO2_1: f64 = 1.570_796_326_734_125_614_17e+00;
     const PIO2_2: f64 = 6.077_100_506_303_965_976_60e-11;
@@ -76,9 +141,6 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     const C4: f64 = -2.755_731_435_139_066_330_35e-07;
     const C5: f64 = 2.087_572_321_298_174_827_90e-09;
     const C6: f64 = -1.135_964_755_778_819_482_65e-11;
-    if x.abs() > SIN_COS_FAST_RANGE || x.is_nan() {
-        return x.sin_cos();
-    }
     let shifted = x * std::f64::consts::FRAC_2_PI + SHIFT;
     let j = shifted - SHIFT;
     // j mod 4 (the mantissa holds 2^51 + j, and 2^51 is a multiple of 4).
@@ -93,10 +155,7 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     let half = 0.5 * z;
     let one_minus = 1.0 - half;
     let cos_r = one_minus + (((1.0 - one_minus) - half) + z * tail);
-    let (s, c) = if quadrant & 1 == 0 { (sin_r, cos_r) } else { (cos_r, sin_r) };
-    let s = if quadrant & 2 == 0 { s } else { -s };
-    let c = if (quadrant + 1) & 2 == 0 { c } else { -c };
-    (s, c)
+    (sin_r, cos_r, quadrant)
 }
 
 /// `atan2(y, x)` in (−π, π], the one evaluation of an angle from two coordinates in the
@@ -338,6 +397,17 @@ mod tests {
         let (s, c) = sin_cos(f64::NAN);
         assert!(s.is_nan() && c.is_nan());
         assert_eq!(sin_cos(0.0), (0.0, 1.0));
+        // Lane by lane the same bits, the lanes beyond the fast range (and NaN) included.
+        let special = [0.3, f64::NAN, 1.0, f64::INFINITY, -f64::INFINITY, 5e9, -128.000_000_1, 2.0];
+        let same = |a: f64, b: f64| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
+        for chunk in special.iter().chain(&xs).copied().collect::<Vec<_>>().chunks_exact(8) {
+            let lanes: [f64; 8] = chunk.try_into().unwrap();
+            let (s, c) = sin_cos_lanes(&lanes);
+            for (l, &x) in lanes.iter().enumerate() {
+                let (s1, c1) = sin_cos(x);
+                assert!(same(s[l], s1) && same(c[l], c1), "{x}: lanes ({}, {}) vs ({s1}, {c1})", s[l], c[l]);
+            }
+        }
     }
 
     #[test]

@@ -18,12 +18,15 @@
 
 mod forward;
 mod jacobian;
+mod lanes;
 mod manipulability;
 
 pub(crate) use forward::FkPrefix;
 pub use forward::JointAxis;
 pub use jacobian::Jacobian;
 pub use manipulability::{JacobianAxes, Manipulability};
+
+pub(crate) use lanes::Lanes;
 
 use thiserror::Error;
 

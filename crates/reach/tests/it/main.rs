@@ -28,6 +28,7 @@ mod ik_from_geometry;
 mod ik_numeric;
 mod ik_round_trip;
 mod jobs_view;
+mod kinematics_batch;
 mod kinematics_presets;
 mod kinematics_properties;
 mod kinematics_reference;

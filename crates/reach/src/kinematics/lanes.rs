@@ -1,0 +1,234 @@
+//! Forward kinematics and the Jacobian of several joint vectors at once, in
+//! structure-of-arrays form: every matrix entry is an array of `L` lanes, one per joint vector,
+//! so each step of the chain product is the same few multiplications and additions over `L`
+//! independent values, which the compiler turns into vector instructions (and which keep the
+//! floating-point units busy even where it does not).
+//!
+//! The steps are those of [`Robot::fk_matrix`] and [`Robot::jacobian_into`] (the compiled
+//! [`Chain`](crate::model::chain::Chain): `first`, each joint's motion, its `after` constant —
+//! with the standard-DH shortcut —, mimic motions), written out entry by entry in the same
+//! order of operations, so each lane is the scalar result to rounding (in practice bit for
+//! bit). Sines and cosines come from [`sin_cos_lanes`]. [`crate::batch`] feeds blocks of `L`
+//! rows through these kernels and the remainder through the scalar functions.
+//!
+//! The kernels do not check their input: the callers reject non-finite joint values first (a
+//! NaN lane would only give NaN in that lane).
+#![allow(
+    clippy::needless_range_loop,
+    reason = "the lane loops index several arrays by the same lane: the form that vectorises"
+)]
+
+use nalgebra::IsometryMatrix3;
+
+use crate::angle::sin_cos_lanes;
+use crate::model::Robot;
+use crate::model::chain::MimicStep;
+
+/// One value per lane.
+pub(crate) type Lanes<const L: usize> = [f64; L];
+
+/// `L` rigid transforms entry by entry: `r[i][j][l]` is entry `(i, j)` of lane `l`'s rotation,
+/// `p[i][l]` entry `i` of its translation (metres).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct FrameLanes<const L: usize> {
+    /// Rotation entries, row by row.
+    pub r: [[Lanes<L>; 3]; 3],
+    /// Translation entries.
+    pub p: [Lanes<L>; 3],
+}
+
+/// A motion of the chain, reported to the visitor of [`Robot::walk_lanes`] with the frame
+/// just before it.
+enum Motion<'a> {
+    /// Independent joint `i` (0-based).
+    Joint(usize),
+    /// A mimic joint.
+    Mimic(&'a MimicStep),
+}
+
+impl<const L: usize> FrameLanes<L> {
+    /// The same transform `t` in every lane.
+    #[inline(always)]
+    fn splat(t: &IsometryMatrix3<f64>) -> Self {
+        let m = t.rotation.matrix();
+        let v = t.translation.vector;
+        FrameLanes {
+            r: std::array::from_fn(|i| std::array::from_fn(|j| [m[(i, j)]; L])),
+            p: std::array::from_fn(|i| [v[i]; L]),
+        }
+    }
+
+    /// Column `j` of the rotation (`j = 2`: the z axis).
+    #[inline(always)]
+    fn column(&self, j: usize) -> [Lanes<L>; 3] {
+        [self.r[0][j], self.r[1][j], self.r[2][j]]
+    }
+
+    /// Right-multiplies every lane by its joint motion: `Rz(v)` (radians) or `Tz(v)` (metres).
+    #[inline(always)]
+    fn motion(&mut self, prismatic: bool, v: &Lanes<L>) {
+        if prismatic {
+            for i in 0..3 {
+                for l in 0..L {
+                    self.p[i][l] += self.r[i][2][l] * v[l];
+                }
+            }
+        } else {
+            let (s, c) = sin_cos_lanes(v);
+            for row in &mut self.r {
+                for l in 0..L {
+                    let (x, y) = (row[0][l], row[1][l]);
+                    row[0][l] = c[l] * x + s[l] * y;
+                    row[1][l] = c[l] * y - s[l] * x;
+                }
+            }
+        }
+    }
+
+    /// Right-multiplies every lane by the constant `m`.
+    #[inline(always)]
+    fn mul_const(&mut self, m: &IsometryMatrix3<f64>) {
+        let k = m.rotation.matrix();
+        let u = m.translation.vector;
+        for i in 0..3 {
+            let row = self.r[i];
+            for l in 0..L {
+                self.p[i][l] += row[0][l] * u[0] + row[1][l] * u[1] + row[2][l] * u[2];
+            }
+            for j in 0..3 {
+                for l in 0..L {
+                    self.r[i][j][l] = row[0][l] * k[(0, j)] + row[1][l] * k[(1, j)] + row[2][l] * k[(2, j)];
+                }
+            }
+        }
+    }
+
+    /// Right-multiplies every lane by `Tz(d)·Tx(a)·Rx(α)`, given as `[a, d, cos α, sin α]`
+    /// (see [`ChainLink::dh_after`](crate::model::chain::ChainLink::dh_after)).
+    #[inline(always)]
+    fn mul_dh(&mut self, [a, d, c, s]: [f64; 4]) {
+        for i in 0..3 {
+            let [x, y, z] = self.r[i];
+            for l in 0..L {
+                self.p[i][l] += x[l] * a + z[l] * d;
+                self.r[i][1][l] = y[l] * c + z[l] * s;
+                self.r[i][2][l] = z[l] * c - y[l] * s;
+            }
+        }
+    }
+
+    /// Applies the mimic motions `steps` for joint values `q` (one lane array per joint),
+    /// calling `visit` before each.
+    #[inline(always)]
+    fn mimics<'a>(&mut self, steps: &'a [MimicStep], q: &[Lanes<L>], visit: &mut impl FnMut(Motion<'a>, &Self)) {
+        for m in steps {
+            visit(Motion::Mimic(m), self);
+            let v: Lanes<L> = std::array::from_fn(|l| m.multiplier * q[m.master][l] + m.offset);
+            self.motion(m.prismatic, &v);
+            self.mul_const(&m.after);
+        }
+    }
+}
+
+impl Robot {
+    /// The chain product for `L` joint vectors (`q[j][l]`: joint `j` of lane `l`, SI),
+    /// calling `visit` with every motion and the frame just before it; returns the tool poses.
+    #[inline(always)]
+    fn walk_lanes<'a, const L: usize>(
+        &'a self,
+        q: &[Lanes<L>],
+        mut visit: impl FnMut(Motion<'a>, &FrameLanes<L>),
+    ) -> FrameLanes<L> {
+        debug_assert_eq!(q.len(), self.dof());
+        let mut t = FrameLanes::splat(&self.chain.first);
+        t.mimics(&self.chain.first_mimics, q, &mut visit);
+        for (i, (link, qj)) in self.chain.links.iter().zip(q).enumerate() {
+            visit(Motion::Joint(i), &t);
+            let v: Lanes<L> = std::array::from_fn(|l| link.sign * qj[l]);
+            t.motion(link.prismatic, &v);
+            match link.dh_after {
+                Some(dh) => t.mul_dh(dh),
+                None => t.mul_const(&link.after),
+            }
+            t.mimics(&link.mimics, q, &mut visit);
+        }
+        t
+    }
+
+    /// Tool poses of `L` joint vectors (`q[j][l]`: joint `j` of lane `l`, radians / metres,
+    /// finite; `q.len() == dof`): lane `l` is [`Robot::fk_matrix`] of that joint vector.
+    pub(crate) fn fk_lanes<const L: usize>(&self, q: &[Lanes<L>]) -> FrameLanes<L> {
+        self.walk_lanes(q, |_, _| {})
+    }
+
+    /// Geometric Jacobians of `L` joint vectors (`q` as in [`Robot::fk_lanes`]) into `out`
+    /// (`6 × dof` row-major entries of lanes, `out[r * dof + c][l]`): lane `l` is
+    /// [`Robot::jacobian_into`] of that joint vector. Returns the tool poses.
+    pub(crate) fn jacobian_lanes<const L: usize>(&self, q: &[Lanes<L>], out: &mut [Lanes<L>]) -> FrameLanes<L> {
+        let dof = self.dof();
+        debug_assert_eq!(out.len(), 6 * dof);
+        // First pass, as the scalar one: the axis in the angular rows, the point on it in the
+        // linear rows; mimic joints' axes and points aside (no allocation without mimics).
+        let mut mimic_axes: Vec<(&MimicStep, [Lanes<L>; 3], [Lanes<L>; 3])> = Vec::new();
+        let end = self.walk_lanes(q, |motion, t| match motion {
+            Motion::Joint(c) => {
+                for k in 0..3 {
+                    out[k * dof + c] = t.p[k];
+                    out[(k + 3) * dof + c] = t.r[k][2];
+                }
+            }
+            Motion::Mimic(m) => mimic_axes.push((m, t.column(2), t.p)),
+        });
+        let p = end.p;
+        for (c, link) in self.chain.links.iter().enumerate() {
+            let z: [Lanes<L>; 3] = std::array::from_fn(|k| out[(k + 3) * dof + c]);
+            let sign = link.sign;
+            if link.prismatic {
+                for k in 0..3 {
+                    out[k * dof + c] = z[k].map(|v| v * sign);
+                    out[(k + 3) * dof + c] = [0.0; L];
+                }
+            } else {
+                let o: [Lanes<L>; 3] = std::array::from_fn(|k| out[k * dof + c]);
+                let lin = cross(&z, &sub(&p, &o));
+                for k in 0..3 {
+                    out[k * dof + c] = lin[k].map(|v| v * sign);
+                    out[(k + 3) * dof + c] = z[k].map(|v| v * sign);
+                }
+            }
+        }
+        // Second pass for mimic joints: `multiplier ×` each one's column onto its master's.
+        for (m, z, o) in mimic_axes {
+            let c = m.master;
+            let lin = if m.prismatic { z } else { cross(&z, &sub(&p, &o)) };
+            for k in 0..3 {
+                for l in 0..L {
+                    out[k * dof + c][l] += lin[k][l] * m.multiplier;
+                }
+            }
+            if !m.prismatic {
+                for k in 0..3 {
+                    for l in 0..L {
+                        out[(k + 3) * dof + c][l] += z[k][l] * m.multiplier;
+                    }
+                }
+            }
+        }
+        end
+    }
+}
+
+/// `a − b`, lane by lane.
+#[inline(always)]
+fn sub<const L: usize>(a: &[Lanes<L>; 3], b: &[Lanes<L>; 3]) -> [Lanes<L>; 3] {
+    std::array::from_fn(|k| std::array::from_fn(|l| a[k][l] - b[k][l]))
+}
+
+/// `a × b`, lane by lane (the same products as nalgebra's `cross`).
+#[inline(always)]
+fn cross<const L: usize>(a: &[Lanes<L>; 3], b: &[Lanes<L>; 3]) -> [Lanes<L>; 3] {
+    std::array::from_fn(|k| {
+        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+        std::array::from_fn(|l| a[i][l] * b[j][l] - a[j][l] * b[i][l])
+    })
+}
