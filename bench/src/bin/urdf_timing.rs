@@ -45,7 +45,7 @@ fn main() {
         robot.jacobian_into(black_box(&qs[i]), &mut jacobian).expect("jacobian");
         black_box(&jacobian);
     };
-    let mut pass = |f: &mut dyn FnMut(usize)| {
+    let pass = |f: &mut dyn FnMut(usize)| {
         let t0 = Instant::now();
         (0..n).for_each(&mut *f);
         t0.elapsed().as_secs_f64() * 1e9 / n as f64

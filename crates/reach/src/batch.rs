@@ -75,7 +75,10 @@ fn map_rows<S, T: Send>(
     #[cfg(feature = "parallel")]
     {
         use rayon::prelude::*;
-        (0..n).into_par_iter().with_min_len(CHUNK).map_init(init, f).collect()
+        // Collected whole first: rayon's `Result` collection would return whichever error
+        // came first in time, not in row order.
+        let rows: Vec<Result<T>> = (0..n).into_par_iter().with_min_len(CHUNK).map_init(init, f).collect();
+        rows.into_iter().collect()
     }
     #[cfg(not(feature = "parallel"))]
     {
