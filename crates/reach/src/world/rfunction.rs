@@ -355,8 +355,8 @@ impl CompiledRegion {
     pub fn contains(&self, q: [f64; 3]) -> bool {
         let [q2, q3, q4] = q;
         let mut inside = true;
-        for k in 0..3 {
-            inside &= (q[k] >= self.lower[k]) & (q[k] <= self.upper[k]);
+        for ((v, lo), hi) in q.iter().zip(&self.lower).zip(&self.upper) {
+            inside &= (v >= lo) & (v <= hi);
         }
         for c in &self.planes {
             inside &= c[0] + c[1] * q2 + c[2] * q3 + c[3] * q4 >= 0.0;
