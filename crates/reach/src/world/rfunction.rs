@@ -241,9 +241,13 @@ impl Compiled {
 /// A half-space in the flat form `X = c0 + c1·q2 + c2·q3 + c3·q4`.
 type Plane = [f64; 4];
 
-/// A cylinder in the flat form `X = L1² + L2² + L3`, each `Lk = c0 + c1·q2 + c2·q3 + c3·q4`:
-/// the twelve coefficients `[L1; L2; L3]`.
-type Quadric = [f64; 12];
+/// An elliptic cylinder in the flat form `X = L1² + L2² − 1`, each `Lk = c0 + c1·q2 + c2·q3 +
+/// c3·q4` (`u/a` and `v/b`): the coefficients `[L1; L2]`.
+type Ellipse = [f64; 8];
+
+/// A parabolic cylinder in the flat form `X = L1² + L2`, each `Lk = c0 + c1·q2 + c2·q3` (the
+/// squared coordinate and `−2p` times the other): the coefficients `[L1; L2]`.
+type Parabolic = [f64; 6];
 
 /// A kinematic ellipse in the flat form of [`CompiledRegion::contains`]: `[sin φ, cos φ, m3,
 /// m4, a, b]` (each cubic constant term first).
@@ -256,7 +260,8 @@ type Kinematic = [f64; 18];
 ///   R-conjunction, `X1 ∧ X2 ≥ 0 ⇔ X1 ≥ 0 and X2 ≥ 0`: every primitive's own sign, in a flat,
 ///   branch-free pass over contiguous coefficients (no square root, no division, no tilt
 ///   trigonometry — it is folded into the coefficients — and no allocation). Half-spaces are
-///   affine in `q`, both cylinders the quadrics `L1² + L2² + L3` with `Lk` affine; a kinematic
+///   affine in `q`, an elliptic cylinder is `L1² + L2² ≥ 1` and a parabolic one `L1² + L2 ≥
+///   0` with `Lk` affine; a kinematic
 ///   ellipse with semi-axes `a, b > 0` is tested as `u²b² + v²a² − a²b² ≥ 0` (its value times
 ///   `a²b²`), inactive where `a ≤ 0` or `b ≤ 0`. It decides the same set as
 ///   [`Region::contains`] except where a primitive's value is within rounding of 0 (a node on
@@ -270,7 +275,8 @@ pub struct CompiledRegion {
     lower: [f64; 3],
     upper: [f64; 3],
     planes: Vec<Plane>,
-    quadrics: Vec<Quadric>,
+    ellipses: Vec<Ellipse>,
+    parabolas: Vec<Parabolic>,
     kinematic: Vec<Kinematic>,
     ops: Vec<Compiled>,
 }
@@ -280,7 +286,8 @@ impl CompiledRegion {
     #[must_use]
     pub fn new(region: &Region) -> Self {
         let mut planes = Vec::new();
-        let mut quadrics = Vec::new();
+        let mut ellipses = Vec::new();
+        let mut parabolas = Vec::new();
         let mut kinematic = Vec::new();
         for p in &region.primitives {
             match p {
@@ -290,34 +297,19 @@ impl CompiledRegion {
                     // u = (q3 − k3·q2 − m3)·c + (q4 − k4·q2 − m4)·s, v = −(…)·s + (…)·c.
                     let u = [-(m3 * c + m4 * s), -(k3 * c + k4 * s), c, s];
                     let v = [m3 * s - m4 * c, k3 * s - k4 * c, -s, c];
-                    quadrics.push([
-                        u[0] / a,
-                        u[1] / a,
-                        u[2] / a,
-                        u[3] / a,
-                        v[0] / b,
-                        v[1] / b,
-                        v[2] / b,
-                        v[3] / b,
-                        -1.0,
-                        0.0,
-                        0.0,
-                        0.0,
-                    ]);
+                    ellipses.push([u[0] / a, u[1] / a, u[2] / a, u[3] / a, v[0] / b, v[1] / b, v[2] / b, v[3] / b]);
                 }
                 Primitive::ParabolicCylinder { phi_deg, vertex: [c2, c3], p, variant } => {
                     let (sn, cs) = tilt(*phi_deg);
                     // s = (q2 − c2)·cs + (q3 − c3)·sn, t = −(q2 − c2)·sn + (q3 − c3)·cs.
-                    let s = [-(c2 * cs + c3 * sn), cs, sn, 0.0];
-                    let t = [c2 * sn - c3 * cs, -sn, cs, 0.0];
+                    let s = [-(c2 * cs + c3 * sn), cs, sn];
+                    let t = [c2 * sn - c3 * cs, -sn, cs];
                     let (square, linear) = match variant {
                         Parabola::SquareFirst => (s, t),
                         Parabola::SquareSecond => (t, s),
                     };
-                    let l3 = linear.map(|x| -2.0 * p * x);
-                    quadrics.push([
-                        square[0], square[1], square[2], square[3], 0.0, 0.0, 0.0, 0.0, l3[0], l3[1], l3[2], l3[3],
-                    ]);
+                    let l2 = linear.map(|x| -2.0 * p * x);
+                    parabolas.push([square[0], square[1], square[2], l2[0], l2[1], l2[2]]);
                 }
                 Primitive::KinematicEllipse { phi_deg, m3, m4, a, b } => {
                     let (s, c) = tilt(*phi_deg);
@@ -336,7 +328,8 @@ impl CompiledRegion {
             lower: region.limits.map(|l| l[0]),
             upper: region.limits.map(|l| l[1]),
             planes,
-            quadrics,
+            ellipses,
+            parabolas,
             kinematic,
             ops: region.primitives.iter().map(Compiled::new).collect(),
         }
@@ -361,15 +354,19 @@ impl CompiledRegion {
         for c in &self.planes {
             inside &= c[0] + c[1] * q2 + c[2] * q3 + c[3] * q4 >= 0.0;
         }
-        for c in &self.quadrics {
+        for c in &self.ellipses {
             let l1 = c[0] + c[1] * q2 + c[2] * q3 + c[3] * q4;
             let l2 = c[4] + c[5] * q2 + c[6] * q3 + c[7] * q4;
-            let l3 = c[8] + c[9] * q2 + c[10] * q3 + c[11] * q4;
-            inside &= l1 * l1 + l2 * l2 + l3 >= 0.0;
+            inside &= l1 * l1 + l2 * l2 >= 1.0;
+        }
+        for c in &self.parabolas {
+            let l1 = c[0] + c[1] * q2 + c[2] * q3;
+            let l2 = c[3] + c[4] * q2 + c[5] * q3;
+            inside &= l1 * l1 + l2 >= 0.0;
         }
         // Powers of q2 shared by the four cubics of every kinematic ellipse.
-        let p = [1.0, q2, q2 * q2, q2 * q2 * q2];
-        let cubic = |c: &[f64]| c[0] * p[0] + c[1] * p[1] + c[2] * p[2] + c[3] * p[3];
+        let (p2, p3) = (q2 * q2, q2 * q2 * q2);
+        let cubic = |c: &[f64]| c[0] + c[1] * q2 + c[2] * p2 + c[3] * p3;
         for k in &self.kinematic {
             let (s, c) = (k[0], k[1]);
             let (d3, d4) = (q3 - cubic(&k[2..6]), q4 - cubic(&k[6..10]));
