@@ -1,5 +1,5 @@
 //! World queries: one collision check of a 6-link arm against 20 primitives (target ≤ 1 µs),
-//! the 1° C-space grid of `varan4` (≈ 7 million nodes, target ≤ 2 s on 2 cores), and seed
+//! the 1° C-space grid of `varan4` (≈ 7 million nodes, target ≤ 1 s on 2 cores), and seed
 //! 004's R-function membership test (the region fitted to the scene's 15° grid) against the
 //! direct link–zone intersection, on the same 1000 configurations.
 //!
