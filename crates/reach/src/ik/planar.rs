@@ -232,6 +232,136 @@ fn triangle_angle_pair(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
     Some((area.atan2(c * c + b * b - a * a), area.atan2(a * a + b * b - c * c)))
 }
 
+/// Rows of [`PlanarRedundant::paper_scan`] from one directly computed *anchor* row to the
+/// next (the others are incremental).
+const SCAN_ANCHOR_ROWS: usize = 128;
+
+/// A row's triangles are used incrementally only where `4·area` of triangle OBK and `KB` (in
+/// squared units) exceed this fraction of `r² + l1² + l2² + l3²`: there an error `δ` in
+/// `cos α` moves `γ1` and `β` by at most about `δ / SCAN_MIN_CONDITION` (the angles' condition
+/// number), so the increments' few units in the last place stay below 1e-13 rad.
+const SCAN_MIN_CONDITION: f64 = 1e-2;
+
+/// Whether an incremental row's chain bends back at B (`β > π·(1 + BOUNDARY)`) is decided from
+/// the anchor only when `β` is farther than this (radians) from that limit; nearer, the row is
+/// computed directly (the increments' error is below 1e-12 rad).
+const SCAN_DECISION_MARGIN: f64 = 1e-10;
+
+/// Largest turn (as `|tan|`) of a triangle's direction vector from one row to the next that
+/// is evaluated by [`atan_small`]; beyond, the row is computed directly.
+const SCAN_MAX_TAN: f64 = 1.0 / 64.0;
+
+/// `atan t` for `|t| ≤` [`SCAN_MAX_TAN`]: the Taylor series to `t⁷/7` (alternating: the
+/// truncation error is below `|t|⁹/9` ≤ 6.2e-18 rad).
+#[inline]
+fn atan_small(t: f64) -> f64 {
+    let t2 = t * t;
+    t * (1.0 + t2 * (-1.0 / 3.0 + t2 * (1.0 / 5.0 - t2 * (1.0 / 7.0))))
+}
+
+/// `(sin, cos)` of `α_anchor + j·Δ` for `j` below [`SCAN_ANCHOR_ROWS`] by angle addition from
+/// the anchor's exact `(sin, cos)` and a table of `(sin jΔ, cos jΔ)`: no error accumulates
+/// from row to row (each value is a 2-term product of correctly evaluated factors, within a
+/// few units in the last place of the exact one).
+#[derive(Debug, Clone)]
+struct RotationSteps {
+    table: Vec<(f64, f64)>,
+}
+
+impl RotationSteps {
+    /// The rotations by `0, Δ, …, (rows − 1)·Δ`.
+    fn new(step: f64, rows: usize) -> Self {
+        RotationSteps { table: (0..rows).map(|j| crate::angle::sin_cos(j as f64 * step)).collect() }
+    }
+
+    /// `(sin, cos)` of the anchor's angle turned by `j` steps (`j <` the table's length).
+    #[inline]
+    fn turn(&self, (s, c): (f64, f64), j: usize) -> (f64, f64) {
+        let (sj, cj) = self.table[j];
+        (s * cj + c * sj, c * cj - s * sj)
+    }
+}
+
+/// What one incremental row of the scan gives.
+enum Incremental {
+    /// The row's `γ1` and `β` (not clamped).
+    Angles(f64, f64),
+    /// Not decidable from the track: the row is computed directly.
+    Direct,
+}
+
+/// The incremental rows' state: the anchor (the last row computed directly) and the angles
+/// and direction vectors of the previous row.
+#[derive(Debug, Clone, Copy)]
+struct Track {
+    /// The anchor's row and `(sin α, cos α)`.
+    anchor: usize,
+    trig: (f64, f64),
+    /// `γ1` and its direction vector `(r² + l1² − KB², 4·area)` of triangle OBK.
+    gamma1: f64,
+    g: [f64; 2],
+    /// `β = β1 + β2` (before the clamp to π) and its direction vector.
+    beta: f64,
+    b: [f64; 2],
+}
+
+/// The per-scan constants of the incremental rows.
+struct ScanFrame {
+    lengths: [f64; 3],
+    /// Target distance `r` and direction `γ2`.
+    r: f64,
+    gamma2: f64,
+    /// A triangle is used incrementally only when `(4·area)²` and `KB²` (scaled by the sum of
+    /// the squared lengths) exceed these: there the angles are well conditioned (module
+    /// `paper_scan` docs).
+    min_area2: f64,
+    min_kb2: f64,
+}
+
+impl ScanFrame {
+    /// The constants of a scan of an arm of `lengths` to `target_xy` (plane coordinates).
+    fn new(lengths: [f64; 3], [x, y]: [f64; 2]) -> Self {
+        // The same r and γ2 as `paper_row` computes for each row (r there is not `hypot`).
+        let r = (x * x + y * y).sqrt();
+        let squares = r * r + lengths.iter().map(|l| l * l).sum::<f64>();
+        ScanFrame {
+            lengths,
+            r,
+            gamma2: y.atan2(x),
+            min_area2: (SCAN_MIN_CONDITION * squares).powi(2),
+            min_kb2: SCAN_MIN_CONDITION * squares,
+        }
+    }
+
+    /// `KB²` and the direction vectors of `γ1` and `β` at `(sin α, cos α)`, or `None` for an
+    /// ill-conditioned (nearly degenerate) triangle.
+    #[inline]
+    fn vectors(&self, (sin_alpha, cos_alpha): (f64, f64)) -> Option<([f64; 2], [f64; 2])> {
+        let [l1, l2, l3] = self.lengths;
+        let r = self.r;
+        let kb2 = l2 * l2 + l3 * l3 - 2.0 * l2 * l3 * cos_alpha;
+        // Triangle OBK: 4·area = √((2·r·l1)² − (r² + l1² − KB²)²), the difference factored.
+        let n_gamma = r * r + l1 * l1 - kb2;
+        let two_rl = 2.0 * r * l1;
+        let area2 = (two_rl - n_gamma) * (two_rl + n_gamma);
+        // Both conditions false for NaN.
+        if !(area2 >= self.min_area2 && kb2 >= self.min_kb2) {
+            return None;
+        }
+        let area = area2.sqrt();
+        let n_beta = kb2 + l1 * l1 - r * r;
+        // β = β1 + β2: the product of their direction vectors (β2 of triangle ABK).
+        let (x2, y2) = (l2 - l3 * cos_alpha, l3 * sin_alpha);
+        Some(([n_gamma, area], [n_beta * x2 - area * y2, n_beta * y2 + area * x2]))
+    }
+}
+
+/// `cross(a, b)` and `dot(a, b)` of two plane vectors.
+#[inline]
+fn cross_dot(a: [f64; 2], b: [f64; 2]) -> (f64, f64) {
+    (a[0] * b[1] - a[1] * b[0], a[0] * b[0] + a[1] * b[1])
+}
+
 /// Planar two-link IK: links `l1, l2` from the origin to the point `w`. `seed_phi1` is the
 /// first link's angle used when it is undetermined (`w` on the shoulder axis, `l1 = l2`).
 pub(crate) fn two_link(l1: f64, l2: f64, w: [f64; 2], seed_phi1: f64) -> TwoLink {
@@ -549,11 +679,16 @@ impl PlanarRedundant {
     /// [`Self::paper_row`] with the target's per-scan quantities precomputed: its distance `r`
     /// from the base and its direction `γ2 = atan2(y, x)`.
     fn paper_row_at(&self, r: f64, gamma2: f64, alpha: f64) -> Option<ScanRow> {
+        self.paper_row_angles(r, alpha, alpha.sin_cos())
+            .and_then(|(gamma1, beta)| self.finish_row(alpha, beta, gamma1 + gamma2))
+    }
+
+    /// The row's `γ1` (angle KOB) and `β = β1 + β2` (not clamped) at `α`, given `(sin α, cos α)`.
+    fn paper_row_angles(&self, r: f64, alpha: f64, (sin_alpha, cos_alpha): (f64, f64)) -> Option<(f64, f64)> {
         let [l1, l2, l3] = self.lengths();
         if !(alpha.is_finite() && r > IK_AXIS_DISTANCE) || l3 <= STRUCTURE_LENGTH {
             return None;
         }
-        let (sin_alpha, cos_alpha) = alpha.sin_cos();
         // Eq. (4): KB² in triangle ABK (AB = l2, AK = l3, angle α at A).
         let kb2 = l2 * l2 + l3 * l3 - 2.0 * l2 * l3 * cos_alpha;
         let kb = kb2.sqrt();
@@ -567,15 +702,19 @@ impl PlanarRedundant {
         // triangle_angle(r, l1, kb); eqs. (11)–(12): β1 = angle OBK (sides BK, BO = l1,
         // opposite OK = r), i.e. triangle_angle(kb, l1, r). One call gives both.
         let (gamma1, beta1) = triangle_angle_pair(kb, l1, r)?;
-        let gamma = gamma1 + gamma2;
         // Eq. (13): β2 = angle ABK; (180° − α)/2 for l2 = l3, in general
         // atan2(l3·sin α, l2 − l3·cos α).
         let beta2 = (l3 * sin_alpha).atan2(l2 - l3 * cos_alpha);
-        let mut beta = beta1 + beta2;
+        Some((gamma1, beta1 + beta2))
+    }
+
+    /// The row of angles `α`, `β` (before the clamp; `None` above 180°) and `γ`.
+    #[inline(always)]
+    fn finish_row(&self, alpha: f64, beta: f64, gamma: f64) -> Option<ScanRow> {
         if beta > PI * (1.0 + BOUNDARY) {
             return None;
         }
-        beta = beta.min(PI);
+        let beta = beta.min(PI);
         let paper = InteriorAngles { alpha, beta, gamma };
         let phi1 = gamma;
         let phi2 = phi1 + beta - PI;
@@ -588,6 +727,40 @@ impl PlanarRedundant {
             within_limits &= self.limits[i].contains(q[i], LIMIT_SLACK);
         }
         Some(ScanRow { paper, q, within_limits })
+    }
+
+    /// Row `index` computed directly, and the track it starts (when its triangles are well
+    /// conditioned).
+    fn direct_row(&self, frame: &ScanFrame, alpha: f64, index: usize) -> (Option<ScanRow>, Option<Track>) {
+        let trig = alpha.sin_cos();
+        let Some((gamma1, beta)) = self.paper_row_angles(frame.r, alpha, trig) else { return (None, None) };
+        let row = self.finish_row(alpha, beta, gamma1 + frame.gamma2);
+        let track = frame.vectors(trig).map(|(g, b)| Track { anchor: index, trig, gamma1, g, beta, b });
+        (row, track)
+    }
+
+    /// `γ1` and `β` of the row `j` rows after the track's anchor, the track moved to it.
+    #[inline]
+    fn incremental_row(frame: &ScanFrame, steps: &RotationSteps, track: &mut Track, j: usize) -> Incremental {
+        let Some((g, b)) = frame.vectors(steps.turn(track.trig, j)) else { return Incremental::Direct };
+        let (cross_g, dot_g) = cross_dot(track.g, g);
+        let (cross_b, dot_b) = cross_dot(track.b, b);
+        // Both turns from the previous row small: |tan| ≤ SCAN_MAX_TAN, forward (dot > 0).
+        let small = |cross: f64, dot: f64| dot > 0.0 && cross.abs() <= SCAN_MAX_TAN * dot;
+        if !(small(cross_g, dot_g) && small(cross_b, dot_b)) {
+            return Incremental::Direct;
+        }
+        // One division for both tangents.
+        let inverse = 1.0 / (dot_g * dot_b);
+        let gamma1 = track.gamma1 + atan_small(cross_g * dot_b * inverse);
+        let beta = track.beta + atan_small(cross_b * dot_g * inverse);
+        // Whether the chain bends back at B (β > 180°) is decided only with a margin far above
+        // the increments' error; near the limit the row is computed directly.
+        if (beta - PI * (1.0 + BOUNDARY)).abs() <= SCAN_DECISION_MARGIN {
+            return Incremental::Direct;
+        }
+        *track = Track { gamma1, g, beta, b, ..*track };
+        Incremental::Angles(gamma1, beta)
     }
 
     /// The thesis's IK by enumeration (notes 000 §4.1): `α = α_min + i·step`, `i = 0, 1, …`
@@ -605,6 +778,9 @@ impl PlanarRedundant {
     /// * Rows are not filtered by joint limits (the thesis does not, notes 000 §6.1 D11); each
     ///   row says whether it is within them. For unequal lengths rows where a triangle of the
     ///   construction does not exist are left out.
+    /// * Most rows are evaluated incrementally from an exactly computed row a few steps back
+    ///   (angle addition instead of fresh trigonometry); the rows are the direct formulas'
+    ///   rows, each angle within 1e-12 rad of [`Self::paper_row`]'s.
     ///
     /// # Arguments
     /// * `target_xy` — target in plane coordinates (metres);
@@ -655,17 +831,60 @@ impl PlanarRedundant {
             )));
         }
         let count = count as usize;
+        let frame = ScanFrame::new(self.lengths(), target_xy);
+        let rows = self.scan_rows(&frame, alpha_min, step, count).0;
+        Ok(PaperScan { alpha_min: Some(alpha_min), rows, failure: None })
+    }
+
+    /// The rows of [`Self::paper_scan`], and how many were computed directly (anchors and
+    /// rows not decidable incrementally).
+    ///
+    /// A row computed directly (fresh `sin_cos` and `atan2`) is an *anchor*; the next rows,
+    /// up to [`SCAN_ANCHOR_ROWS`] − 1 of them, are incremental:
+    /// * `(sin α, cos α)` by angle addition from the anchor's and a table of `(sin jΔ, cos jΔ)`
+    ///   ([`RotationSteps`]): no error carries from row to row;
+    /// * the direction vectors of `γ1` (triangle OBK) and of `β = β1 + β2` from those
+    ///   (one square root, no trigonometry);
+    /// * `γ1` and `β` as the previous row's plus the turn of their direction vectors, `atan`
+    ///   of a cross over a dot product ([`atan_small`]; one division for both).
+    ///
+    /// Drift bound: the vectors' own errors telescope (each row's turn is measured between
+    /// two computed vectors, so the sum of the turns since the anchor is the last vector's
+    /// direction minus the anchor's, up to the per-row rounding); what accumulates is, per
+    /// row, the rounding of one addition (≤ ½ ulp of a value below 2π, 4.4e-16) and of the
+    /// `atan` (truncation ≤ 6.2e-18, rounding ≤ 2 ulp of a turn below 1/64): at most
+    /// 128 × 5e-16 ≈ 6.4e-14 rad before the next anchor, plus the last vector's direction
+    /// error (ill-conditioned triangles are computed directly, [`SCAN_MIN_CONDITION`]) — well
+    /// within 1e-12 rad (the tests measure it). A row whose triangles are ill conditioned,
+    /// whose turn exceeds [`SCAN_MAX_TAN`] or whose `β` lies within [`SCAN_DECISION_MARGIN`]
+    /// of the 180° limit is computed directly and becomes the next anchor, so the set of rows
+    /// is the direct computation's.
+    fn scan_rows(&self, frame: &ScanFrame, alpha_min: f64, step: f64, count: usize) -> (Vec<ScanRow>, usize) {
         let mut rows = Vec::with_capacity(count);
-        let [x, y] = target_xy;
-        // The same r and γ2 as `paper_row` computes for each row (r there is not `hypot`).
-        let (r_row, gamma2) = ((x * x + y * y).sqrt(), y.atan2(x));
+        let mut direct = 0;
+        let steps = RotationSteps::new(step, count.min(SCAN_ANCHOR_ROWS));
+        let mut track: Option<Track> = None;
         for i in 0..count {
             // α_i = α_min + i·Δα (no accumulated sum; notes 000 §6).
-            if let Some(row) = self.paper_row_at(r_row, gamma2, alpha_min + (i as f64) * step) {
+            let alpha = alpha_min + (i as f64) * step;
+            let next = match track.as_mut().filter(|t| i - t.anchor < SCAN_ANCHOR_ROWS) {
+                Some(t) => Self::incremental_row(frame, &steps, t, i - t.anchor),
+                None => Incremental::Direct,
+            };
+            let row = match next {
+                Incremental::Angles(gamma1, beta) => self.finish_row(alpha, beta, gamma1 + frame.gamma2),
+                Incremental::Direct => {
+                    let (row, next) = self.direct_row(frame, alpha, i);
+                    track = next;
+                    direct += 1;
+                    row
+                }
+            };
+            if let Some(row) = row {
                 rows.push(row);
             }
         }
-        Ok(PaperScan { alpha_min: Some(alpha_min), rows, failure: None })
+        (rows, direct)
     }
 }
 
@@ -792,6 +1011,92 @@ mod tests {
             valid += usize::from(got.is_some());
         }
         assert!(valid > 500 && valid < 2000, "{valid} valid triangles: the sample misses a case");
+    }
+
+    #[test]
+    fn rotation_steps_stay_within_a_few_ulps_of_fresh_trigonometry() {
+        // Angle addition from each anchor: no error accumulates over the table's rows.
+        let mut worst = 0.0f64;
+        for step_deg in [0.01f64, 0.001, 0.37, 1.0] {
+            let step = step_deg.to_radians();
+            let steps = RotationSteps::new(step, SCAN_ANCHOR_ROWS);
+            for start in [0.3, 1.2, 2.0, 3.0] {
+                for a in [0, 7, 1000] {
+                    let anchor = start + (a as f64) * step;
+                    let trig = anchor.sin_cos();
+                    for j in 0..SCAN_ANCHOR_ROWS {
+                        let (s, c) = steps.turn(trig, j);
+                        let exact = (start + ((a + j) as f64) * step).sin_cos();
+                        worst = worst.max((s - exact.0).abs()).max((c - exact.1).abs());
+                    }
+                }
+            }
+        }
+        // A few units in the last place of the angles (up to ≈ 20 rad here: ulp 3.6e-15),
+        // whatever the distance from the anchor; the scan needs 1e-12.
+        assert!(worst < 1e-14, "drift {worst:e}");
+    }
+
+    #[test]
+    fn atan_small_is_atan() {
+        for k in -1000..=1000 {
+            let t = SCAN_MAX_TAN * f64::from(k) / 1000.0;
+            let (got, exact) = (atan_small(t), t.atan());
+            // Rounding (2 ulp) and the truncation bound |t|⁹/9.
+            let bound = 2.0 * f64::EPSILON * exact.abs() + t.abs().powi(9) / 9.0;
+            assert!((got - exact).abs() <= bound, "{t}: {got} vs {exact}");
+        }
+    }
+
+    /// The incremental scan gives the direct formulas' rows (same α, same set) with every
+    /// angle within 1e-12 rad, on the thesis's arm and an unequal one, for targets across the
+    /// workspace (near both circles, every quadrant) and several steps; most rows incremental.
+    #[test]
+    fn incremental_scan_rows_are_the_direct_rows() {
+        let (_, equal) = arm();
+        let mut unequal = equal.clone();
+        for (link, l) in unequal.chain.links.iter_mut().zip([1.3, 0.8, 0.6]) {
+            link.length = l;
+        }
+        let mut worst = 0.0f64;
+        for (arm, targets) in [
+            (&equal, [[2.0, 1.0], [2.4, 0.2], [1.0, 0.1], [2.95, 0.1], [-1.5, 1.5], [0.3, -1.4]]),
+            (&unequal, [[1.5, 0.5], [2.5, -0.3], [0.2, 0.6], [-1.0, -1.2], [2.6, 0.1], [0.7, 0.0]]),
+        ] {
+            for target in targets {
+                for step_deg in [0.01, 0.003, 0.1, 1.0] {
+                    let step = f64::to_radians(step_deg);
+                    let scan = arm.paper_scan(target, step).unwrap();
+                    let Some(alpha_min) = scan.alpha_min else { continue };
+                    let count = ((PI - alpha_min) / step + SCAN_GRID).floor() as usize + 1;
+                    let [x, y] = target;
+                    let (r, gamma2) = ((x * x + y * y).sqrt(), y.atan2(x));
+                    let direct: Vec<ScanRow> =
+                        (0..count).filter_map(|i| arm.paper_row_at(r, gamma2, alpha_min + (i as f64) * step)).collect();
+                    assert_eq!(scan.rows.len(), direct.len(), "{target:?} at {step_deg}°");
+                    for (a, b) in scan.rows.iter().zip(&direct) {
+                        assert_eq!(a.paper.alpha.to_bits(), b.paper.alpha.to_bits());
+                        assert_eq!(a.within_limits, b.within_limits, "{target:?} at {step_deg}°");
+                        let d = [a.paper.beta - b.paper.beta, a.paper.gamma - b.paper.gamma]
+                            .into_iter()
+                            .chain(a.q.iter().zip(&b.q).map(|(u, v)| u - v))
+                            .fold(0.0f64, |m, d| m.max(d.abs()));
+                        assert!(d <= 1e-12, "{target:?} at {step_deg}° row α {}: {d:e}", a.paper.alpha);
+                        worst = worst.max(d);
+                    }
+                }
+            }
+        }
+        assert!(worst > 0.0, "no row was incremental");
+        // At 0.01° nearly every row is incremental (an anchor every SCAN_ANCHOR_ROWS).
+        let (_, arm) = arm();
+        let scan = arm.paper_scan([2.0, 1.0], 0.01f64.to_radians()).unwrap();
+        let alpha_min = scan.alpha_min.unwrap();
+        let frame = ScanFrame::new(arm.lengths(), [2.0, 1.0]);
+        let (rows, direct) = arm.scan_rows(&frame, alpha_min, 0.01f64.to_radians(), scan.rows.len());
+        assert_eq!(rows.len(), 9001);
+        eprintln!("incremental scan: largest difference {worst:e} rad; at 0.01° {direct} of 9001 rows direct");
+        assert!(direct <= 9001 / SCAN_ANCHOR_ROWS + 5, "{direct} rows computed directly");
     }
 
     fn arm() -> (Robot, PlanarRedundant) {

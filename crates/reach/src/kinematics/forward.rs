@@ -124,6 +124,48 @@ impl Robot {
         Ok(t)
     }
 
+    /// [`Robot::frames_into`] that recomputes only the joints from `from` (0-based) on: the
+    /// frames of the joints before `from` in `out` and the transforms in `before` are those
+    /// of the previous call with the same buffers, whose `q` had the same values there (the
+    /// caller's promise; a configuration-space grid changes its inner joints most often).
+    /// `before[i]` is the transform before joint `i`'s motion, `before[dof]` the tool pose.
+    /// A chain with mimic joints is recomputed from its base (a mimic joint may follow a later
+    /// joint). The frames are bit for bit those of [`Robot::frames_into`].
+    pub(crate) fn frames_from(
+        &self,
+        q: &[f64],
+        from: usize,
+        before: &mut [IsometryMatrix3<f64>],
+        out: &mut [IsometryMatrix3<f64>],
+    ) -> Result<IsometryMatrix3<f64>, KinematicsError> {
+        check_q(self.dof(), q)?;
+        let n = self.dof();
+        if out.len() != n {
+            return Err(KinematicsError::BufferSize { buffer: "frames", expected: n, found: out.len() });
+        }
+        if before.len() != n + 1 {
+            return Err(KinematicsError::BufferSize { buffer: "before", expected: n + 1, found: before.len() });
+        }
+        let from = if self.chain.has_mimics() { 0 } else { from.min(n) };
+        let mut t = if from == 0 {
+            let mut t = self.chain.first;
+            Chain::apply_mimics(&mut t, &self.chain.first_mimics, q);
+            t
+        } else {
+            before[from]
+        };
+        for i in from..n {
+            let link = &self.chain.links[i];
+            before[i] = t;
+            apply_motion(&mut t, link.prismatic, link.sign * q[i]);
+            out[i] = t * link.to_frame;
+            t *= link.after;
+            Chain::apply_mimics(&mut t, &link.mimics, q);
+        }
+        before[n] = t;
+        Ok(t)
+    }
+
     /// Every link frame in the world frame (see [`Robot::frames_into`]), allocating the vector.
     ///
     /// # Errors

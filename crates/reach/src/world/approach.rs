@@ -60,7 +60,7 @@ use serde::Serialize;
 
 use super::cspace::{GridSpec, classify_grid, grid_node_count};
 use super::fit::{FitOptions, MAX_FIT_NODES, fit_region};
-use super::rfunction::Region;
+use super::rfunction::CompiledRegion;
 use super::sweep::SweepOptions;
 use super::{CollisionChecker, Scene, SweptPair, WorldError};
 use crate::ik::{self, IkOptions, IkTarget};
@@ -190,8 +190,9 @@ pub struct Approach {
 /// A fitted seed-004 R-function region used as a fast first test of candidates.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FastRegion {
-    /// The region over three joints, degrees.
-    pub region: Region,
+    /// The region over three joints, degrees, compiled (its source:
+    /// [`CompiledRegion::region`]).
+    pub region: CompiledRegion,
     /// 0-based joints that are the region's coordinates.
     pub joints: [usize; 3],
     /// The other joints and the values (radians / metres) they had in the fitting grid; the
@@ -234,7 +235,7 @@ impl FastRegion {
         }
         let grid = classify_grid(&grown, scene, &spec)?;
         let fit = fit_region(&grid, &FitOptions::default())?;
-        Ok(FastRegion { region: fit.region, joints: fit.joints, fixed: fixed.to_vec(), band })
+        Ok(FastRegion { region: fit.region.compile(), joints: fit.joints, fixed: fixed.to_vec(), band })
     }
 
     /// Whether the region speaks about `q` (the fixed joints at their values).

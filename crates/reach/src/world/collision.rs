@@ -139,6 +139,10 @@ pub struct CollisionChecker<'a> {
     robot: &'a Robot,
     scene: &'a Scene,
     frames: Vec<IsometryMatrix3<f64>>,
+    /// The transforms before each joint's motion of [`CollisionChecker::check_changed`]'s
+    /// last configuration (and its tool pose), valid while `prefix_valid`.
+    before: Vec<IsometryMatrix3<f64>>,
+    prefix_valid: bool,
     points: Vec<Vector3<f64>>,
     radii: Vec<f64>,
     active: Vec<usize>,
@@ -272,6 +276,8 @@ impl<'a> CollisionChecker<'a> {
             robot,
             scene,
             frames: vec![IsometryMatrix3::identity(); n],
+            before: vec![IsometryMatrix3::identity(); n + 1],
+            prefix_valid: false,
             points: vec![Vector3::zeros(); n + 2],
             radii,
             active: Vec::with_capacity(n + 1),
@@ -308,7 +314,14 @@ impl<'a> CollisionChecker<'a> {
 
     /// Computes the link points of `q` into the buffers (no allowed-collision check).
     fn update_points(&mut self, q: &[f64]) -> Result<(), WorldError> {
+        self.prefix_valid = false;
         let tool = self.robot.frames_into(q, &mut self.frames)?;
+        self.set_points(&tool);
+        Ok(())
+    }
+
+    /// Sets the link points from the frames in the buffers and the tool pose.
+    fn set_points(&mut self, tool: &IsometryMatrix3<f64>) {
         self.points[0] = self.robot.base().translation.vector;
         for (p, f) in self.points[1..].iter_mut().zip(&self.frames) {
             *p = f.translation.vector;
@@ -321,7 +334,28 @@ impl<'a> CollisionChecker<'a> {
                 self.active.push(k);
             }
         }
-        Ok(())
+    }
+
+    /// [`CollisionChecker::check`] of a configuration that differs from the one of the
+    /// previous call of this method (with no other check between) only in the joints from
+    /// `changed_from` (0-based) on: the link frames before them are reused, the verdict is
+    /// [`CollisionChecker::check`]'s bit for bit (a configuration-space grid, whose inner
+    /// joints change most often). Moving obstacles are where they are at time 0.
+    ///
+    /// # Errors
+    /// As [`CollisionChecker::check`].
+    pub(crate) fn check_changed(&mut self, q: &[f64], changed_from: usize) -> Result<Verdict, WorldError> {
+        self.set_time(0.0)?;
+        if let Some(e) = &self.exempt_error {
+            return Err(e.clone());
+        }
+        let from = if self.prefix_valid { changed_from } else { 0 };
+        // Invalid until the frames are complete (an error leaves them partly updated).
+        self.prefix_valid = false;
+        let tool = self.robot.frames_from(q, from, &mut self.before, &mut self.frames)?;
+        self.prefix_valid = true;
+        self.set_points(&tool);
+        Ok(self.classify())
     }
 
     /// Whether the pair of 0-based links `i`, `j` is on the scene's allowed-collision list.

@@ -259,17 +259,37 @@ pub fn count_text(n: usize) -> String {
 }
 
 /// Classifies one configuration (the classification order of notes 004 §4 A: limits, tool
-/// zone, self-collision, obstacles).
-fn classify_node(checker: &mut CollisionChecker<'_>, q: &[f64]) -> Result<NodeClass, WorldError> {
+/// zone, self-collision, obstacles). [`classify_grid`] gives every node this class (it
+/// tests each axis value against the limits once and reuses the link frames of the outer
+/// joints between nodes).
+///
+/// # Errors
+/// As [`CollisionChecker::check`].
+///
+/// # Example
+/// ```
+/// use reach::world::{CollisionChecker, Scene, cspace::{NodeClass, classify_node}};
+/// let varan = reach::model::presets::get("varan4").unwrap();
+/// let scene = Scene::new();
+/// let mut checker = CollisionChecker::new(&varan, &scene);
+/// assert_eq!(classify_node(&mut checker, &[0.0, 0.5, 0.3, -0.2]).unwrap(), NodeClass::Allowed);
+/// assert_eq!(classify_node(&mut checker, &[0.0, 9.0, 0.0, 0.0]).unwrap(), NodeClass::OutsideLimits);
+/// ```
+pub fn classify_node(checker: &mut CollisionChecker<'_>, q: &[f64]) -> Result<NodeClass, WorldError> {
     if checker.robot().first_joint_outside_limits(q, LIMIT_SLACK).is_some() {
         return Ok(NodeClass::OutsideLimits);
     }
-    Ok(match checker.check(q)? {
+    Ok(class_of(checker.check(q)?))
+}
+
+/// The class of a configuration within the limits with this verdict.
+fn class_of(verdict: Verdict) -> NodeClass {
+    match verdict {
         Verdict::Free => NodeClass::Allowed,
         Verdict::OutsideZone { .. } => NodeClass::OutsideZone,
         Verdict::SelfCollision { .. } => NodeClass::SelfCollision,
         Verdict::Obstacle { .. } => NodeClass::ObstacleCollision,
-    })
+    }
 }
 
 fn classify_range(
@@ -284,14 +304,33 @@ fn classify_range(
         return Err(WorldError::Cancelled);
     }
     let mut checker = CollisionChecker::new(robot, scene);
+    // Per axis value: within the joint's limits (the limit test of `classify_node`, once per
+    // value instead of once per node).
+    let joints = robot.joints();
+    let within: Vec<Vec<bool>> = axes
+        .iter()
+        .zip(joints)
+        .map(|(axis, joint)| axis.iter().map(|&v| joint.limits.contains(v, LIMIT_SLACK)).collect())
+        .collect();
     let mut q = vec![0.0; axes.len()];
+    let mut index = vec![0; axes.len()];
+    // The axis positions of the node whose frames the checker holds (none yet).
+    let mut checked: Vec<usize> = vec![usize::MAX; axes.len()];
     for (offset, slot) in out.iter_mut().enumerate() {
         let mut rest = start + offset;
         for (j, axis) in axes.iter().enumerate().rev() {
-            q[j] = axis[rest % axis.len()];
+            index[j] = rest % axis.len();
+            q[j] = axis[index[j]];
             rest /= axis.len();
         }
-        *slot = classify_node(&mut checker, &q)?;
+        if index.iter().zip(&within).any(|(&k, w)| !w[k]) {
+            *slot = NodeClass::OutsideLimits;
+            continue;
+        }
+        // Row-major order: mostly only the last joints changed since the last checked node.
+        let changed = index.iter().zip(&checked).position(|(a, b)| a != b).unwrap_or(index.len());
+        checked.clone_from(&index);
+        *slot = class_of(checker.check_changed(&q, changed)?);
     }
     Ok(())
 }

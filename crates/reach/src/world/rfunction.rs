@@ -94,11 +94,40 @@ fn cubic(c: &[f64; 4], x: f64) -> f64 {
     ((c[3] * x + c[2]) * x + c[1]) * x + c[0]
 }
 
-fn ellipse_outside(phi_deg: f64, d3: f64, d4: f64, a: f64, b: f64) -> f64 {
-    let (s, c) = phi_deg.to_radians().sin_cos();
+/// `(sin, cos)` of a tilt given in degrees: the trigonometry every primitive evaluation
+/// shares (computed once by [`CompiledRegion`]).
+fn tilt(phi_deg: f64) -> (f64, f64) {
+    phi_deg.to_radians().sin_cos()
+}
+
+/// Outside of an ellipse tilted by the angle of `(s, c)` = (sin, cos): `u²/a² + v²/b² − 1`.
+#[inline]
+fn ellipse_outside((s, c): (f64, f64), d3: f64, d4: f64, a: f64, b: f64) -> f64 {
     let u = d3 * c + d4 * s;
     let v = -d3 * s + d4 * c;
     (u / a).powi(2) + (v / b).powi(2) - 1.0
+}
+
+/// The parabolic cylinder's value, its axis tilted by the angle of `(sn, cs)`.
+#[inline]
+fn parabola_value((sn, cs): (f64, f64), vertex: &[f64; 2], p: f64, variant: Parabola, q2: f64, q3: f64) -> f64 {
+    let (d2, d3) = (q2 - vertex[0], q3 - vertex[1]);
+    let s = d2 * cs + d3 * sn;
+    let t = -d2 * sn + d3 * cs;
+    match variant {
+        Parabola::SquareFirst => s * s - 2.0 * p * t,
+        Parabola::SquareSecond => t * t - 2.0 * p * s,
+    }
+}
+
+/// The kinematic ellipse's value (`None` where a semi-axis is ≤ 0: inactive).
+#[inline]
+fn kinematic_value(trig: (f64, f64), [m3, m4, a, b]: [&[f64; 4]; 4], [q2, q3, q4]: [f64; 3]) -> Option<f64> {
+    let (aa, bb) = (cubic(a, q2), cubic(b, q2));
+    if aa <= 0.0 || bb <= 0.0 {
+        return None;
+    }
+    Some(ellipse_outside(trig, q3 - cubic(m3, q2), q4 - cubic(m4, q2), aa, bb))
 }
 
 impl Primitive {
@@ -111,25 +140,12 @@ impl Primitive {
             Primitive::HalfSpace { d, b } => Some(d[0] * q2 + d[1] * q3 + d[2] * q4 - b),
             Primitive::EllipticCylinder { phi_deg, a, b, centre } => {
                 let (c3, c4) = (centre[0] * q2 + centre[1], centre[2] * q2 + centre[3]);
-                Some(ellipse_outside(*phi_deg, q3 - c3, q4 - c4, *a, *b))
+                Some(ellipse_outside(tilt(*phi_deg), q3 - c3, q4 - c4, *a, *b))
             }
             Primitive::ParabolicCylinder { phi_deg, vertex, p, variant } => {
-                let (sn, cs) = phi_deg.to_radians().sin_cos();
-                let (d2, d3) = (q2 - vertex[0], q3 - vertex[1]);
-                let s = d2 * cs + d3 * sn;
-                let t = -d2 * sn + d3 * cs;
-                Some(match variant {
-                    Parabola::SquareFirst => s * s - 2.0 * p * t,
-                    Parabola::SquareSecond => t * t - 2.0 * p * s,
-                })
+                Some(parabola_value(tilt(*phi_deg), vertex, *p, *variant, q2, q3))
             }
-            Primitive::KinematicEllipse { phi_deg, m3, m4, a, b } => {
-                let (aa, bb) = (cubic(a, q2), cubic(b, q2));
-                if aa <= 0.0 || bb <= 0.0 {
-                    return None;
-                }
-                Some(ellipse_outside(*phi_deg, q3 - cubic(m3, q2), q4 - cubic(m4, q2), aa, bb))
-            }
+            Primitive::KinematicEllipse { phi_deg, m3, m4, a, b } => kinematic_value(tilt(*phi_deg), [m3, m4, a, b], q),
         }
     }
 }
@@ -162,13 +178,13 @@ impl Region {
     #[must_use]
     #[inline]
     pub fn value(&self, q: [f64; 3]) -> f64 {
-        let mut f = self.box_value(q);
-        for p in &self.primitives {
-            if let Some(x) = p.value(q) {
-                f = r_and(f, x);
-            }
-        }
-        f
+        self.primitives.iter().filter_map(|p| p.value(q)).fold(self.box_value(q), r_and)
+    }
+
+    /// The region compiled for fast evaluation (see [`CompiledRegion`]).
+    #[must_use]
+    pub fn compile(&self) -> CompiledRegion {
+        CompiledRegion::new(self)
     }
 
     /// Membership test `F(q) ≥ 0`.
@@ -176,6 +192,198 @@ impl Region {
     #[inline]
     pub fn contains(&self, q: [f64; 3]) -> bool {
         self.value(q) >= 0.0
+    }
+}
+
+/// A primitive with its tilt's trigonometry precomputed: evaluated by the same expressions
+/// as [`Primitive::value`], so its values are bit for bit the primitive's.
+#[derive(Debug, Clone, PartialEq)]
+enum Compiled {
+    HalfSpace { d: [f64; 3], b: f64 },
+    EllipticCylinder { trig: (f64, f64), a: f64, b: f64, centre: [f64; 4] },
+    ParabolicCylinder { trig: (f64, f64), vertex: [f64; 2], p: f64, variant: Parabola },
+    KinematicEllipse { trig: (f64, f64), m3: [f64; 4], m4: [f64; 4], a: [f64; 4], b: [f64; 4] },
+}
+
+impl Compiled {
+    fn new(p: &Primitive) -> Self {
+        match p {
+            Primitive::HalfSpace { d, b } => Compiled::HalfSpace { d: *d, b: *b },
+            Primitive::EllipticCylinder { phi_deg, a, b, centre } => {
+                Compiled::EllipticCylinder { trig: tilt(*phi_deg), a: *a, b: *b, centre: *centre }
+            }
+            Primitive::ParabolicCylinder { phi_deg, vertex, p, variant } => {
+                Compiled::ParabolicCylinder { trig: tilt(*phi_deg), vertex: *vertex, p: *p, variant: *variant }
+            }
+            Primitive::KinematicEllipse { phi_deg, m3, m4, a, b } => {
+                Compiled::KinematicEllipse { trig: tilt(*phi_deg), m3: *m3, m4: *m4, a: *a, b: *b }
+            }
+        }
+    }
+
+    #[inline]
+    fn value(&self, q: [f64; 3]) -> Option<f64> {
+        let [q2, q3, q4] = q;
+        match self {
+            Compiled::HalfSpace { d, b } => Some(d[0] * q2 + d[1] * q3 + d[2] * q4 - b),
+            Compiled::EllipticCylinder { trig, a, b, centre } => {
+                let (c3, c4) = (centre[0] * q2 + centre[1], centre[2] * q2 + centre[3]);
+                Some(ellipse_outside(*trig, q3 - c3, q4 - c4, *a, *b))
+            }
+            Compiled::ParabolicCylinder { trig, vertex, p, variant } => {
+                Some(parabola_value(*trig, vertex, *p, *variant, q2, q3))
+            }
+            Compiled::KinematicEllipse { trig, m3, m4, a, b } => kinematic_value(*trig, [m3, m4, a, b], q),
+        }
+    }
+}
+
+/// A half-space in the flat form `X = c0 + c1·q2 + c2·q3 + c3·q4`.
+type Plane = [f64; 4];
+
+/// An elliptic cylinder in the flat form `X = L1² + L2² − 1`, each `Lk = c0 + c1·q2 + c2·q3 +
+/// c3·q4` (`u/a` and `v/b`): the coefficients `[L1; L2]`.
+type Ellipse = [f64; 8];
+
+/// A parabolic cylinder in the flat form `X = L1² + L2`, each `Lk = c0 + c1·q2 + c2·q3` (the
+/// squared coordinate and `−2p` times the other): the coefficients `[L1; L2]`.
+type Parabolic = [f64; 6];
+
+/// A kinematic ellipse in the flat form of [`CompiledRegion::contains`]: `[sin φ, cos φ, m3,
+/// m4, a, b]` (each cubic constant term first).
+type Kinematic = [f64; 18];
+
+/// A [`Region`] compiled into flat coefficient arrays (seed 004's fitted R-function region as
+/// a fast membership test).
+///
+/// * [`CompiledRegion::contains`] decides `F(q) ≥ 0` by the defining property of the
+///   R-conjunction, `X1 ∧ X2 ≥ 0 ⇔ X1 ≥ 0 and X2 ≥ 0`: every primitive's own sign, in a flat,
+///   branch-free pass over contiguous coefficients (no square root, no division, no tilt
+///   trigonometry — it is folded into the coefficients — and no allocation). Half-spaces are
+///   affine in `q`, an elliptic cylinder is `L1² + L2² ≥ 1` and a parabolic one `L1² + L2 ≥
+///   0` with `Lk` affine; a kinematic
+///   ellipse with semi-axes `a, b > 0` is tested as `u²b² + v²a² − a²b² ≥ 0` (its value times
+///   `a²b²`), inactive where `a ≤ 0` or `b ≤ 0`. It decides the same set as
+///   [`Region::contains`] except where a primitive's value is within rounding of 0 (a node on
+///   a support plane, say), where the composed `F`'s rounding can tip either way.
+/// * [`CompiledRegion::value`] is `F(q)` itself, bit for bit [`Region::value`], with each
+///   primitive's tilt trigonometry computed once instead of at every evaluation (used where
+///   the size of `F` matters, e.g. the first test's band, [`super::approach::FastRegion`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CompiledRegion {
+    source: Region,
+    lower: [f64; 3],
+    upper: [f64; 3],
+    planes: Vec<Plane>,
+    ellipses: Vec<Ellipse>,
+    parabolas: Vec<Parabolic>,
+    kinematic: Vec<Kinematic>,
+    ops: Vec<Compiled>,
+}
+
+impl CompiledRegion {
+    /// Compiles `region`.
+    #[must_use]
+    pub fn new(region: &Region) -> Self {
+        let mut planes = Vec::new();
+        let mut ellipses = Vec::new();
+        let mut parabolas = Vec::new();
+        let mut kinematic = Vec::new();
+        for p in &region.primitives {
+            match p {
+                Primitive::HalfSpace { d, b } => planes.push([-b, d[0], d[1], d[2]]),
+                Primitive::EllipticCylinder { phi_deg, a, b, centre: [k3, m3, k4, m4] } => {
+                    let (s, c) = tilt(*phi_deg);
+                    // u = (q3 − k3·q2 − m3)·c + (q4 − k4·q2 − m4)·s, v = −(…)·s + (…)·c.
+                    let u = [-(m3 * c + m4 * s), -(k3 * c + k4 * s), c, s];
+                    let v = [m3 * s - m4 * c, k3 * s - k4 * c, -s, c];
+                    ellipses.push([u[0] / a, u[1] / a, u[2] / a, u[3] / a, v[0] / b, v[1] / b, v[2] / b, v[3] / b]);
+                }
+                Primitive::ParabolicCylinder { phi_deg, vertex: [c2, c3], p, variant } => {
+                    let (sn, cs) = tilt(*phi_deg);
+                    // s = (q2 − c2)·cs + (q3 − c3)·sn, t = −(q2 − c2)·sn + (q3 − c3)·cs.
+                    let s = [-(c2 * cs + c3 * sn), cs, sn];
+                    let t = [c2 * sn - c3 * cs, -sn, cs];
+                    let (square, linear) = match variant {
+                        Parabola::SquareFirst => (s, t),
+                        Parabola::SquareSecond => (t, s),
+                    };
+                    let l2 = linear.map(|x| -2.0 * p * x);
+                    parabolas.push([square[0], square[1], square[2], l2[0], l2[1], l2[2]]);
+                }
+                Primitive::KinematicEllipse { phi_deg, m3, m4, a, b } => {
+                    let (s, c) = tilt(*phi_deg);
+                    let mut k = [0.0; 18];
+                    k[0] = s;
+                    k[1] = c;
+                    for (slot, coefficients) in k[2..].chunks_exact_mut(4).zip([m3, m4, a, b]) {
+                        slot.copy_from_slice(coefficients);
+                    }
+                    kinematic.push(k);
+                }
+            }
+        }
+        CompiledRegion {
+            source: region.clone(),
+            lower: region.limits.map(|l| l[0]),
+            upper: region.limits.map(|l| l[1]),
+            planes,
+            ellipses,
+            parabolas,
+            kinematic,
+            ops: region.primitives.iter().map(Compiled::new).collect(),
+        }
+    }
+
+    /// The region it was compiled from.
+    #[must_use]
+    pub fn region(&self) -> &Region {
+        &self.source
+    }
+
+    /// Membership `q ∈ Λ` (degrees, boundary included): every limit and every active
+    /// primitive non-negative (see the type's documentation). `false` for a NaN coordinate.
+    #[must_use]
+    #[inline]
+    pub fn contains(&self, q: [f64; 3]) -> bool {
+        let [q2, q3, q4] = q;
+        let mut inside = true;
+        for ((v, lo), hi) in q.iter().zip(&self.lower).zip(&self.upper) {
+            inside &= (v >= lo) & (v <= hi);
+        }
+        for c in &self.planes {
+            inside &= c[0] + c[1] * q2 + c[2] * q3 + c[3] * q4 >= 0.0;
+        }
+        for c in &self.ellipses {
+            let l1 = c[0] + c[1] * q2 + c[2] * q3 + c[3] * q4;
+            let l2 = c[4] + c[5] * q2 + c[6] * q3 + c[7] * q4;
+            inside &= l1 * l1 + l2 * l2 >= 1.0;
+        }
+        for c in &self.parabolas {
+            let l1 = c[0] + c[1] * q2 + c[2] * q3;
+            let l2 = c[3] + c[4] * q2 + c[5] * q3;
+            inside &= l1 * l1 + l2 >= 0.0;
+        }
+        // Powers of q2 shared by the four cubics of every kinematic ellipse.
+        let (p2, p3) = (q2 * q2, q2 * q2 * q2);
+        let cubic = |c: &[f64]| c[0] + c[1] * q2 + c[2] * p2 + c[3] * p3;
+        for k in &self.kinematic {
+            let (s, c) = (k[0], k[1]);
+            let (d3, d4) = (q3 - cubic(&k[2..6]), q4 - cubic(&k[6..10]));
+            let (a, b) = (cubic(&k[10..14]), cubic(&k[14..18]));
+            let (u, v) = (d3 * c + d4 * s, -d3 * s + d4 * c);
+            let (a2, b2) = (a * a, b * b);
+            let inactive = (a <= 0.0) | (b <= 0.0);
+            inside &= inactive | (u * u * b2 + v * v * a2 - a2 * b2 >= 0.0);
+        }
+        inside
+    }
+
+    /// `F(q)` (degrees), bit for bit [`Region::value`].
+    #[must_use]
+    #[inline]
+    pub fn value(&self, q: [f64; 3]) -> f64 {
+        self.ops.iter().filter_map(|p| p.value(q)).fold(self.source.box_value(q), r_and)
     }
 }
 
@@ -196,4 +404,64 @@ pub fn plane_through(p1: [f64; 3], p2: [f64; 3], p3: [f64; 3], interior: [f64; 3
     }
     let s = side.signum();
     Some(Primitive::HalfSpace { d: [s * n.x, s * n.y, s * n.z], b: s * b })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every primitive kind and variant (the fit never makes a `SquareSecond` parabola), a
+    /// kinematic ellipse inactive over part of the range: the compiled membership is every
+    /// argument's sign, the compiled value the region's bit for bit.
+    #[test]
+    fn compiled_membership_is_every_sign_for_every_primitive_kind() {
+        let region = Region {
+            limits: [[0.0, 120.0], [-120.0, 120.0], [-120.0, 120.0]],
+            primitives: vec![
+                Primitive::HalfSpace { d: [0.3, -1.0, 0.2], b: -100.0 },
+                Primitive::EllipticCylinder { phi_deg: 25.0, a: 40.0, b: 20.0, centre: [0.2, -10.0, -0.3, 30.0] },
+                Primitive::ParabolicCylinder {
+                    phi_deg: 200.0,
+                    vertex: [60.0, 90.0],
+                    p: 15.0,
+                    variant: Parabola::SquareFirst,
+                },
+                Primitive::ParabolicCylinder {
+                    phi_deg: 70.0,
+                    vertex: [10.0, -80.0],
+                    p: -25.0,
+                    variant: Parabola::SquareSecond,
+                },
+                Primitive::KinematicEllipse {
+                    phi_deg: 110.0,
+                    m3: [-30.0, 0.5, 0.0, 0.0],
+                    m4: [20.0, -0.2, 0.001, 0.0],
+                    a: [-20.0, 1.0, 0.0, 0.0],
+                    b: [10.0, 0.3, 0.0, -1e-5],
+                },
+            ],
+        };
+        let compiled = region.compile();
+        let mut s = 3_u64;
+        let mut next = || {
+            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (mut inside, mut cut) = (0, vec![0; region.primitives.len()]);
+        for _ in 0..50_000 {
+            let q = [130.0 * next() - 5.0, 250.0 * next() - 125.0, 250.0 * next() - 125.0];
+            assert_eq!(compiled.value(q).to_bits(), region.value(q).to_bits(), "{q:?}");
+            let values: Vec<Option<f64>> = region.primitives.iter().map(|p| p.value(q)).collect();
+            let in_box = region.limits.iter().zip(q).all(|(l, v)| v >= l[0] && v <= l[1]);
+            let every = in_box && values.iter().all(|x| x.is_none_or(|x| x >= 0.0));
+            assert_eq!(compiled.contains(q), every, "{q:?} {values:?}");
+            inside += usize::from(every);
+            for (c, x) in cut.iter_mut().zip(&values) {
+                *c += usize::from(in_box && x.is_some_and(|x| x < 0.0));
+            }
+        }
+        // The sample sees both verdicts and every primitive cutting.
+        assert!(inside > 1000 && inside < 49_000, "{inside}");
+        assert!(cut.iter().all(|&c| c > 100), "{cut:?}");
+    }
 }

@@ -9,8 +9,8 @@
 //! derived regression counts under the reconstructed kinematics of notes 004 §2.2.
 
 use reach::model::presets;
-use reach::world::cspace::{GridSpec, NodeClass, classify_grid};
-use reach::world::{Scene, Touching};
+use reach::world::cspace::{GridSpec, NodeClass, classify_grid, classify_node};
+use reach::world::{CollisionChecker, Scene, Touching};
 
 fn grid(scene: &Scene) -> reach::world::cspace::CspaceGrid {
     let varan = presets::get("varan4").unwrap();
@@ -192,4 +192,38 @@ fn axis_index_walks_the_nodes_row_major() {
     let empty = CspaceGrid { axes: vec![vec![1.0], vec![]], classes: vec![], counts: GridCounts::default() };
     assert_eq!(empty.axis_index(0, 1), None);
     assert!(empty.node(0)[1].is_nan());
+}
+
+/// The grid reuses the outer joints' link frames between nodes and tests each axis value
+/// against the limits once: every node still gets `classify_node`'s class, node by node, on
+/// 5° grids of the three example scenes, a grid whose ranges leave the limits (nodes outside
+/// them between checked ones) and a grid sweeping all four joints.
+#[test]
+fn grid_classes_are_the_per_node_classes() {
+    let varan = presets::get("varan4").unwrap();
+    let d = f64::to_radians;
+    let wide = GridSpec {
+        ranges: vec![None, Some((d(-10.0), d(130.0))), Some((d(-140.0), d(125.0))), Some((d(-125.0), d(140.0)))],
+        ..GridSpec::new(4, d(7.0)).fix(0, 0.0)
+    };
+    let all_four = GridSpec::new(4, d(20.0));
+    let mut seen = [0_usize; 5];
+    for (text, spec) in [
+        (include_str!("../../../../examples/seed004_free.toml"), GridSpec::new(4, d(5.0)).fix(0, 0.0)),
+        (include_str!("../../../../examples/seed004_ceiling.toml"), GridSpec::new(4, d(5.0)).fix(0, 0.0)),
+        (include_str!("../../../../examples/seed004_two_planes.toml"), GridSpec::new(4, d(5.0)).fix(0, 0.0)),
+        (include_str!("../../../../examples/seed004_two_planes.toml"), wide),
+        (include_str!("../../../../examples/seed004_ceiling.toml"), all_four),
+    ] {
+        let s = scene(text);
+        let g = classify_grid(&varan, &s, &spec).unwrap();
+        let mut checker = CollisionChecker::new(&varan, &s);
+        for (i, class) in g.classes.iter().enumerate() {
+            let q = g.node(i);
+            assert_eq!(*class, classify_node(&mut checker, &q).unwrap(), "node {i} at {q:?}");
+            seen[*class as usize] += 1;
+        }
+    }
+    // Every class but self-collision occurs (varan4's links do not reach each other here).
+    assert!(seen.iter().enumerate().all(|(k, n)| k == NodeClass::SelfCollision as usize || *n > 100), "{seen:?}");
 }

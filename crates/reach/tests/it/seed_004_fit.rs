@@ -139,6 +139,46 @@ fn membership_is_the_left_nested_r_conjunction_in_the_paper_order() {
     }
 }
 
+/// The compiled region (`Region::compile`): `value` is `Region::value` bit for bit; `contains`
+/// gives `Region::contains`'s verdict except within rounding of a boundary, on pseudo-random
+/// points around the box and on every node of the 5° grid (nodes lie on the support planes).
+#[test]
+fn the_compiled_region_is_the_region() {
+    let mut s = 5_u64;
+    let mut next = || {
+        s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for (name, text) in [("free", FREE), ("ceiling", CEILING), ("two planes", TWO_PLANES)] {
+        let region = fit_region(&grid(text, 15.0), &FitOptions::default()).unwrap().region;
+        let compiled = region.compile();
+        assert_eq!(compiled.region(), &region);
+        let mut points: Vec<[f64; 3]> =
+            (0..20_000).map(|_| [130.0 * next() - 5.0, 250.0 * next() - 125.0, 250.0 * next() - 125.0]).collect();
+        let fine = grid(text, 5.0);
+        points.extend((0..fine.classes.len()).map(|i| {
+            let q = fine.node(i);
+            [q[1].to_degrees(), q[2].to_degrees(), q[3].to_degrees()]
+        }));
+        let (mut inside, mut boundary) = (0, 0);
+        for q in &points {
+            let q = *q;
+            assert_eq!(compiled.value(q).to_bits(), region.value(q).to_bits(), "{name} {q:?}");
+            inside += usize::from(compiled.contains(q));
+            if compiled.contains(q) != region.contains(q) {
+                // Within rounding of a limit or of a primitive's zero.
+                let limits = region.limits.iter().zip(q).any(|(l, v)| (v - l[0]).abs().min((v - l[1]).abs()) < 1e-9);
+                let primitive = region.primitives.iter().any(|p| p.value(q).is_some_and(|x| x.abs() < 1e-9));
+                assert!(limits || primitive, "{name}: {q:?} decided differently away from a boundary");
+                boundary += 1;
+            }
+        }
+        assert!(inside > points.len() / 10 && inside < points.len() * 9 / 10, "{name}: {inside} inside");
+        assert!(boundary * 1000 < points.len(), "{name}: {boundary} boundary disagreements");
+        assert!(!compiled.contains([f64::NAN, 60.0, 0.0]) && compiled.value([60.0, f64::NAN, 0.0]).is_nan());
+    }
+}
+
 #[test]
 fn grid_nodes_on_the_limit_box_are_members_when_allowed() {
     // (0, 90, 0)-type nodes on the box faces: F_Ω = 0 there; an allowed node on a face must
