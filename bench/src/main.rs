@@ -25,6 +25,7 @@ use std::time::Instant;
 
 use nalgebra::{Isometry3, IsometryMatrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use reach::Robot;
+use reach_peers_bench::median;
 use reach::ik::numeric::{Numeric, NumericOptions, SearchMode};
 use reach::ik::{IkOptions, IkSolver, IkTarget, SolverKind};
 use reach::kinematics::Jacobian;
@@ -126,11 +127,6 @@ fn race(n: usize, rounds: usize, mut a: impl FnMut(usize), mut b: impl FnMut(usi
         tb.push(pass(&mut b));
     }
     (median(&mut ta), median(&mut tb))
-}
-
-fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
 }
 
 // ------------------------------------------------------------------------------------------

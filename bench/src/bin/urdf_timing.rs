@@ -18,6 +18,7 @@ use std::time::Instant;
 use reach::Robot;
 use reach::kinematics::Jacobian;
 use reach::model::UrdfChain;
+use reach_peers_bench::median;
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -57,10 +58,6 @@ fn main() {
         t_fk.push(pass(&mut fk));
         t_jac.push(pass(&mut jac));
     }
-    let median = |mut v: Vec<f64>| {
-        v.sort_by(f64::total_cmp);
-        v[v.len() / 2]
-    };
     let t = robot.fk_matrix(&qs[0]).expect("fk");
     let (r, p) = (t.rotation.matrix(), t.translation.vector);
     let tip0: Vec<String> =
@@ -68,8 +65,8 @@ fn main() {
     println!(
         "{{\"nq\": {}, \"poses\": {n}, \"fk_ns\": {:.2}, \"jacobian_ns\": {:.2}, \"tip0\": [{}]}}",
         robot.dof(),
-        median(t_fk),
-        median(t_jac),
+        median(&mut t_fk),
+        median(&mut t_jac),
         tip0.join(", ")
     );
 }

@@ -113,15 +113,7 @@ impl Robot {
         if out.len() != self.dof() {
             return Err(KinematicsError::BufferSize { buffer: "frames", expected: self.dof(), found: out.len() });
         }
-        let mut t = self.chain.first;
-        Chain::apply_mimics(&mut t, &self.chain.first_mimics, q);
-        for ((link, &v), slot) in self.chain.links.iter().zip(q).zip(out.iter_mut()) {
-            apply_motion(&mut t, link.prismatic, link.sign * v);
-            *slot = t * link.to_frame;
-            t *= link.after;
-            Chain::apply_mimics(&mut t, &link.mimics, q);
-        }
-        Ok(t)
+        Ok(self.frames_over(q, 0, None, out))
     }
 
     /// [`Robot::frames_into`] that recomputes only the joints from `from` (0-based) on: the
@@ -147,23 +139,42 @@ impl Robot {
             return Err(KinematicsError::BufferSize { buffer: "before", expected: n + 1, found: before.len() });
         }
         let from = if self.chain.has_mimics() { 0 } else { from.min(n) };
-        let mut t = if from == 0 {
-            let mut t = self.chain.first;
-            Chain::apply_mimics(&mut t, &self.chain.first_mimics, q);
-            t
-        } else {
-            before[from]
+        Ok(self.frames_over(q, from, Some(before), out))
+    }
+
+    /// The frame loop of [`Robot::frames_into`] and [`Robot::frames_from`] (checked inputs):
+    /// from joint `from` on, starting at `before[from]` when `from > 0` (else at the base),
+    /// recording into `before`, when given, the transform before each joint's motion and the
+    /// tool pose. Returns the tool pose.
+    fn frames_over(
+        &self,
+        q: &[f64],
+        from: usize,
+        mut before: Option<&mut [IsometryMatrix3<f64>]>,
+        out: &mut [IsometryMatrix3<f64>],
+    ) -> IsometryMatrix3<f64> {
+        let mut t = match before.as_deref() {
+            Some(b) if from > 0 => b[from],
+            _ => {
+                let mut t = self.chain.first;
+                Chain::apply_mimics(&mut t, &self.chain.first_mimics, q);
+                t
+            }
         };
-        for i in from..n {
+        for i in from..self.dof() {
             let link = &self.chain.links[i];
-            before[i] = t;
+            if let Some(b) = before.as_deref_mut() {
+                b[i] = t;
+            }
             apply_motion(&mut t, link.prismatic, link.sign * q[i]);
             out[i] = t * link.to_frame;
             t *= link.after;
             Chain::apply_mimics(&mut t, &link.mimics, q);
         }
-        before[n] = t;
-        Ok(t)
+        if let Some(b) = before {
+            b[self.dof()] = t;
+        }
+        t
     }
 
     /// Every link frame in the world frame (see [`Robot::frames_into`]), allocating the vector.
