@@ -25,11 +25,11 @@ use std::time::Instant;
 
 use nalgebra::{Isometry3, IsometryMatrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use reach::Robot;
-use reach_peers_bench::median;
 use reach::ik::numeric::{Numeric, NumericOptions, SearchMode};
 use reach::ik::{IkOptions, IkSolver, IkTarget, SolverKind};
 use reach::kinematics::Jacobian;
 use reach::model::{Convention, JointGeometry, JointKind, presets};
+use reach_peers_bench::median;
 use rs_opw_kinematics::glam::{DQuat, DVec3};
 use rs_opw_kinematics::kinematic_traits::{Joints, Kinematics, Pose};
 use rs_opw_kinematics::kinematics_impl::OPWKinematics;

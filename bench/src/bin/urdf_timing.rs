@@ -60,8 +60,10 @@ fn main() {
     }
     let t = robot.fk_matrix(&qs[0]).expect("fk");
     let (r, p) = (t.rotation.matrix(), t.translation.vector);
-    let tip0: Vec<String> =
-        (0..3).flat_map(|i| (0..4).map(move |j| if j < 3 { r[(i, j)] } else { p[i] })).map(|x| format!("{x:.17e}")).collect();
+    let tip0: Vec<String> = (0..3)
+        .flat_map(|i| (0..4).map(move |j| if j < 3 { r[(i, j)] } else { p[i] }))
+        .map(|x| format!("{x:.17e}"))
+        .collect();
     println!(
         "{{\"nq\": {}, \"poses\": {n}, \"fk_ns\": {:.2}, \"jacobian_ns\": {:.2}, \"tip0\": [{}]}}",
         robot.dof(),
