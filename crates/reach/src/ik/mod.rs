@@ -51,7 +51,7 @@ pub mod yaw_planar3;
 pub mod yaw_two_link;
 
 pub use solution::{Branch, IkFailure, IkSolution, IkSolutions, Label, LimitViolation, SingularityKind};
-pub(crate) use solution::{Candidate, Candidates, ChainFrame, finish};
+pub(crate) use solution::{Candidate, Candidates, ChainFrame, Flags, finish, finish_into, solved};
 
 use nalgebra::{Isometry3, Point3};
 use thiserror::Error;
@@ -167,6 +167,43 @@ pub trait IkSolver {
     /// # Errors
     /// [`IkError`] for invalid input.
     fn solve(&self, robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError>;
+
+    /// [`IkSolver::solve`] into a reused `out`, for real-time loops: the result is exactly
+    /// `solve`'s whatever `out` held before, but `out`'s buffers are kept (overwritten in
+    /// place; see [`IkSolutions`]), so that the closed forms allocate nothing per solve once
+    /// `out` has served a solve with as many solutions and limit violations. On error `out`
+    /// holds no meaningful result (its buffers are kept).
+    ///
+    /// The closed forms implement `solve` by this lean path (one code path for both); the
+    /// default implementation, for solvers without one (the numeric solver), is
+    /// `*out = self.solve(..)?`.
+    ///
+    /// # Errors
+    /// [`IkError`] for invalid input, as [`IkSolver::solve`].
+    ///
+    /// # Example
+    /// ```
+    /// use reach::ik::{IkOptions, IkSolutions, IkSolver, IkTarget, SolverKind};
+    /// let puma = reach::model::presets::get("puma560").unwrap();
+    /// let solver = SolverKind::SphericalWrist.build(&puma).unwrap();
+    /// let options = IkOptions::default();
+    /// let mut out = IkSolutions::default();
+    /// for q in [[0.3, 0.5, -0.4, 0.7, 0.9, -0.2], [0.1, -0.2, 0.3, -0.4, 0.5, -0.6]] {
+    ///     let target = IkTarget::Pose(puma.fk(&q).unwrap());
+    ///     solver.solve_into(&puma, &target, &options, &mut out).unwrap();
+    ///     assert_eq!(out, solver.solve(&puma, &target, &options).unwrap());
+    /// }
+    /// ```
+    fn solve_into(
+        &self,
+        robot: &Robot,
+        target: &IkTarget,
+        options: &IkOptions,
+        out: &mut IkSolutions,
+    ) -> Result<(), IkError> {
+        *out = self.solve(robot, target, options)?;
+        Ok(())
+    }
 
     /// The solutions of one branch: `solve(robot, target, options)?.restricted_to(branch)`
     /// ([`IkSolutions::restricted_to`]) — the solutions labelled exactly `branch`, verified,

@@ -91,7 +91,7 @@ use serde::Serialize;
 use super::spherical_wrist::{Dh6, revolute_dh6};
 use super::{
     Branch, Candidate, Candidates, ChainFrame, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget,
-    SingularityKind, SingularityMeasures, finish,
+    SingularityKind, SingularityMeasures, finish, finish_into, solved,
 };
 use crate::angle::{atan2, sin_cos};
 use crate::kinematics::check_q;
@@ -748,6 +748,16 @@ impl IkSolver for ParallelAxes {
     }
 
     fn solve(&self, robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError> {
+        solved(|out| self.solve_into(robot, target, options, out))
+    }
+
+    fn solve_into(
+        &self,
+        robot: &Robot,
+        target: &IkTarget,
+        options: &IkOptions,
+        out: &mut IkSolutions,
+    ) -> Result<(), IkError> {
         target.validate()?;
         let seed = self.seed_theta(robot, options)?;
         let frame = frame_of(&self.frame.target(robot, &Self::pose_of(robot, target, options)?));
@@ -758,7 +768,7 @@ impl IkSolver for ParallelAxes {
                 candidates.iter().find_map(|c| c.singularities.first().copied()).unwrap_or(SingularityKind::Jacobian);
             IkFailure::Singular { kind }
         });
-        finish(robot, target, &mut candidates, NAME, if_empty)
+        finish_into(robot, target, &mut candidates, NAME, if_empty, out)
     }
 
     /// Only the requested branch is computed and verified (see [`IkSolver::solve_branch`]).

@@ -2,6 +2,7 @@
 
 use std::borrow::Cow;
 use std::fmt;
+use std::sync::Arc;
 
 use nalgebra::{Isometry3, IsometryMatrix3, Point3, Rotation3, Vector3};
 use schemars::JsonSchema;
@@ -125,8 +126,10 @@ impl fmt::Display for Branch {
 pub struct LimitViolation {
     /// 1-based joint number.
     pub joint: usize,
-    /// Joint name.
-    pub name: String,
+    /// Joint name, shared with the robot ([`Robot::joint_name`]: no allocation per
+    /// violation); a JSON string.
+    #[serde(serialize_with = "serialize_str")]
+    pub name: Arc<str>,
     /// The value (radians / metres).
     pub value: f64,
     /// Lower limit.
@@ -135,8 +138,13 @@ pub struct LimitViolation {
     pub upper: f64,
 }
 
+/// Serialises a shared string as a plain string.
+fn serialize_str<S: serde::Serializer>(s: &Arc<str>, serializer: S) -> Result<S::Ok, S::Error> {
+    serializer.serialize_str(s)
+}
+
 /// One IK solution, verified by forward kinematics.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Default)]
 pub struct IkSolution {
     /// Joint values (radians / metres); revolute angles wrapped into (−π, π] or moved by whole
     /// turns into the joint range.
@@ -219,7 +227,13 @@ impl fmt::Display for IkFailure {
 }
 
 /// All solutions of one IK problem, and the reason when none is within limits.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+///
+/// Also the workspace of [`IkSolver::solve_into`](super::IkSolver::solve_into): a solve into a
+/// reused `IkSolutions` overwrites it in place and keeps its buffers (the solutions' vectors,
+/// and spare solutions of an earlier solve that had more), so that a closed form's solve
+/// allocates nothing once the buffers are large enough. `IkSolutions::default()` is an empty
+/// one (no solver, no solutions).
+#[derive(Debug, Clone, PartialEq, Serialize, Default)]
 pub struct IkSolutions {
     /// Name of the solver that produced them.
     pub solver: &'static str,
@@ -232,6 +246,32 @@ pub struct IkSolutions {
     /// prismatic literal).
     #[serde(skip)]
     differences: JointWraps,
+    /// Solutions of an earlier solve beyond the current count, kept for their buffers.
+    #[serde(skip)]
+    spare: Spare,
+}
+
+/// Spare [`IkSolution`]s of a reused [`IkSolutions`]: buffers only, not part of the value (equal
+/// to any other, cloned empty).
+#[derive(Default)]
+struct Spare(Vec<IkSolution>);
+
+impl Clone for Spare {
+    fn clone(&self) -> Self {
+        Spare::default()
+    }
+}
+
+impl PartialEq for Spare {
+    fn eq(&self, _: &Spare) -> bool {
+        true
+    }
+}
+
+impl fmt::Debug for Spare {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} spare", self.0.len())
+    }
 }
 
 /// Which joints of the solved robot wrap ([`Joint::wraps`](crate::model::Joint::wraps), the
@@ -245,7 +285,24 @@ enum JointWraps {
     Wide(Vec<bool>),
 }
 
+impl Default for JointWraps {
+    fn default() -> Self {
+        JointWraps::Mask(0)
+    }
+}
+
 impl JointWraps {
+    /// Becomes [`JointWraps::for_robot`], reusing the vector of a wide robot's flags.
+    fn set_for_robot(&mut self, robot: &Robot) {
+        match self {
+            JointWraps::Wide(v) if robot.dof() > 64 => {
+                v.clear();
+                v.extend(robot.joints().iter().map(crate::model::Joint::wraps));
+            }
+            _ => *self = JointWraps::for_robot(robot),
+        }
+    }
+
     fn for_robot(robot: &Robot) -> Self {
         let wraps = robot.joints().iter().map(crate::model::Joint::wraps);
         if robot.dof() <= 64 {
@@ -304,16 +361,16 @@ impl IkSolutions {
     /// [`IkFailure::BranchAbsent`]. This defines [`IkSolver::solve_branch`](super::IkSolver::solve_branch).
     #[must_use]
     pub fn restricted_to(self, branch: &Branch) -> IkSolutions {
-        let IkSolutions { solver, solutions, failure, differences } = self;
+        let IkSolutions { solver, solutions, failure, differences, spare } = self;
         let any = !solutions.is_empty();
         let solutions: Vec<IkSolution> = solutions.into_iter().filter(|s| s.branch == *branch).collect();
-        let failure = match limits_failure(&solutions) {
+        let failure = match limits_failure(&solutions, None) {
             Some(f) => Some(f),
             None if solutions.is_empty() && any => Some(IkFailure::BranchAbsent { branch: branch.to_string() }),
             None if solutions.is_empty() => failure,
             None => None,
         };
-        IkSolutions { solver, solutions, failure, differences }
+        IkSolutions { solver, solutions, failure, differences, spare }
     }
 
     /// Re-expresses each solution's revolute values by the representative `qᵢ + 2πk` nearest to
@@ -347,11 +404,15 @@ impl IkSolutions {
 }
 
 /// [`IkFailure::OutsideLimits`] when `solutions` is not empty and every one violates a limit
-/// (the first violated joint of the first solution is named); `None` otherwise.
-fn limits_failure(solutions: &[IkSolution]) -> Option<IkFailure> {
+/// (the first violated joint of the first solution is named); `None` otherwise. The name is
+/// written into `buffer` when one is given (a reused solve's previous failure name).
+fn limits_failure(solutions: &[IkSolution], buffer: Option<String>) -> Option<IkFailure> {
     if !solutions.is_empty() && solutions.iter().all(|s| !s.within_limits) {
         let v = &solutions[0].violations[0];
-        Some(IkFailure::OutsideLimits { joint: v.joint, name: v.name.clone() })
+        let mut name = buffer.unwrap_or_default();
+        name.clear();
+        name.push_str(&v.name);
+        Some(IkFailure::OutsideLimits { joint: v.joint, name })
     } else {
         None
     }
@@ -365,17 +426,20 @@ pub(crate) type JointValues = SmallVec<[f64; 8]>;
 /// closed form's `shoulder elbow wrist`); a [`Branch`] once the candidate is verified.
 pub(crate) type Labels = SmallVec<[(Label, Label); 3]>;
 
+/// The singularity flags of a [`Candidate`], inline (there are four kinds).
+pub(crate) type Flags = SmallVec<[SingularityKind; 4]>;
+
 /// A raw solver output before verification.
 #[derive(Debug, Clone)]
 pub(crate) struct Candidate {
     pub q: JointValues,
     pub branch: Labels,
-    pub singularities: Vec<SingularityKind>,
+    pub singularities: Flags,
 }
 
 impl Candidate {
     pub fn new(q: Vec<f64>, branch: Branch) -> Self {
-        Candidate { q: SmallVec::from_vec(q), branch: SmallVec::from_vec(branch.0), singularities: Vec::new() }
+        Candidate { q: SmallVec::from_vec(q), branch: SmallVec::from_vec(branch.0), singularities: Flags::new() }
     }
 
     /// A candidate with a label of static names, built without allocating (the closed forms'
@@ -384,7 +448,7 @@ impl Candidate {
         Candidate {
             q: SmallVec::from_slice(q),
             branch: pairs.into_iter().map(|(k, v)| (Label::from(k), Label::from(v))).collect(),
-            singularities: Vec::new(),
+            singularities: Flags::new(),
         }
     }
 
@@ -482,7 +546,27 @@ pub(crate) fn finish(
     solver: &'static str,
     if_empty: IkFailure,
 ) -> Result<IkSolutions, IkError> {
-    finish_within(robot, target, candidates, solver, if_empty, (IK_POSITION, IK_ORIENTATION))
+    solved(|out| finish_into(robot, target, candidates, solver, if_empty, out))
+}
+
+/// [`finish`] into a reused `out` (see [`finish_within_into`]).
+pub(crate) fn finish_into(
+    robot: &Robot,
+    target: &IkTarget,
+    candidates: &mut [Candidate],
+    solver: &'static str,
+    if_empty: IkFailure,
+    out: &mut IkSolutions,
+) -> Result<(), IkError> {
+    finish_within_into(robot, target, candidates, solver, if_empty, (IK_POSITION, IK_ORIENTATION), out)
+}
+
+/// The result of a lean solve (`f`, an [`IkSolver::solve_into`](super::IkSolver::solve_into))
+/// in a new [`IkSolutions`]: how the closed forms implement [`IkSolver::solve`](super::IkSolver::solve).
+pub(crate) fn solved(f: impl FnOnce(&mut IkSolutions) -> Result<(), IkError>) -> Result<IkSolutions, IkError> {
+    let mut out = IkSolutions::default();
+    f(&mut out)?;
+    Ok(out)
 }
 
 /// [`finish`] with the acceptance tolerances `(metres, radians)` given instead of
@@ -493,10 +577,30 @@ pub(crate) fn finish_within(
     candidates: &mut [Candidate],
     solver: &'static str,
     if_empty: IkFailure,
-    (position_tolerance, orientation_tolerance): (f64, f64),
+    tolerances: (f64, f64),
 ) -> Result<IkSolutions, IkError> {
+    solved(|out| finish_within_into(robot, target, candidates, solver, if_empty, tolerances, out))
+}
+
+/// [`finish_within`] writing into `out` ([`IkSolver::solve_into`](super::IkSolver::solve_into)):
+/// `out`'s solutions are overwritten in place (their vectors cleared and refilled, keeping
+/// their capacity), solutions beyond the new count are kept aside as spares and taken back
+/// before any new one is made. The result equals [`finish_within`]'s whatever `out` held.
+pub(crate) fn finish_within_into(
+    robot: &Robot,
+    target: &IkTarget,
+    candidates: &mut [Candidate],
+    solver: &'static str,
+    if_empty: IkFailure,
+    (position_tolerance, orientation_tolerance): (f64, f64),
+    out: &mut IkSolutions,
+) -> Result<(), IkError> {
     let check = Check::new(target);
-    let mut solutions: Vec<IkSolution> = Vec::with_capacity(candidates.len());
+    let IkSolutions { solutions, spare, .. } = out;
+    // Every solution goes to the spares, and comes back in order: the result does not depend
+    // on what `out` held, only the buffers are reused.
+    spare.0.extend(solutions.drain(..).rev());
+    solutions.reserve(candidates.len());
     let mut prefix = FkPrefix::default();
     // By reference, moving out only the labels of kept candidates: a closed form's
     // fixed-capacity set is not copied.
@@ -521,32 +625,38 @@ pub(crate) fn finish_within(
             }
             continue;
         }
-        let violations: Vec<LimitViolation> = robot
-            .joints()
-            .iter()
-            .zip(&c.q)
-            .enumerate()
-            .filter(|(_, (j, v))| !j.limits.contains(**v, LIMIT_SLACK))
-            .map(|(i, (j, v))| LimitViolation {
-                joint: i + 1,
-                name: j.name.clone(),
-                value: *v,
-                lower: j.limits.lower,
-                upper: j.limits.upper,
-            })
-            .collect();
-        solutions.push(IkSolution {
-            q: c.q.to_vec(),
-            branch: Branch(std::mem::take(&mut c.branch).into_vec()),
-            position_error,
-            orientation_error,
-            within_limits: violations.is_empty(),
-            violations,
-            singularities: std::mem::take(&mut c.singularities),
-        });
+        let mut s = spare.0.pop().unwrap_or_default();
+        s.q.clear();
+        s.q.extend_from_slice(&c.q);
+        s.branch.0.clear();
+        s.branch.0.extend(c.branch.drain(..));
+        s.position_error = position_error;
+        s.orientation_error = orientation_error;
+        s.violations.clear();
+        for (i, (j, v)) in robot.joints().iter().zip(&c.q).enumerate() {
+            if !j.limits.contains(*v, LIMIT_SLACK) {
+                s.violations.push(LimitViolation {
+                    joint: i + 1,
+                    name: robot.joint_name(i).map_or_else(|| Arc::from(j.name.as_str()), Arc::clone),
+                    value: *v,
+                    lower: j.limits.lower,
+                    upper: j.limits.upper,
+                });
+            }
+        }
+        s.within_limits = s.violations.is_empty();
+        s.singularities.clear();
+        s.singularities.extend_from_slice(&c.singularities);
+        solutions.push(s);
     }
-    let failure = if solutions.is_empty() { Some(if_empty) } else { limits_failure(&solutions) };
-    Ok(IkSolutions { solver, solutions, failure, differences: JointWraps::for_robot(robot) })
+    let recycled = match out.failure.take() {
+        Some(IkFailure::OutsideLimits { name, .. }) => Some(name),
+        _ => None,
+    };
+    out.failure = if out.solutions.is_empty() { Some(if_empty) } else { limits_failure(&out.solutions, recycled) };
+    out.solver = solver;
+    out.differences.set_for_robot(robot);
+    Ok(())
 }
 
 /// The flange pose in the chain's own frame: `base⁻¹ · target · tool⁻¹`.

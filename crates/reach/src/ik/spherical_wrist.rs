@@ -96,8 +96,8 @@ use nalgebra::{Isometry3, IsometryMatrix3, Matrix3, Point3, Rotation3, Translati
 use smallvec::SmallVec;
 
 use super::{
-    Branch, Candidate, Candidates, ChainFrame, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget,
-    SingularityKind, finish,
+    Branch, Candidate, Candidates, ChainFrame, Flags, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget,
+    SingularityKind, finish, finish_into, solved,
 };
 use crate::angle::{atan2, sin_cos, wrap};
 use crate::kinematics::check_q;
@@ -372,8 +372,8 @@ pub(crate) struct Arm {
 
 impl Arm {
     /// The singularity flags of the arm.
-    pub fn flags(&self) -> Vec<SingularityKind> {
-        let mut out = Vec::new();
+    pub fn flags(&self) -> Flags {
+        let mut out = Flags::new();
         if self.shoulder_singular {
             out.push(SingularityKind::Shoulder);
         }
@@ -693,20 +693,30 @@ impl IkSolver for SphericalWrist {
     }
 
     fn solve(&self, robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError> {
+        solved(|out| self.solve_into(robot, target, options, out))
+    }
+
+    fn solve_into(
+        &self,
+        robot: &Robot,
+        target: &IkTarget,
+        options: &IkOptions,
+        out: &mut IkSolutions,
+    ) -> Result<(), IkError> {
         target.validate()?;
         let seed = seed_thetas(&self.joints, options)?;
         let flange = flange_goal(robot, &self.frame, target, options)?;
         let w = wrist_centre(&flange, self.joints[5].d);
         let arms = match self.arms(&w, seed.as_ref()) {
             Ok(arms) => arms,
-            Err(failure) => return finish(robot, target, &mut [], NAME, failure),
+            Err(failure) => return finish_into(robot, target, &mut [], NAME, failure, out),
         };
         let mut candidates = Candidates::new();
         for arm in &arms {
             self.wrists(arm, &flange, seed.as_ref(), None, &mut candidates);
         }
         self.frame.refine(robot, target, &mut candidates);
-        finish(robot, target, &mut candidates, NAME, fallback_failure(&arms))
+        finish_into(robot, target, &mut candidates, NAME, fallback_failure(&arms), out)
     }
 
     /// Only the requested branch's arm and wrist are computed and verified (see

@@ -93,7 +93,7 @@ use super::spherical_wrist::{
 };
 use super::{
     Branch, Candidate, Candidates, ChainFrame, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget,
-    SingularityKind, finish,
+    SingularityKind, finish_into, solved,
 };
 use crate::angle::{atan2, sin_cos};
 use crate::model::Robot;
@@ -300,20 +300,30 @@ impl IkSolver for TwoLinkWrist {
     }
 
     fn solve(&self, robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError> {
+        solved(|out| self.solve_into(robot, target, options, out))
+    }
+
+    fn solve_into(
+        &self,
+        robot: &Robot,
+        target: &IkTarget,
+        options: &IkOptions,
+        out: &mut IkSolutions,
+    ) -> Result<(), IkError> {
         target.validate()?;
         let seed = seed_thetas(&self.joints, options)?;
         let flange = flange_goal(robot, &self.frame, target, options)?;
         let w = wrist_centre(&flange, self.joints[5].d);
         let arms = match self.arms(&w, seed.as_ref()) {
             Ok(arms) => arms,
-            Err(failure) => return finish(robot, target, &mut [], NAME, failure),
+            Err(failure) => return finish_into(robot, target, &mut [], NAME, failure, out),
         };
         let mut candidates = Candidates::new();
         for arm in &arms {
             self.wrists(arm, &flange, seed.as_ref(), &mut candidates);
         }
         self.frame.refine(robot, target, &mut candidates);
-        finish(robot, target, &mut candidates, NAME, fallback_failure(&arms))
+        finish_into(robot, target, &mut candidates, NAME, fallback_failure(&arms), out)
     }
 
     /// Only the requested branch's arm and wrist are verified (see

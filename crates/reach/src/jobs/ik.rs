@@ -655,7 +655,7 @@ pub fn solution_report(robot: &Robot, s: &IkSolution) -> IkSolutionReport {
             .iter()
             .map(|v| IkViolationReport {
                 joint: v.joint,
-                name: v.name.clone(),
+                name: v.name.to_string(),
                 value_deg: display(v.joint, v.value),
                 lower_deg: bound(v.joint, v.lower),
                 upper_deg: bound(v.joint, v.upper),

@@ -1,3 +1,5 @@
+use std::sync::Arc;
+
 use nalgebra::{Isometry3, Vector3};
 
 use super::chain::Chain;
@@ -76,6 +78,9 @@ impl RobotSpec {
 pub struct Robot {
     spec: RobotSpec,
     pub(crate) chain: Chain,
+    /// The joint names, shared: reports that name a joint (an IK solution's limit
+    /// violations) clone an `Arc` instead of allocating a `String`.
+    names: Arc<[Arc<str>]>,
 }
 
 impl Robot {
@@ -121,7 +126,8 @@ impl Robot {
         check_inertials(&spec)?;
         check_mimics(&spec)?;
         let chain = Chain::compile(&spec);
-        Ok(Robot { spec, chain })
+        let names = spec.joints.iter().map(|j| Arc::from(j.name.as_str())).collect();
+        Ok(Robot { spec, chain, names })
     }
 
     /// The robot's name.
@@ -146,6 +152,13 @@ impl Robot {
     #[must_use]
     pub fn joints(&self) -> &[Joint] {
         &self.spec.joints
+    }
+
+    /// The name of joint `i` (0-based), shared ([`Joint::name`] in an `Arc`: cloning it does
+    /// not allocate). `None` beyond the joints.
+    #[must_use]
+    pub fn joint_name(&self, i: usize) -> Option<&Arc<str>> {
+        self.names.get(i)
     }
 
     /// Number of joints (degrees of freedom).

@@ -280,7 +280,7 @@ fn absent_branches_and_failures_are_restated_for_the_branch() {
         if let Some(out) = all.solutions.iter().find(|s| !s.within_limits) {
             let one = solver.solve_branch(&puma, &target, &out.branch, &options).unwrap();
             let v = &out.violations[0];
-            assert_eq!(one.failure, Some(IkFailure::OutsideLimits { joint: v.joint, name: v.name.clone() }));
+            assert_eq!(one.failure, Some(IkFailure::OutsideLimits { joint: v.joint, name: v.name.to_string() }));
             found = true;
             break;
         }

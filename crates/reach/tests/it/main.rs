@@ -27,6 +27,7 @@ mod ik_detect;
 mod ik_from_geometry;
 mod ik_numeric;
 mod ik_round_trip;
+mod ik_solve_into;
 mod jobs_view;
 mod kinematics_batch;
 mod kinematics_presets;
