@@ -137,10 +137,20 @@ impl DhJoint {
         self.sign * (theta - self.offset)
     }
 
-    /// `A = Rz(θ)·Tz(d)·Tx(a)·Rx(α)`.
-    #[inline]
+    /// `A = Rz(θ)·Tz(d)·Tx(a)·Rx(α)` (the solvers use its rotation, [`DhJoint::rotation`]).
+    #[cfg(test)]
     pub fn transform(&self, theta: f64) -> IsometryMatrix3<f64> {
         let (st, ct) = sin_cos(theta);
+        IsometryMatrix3::from_parts(
+            Translation3::new(self.a * ct, self.a * st, self.d),
+            Rotation3::from_matrix_unchecked(self.rotation((st, ct))),
+        )
+    }
+
+    /// The rotation `Rz(θ)·Rx(α)` of `A`, from `(sin θ, cos θ)` (computed once where the
+    /// solver knows them).
+    #[inline]
+    pub fn rotation(&self, (st, ct): (f64, f64)) -> Matrix3<f64> {
         let (sa, ca) = self.sin_cos_alpha;
         #[rustfmt::skip]
         let r = Matrix3::new(
@@ -148,10 +158,7 @@ impl DhJoint {
             st, ct * ca, -ct * sa,
             0.0, sa, ca,
         );
-        IsometryMatrix3::from_parts(
-            Translation3::new(self.a * ct, self.a * st, self.d),
-            Rotation3::from_matrix_unchecked(r),
-        )
+        r
     }
 }
 
@@ -352,6 +359,13 @@ pub(crate) fn wrist_label(theta5: f64) -> &'static str {
     if sin_cos(theta5).0 >= 0.0 { "noflip" } else { "flip" }
 }
 
+/// `θ + π` wrapped into (−π, π] for θ in (−π, π] (the flipped wrist's θ4 and θ6), without the
+/// remainder of [`wrap`].
+#[inline]
+pub(crate) fn half_turn(theta: f64) -> f64 {
+    if theta > 0.0 { theta - PI } else { theta + PI }
+}
+
 /// The user's joint values of DH angles.
 pub(crate) fn joint_values(joints: &[DhJoint; 6], theta: &[f64; 6]) -> [f64; 6] {
     std::array::from_fn(|i| joints[i].q(theta[i]))
@@ -364,6 +378,8 @@ pub(crate) type Arms = SmallVec<[Arm; 4]>;
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Arm {
     pub theta: [f64; 3],
+    /// `(sin θi, cos θi)` of the three, as the arm solution computed them.
+    pub sin_cos: [(f64, f64); 3],
     pub shoulder: &'static str,
     pub elbow: &'static str,
     pub shoulder_singular: bool,
@@ -371,6 +387,11 @@ pub(crate) struct Arm {
 }
 
 impl Arm {
+    /// `R03 = R1·R2·R3` of the arm's joints (`joints`: the DH table).
+    pub fn r03(&self, joints: &[DhJoint; 6]) -> Matrix3<f64> {
+        joints[0].rotation(self.sin_cos[0]) * joints[1].rotation(self.sin_cos[1]) * joints[2].rotation(self.sin_cos[2])
+    }
+
     /// The singularity flags of the arm.
     pub fn flags(&self) -> Flags {
         let mut out = Flags::new();
@@ -552,6 +573,7 @@ impl SphericalWrist {
         let (a2, l2) = (j2.a, self.l2);
         let mut arms = Arms::new();
         let mut failure = None;
+        let azimuth = atan2(w.y, w.x);
         for &side in roots {
             let hs = side * h;
             // θ1 (eq. 4, generalised to the lateral offset d). With d = 0 on the base axis
@@ -559,12 +581,13 @@ impl SphericalWrist {
             let theta1 = if shoulder_singular && is_zero_length(d) {
                 free_theta(&self.joints, seed, 0)
             } else {
-                atan2(w.y, w.x) - atan2(-self.s1 * d, hs)
+                azimuth - atan2(-self.s1 * d, hs)
             };
             // P11 = A1⁻¹·P_m (eq. 9): (u, v) in the arm plane, the third component is d.
-            let p11 = j1.transform(theta1).inverse_transform_point(w);
+            let sc1 = sin_cos(theta1);
+            let p11 = j1.rotation(sc1).tr_mul(&(w.coords - Vector3::new(j1.a * sc1.1, j1.a * sc1.0, j1.d)));
             let (u, v) = (p11.x, p11.y);
-            let r = u.hypot(v); // |T̄24| (eq. 12)
+            let r = (u * u + v * v).sqrt(); // |T̄24| (eq. 12)
             // cos φ (eq. 16): |cos φ| ≤ 1 ⇔ ||a2| − L2| ≤ R ≤ |a2| + L2.
             let cos_phi = (a2 * a2 + l2 * l2 - r * r) / (2.0 * a2 * l2);
             if cos_phi.abs() > 1.0 + BOUNDARY {
@@ -602,6 +625,7 @@ impl SphericalWrist {
                 let e = (a2 * c2, a2 * s2);
                 arms.push(Arm {
                     theta: [theta1, theta2, theta3],
+                    sin_cos: [sc1, (s2, c2), sin_cos(theta3)],
                     shoulder,
                     elbow: elbow_label(self.s1, hs, u, v, e),
                     shoulder_singular,
@@ -617,11 +641,12 @@ impl SphericalWrist {
 
     /// θ6 = atan2(n·y5, n·x5) (eqs. 31–37, corrected: x6 = n, arguments swapped).
     /// `n·x5` and `n·y5` are the first two components of `R05ᵀ·n = R5ᵀ·R4ᵀ·R03ᵀ·n`: three
-    /// matrix-vector products instead of two matrix products of `T05`.
-    fn theta6(&self, t03: &IsometryMatrix3<f64>, theta4: f64, theta5: f64, n: &Vector3<f64>) -> f64 {
-        let v = t03.rotation.matrix().tr_mul(n);
-        let v = self.joints[3].transform(theta4).rotation.matrix().tr_mul(&v);
-        let v = self.joints[4].transform(theta5).rotation.matrix().tr_mul(&v);
+    /// matrix-vector products instead of two matrix products of `T05`, from the sines and
+    /// cosines of θ4 and θ5 the caller has.
+    fn theta6(&self, r03: &Matrix3<f64>, sc4: (f64, f64), sc5: (f64, f64), n: &Vector3<f64>) -> f64 {
+        let v = r03.tr_mul(n);
+        let v = self.joints[3].rotation(sc4).tr_mul(&v);
+        let v = self.joints[4].rotation(sc5).tr_mul(&v);
         atan2(v.y, v.x)
     }
 
@@ -639,8 +664,7 @@ impl SphericalWrist {
     ) {
         let wanted = |label: &str| wrist.is_none_or(|w| w == label);
         let [t1, t2, t3] = arm.theta;
-        let t03 = self.joints[0].transform(t1) * self.joints[1].transform(t2) * self.joints[2].transform(t3);
-        let m3 = t03.rotation.matrix();
+        let m3 = arm.r03(&self.joints);
         let (x3, y3, z3) = (m3.column(0).into_owned(), m3.column(1).into_owned(), m3.column(2).into_owned());
         let r = flange.rotation.matrix();
         let n = r.column(0).into_owned();
@@ -664,21 +688,25 @@ impl SphericalWrist {
             if !wanted("noflip") {
                 return;
             }
-            let theta5 = if cos5 >= 0.0 { 0.0 } else { PI };
+            let (theta5, sc5) = if cos5 >= 0.0 { (0.0, (0.0, 1.0)) } else { (PI, (0.0, -1.0)) };
             let theta4 = free_theta(&self.joints, seed, 3);
-            let theta6 = self.theta6(&t03, theta4, theta5, &n);
+            let theta6 = self.theta6(&m3, sin_cos(theta4), sc5, &n);
             push(out, [t1, t2, t3, theta4, theta5, theta6], "noflip", true);
             return;
         }
         // θ5 ∈ (0, π) (the `acos` branch, sin θ5 = |z4'| > 0) and eq. 23 with the arguments in
-        // the corrected order (notes 002 §6 item 3), generalised to the α4/α5 signs.
+        // the corrected order (notes 002 §6 item 3), generalised to the α4/α5 signs. The
+        // arguments of both atan2 are the sines and cosines (θ5: |z3 × a|² + (a·z3)² = 1;
+        // θ4: z4' ⊥ z3 has the length sin θ5 in the x3–y3 plane), normalised for θ6.
         let theta5 = atan2(sin5, cos5);
         let g = -self.s5;
-        let theta4 = atan2(g * z4.dot(&x3), -g * z4.dot(&y3)); // eqs. 23–25
-        let theta6 = self.theta6(&t03, theta4, theta5, &n);
+        let (y4, x4) = (g * z4.dot(&x3), -g * z4.dot(&y3));
+        let theta4 = atan2(y4, x4); // eqs. 23–25
+        let norm4 = (x4 * x4 + y4 * y4).sqrt();
+        let theta6 = self.theta6(&m3, (y4 / norm4, x4 / norm4), (sin5, cos5), &n);
         for (label, theta) in [
             ("noflip", [t1, t2, t3, theta4, theta5, theta6]),
-            ("flip", [t1, t2, t3, theta4 + PI, -theta5, theta6 + PI]),
+            ("flip", [t1, t2, t3, half_turn(theta4), -theta5, half_turn(theta6)]),
         ] {
             if wanted(label) {
                 push(out, theta, label, false);

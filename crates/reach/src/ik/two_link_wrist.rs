@@ -84,7 +84,7 @@
 
 use std::f64::consts::PI;
 
-use nalgebra::{IsometryMatrix3, Point3};
+use nalgebra::{IsometryMatrix3, Point3, Rotation3};
 
 use super::spherical_wrist::{
     Arm, Arms, Dh6, DhJoint, arm_branch, arm_configurations, elbow_label, fallback_failure, flange_goal, free_theta,
@@ -224,6 +224,7 @@ impl TwoLinkWrist {
                 let e = (l1 * c2, l1 * s2);
                 arms.push(Arm {
                     theta: [theta1, theta2, theta3],
+                    sin_cos: [sin_cos(theta1), (s2, c2), (s, c)],
                     shoulder,
                     elbow: elbow_label(self.s1, u, u, v, e),
                     shoulder_singular,
@@ -237,9 +238,8 @@ impl TwoLinkWrist {
     /// The wrist solutions of one arm branch (step 5), appended to `out`.
     fn wrists(&self, arm: &Arm, flange: &IsometryMatrix3<f64>, seed: Option<&[f64; 6]>, out: &mut Candidates) {
         let [t1, t2, t3] = arm.theta;
-        let t03 = self.joints[0].transform(t1) * self.joints[1].transform(t2) * self.joints[2].transform(t3);
         // R̃ = (A1·A2·A3)⁻¹·T6, the correct order (notes 001 §6.1 item 1).
-        let mut m = t03.rotation.inverse() * flange.rotation;
+        let mut m = Rotation3::from_matrix_unchecked(arm.r03(&self.joints).transpose()) * flange.rotation;
         if self.s6 < 0.0 {
             // α5 = α4: remove the constant Rx(180°) (negate columns y and z).
             let mm = m.matrix_mut_unchecked();
