@@ -91,7 +91,7 @@
 
 use std::f64::consts::{FRAC_PI_2, PI};
 
-use nalgebra::{Isometry3, IsometryMatrix3, Matrix3, Point3, Rotation3, Translation3, Vector3};
+use nalgebra::{Isometry3, IsometryMatrix3, Matrix3, Point3, Translation3, Vector3};
 
 use smallvec::SmallVec;
 
@@ -143,7 +143,7 @@ impl DhJoint {
         let (st, ct) = sin_cos(theta);
         IsometryMatrix3::from_parts(
             Translation3::new(self.a * ct, self.a * st, self.d),
-            Rotation3::from_matrix_unchecked(self.rotation((st, ct))),
+            nalgebra::Rotation3::from_matrix_unchecked(self.rotation((st, ct))),
         )
     }
 
