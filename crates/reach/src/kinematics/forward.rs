@@ -51,12 +51,10 @@ impl Robot {
     #[inline]
     pub fn fk_matrix(&self, q: &[f64]) -> Result<IsometryMatrix3<f64>, KinematicsError> {
         check_q(self.dof(), q)?;
-        let mut t = self.chain.first;
-        Chain::apply_mimics(&mut t, &self.chain.first_mimics, q);
-        for (link, &v) in self.chain.links.iter().zip(q) {
-            link.advance(&mut t, v);
-            Chain::apply_mimics(&mut t, &link.mimics, q);
-        }
+        let fk = &self.chain.fk;
+        let mut t = fk.first;
+        Chain::apply_mimics(&mut t, &fk.first_mimics, q);
+        fk.walk(&mut t, q, 0..self.dof(), |_, _| {});
         Ok(t)
     }
 
@@ -78,22 +76,18 @@ impl Robot {
             return self.fk_matrix(q);
         }
         check_q(self.dof(), q)?;
-        let (head, tail) = q.split_at(k);
-        let (links_head, links_tail) = self.chain.links.split_at(k);
+        let fk = &self.chain.fk;
+        let head = &q[..k];
         let same = prefix.len == k && prefix.q[..k].iter().zip(head).all(|(a, b)| a.to_bits() == b.to_bits());
         if !same {
-            let mut t = self.chain.first;
-            for (link, &v) in links_head.iter().zip(head) {
-                link.advance(&mut t, v);
-            }
+            let mut t = fk.first;
+            fk.walk(&mut t, q, 0..k, |_, _| {});
             prefix.len = k;
             prefix.q[..k].copy_from_slice(head);
             prefix.frame = t;
         }
         let mut t = prefix.frame;
-        for (link, &v) in links_tail.iter().zip(tail) {
-            link.advance(&mut t, v);
-        }
+        fk.walk(&mut t, q, k..self.dof(), |_, _| {});
         Ok(t)
     }
 
