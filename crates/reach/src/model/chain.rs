@@ -25,6 +25,9 @@
 //! `Rz(multiplier·q_master + offset)` (or `Tz`) with its own constant after it. The mimic
 //! motions that sit after independent joint *i* are in that joint's `mimics` (its `after` then
 //! leads to the first of them), those before the first joint in [`Chain::first_mimics`].
+//!
+//! Forward kinematics and the Jacobian run on [`Chain::fk`], the same product with its motion
+//! frames moved onto DH common normals ([`FkChain`]); frames, axes and dynamics on this one.
 
 use nalgebra::{Isometry3, IsometryMatrix3, Matrix3, Rotation3, Translation3, Unit, Vector3};
 
@@ -289,8 +292,10 @@ mod tests {
         use crate::model::fk_chain::FkStep;
         let ur5 = crate::model::presets::get("ur5").unwrap();
         assert!(ur5.chain.fk.links.iter().all(|l| matches!(l.after, FkStep::Dh(_)) && l.offset == 0.0));
-        let mut robots: Vec<(String, crate::model::Robot)> =
-            crate::model::presets::names().iter().map(|n| (n.to_string(), crate::model::presets::get(n).unwrap())).collect();
+        let mut robots: Vec<(String, crate::model::Robot)> = crate::model::presets::names()
+            .iter()
+            .map(|n| (n.to_string(), crate::model::presets::get(n).unwrap()))
+            .collect();
         robots.extend(urdf_arms().into_iter().map(|(n, r)| (format!("{n} (URDF)"), r)));
         let mut rng = crate::rng::SplitMix64(5);
         for (name, robot) in &robots {

@@ -179,7 +179,13 @@ impl FkChain {
             } else {
                 (0.0, FkStep::General(g))
             };
-            links.push(FkLink { prismatic: link.prismatic, sign: link.sign, offset, after, mimics: link.mimics.clone() });
+            links.push(FkLink {
+                prismatic: link.prismatic,
+                sign: link.sign,
+                offset,
+                after,
+                mimics: link.mimics.clone(),
+            });
         }
         FkChain { first: *first, first_mimics: first_mimics.to_vec(), links }
     }
