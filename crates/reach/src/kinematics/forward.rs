@@ -147,22 +147,23 @@ impl Robot {
         mut before: Option<&mut [IsometryMatrix3<f64>]>,
         out: &mut [IsometryMatrix3<f64>],
     ) -> IsometryMatrix3<f64> {
+        let fk = &self.chain.fk;
         let mut t = match before.as_deref() {
             Some(b) if from > 0 => b[from],
             _ => {
-                let mut t = self.chain.first;
-                Chain::apply_mimics(&mut t, &self.chain.first_mimics, q);
+                let mut t = fk.first;
+                Chain::apply_mimics(&mut t, &fk.first_mimics, q);
                 t
             }
         };
         for i in from..self.dof() {
-            let link = &self.chain.links[i];
+            let link = &fk.links[i];
             if let Some(b) = before.as_deref_mut() {
                 b[i] = t;
             }
-            apply_motion(&mut t, link.prismatic, link.sign * q[i]);
+            apply_motion(&mut t, link.prismatic, link.value(q[i]));
             out[i] = t * link.to_frame;
-            t *= link.after;
+            link.after.apply(&mut t);
             Chain::apply_mimics(&mut t, &link.mimics, q);
         }
         if let Some(b) = before {

@@ -118,6 +118,9 @@ pub(crate) struct FkLink {
     pub sign: f64,
     /// Added to `sign·q` (radians; 0 for prismatic joints).
     pub offset: f64,
+    /// Constant from the frame after the motion to the reported link frame
+    /// ([`ChainLink::to_frame`] with the motion frame's move undone).
+    pub to_frame: IsometryMatrix3<f64>,
     /// The constant after the motion (for the last joint, the tool included).
     pub after: FkStep,
     /// Mimic-joint motions between this joint and the next (empty for most robots).
@@ -168,6 +171,7 @@ impl FkChain {
         let mut undo = IsometryMatrix3::identity();
         for (k, link) in chain.iter().enumerate() {
             let g = undo * link.after;
+            let to_frame = undo * link.to_frame;
             undo = IsometryMatrix3::identity();
             let (offset, after) = if let Some(dh) = DhStep::of(&g) {
                 (0.0, FkStep::Dh(dh))
@@ -179,10 +183,14 @@ impl FkChain {
             } else {
                 (0.0, FkStep::General(g))
             };
+            // The motion turns `offset` further: undo that too before the link frame.
+            let unturn = Rotation3::from_axis_angle(&Vector3::z_axis(), -offset);
+            let to_frame = IsometryMatrix3::from_parts(Translation3::identity(), unturn) * to_frame;
             links.push(FkLink {
                 prismatic: link.prismatic,
                 sign: link.sign,
                 offset,
+                to_frame,
                 after,
                 mimics: link.mimics.clone(),
             });
