@@ -51,12 +51,10 @@ impl Robot {
     #[inline]
     pub fn fk_matrix(&self, q: &[f64]) -> Result<IsometryMatrix3<f64>, KinematicsError> {
         check_q(self.dof(), q)?;
-        let mut t = self.chain.first;
-        Chain::apply_mimics(&mut t, &self.chain.first_mimics, q);
-        for (link, &v) in self.chain.links.iter().zip(q) {
-            link.advance(&mut t, v);
-            Chain::apply_mimics(&mut t, &link.mimics, q);
-        }
+        let fk = &self.chain.fk;
+        let mut t = fk.first;
+        Chain::apply_mimics(&mut t, &fk.first_mimics, q);
+        fk.walk(&mut t, q, 0..self.dof(), |_, _| {});
         Ok(t)
     }
 
@@ -78,22 +76,18 @@ impl Robot {
             return self.fk_matrix(q);
         }
         check_q(self.dof(), q)?;
-        let (head, tail) = q.split_at(k);
-        let (links_head, links_tail) = self.chain.links.split_at(k);
+        let fk = &self.chain.fk;
+        let head = &q[..k];
         let same = prefix.len == k && prefix.q[..k].iter().zip(head).all(|(a, b)| a.to_bits() == b.to_bits());
         if !same {
-            let mut t = self.chain.first;
-            for (link, &v) in links_head.iter().zip(head) {
-                link.advance(&mut t, v);
-            }
+            let mut t = fk.first;
+            fk.walk(&mut t, q, 0..k, |_, _| {});
             prefix.len = k;
             prefix.q[..k].copy_from_slice(head);
             prefix.frame = t;
         }
         let mut t = prefix.frame;
-        for (link, &v) in links_tail.iter().zip(tail) {
-            link.advance(&mut t, v);
-        }
+        fk.walk(&mut t, q, k..self.dof(), |_, _| {});
         Ok(t)
     }
 
@@ -153,22 +147,23 @@ impl Robot {
         mut before: Option<&mut [IsometryMatrix3<f64>]>,
         out: &mut [IsometryMatrix3<f64>],
     ) -> IsometryMatrix3<f64> {
+        let fk = &self.chain.fk;
         let mut t = match before.as_deref() {
             Some(b) if from > 0 => b[from],
             _ => {
-                let mut t = self.chain.first;
-                Chain::apply_mimics(&mut t, &self.chain.first_mimics, q);
+                let mut t = fk.first;
+                Chain::apply_mimics(&mut t, &fk.first_mimics, q);
                 t
             }
         };
         for i in from..self.dof() {
-            let link = &self.chain.links[i];
+            let link = &fk.links[i];
             if let Some(b) = before.as_deref_mut() {
                 b[i] = t;
             }
-            apply_motion(&mut t, link.prismatic, link.sign * q[i]);
+            apply_motion(&mut t, link.prismatic, link.value(q[i]));
             out[i] = t * link.to_frame;
-            t *= link.after;
+            link.after.apply(&mut t);
             Chain::apply_mimics(&mut t, &link.mimics, q);
         }
         if let Some(b) = before {

@@ -36,19 +36,15 @@ impl Robot {
                 found: out.ncols(),
             });
         }
-        let mut t = self.chain.first;
-        Chain::apply_mimics(&mut t, &self.chain.first_mimics, q);
+        let fk = &self.chain.fk;
+        let mut t = fk.first;
+        Chain::apply_mimics(&mut t, &fk.first_mimics, q);
         // First pass: store the axis in the angular rows and the axis point in the linear rows.
-        for (i, (link, &v)) in self.chain.links.iter().zip(q).enumerate() {
-            let z: Vector3<f64> = t.rotation.matrix().column(2).into_owned();
-            let o = t.translation.vector;
+        fk.walk(&mut t, q, 0..self.dof(), |i, t| {
             let mut col = out.column_mut(i);
-            col.fixed_rows_mut::<3>(0).copy_from(&o);
-            col.fixed_rows_mut::<3>(3).copy_from(&z);
-            apply_motion(&mut t, link.prismatic, link.sign * v);
-            link.apply_after(&mut t);
-            Chain::apply_mimics(&mut t, &link.mimics, q);
-        }
+            col.fixed_rows_mut::<3>(0).copy_from(&t.translation.vector);
+            col.fixed_rows_mut::<3>(3).copy_from(&t.rotation.matrix().column(2));
+        });
         let p = t.translation.vector;
         for (i, link) in self.chain.links.iter().enumerate() {
             let mut col = out.column_mut(i);

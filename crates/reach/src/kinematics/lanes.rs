@@ -4,9 +4,9 @@
 //! independent values, which the compiler turns into vector instructions (and which keep the
 //! floating-point units busy even where it does not).
 //!
-//! The steps are those of [`Robot::fk_matrix`] and [`Robot::jacobian_into`] (the compiled
-//! [`Chain`](crate::model::chain::Chain): `first`, each joint's motion, its `after` constant —
-//! with the standard-DH shortcut —, mimic motions), written out entry by entry in the same
+//! The steps are those of [`Robot::fk_matrix`] and [`Robot::jacobian_into`] (the
+//! [`FkChain`](crate::model::fk_chain::FkChain): `first`, each joint's motion with its angle
+//! offset, its DH step or general constant, mimic motions), written out entry by entry in the same
 //! order of operations, so each lane is the scalar result to rounding (in practice bit for
 //! bit). Sines and cosines come from [`sin_cos_lanes`]. [`crate::batch`] feeds blocks of `L`
 //! rows through these kernels and the remainder through the scalar functions.
@@ -23,6 +23,7 @@ use nalgebra::IsometryMatrix3;
 use crate::angle::sin_cos_lanes;
 use crate::model::Robot;
 use crate::model::chain::MimicStep;
+use crate::model::fk_chain::{DhStep, FkStep};
 
 /// One value per lane.
 pub(crate) type Lanes<const L: usize> = [f64; L];
@@ -103,10 +104,10 @@ impl<const L: usize> FrameLanes<L> {
         }
     }
 
-    /// Right-multiplies every lane by `Tz(d)·Tx(a)·Rx(α)`, given as `[a, d, cos α, sin α]`
-    /// (see [`ChainLink::dh_after`](crate::model::chain::ChainLink::dh_after)).
+    /// Right-multiplies every lane by the DH step `Tz(d)·Tx(a)·Rx(α)` ([`DhStep::apply`]).
     #[inline(always)]
-    fn mul_dh(&mut self, [a, d, c, s]: [f64; 4]) {
+    fn mul_dh(&mut self, dh: &DhStep) {
+        let (a, d, c, s) = (dh.a, dh.d, dh.cos_alpha, dh.sin_alpha);
         for i in 0..3 {
             let [x, y, z] = self.r[i];
             for l in 0..L {
@@ -114,6 +115,15 @@ impl<const L: usize> FrameLanes<L> {
                 self.r[i][1][l] = y[l] * c + z[l] * s;
                 self.r[i][2][l] = z[l] * c - y[l] * s;
             }
+        }
+    }
+
+    /// Right-multiplies every lane by the constant `step`.
+    #[inline(always)]
+    fn mul_step(&mut self, step: &FkStep) {
+        match step {
+            FkStep::Dh(dh) => self.mul_dh(dh),
+            FkStep::General(m) => self.mul_const(m),
         }
     }
 
@@ -140,16 +150,14 @@ impl Robot {
         mut visit: impl FnMut(Motion<'a>, &FrameLanes<L>),
     ) -> FrameLanes<L> {
         debug_assert_eq!(q.len(), self.dof());
-        let mut t = FrameLanes::splat(&self.chain.first);
-        t.mimics(&self.chain.first_mimics, q, &mut visit);
-        for (i, (link, qj)) in self.chain.links.iter().zip(q).enumerate() {
+        let fk = &self.chain.fk;
+        let mut t = FrameLanes::splat(&fk.first);
+        t.mimics(&fk.first_mimics, q, &mut visit);
+        for (i, (link, qj)) in fk.links.iter().zip(q).enumerate() {
             visit(Motion::Joint(i), &t);
-            let v: Lanes<L> = std::array::from_fn(|l| link.sign * qj[l]);
+            let v: Lanes<L> = std::array::from_fn(|l| link.value(qj[l]));
             t.motion(link.prismatic, &v);
-            match link.dh_after {
-                Some(dh) => t.mul_dh(dh),
-                None => t.mul_const(&link.after),
-            }
+            t.mul_step(&link.after);
             t.mimics(&link.mimics, q, &mut visit);
         }
         t

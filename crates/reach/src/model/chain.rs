@@ -25,9 +25,13 @@
 //! `Rz(multiplier·q_master + offset)` (or `Tz`) with its own constant after it. The mimic
 //! motions that sit after independent joint *i* are in that joint's `mimics` (its `after` then
 //! leads to the first of them), those before the first joint in [`Chain::first_mimics`].
+//!
+//! Forward kinematics and the Jacobian run on [`Chain::fk`], the same product with its motion
+//! frames moved onto DH common normals ([`FkChain`]); frames, axes and dynamics on this one.
 
 use nalgebra::{Isometry3, IsometryMatrix3, Matrix3, Rotation3, Translation3, Unit, Vector3};
 
+use super::fk_chain::FkChain;
 use super::{Convention, JointGeometry, JointKind, RobotSpec};
 
 /// One joint of the compiled chain.
@@ -42,47 +46,8 @@ pub(crate) struct ChainLink {
     /// Constant from the frame after the motion to the next motion frame (`Fi`: the next
     /// joint's, or the first of `mimics`); for the last motion it includes the tool transform.
     pub after: IsometryMatrix3<f64>,
-    /// `after` when it has the form `Tz(d)·Tx(a)·Rx(α)` (every standard-DH joint but one
-    /// with a tool): `[a, d, cos α, sin α]`, so that [`ChainLink::apply_after`] skips the zero
-    /// entries (12 + 6 products instead of 27 + 9).
-    pub dh_after: Option<[f64; 4]>,
     /// Mimic-joint motions between this joint and the next (empty for most robots).
     pub mimics: Vec<MimicStep>,
-}
-
-impl ChainLink {
-    /// Right-multiplies `t` by this joint's motion for joint value `q` and by `after`:
-    /// the step of forward kinematics over one joint (mimic motions excluded).
-    #[inline(always)]
-    pub fn advance(&self, t: &mut IsometryMatrix3<f64>, q: f64) {
-        apply_motion(t, self.prismatic, self.sign * q);
-        self.apply_after(t);
-    }
-
-    /// Right-multiplies `t` by `after` in place.
-    #[inline(always)]
-    pub fn apply_after(&self, t: &mut IsometryMatrix3<f64>) {
-        let Some([a, d, c, s]) = self.dh_after else {
-            *t *= self.after;
-            return;
-        };
-        let m = t.rotation.matrix();
-        let (x, y, z) = (m.column(0).into_owned(), m.column(1).into_owned(), m.column(2).into_owned());
-        t.translation.vector += x * a + z * d;
-        // SAFETY of orthonormality: a rotation times Rx(α) is a rotation.
-        let m = t.rotation.matrix_mut_unchecked();
-        m.set_column(1, &(y * c + z * s));
-        m.set_column(2, &(z * c - y * s));
-    }
-}
-
-/// `[a, d, cos α, sin α]` when `after` is exactly `Tz(d)·Tx(a)·Rx(α)`.
-fn dh_form(after: &IsometryMatrix3<f64>) -> Option<[f64; 4]> {
-    let r = after.rotation.matrix();
-    let t = after.translation.vector;
-    let x_fixed = r[(0, 0)] == 1.0 && r[(0, 1)] == 0.0 && r[(0, 2)] == 0.0 && r[(1, 0)] == 0.0 && r[(2, 0)] == 0.0;
-    let rx = r[(2, 2)] == r[(1, 1)] && r[(1, 2)] == -r[(2, 1)];
-    (x_fixed && rx && t.y == 0.0).then_some([t.x, t.z, r[(1, 1)], r[(2, 1)]])
 }
 
 /// One mimic-joint motion: `M(multiplier·q[master] + offset) · after`.
@@ -116,6 +81,8 @@ pub(crate) struct Chain {
     /// Mimic motions before the first joint (empty for most robots).
     pub first_mimics: Vec<MimicStep>,
     pub links: Vec<ChainLink>,
+    /// The same product in the form forward kinematics and the Jacobian run on.
+    pub fk: FkChain,
 }
 
 fn matrix(iso: &Isometry3<f64>) -> IsometryMatrix3<f64> {
@@ -218,7 +185,6 @@ impl Chain {
                     sign: if spec.joints[i].flip { -1.0 } else { 1.0 },
                     to_frame: to_frames[i],
                     after,
-                    dh_after: dh_form(&after),
                     mimics: Vec::new(),
                 }),
                 Err(m) => {
@@ -237,7 +203,8 @@ impl Chain {
                 }
             }
         }
-        Chain { first, first_mimics, links }
+        let fk = FkChain::new(&first, &first_mimics, &links);
+        Chain { first, first_mimics, links, fk }
     }
 
     /// Whether any mimic joint moves on the chain.
@@ -259,18 +226,30 @@ impl Chain {
 #[inline(always)]
 pub(crate) fn apply_motion(t: &mut IsometryMatrix3<f64>, prismatic: bool, v: f64) {
     if prismatic {
-        let z = t.rotation.matrix().column(2).into_owned();
-        t.translation.vector += z * v;
+        slide_z(t, v);
     } else {
         let (s, c) = crate::angle::sin_cos(v);
-        // SAFETY of orthonormality: a rotation times Rz(v) is a rotation.
-        let m = t.rotation.matrix_mut_unchecked();
-        for r in 0..3 {
-            let x = m[(r, 0)];
-            let y = m[(r, 1)];
-            m[(r, 0)] = c * x + s * y;
-            m[(r, 1)] = c * y - s * x;
-        }
+        rotate_z(t, s, c);
+    }
+}
+
+/// Right-multiplies `t` by `Tz(v)` in place.
+#[inline(always)]
+pub(crate) fn slide_z(t: &mut IsometryMatrix3<f64>, v: f64) {
+    let z = t.rotation.matrix().column(2).into_owned();
+    t.translation.vector += z * v;
+}
+
+/// Right-multiplies `t` in place by `Rz(v)` given as `(sin v, cos v)`.
+#[inline(always)]
+pub(crate) fn rotate_z(t: &mut IsometryMatrix3<f64>, s: f64, c: f64) {
+    // SAFETY of orthonormality: a rotation times Rz(v) is a rotation.
+    let m = t.rotation.matrix_mut_unchecked();
+    for r in 0..3 {
+        let x = m[(r, 0)];
+        let y = m[(r, 1)];
+        m[(r, 0)] = c * x + s * y;
+        m[(r, 1)] = c * y - s * x;
     }
 }
 
@@ -278,24 +257,66 @@ pub(crate) fn apply_motion(t: &mut IsometryMatrix3<f64>, prismatic: bool, v: f64
 mod tests {
     use super::*;
 
+    /// The chain product with every constant general, as compiled.
+    fn general_product(chain: &Chain, q: &[f64]) -> IsometryMatrix3<f64> {
+        let mut t = chain.first;
+        Chain::apply_mimics(&mut t, &chain.first_mimics, q);
+        for (link, &v) in chain.links.iter().zip(q) {
+            apply_motion(&mut t, link.prismatic, link.sign * v);
+            t *= link.after;
+            Chain::apply_mimics(&mut t, &link.mimics, q);
+        }
+        t
+    }
+
+    /// The URDF arms of the Pinocchio comparison, as robots.
+    fn urdf_arms() -> Vec<(&'static str, crate::model::Robot)> {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/");
+        [
+            ("ur5", "urdf/ur_description/urdf/ur5.urdf", "ee_link"),
+            ("puma560", "urdf/unimation_puma560_description/urdf/puma560_robot.urdf", "link7"),
+            ("kr16_2", "urdf/kuka_kr16_support/urdf/kr16_2.urdf", "tool0"),
+            ("panda", "panda.urdf", "panda_hand"),
+        ]
+        .into_iter()
+        .map(|(name, file, tip)| {
+            let text = std::fs::read_to_string(format!("{dir}{file}")).unwrap();
+            let chain = crate::model::UrdfChain { base: None, tip: Some(tip.into()) };
+            (name, crate::model::Robot::from_urdf_str(&text, &chain).unwrap())
+        })
+        .collect()
+    }
+
     #[test]
-    fn the_dh_shortcut_equals_the_general_product() {
+    fn the_fk_chain_equals_the_general_product() {
+        use crate::model::fk_chain::FkStep;
         let ur5 = crate::model::presets::get("ur5").unwrap();
-        assert!(ur5.chain.links.iter().all(|l| l.dh_after.is_some()));
-        for name in crate::model::presets::names() {
-            let robot = crate::model::presets::get(name).unwrap();
-            for k in 0..20 {
-                let q: Vec<f64> = (0..robot.dof()).map(|j| ((k * 7 + j * 3) as f64 * 0.37).sin() * 1.5).collect();
-                let mut general = robot.chain.first;
-                Chain::apply_mimics(&mut general, &robot.chain.first_mimics, &q);
-                for (link, &v) in robot.chain.links.iter().zip(&q) {
-                    apply_motion(&mut general, link.prismatic, link.sign * v);
-                    general *= link.after;
-                    Chain::apply_mimics(&mut general, &link.mimics, &q);
-                }
+        assert!(ur5.chain.fk.links.iter().all(|l| matches!(l.after, FkStep::Dh(_)) && l.offset == 0.0));
+        let mut robots: Vec<(String, crate::model::Robot)> = crate::model::presets::names()
+            .iter()
+            .map(|n| (n.to_string(), crate::model::presets::get(n).unwrap()))
+            .collect();
+        robots.extend(urdf_arms().into_iter().map(|(n, r)| (format!("{n} (URDF)"), r)));
+        let mut rng = crate::rng::SplitMix64(5);
+        for (name, robot) in &robots {
+            for _ in 0..200 {
+                let q: Vec<f64> = (0..robot.dof()).map(|_| (rng.next_f64() * 2.0 - 1.0) * 3.2).collect();
                 let fast = robot.fk_matrix(&q).unwrap();
-                assert!((fast.to_homogeneous() - general.to_homogeneous()).abs().max() < 1e-14, "{name}: {q:?}");
+                let general = general_product(&robot.chain, &q);
+                let gap = (fast.to_homogeneous() - general.to_homogeneous()).abs().max();
+                assert!(gap < 1e-12, "{name}: {q:?}: {gap:e}");
             }
+        }
+    }
+
+    #[test]
+    fn urdf_arms_run_on_dh_steps() {
+        use crate::model::fk_chain::FkStep;
+        for (name, robot) in urdf_arms() {
+            let links = &robot.chain.fk.links;
+            // Every joint but the last (whose constant holds the tool) takes a DH step.
+            let dh = links.iter().filter(|l| matches!(l.after, FkStep::Dh(_))).count();
+            assert!(dh + 1 >= links.len(), "{name}: {dh} DH steps of {}", links.len());
         }
     }
 

@@ -16,6 +16,7 @@ mod toml_format;
 mod urdf;
 
 pub(crate) mod chain;
+pub(crate) mod fk_chain;
 pub mod planar_angles;
 pub mod presets;
 

@@ -1,0 +1,304 @@
+//! The form of the chain that forward kinematics and the Jacobian run on
+//! ([`Robot::fk_matrix`](crate::model::Robot::fk_matrix),
+//! [`Robot::jacobian_into`](crate::model::Robot::jacobian_into) and their batch kernels).
+//!
+//! It is the compiled [`Chain`](super::chain::Chain) `T(q) = F0 · M1(q1) · F1 ⋯ Mn(qn) · Fn` with each motion frame
+//! moved along and turned about its own axis where that makes the constant after it a
+//! standard-DH step, the way the DH convention chooses frames:
+//!
+//! ```text
+//! Mi · Fi = Mi · Ci · (Ci⁻¹ · Fi · Ci+1) · Ci+1⁻¹,   Ci = Rz(φi)·Tz(δi)
+//! ```
+//!
+//! `Ci` commutes with the motion `Mi` (a rotation about or translation along z), so the product
+//! is unchanged; `Ci+1` is chosen so that `Ci⁻¹ · Fi · Ci+1 = Rz(θi)·Tz(di)·Tx(ai)·Rx(αi)`: its
+//! x axis on the common normal of the two joint axes, its origin where that normal meets the
+//! next axis. `Rz(θi)` joins the joint's motion as an offset on its angle, the rest is a
+//! [`DhStep`]: 18 products instead of a general constant's 36. A step is taken in this form only
+//! when it equals the exact product to rounding ([`REFRAME_TOLERANCE`], checked when the chain
+//! is built); otherwise the link keeps the general constant and the next frame is not moved.
+//! Standard-DH robots are in this form already (their steps are taken as they are, bit for
+//! bit); modified DH and URDF chains are rewritten. Chains with mimic joints, and prismatic
+//! joints (whose motion cannot take an angle offset), keep their constants.
+//!
+//! Forward kinematics evaluates the sines and cosines of pairs of joints together
+//! ([`sin_cos_lanes`](crate::angle::sin_cos_lanes), bit for bit the scalar ones). (Skipping a
+//! step's zero terms was tried and measured slower: the branches cost more than the products.)
+
+use nalgebra::{IsometryMatrix3, Matrix3, Rotation3, Translation3, Vector3};
+
+use super::chain::{Chain, ChainLink, MimicStep, rotate_z, slide_z};
+use crate::angle::sin_cos_lanes;
+
+/// Largest gap (rotation entries; translation entries relative to `1 + |translation|`) between
+/// a rewritten DH step and the exact product it replaces: a few units of rounding.
+pub(crate) const REFRAME_TOLERANCE: f64 = 8.0 * f64::EPSILON;
+
+/// The constant `Tz(d)·Tx(a)·Rx(α)` after a joint's motion (12 + 6 products).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct DhStep {
+    /// Length along the common normal (x), metres.
+    pub a: f64,
+    /// Offset along the joint axis (z), metres.
+    pub d: f64,
+    /// `cos α`.
+    pub cos_alpha: f64,
+    /// `sin α`.
+    pub sin_alpha: f64,
+}
+
+impl DhStep {
+    /// The step `[a, d, cos α, sin α]`.
+    fn new(a: f64, d: f64, cos_alpha: f64, sin_alpha: f64) -> DhStep {
+        DhStep { a, d, cos_alpha, sin_alpha }
+    }
+
+    /// The step when `after` is exactly `Tz(d)·Tx(a)·Rx(α)`.
+    fn of(after: &IsometryMatrix3<f64>) -> Option<DhStep> {
+        let r = after.rotation.matrix();
+        let t = after.translation.vector;
+        let x_fixed = r[(0, 0)] == 1.0 && r[(0, 1)] == 0.0 && r[(0, 2)] == 0.0 && r[(1, 0)] == 0.0 && r[(2, 0)] == 0.0;
+        let rx = r[(2, 2)] == r[(1, 1)] && r[(1, 2)] == -r[(2, 1)];
+        (x_fixed && rx && t.y == 0.0).then(|| DhStep::new(t.x, t.z, r[(1, 1)], r[(2, 1)]))
+    }
+
+    /// The step as an isometry.
+    fn isometry(&self) -> IsometryMatrix3<f64> {
+        let (c, s) = (self.cos_alpha, self.sin_alpha);
+        #[rustfmt::skip]
+        let r = Matrix3::new(
+            1.0, 0.0, 0.0,
+            0.0, c,   -s,
+            0.0, s,   c,
+        );
+        IsometryMatrix3::from_parts(Translation3::new(self.a, 0.0, self.d), Rotation3::from_matrix_unchecked(r))
+    }
+
+    /// Right-multiplies `t` by the step in place.
+    #[inline(always)]
+    pub fn apply(&self, t: &mut IsometryMatrix3<f64>) {
+        let m = t.rotation.matrix();
+        let (x, y, z) = (m.column(0).into_owned(), m.column(1).into_owned(), m.column(2).into_owned());
+        t.translation.vector += x * self.a + z * self.d;
+        let (c, s) = (self.cos_alpha, self.sin_alpha);
+        // SAFETY of orthonormality: a rotation times Rx(α) is a rotation.
+        let m = t.rotation.matrix_mut_unchecked();
+        m.set_column(1, &(y * c + z * s));
+        m.set_column(2, &(z * c - y * s));
+    }
+}
+
+/// The constant after a joint's motion.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum FkStep {
+    /// A standard-DH step.
+    Dh(DhStep),
+    /// Any rigid transform.
+    General(IsometryMatrix3<f64>),
+}
+
+impl FkStep {
+    /// Right-multiplies `t` by the step in place.
+    #[inline(always)]
+    pub fn apply(&self, t: &mut IsometryMatrix3<f64>) {
+        match self {
+            FkStep::Dh(dh) => dh.apply(t),
+            FkStep::General(m) => *t *= m,
+        }
+    }
+}
+
+/// One joint of an [`FkChain`]: motion `Rz(sign·q + offset)` (or `Tz`), then `after`, then
+/// the mimic motions that follow it.
+#[derive(Debug, Clone)]
+pub(crate) struct FkLink {
+    /// Translation along z instead of rotation about z.
+    pub prismatic: bool,
+    /// −1 for a flipped joint, +1 otherwise.
+    pub sign: f64,
+    /// Added to `sign·q` (radians; 0 for prismatic joints).
+    pub offset: f64,
+    /// Constant from the frame after the motion to the reported link frame
+    /// ([`ChainLink::to_frame`] with the motion frame's move undone).
+    pub to_frame: IsometryMatrix3<f64>,
+    /// The constant after the motion (for the last joint, the tool included).
+    pub after: FkStep,
+    /// Mimic-joint motions between this joint and the next (empty for most robots).
+    pub mimics: Vec<MimicStep>,
+}
+
+impl FkLink {
+    /// The motion value for joint value `q`.
+    #[inline(always)]
+    pub fn value(&self, q: f64) -> f64 {
+        self.sign * q + self.offset
+    }
+
+    /// Right-multiplies `t` by the motion for joint value `q` (given the sine and cosine of
+    /// its angle, [`FkLink::value`]; unused for a prismatic joint), `after` and the mimic
+    /// motions (joint values `all`).
+    #[inline(always)]
+    fn advance(&self, t: &mut IsometryMatrix3<f64>, q: f64, s: f64, c: f64, all: &[f64]) {
+        if self.prismatic {
+            slide_z(t, self.value(q));
+        } else {
+            rotate_z(t, s, c);
+        }
+        self.after.apply(t);
+        Chain::apply_mimics(t, &self.mimics, all);
+    }
+}
+
+/// `T(q) = first · Π(first_mimics) · Π (M(sign·qi + offset_i) · after_i · Π(mimics_i))`.
+#[derive(Debug, Clone)]
+pub(crate) struct FkChain {
+    /// The frame of the first motion.
+    pub first: IsometryMatrix3<f64>,
+    /// Mimic motions before the first joint (empty for most robots).
+    pub first_mimics: Vec<MimicStep>,
+    /// One per independent joint.
+    pub links: Vec<FkLink>,
+}
+
+impl FkChain {
+    /// The forward-kinematics form of the compiled chain `first · Π(first_mimics) · Π links`
+    /// (see the module documentation).
+    pub fn new(first: &IsometryMatrix3<f64>, first_mimics: &[MimicStep], chain: &[ChainLink]) -> FkChain {
+        let reframe = first_mimics.is_empty() && chain.iter().all(|l| l.mimics.is_empty());
+        let n = chain.len();
+        let mut links = Vec::with_capacity(n);
+        // C_k⁻¹: the move of the current motion frame, undone on the left of its constant.
+        let mut undo = IsometryMatrix3::identity();
+        for (k, link) in chain.iter().enumerate() {
+            let g = undo * link.after;
+            let to_frame = undo * link.to_frame;
+            undo = IsometryMatrix3::identity();
+            let (offset, after) = if let Some(dh) = DhStep::of(&g) {
+                (0.0, FkStep::Dh(dh))
+            } else if let Some((c, theta, dh)) =
+                (reframe && !link.prismatic && k + 1 < n).then(|| dh_reframe(&g)).flatten()
+            {
+                undo = c.inverse();
+                (theta, FkStep::Dh(dh))
+            } else {
+                (0.0, FkStep::General(g))
+            };
+            // The motion turns `offset` further: undo that too before the link frame.
+            let unturn = Rotation3::from_axis_angle(&Vector3::z_axis(), -offset);
+            let to_frame = IsometryMatrix3::from_parts(Translation3::identity(), unturn) * to_frame;
+            links.push(FkLink {
+                prismatic: link.prismatic,
+                sign: link.sign,
+                offset,
+                to_frame,
+                after,
+                mimics: link.mimics.clone(),
+            });
+        }
+        FkChain { first: *first, first_mimics: first_mimics.to_vec(), links }
+    }
+}
+
+/// `C = Rz(φ)·Tz(δ)`, `θ` and the DH step with `g · C = Rz(θ) · step` to
+/// [`REFRAME_TOLERANCE`]: the next motion frame moved onto the common normal of the two joint
+/// axes (z of the frame `g` starts from, z of the frame it leads to). `None` when no such `C`
+/// gives the step to rounding (axes nearly but not exactly parallel).
+fn dh_reframe(g: &IsometryMatrix3<f64>) -> Option<(IsometryMatrix3<f64>, f64, DhStep)> {
+    let r = g.rotation.matrix();
+    let (gx, gy, gz) = (r.column(0).into_owned(), r.column(1).into_owned(), r.column(2).into_owned());
+    let p = g.translation.vector;
+    // The common normal's direction: z × z' for skew (or meeting) axes; for parallel axes the
+    // perpendicular from this axis towards the next one's origin (or the next x axis when
+    // the axes coincide).
+    let normal = Vector3::new(-gz.y, gz.x, 0.0);
+    let skew = normal.norm() > 1e-12;
+    let target = if skew {
+        normal
+    } else if p.x.hypot(p.y) > 0.0 {
+        Vector3::new(p.x, p.y, 0.0)
+    } else {
+        gx
+    };
+    // φ: the next x axis turned about the next z onto the normal (projected into its plane).
+    let (c, s) = (target.dot(&gx), target.dot(&gy));
+    let h = c.hypot(s);
+    if h == 0.0 || h.is_nan() {
+        return None;
+    }
+    let (c, s) = (c / h, s / h);
+    let x = gx * c + gy * s;
+    // δ: the next origin slid along the next axis to where the normal meets it.
+    let delta = if skew {
+        let w = Vector3::new(-x.y, x.x, 0.0);
+        -p.dot(&w) / gz.dot(&w)
+    } else {
+        0.0
+    };
+    #[rustfmt::skip]
+    let rz = Matrix3::new(
+        c,   -s,  0.0,
+        s,   c,   0.0,
+        0.0, 0.0, 1.0,
+    );
+    let move_next =
+        IsometryMatrix3::from_parts(Translation3::new(0.0, 0.0, delta), Rotation3::from_matrix_unchecked(rz));
+    let exact = g * move_next;
+    let m = exact.rotation.matrix();
+    let o = exact.translation.vector;
+    let theta = m[(1, 0)].atan2(m[(0, 0)]);
+    let alpha = m[(2, 1)].atan2(m[(2, 2)]);
+    let (sin_alpha, cos_alpha) = crate::angle::sin_cos(alpha);
+    let (sin_theta, cos_theta) = crate::angle::sin_cos(theta);
+    let step = DhStep::new(o.x * cos_theta + o.y * sin_theta, o.z, cos_alpha, sin_alpha);
+    #[rustfmt::skip]
+    let rz_theta = Matrix3::new(
+        cos_theta, -sin_theta, 0.0,
+        sin_theta, cos_theta,  0.0,
+        0.0,       0.0,        1.0,
+    );
+    let model = IsometryMatrix3::from_parts(Translation3::identity(), Rotation3::from_matrix_unchecked(rz_theta))
+        * step.isometry();
+    let rotation_gap = (model.rotation.matrix() - m).amax();
+    let translation_gap = (model.translation.vector - o).amax() / (1.0 + p.norm());
+    (rotation_gap <= REFRAME_TOLERANCE && translation_gap <= REFRAME_TOLERANCE).then_some((move_next, theta, step))
+}
+
+/// Joints whose sines and cosines forward kinematics evaluates together.
+const TRIG_LANES: usize = 2;
+
+impl FkChain {
+    /// Right-multiplies `t` by the motions and constants of joints `joints` (a range of
+    /// joint indices) for joint values `q` (all of them, one per joint; mimic motions
+    /// included), calling `visit(i, t)` with the frame just before joint `i`'s motion.
+    #[inline(always)]
+    pub fn walk(
+        &self,
+        t: &mut IsometryMatrix3<f64>,
+        q: &[f64],
+        joints: std::ops::Range<usize>,
+        mut visit: impl FnMut(usize, &IsometryMatrix3<f64>),
+    ) {
+        let from = joints.start;
+        let links = &self.links[joints.clone()];
+        let values = &q[joints];
+        let mut i = from;
+        let mut chunks = links.chunks_exact(TRIG_LANES);
+        let mut value_chunks = values.chunks_exact(TRIG_LANES);
+        for (ls, vs) in chunks.by_ref().zip(value_chunks.by_ref()) {
+            let angles: [f64; TRIG_LANES] =
+                std::array::from_fn(|k| if ls[k].prismatic { 0.0 } else { ls[k].value(vs[k]) });
+            let (s, c) = sin_cos_lanes(&angles);
+            for k in 0..TRIG_LANES {
+                visit(i, t);
+                ls[k].advance(t, vs[k], s[k], c[k], q);
+                i += 1;
+            }
+        }
+        for (link, &v) in chunks.remainder().iter().zip(value_chunks.remainder()) {
+            let (s, c) = if link.prismatic { (0.0, 1.0) } else { crate::angle::sin_cos(link.value(v)) };
+            visit(i, t);
+            link.advance(t, v, s, c, q);
+            i += 1;
+        }
+    }
+}
