@@ -944,6 +944,9 @@ impl PlanarRedundant {
         let mut direct = 0;
         let steps = RotationSteps::new(step, count.min(SCAN_ANCHOR_ROWS));
         let mut segment = ScanSegment::new();
+        // A local copy of the arm: its limits and link constants stay in registers (the
+        // rows' stores cannot alias a local whose address does not escape).
+        let arm = self.clone();
         // α_i = α_min + i·Δα (no accumulated sum; notes 000 §6).
         let alpha = |i: usize| alpha_min + (i as f64) * step;
         let mut i = 0;
@@ -959,7 +962,9 @@ impl PlanarRedundant {
             };
             let decided = segment.fill(frame, &steps, &track, (count - i).min(SCAN_ANCHOR_ROWS));
             for j in 1..decided {
-                rows.extend(self.finish_row(alpha(i + j), segment.beta[j], segment.gamma1[j] + frame.gamma2));
+                if let Some(row) = arm.finish_row(alpha(i + j), segment.beta[j], segment.gamma1[j] + frame.gamma2) {
+                    rows.push(row);
+                }
             }
             i += decided;
         }
