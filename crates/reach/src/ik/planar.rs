@@ -426,7 +426,8 @@ impl ScanSegment {
             beta += self.beta[j];
             // Whether the chain bends back at B (β > 180°) is decided only with a margin far
             // above the increments' error; near the limit (or NaN) the row is computed directly.
-            if !((beta - PI * (1.0 + BOUNDARY)).abs() > SCAN_DECISION_MARGIN) {
+            let decidable = (beta - PI * (1.0 + BOUNDARY)).abs() > SCAN_DECISION_MARGIN;
+            if !decidable {
                 return j;
             }
             self.gamma1[j] = gamma1;
