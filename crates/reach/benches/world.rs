@@ -133,6 +133,17 @@ fn membership(c: &mut Criterion) {
         group.bench_function("fitted_rfunction_membership", |b| {
             b.iter(|| qs.iter().filter(|q| compiled.contains(*black_box(*q))).count())
         });
+        // The same test of the 1000 configurations as one batch (`contains_into`): blocks of
+        // configurations in structure-of-arrays lanes, the answers stored, then counted.
+        let mut inside = Vec::with_capacity(qs.len());
+        compiled.contains_into(&qs, &mut inside);
+        assert!(inside.iter().zip(&qs).all(|(b, q)| *b == compiled.contains(*q)));
+        group.bench_function("fitted_rfunction_membership_batch", |b| {
+            b.iter(|| {
+                compiled.contains_into(black_box(&qs), &mut inside);
+                inside.iter().filter(|x| **x).count()
+            })
+        });
         // The composed F(q) ≥ 0 of the primitives as fitted (left-nested R-conjunctions).
         group.bench_function("fitted_rfunction_value_composed", |b| {
             b.iter(|| qs.iter().filter(|q| region.contains(*black_box(*q))).count())

@@ -283,6 +283,7 @@ impl RotationSteps {
 }
 
 /// What one incremental row of the scan gives.
+#[cfg(test)]
 enum Incremental {
     /// The row's `γ1` and `β` (not clamped).
     Angles(f64, f64),
@@ -290,12 +291,10 @@ enum Incremental {
     Direct,
 }
 
-/// The incremental rows' state: the anchor (the last row computed directly) and the angles
-/// and direction vectors of the previous row.
+/// The incremental rows' state: the anchor's `(sin α, cos α)` (the last row computed
+/// directly) and the angles and direction vectors of the previous row.
 #[derive(Debug, Clone, Copy)]
 struct Track {
-    /// The anchor's row and `(sin α, cos α)`.
-    anchor: usize,
     trig: (f64, f64),
     /// `γ1` and its direction vector `(r² + l1² − KB², 4·area)` of triangle OBK.
     gamma1: f64,
@@ -336,7 +335,15 @@ impl ScanFrame {
     /// `KB²` and the direction vectors of `γ1` and `β` at `(sin α, cos α)`, or `None` for an
     /// ill-conditioned (nearly degenerate) triangle.
     #[inline]
-    fn vectors(&self, (sin_alpha, cos_alpha): (f64, f64)) -> Option<([f64; 2], [f64; 2])> {
+    fn vectors(&self, trig: (f64, f64)) -> Option<([f64; 2], [f64; 2])> {
+        let (conditioned, g, b) = self.vectors_unchecked(trig);
+        conditioned.then_some((g, b))
+    }
+
+    /// The direction vectors of [`Self::vectors`] and whether the triangles are well
+    /// conditioned (branch-free: the vectors are computed either way, NaN-free or not).
+    #[inline(always)]
+    fn vectors_unchecked(&self, (sin_alpha, cos_alpha): (f64, f64)) -> (bool, [f64; 2], [f64; 2]) {
         let [l1, l2, l3] = self.lengths;
         let r = self.r;
         let kb2 = l2 * l2 + l3 * l3 - 2.0 * l2 * l3 * cos_alpha;
@@ -345,14 +352,88 @@ impl ScanFrame {
         let two_rl = 2.0 * r * l1;
         let area2 = (two_rl - n_gamma) * (two_rl + n_gamma);
         // Both conditions false for NaN.
-        if !(area2 >= self.min_area2 && kb2 >= self.min_kb2) {
-            return None;
-        }
+        let conditioned = (area2 >= self.min_area2) & (kb2 >= self.min_kb2);
         let area = area2.sqrt();
         let n_beta = kb2 + l1 * l1 - r * r;
         // β = β1 + β2: the product of their direction vectors (β2 of triangle ABK).
         let (x2, y2) = (l2 - l3 * cos_alpha, l3 * sin_alpha);
-        Some(([n_gamma, area], [n_beta * x2 - area * y2, n_beta * y2 + area * x2]))
+        (conditioned, [n_gamma, area], [n_beta * x2 - area * y2, n_beta * y2 + area * x2])
+    }
+}
+
+/// Whether the turn `(cross, dot)` of a direction vector from one row to the next is small
+/// enough for [`atan_small`]: `|tan| ≤` [`SCAN_MAX_TAN`], forward (`dot > 0`); false for NaN.
+#[inline(always)]
+fn small_turn(cross: f64, dot: f64) -> bool {
+    (dot > 0.0) & (cross.abs() <= SCAN_MAX_TAN * dot)
+}
+
+/// One anchor's segment of the scan (up to [`SCAN_ANCHOR_ROWS`] rows) in
+/// structure-of-arrays form: pass by pass over the rows, each pass free of row-to-row
+/// dependencies except the final running sums, so the rows' square roots, divisions and
+/// polynomials overlap (and pair up in vector instructions) instead of waiting on each other.
+struct ScanSegment {
+    /// Direction vectors of `γ1` and `β` per row (components as separate arrays).
+    g: [[f64; SCAN_ANCHOR_ROWS]; 2],
+    b: [[f64; SCAN_ANCHOR_ROWS]; 2],
+    /// Per row: the turns of `γ1` and `β` from the previous row (NaN where the row is not
+    /// decidable incrementally), then the angles themselves.
+    gamma1: [f64; SCAN_ANCHOR_ROWS],
+    beta: [f64; SCAN_ANCHOR_ROWS],
+}
+
+impl ScanSegment {
+    fn new() -> Box<Self> {
+        Box::new(ScanSegment {
+            g: [[0.0; SCAN_ANCHOR_ROWS]; 2],
+            b: [[0.0; SCAN_ANCHOR_ROWS]; 2],
+            gamma1: [0.0; SCAN_ANCHOR_ROWS],
+            beta: [0.0; SCAN_ANCHOR_ROWS],
+        })
+    }
+
+    /// Rows `1 .. n` after the anchor `track` (`n ≤` [`SCAN_ANCHOR_ROWS`]): fills `γ1` and
+    /// `β` of rows `1 .. m` and returns `m`, the first row that is not decidable
+    /// incrementally (`n` when all are). Every value is the one [`PlanarRedundant`]'s
+    /// row-by-row increments give (the same expressions in the same order, bit for bit).
+    #[allow(
+        clippy::needless_range_loop,
+        reason = "the passes index several arrays by the same row: the form that vectorises"
+    )]
+    fn fill(&mut self, frame: &ScanFrame, steps: &RotationSteps, track: &Track, n: usize) -> usize {
+        let (g, b) = (&mut self.g, &mut self.b);
+        [g[0][0], g[1][0], b[0][0], b[1][0]] = [track.g[0], track.g[1], track.b[0], track.b[1]];
+        // Pass 1: each row's direction vectors (NaN where ill conditioned).
+        for j in 1..n {
+            let (conditioned, gj, bj) = frame.vectors_unchecked(steps.turn(track.trig, j));
+            let keep = |v: f64| if conditioned { v } else { f64::NAN };
+            [g[0][j], g[1][j], b[0][j], b[1][j]] = [keep(gj[0]), keep(gj[1]), keep(bj[0]), keep(bj[1])];
+        }
+        // Pass 2: each row's turns from the previous row (NaN `β` turn where not small).
+        for j in 1..n {
+            let (cross_g, dot_g) = cross_dot([g[0][j - 1], g[1][j - 1]], [g[0][j], g[1][j]]);
+            let (cross_b, dot_b) = cross_dot([b[0][j - 1], b[1][j - 1]], [b[0][j], b[1][j]]);
+            // One division for both tangents.
+            let inverse = 1.0 / (dot_g * dot_b);
+            self.gamma1[j] = atan_small(cross_g * dot_b * inverse);
+            let turn = atan_small(cross_b * dot_g * inverse);
+            self.beta[j] = if small_turn(cross_g, dot_g) & small_turn(cross_b, dot_b) { turn } else { f64::NAN };
+        }
+        // Pass 3: the running sums, up to the first row not decidable here.
+        let (mut gamma1, mut beta) = (track.gamma1, track.beta);
+        for j in 1..n {
+            gamma1 += self.gamma1[j];
+            beta += self.beta[j];
+            // Whether the chain bends back at B (β > 180°) is decided only with a margin far
+            // above the increments' error; near the limit (or NaN) the row is computed directly.
+            let decidable = (beta - PI * (1.0 + BOUNDARY)).abs() > SCAN_DECISION_MARGIN;
+            if !decidable {
+                return j;
+            }
+            self.gamma1[j] = gamma1;
+            self.beta[j] = beta;
+        }
+        n
     }
 }
 
@@ -731,14 +812,15 @@ impl PlanarRedundant {
 
     /// Row `index` computed directly, and the track it starts (when its triangles are well
     /// conditioned).
-    fn direct_row(&self, frame: &ScanFrame, alpha: f64, index: usize) -> (Option<ScanRow>, Option<Track>) {
+    fn direct_row(&self, frame: &ScanFrame, alpha: f64) -> (Option<ScanRow>, Option<Track>) {
         let trig = alpha.sin_cos();
         let Some((gamma1, beta)) = self.paper_row_angles(frame.r, alpha, trig) else { return (None, None) };
         let row = self.finish_row(alpha, beta, gamma1 + frame.gamma2);
-        let track = frame.vectors(trig).map(|(g, b)| Track { anchor: index, trig, gamma1, g, beta, b });
+        let track = frame.vectors(trig).map(|(g, b)| Track { trig, gamma1, g, beta, b });
         (row, track)
     }
 
+    #[cfg(test)]
     /// `γ1` and `β` of the row `j` rows after the track's anchor, the track moved to it.
     #[inline]
     fn incremental_row(frame: &ScanFrame, steps: &RotationSteps, track: &mut Track, j: usize) -> Incremental {
@@ -746,8 +828,7 @@ impl PlanarRedundant {
         let (cross_g, dot_g) = cross_dot(track.g, g);
         let (cross_b, dot_b) = cross_dot(track.b, b);
         // Both turns from the previous row small: |tan| ≤ SCAN_MAX_TAN, forward (dot > 0).
-        let small = |cross: f64, dot: f64| dot > 0.0 && cross.abs() <= SCAN_MAX_TAN * dot;
-        if !(small(cross_g, dot_g) && small(cross_b, dot_b)) {
+        if !(small_turn(cross_g, dot_g) && small_turn(cross_b, dot_b)) {
             return Incremental::Direct;
         }
         // One division for both tangents.
@@ -863,28 +944,59 @@ impl PlanarRedundant {
         let mut rows = Vec::with_capacity(count);
         let mut direct = 0;
         let steps = RotationSteps::new(step, count.min(SCAN_ANCHOR_ROWS));
-        let mut track: Option<Track> = None;
+        let mut segment = ScanSegment::new();
+        // A local copy of the arm: its limits and link constants stay in registers (the
+        // rows' stores cannot alias a local whose address does not escape).
+        let arm = self.clone();
+        // α_i = α_min + i·Δα (no accumulated sum; notes 000 §6).
+        let alpha = |i: usize| alpha_min + (i as f64) * step;
+        let mut i = 0;
+        while i < count {
+            // An anchor, then the rows its segment decides incrementally ([`ScanSegment`]);
+            // the first row it does not decide is the next anchor.
+            let (row, track) = self.direct_row(frame, alpha(i));
+            direct += 1;
+            rows.extend(row);
+            let Some(track) = track else {
+                i += 1;
+                continue;
+            };
+            let decided = segment.fill(frame, &steps, &track, (count - i).min(SCAN_ANCHOR_ROWS));
+            for j in 1..decided {
+                if let Some(row) = arm.finish_row(alpha(i + j), segment.beta[j], segment.gamma1[j] + frame.gamma2) {
+                    rows.push(row);
+                }
+            }
+            i += decided;
+        }
+        (rows, direct)
+    }
+
+    /// The row-by-row form of [`Self::scan_rows`] (each incremental row waits for the
+    /// previous one): the reference that [`ScanSegment`] reproduces bit for bit.
+    #[cfg(test)]
+    fn scan_rows_one_by_one(&self, frame: &ScanFrame, alpha_min: f64, step: f64, count: usize) -> Vec<ScanRow> {
+        let mut rows = Vec::with_capacity(count);
+        let steps = RotationSteps::new(step, count.min(SCAN_ANCHOR_ROWS));
+        // The track and its anchor's row.
+        let mut track: Option<(Track, usize)> = None;
         for i in 0..count {
-            // α_i = α_min + i·Δα (no accumulated sum; notes 000 §6).
             let alpha = alpha_min + (i as f64) * step;
-            let next = match track.as_mut().filter(|t| i - t.anchor < SCAN_ANCHOR_ROWS) {
-                Some(t) => Self::incremental_row(frame, &steps, t, i - t.anchor),
+            let next = match track.as_mut().filter(|(_, anchor)| i - *anchor < SCAN_ANCHOR_ROWS) {
+                Some((t, anchor)) => Self::incremental_row(frame, &steps, t, i - *anchor),
                 None => Incremental::Direct,
             };
             let row = match next {
                 Incremental::Angles(gamma1, beta) => self.finish_row(alpha, beta, gamma1 + frame.gamma2),
                 Incremental::Direct => {
-                    let (row, next) = self.direct_row(frame, alpha, i);
-                    track = next;
-                    direct += 1;
+                    let (row, next) = self.direct_row(frame, alpha);
+                    track = next.map(|t| (t, i));
                     row
                 }
             };
-            if let Some(row) = row {
-                rows.push(row);
-            }
+            rows.extend(row);
         }
-        (rows, direct)
+        rows
     }
 }
 
@@ -1097,6 +1209,46 @@ mod tests {
         assert_eq!(rows.len(), 9001);
         eprintln!("incremental scan: largest difference {worst:e} rad; at 0.01° {direct} of 9001 rows direct");
         assert!(direct <= 9001 / SCAN_ANCHOR_ROWS + 5, "{direct} rows computed directly");
+    }
+
+    /// The segment kernel ([`ScanSegment`], pass by pass) gives the row-by-row increments'
+    /// rows bit for bit, anchors and segment edges included: targets whose scans leave
+    /// segments early (ill-conditioned triangles near the inner circle, large turns at coarse
+    /// steps, β near 180°) and ones that never do, on equal and unequal arms.
+    #[test]
+    fn segment_kernel_is_the_row_by_row_increments() {
+        let (_, equal) = arm();
+        let mut unequal = equal.clone();
+        for (link, l) in unequal.chain.links.iter_mut().zip([1.3, 0.8, 0.6]) {
+            link.length = l;
+        }
+        let mut cut_short = 0;
+        for (arm, targets) in [
+            (&equal, [[2.0, 1.0], [2.4, 0.2], [1.0, 0.1], [2.95, 0.1], [-1.5, 1.5], [0.3, -1.4], [1e-3, 1.0]]),
+            (&unequal, [[1.5, 0.5], [2.5, -0.3], [0.2, 0.6], [-1.0, -1.2], [2.6, 0.1], [0.7, 0.0], [0.5, 0.4]]),
+        ] {
+            for target in targets {
+                for step_deg in [0.01, 0.003, 0.1, 0.7, 1.0, 3.0] {
+                    let step = f64::to_radians(step_deg);
+                    let Some(alpha_min) = arm.paper_scan(target, step).unwrap().alpha_min else { continue };
+                    let count = ((PI - alpha_min) / step + SCAN_GRID).floor() as usize + 1;
+                    let frame = ScanFrame::new(arm.lengths(), target);
+                    let (rows, direct) = arm.scan_rows(&frame, alpha_min, step, count);
+                    let reference = arm.scan_rows_one_by_one(&frame, alpha_min, step, count);
+                    let bits = |r: &ScanRow| {
+                        let p = [r.paper.alpha, r.paper.beta, r.paper.gamma, r.q[0], r.q[1], r.q[2]];
+                        (p.map(f64::to_bits), r.within_limits)
+                    };
+                    assert_eq!(rows.len(), reference.len(), "{target:?} at {step_deg}°");
+                    for (a, b) in rows.iter().zip(&reference) {
+                        assert_eq!(bits(a), bits(b), "{target:?} at {step_deg}° row α {}", a.paper.alpha);
+                    }
+                    // Anchors beyond one per full segment: segments cut short.
+                    cut_short += usize::from(direct > count.div_ceil(SCAN_ANCHOR_ROWS));
+                }
+            }
+        }
+        assert!(cut_short > 0, "no scan left a segment early");
     }
 
     fn arm() -> (Robot, PlanarRedundant) {

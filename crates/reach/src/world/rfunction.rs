@@ -249,6 +249,16 @@ type Ellipse = [f64; 8];
 /// squared coordinate and `−2p` times the other): the coefficients `[L1; L2]`.
 type Parabolic = [f64; 6];
 
+/// Configurations per block of [`CompiledRegion::contains_into`] (four SSE2 registers of two
+/// values per quantity).
+pub const MEMBERSHIP_LANES: usize = 64;
+
+/// All ones where `c` holds, else 0: a comparison as a lane mask.
+#[inline(always)]
+fn mask(c: bool) -> u64 {
+    u64::from(c).wrapping_neg()
+}
+
 /// A kinematic ellipse in the flat form of [`CompiledRegion::contains`]: `[sin φ, cos φ, m3,
 /// m4, a, b]` (each cubic constant term first).
 type Kinematic = [f64; 18];
@@ -347,36 +357,100 @@ impl CompiledRegion {
     #[inline]
     pub fn contains(&self, q: [f64; 3]) -> bool {
         let [q2, q3, q4] = q;
-        let mut inside = true;
-        for ((v, lo), hi) in q.iter().zip(&self.lower).zip(&self.upper) {
-            inside &= (v >= lo) & (v <= hi);
+        self.contains_lanes(&[q2], &[q3], &[q4])[0]
+    }
+
+    /// [`Self::contains`] of every configuration of `qs` (degrees), into `out` (cleared
+    /// first; `out[i]` is `contains(qs[i])`, bit for bit the same arithmetic).
+    ///
+    /// The configurations are evaluated [`MEMBERSHIP_LANES`] at a time in
+    /// structure-of-arrays lanes: each primitive's coefficients are loaded once per block and
+    /// its sign computed for every lane by the same few multiplications and additions, which
+    /// the compiler turns into packed vector instructions.
+    ///
+    /// # Example
+    /// ```
+    /// use reach::world::rfunction::{Primitive, Region};
+    /// let region = Region {
+    ///     limits: [[0.0, 120.0], [-120.0, 120.0], [-120.0, 120.0]],
+    ///     primitives: vec![Primitive::HalfSpace { d: [0.0, 1.0, 1.0], b: 0.0 }],
+    /// };
+    /// let compiled = region.compile();
+    /// let qs = [[10.0, 5.0, 5.0], [10.0, -5.0, -5.0], [130.0, 5.0, 5.0]];
+    /// let mut inside = Vec::new();
+    /// compiled.contains_into(&qs, &mut inside);
+    /// assert_eq!(inside, [true, false, false]);
+    /// ```
+    pub fn contains_into(&self, qs: &[[f64; 3]], out: &mut Vec<bool>) {
+        out.clear();
+        out.reserve(qs.len());
+        let mut blocks = qs.chunks_exact(MEMBERSHIP_LANES);
+        for block in &mut blocks {
+            let lanes = |k: usize| -> [f64; MEMBERSHIP_LANES] { std::array::from_fn(|l| block[l][k]) };
+            out.extend_from_slice(&self.contains_lanes(&lanes(0), &lanes(1), &lanes(2)));
+        }
+        let rest = blocks.remainder();
+        if let Some(last) = rest.last() {
+            // The partial block padded with its last configuration.
+            let lanes =
+                |k: usize| -> [f64; MEMBERSHIP_LANES] { std::array::from_fn(|l| rest.get(l).unwrap_or(last)[k]) };
+            out.extend_from_slice(&self.contains_lanes(&lanes(0), &lanes(1), &lanes(2))[..rest.len()]);
+        }
+    }
+
+    /// The membership kernel over `L` lanes of `(q2, q3, q4)`: the one evaluation behind
+    /// [`Self::contains`] (`L = 1`) and [`Self::contains_into`].
+    #[inline(always)]
+    #[allow(
+        clippy::needless_range_loop,
+        reason = "the lane loops index several arrays by the same lane: the form that vectorises"
+    )]
+    fn contains_lanes<const L: usize>(&self, q2: &[f64; L], q3: &[f64; L], q4: &[f64; L]) -> [bool; L] {
+        // Lane masks (all ones while every test holds): packed compares and `and`s.
+        let mut inside = [u64::MAX; L];
+        for (k, q) in [q2, q3, q4].into_iter().enumerate() {
+            let (lo, hi) = (self.lower[k], self.upper[k]);
+            for l in 0..L {
+                inside[l] &= mask((q[l] >= lo) & (q[l] <= hi));
+            }
         }
         for c in &self.planes {
-            inside &= c[0] + c[1] * q2 + c[2] * q3 + c[3] * q4 >= 0.0;
+            for l in 0..L {
+                inside[l] &= mask(c[0] + c[1] * q2[l] + c[2] * q3[l] + c[3] * q4[l] >= 0.0);
+            }
         }
         for c in &self.ellipses {
-            let l1 = c[0] + c[1] * q2 + c[2] * q3 + c[3] * q4;
-            let l2 = c[4] + c[5] * q2 + c[6] * q3 + c[7] * q4;
-            inside &= l1 * l1 + l2 * l2 >= 1.0;
+            for l in 0..L {
+                let l1 = c[0] + c[1] * q2[l] + c[2] * q3[l] + c[3] * q4[l];
+                let l2 = c[4] + c[5] * q2[l] + c[6] * q3[l] + c[7] * q4[l];
+                inside[l] &= mask(l1 * l1 + l2 * l2 >= 1.0);
+            }
         }
         for c in &self.parabolas {
-            let l1 = c[0] + c[1] * q2 + c[2] * q3;
-            let l2 = c[3] + c[4] * q2 + c[5] * q3;
-            inside &= l1 * l1 + l2 >= 0.0;
+            for l in 0..L {
+                let l1 = c[0] + c[1] * q2[l] + c[2] * q3[l];
+                let l2 = c[3] + c[4] * q2[l] + c[5] * q3[l];
+                inside[l] &= mask(l1 * l1 + l2 >= 0.0);
+            }
         }
-        // Powers of q2 shared by the four cubics of every kinematic ellipse.
-        let (p2, p3) = (q2 * q2, q2 * q2 * q2);
-        let cubic = |c: &[f64]| c[0] + c[1] * q2 + c[2] * p2 + c[3] * p3;
-        for k in &self.kinematic {
-            let (s, c) = (k[0], k[1]);
-            let (d3, d4) = (q3 - cubic(&k[2..6]), q4 - cubic(&k[6..10]));
-            let (a, b) = (cubic(&k[10..14]), cubic(&k[14..18]));
-            let (u, v) = (d3 * c + d4 * s, -d3 * s + d4 * c);
-            let (a2, b2) = (a * a, b * b);
-            let inactive = (a <= 0.0) | (b <= 0.0);
-            inside &= inactive | (u * u * b2 + v * v * a2 - a2 * b2 >= 0.0);
+        if !self.kinematic.is_empty() {
+            // Powers of q2 shared by the four cubics of every kinematic ellipse.
+            let p2: [f64; L] = std::array::from_fn(|l| q2[l] * q2[l]);
+            let p3: [f64; L] = std::array::from_fn(|l| p2[l] * q2[l]);
+            for k in &self.kinematic {
+                let (s, c) = (k[0], k[1]);
+                for l in 0..L {
+                    let cubic = |c: &[f64]| c[0] + c[1] * q2[l] + c[2] * p2[l] + c[3] * p3[l];
+                    let (d3, d4) = (q3[l] - cubic(&k[2..6]), q4[l] - cubic(&k[6..10]));
+                    let (a, b) = (cubic(&k[10..14]), cubic(&k[14..18]));
+                    let (u, v) = (d3 * c + d4 * s, -d3 * s + d4 * c);
+                    let (a2, b2) = (a * a, b * b);
+                    let inactive = (a <= 0.0) | (b <= 0.0);
+                    inside[l] &= mask(inactive | (u * u * b2 + v * v * a2 - a2 * b2 >= 0.0));
+                }
+            }
         }
-        inside
+        inside.map(|m| m != 0)
     }
 
     /// `F(q)` (degrees), bit for bit [`Region::value`].
@@ -448,13 +522,19 @@ mod tests {
             (s >> 11) as f64 / (1u64 << 53) as f64
         };
         let (mut inside, mut cut) = (0, vec![0; region.primitives.len()]);
-        for _ in 0..50_000 {
-            let q = [130.0 * next() - 5.0, 250.0 * next() - 125.0, 250.0 * next() - 125.0];
+        let qs: Vec<[f64; 3]> =
+            (0..50_001).map(|_| [130.0 * next() - 5.0, 250.0 * next() - 125.0, 250.0 * next() - 125.0]).collect();
+        // The batch kernel gives `contains` lane by lane (a partial last block included).
+        let mut batch = Vec::new();
+        compiled.contains_into(&qs, &mut batch);
+        assert_eq!(batch.len(), qs.len());
+        for (i, &q) in qs.iter().enumerate() {
             assert_eq!(compiled.value(q).to_bits(), region.value(q).to_bits(), "{q:?}");
             let values: Vec<Option<f64>> = region.primitives.iter().map(|p| p.value(q)).collect();
             let in_box = region.limits.iter().zip(q).all(|(l, v)| v >= l[0] && v <= l[1]);
             let every = in_box && values.iter().all(|x| x.is_none_or(|x| x >= 0.0));
             assert_eq!(compiled.contains(q), every, "{q:?} {values:?}");
+            assert_eq!(batch[i], every, "{q:?}");
             inside += usize::from(every);
             for (c, x) in cut.iter_mut().zip(&values) {
                 *c += usize::from(in_box && x.is_some_and(|x| x < 0.0));

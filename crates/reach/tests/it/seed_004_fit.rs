@@ -173,6 +173,19 @@ fn the_compiled_region_is_the_region() {
                 boundary += 1;
             }
         }
+        // The batch test (`contains_into`, blocks of lanes) is `contains` configuration by
+        // configuration, also for a partial last block and NaN coordinates.
+        points.push([f64::NAN, 60.0, 0.0]);
+        points.push([60.0, 0.0, f64::NAN]);
+        let mut batch = Vec::new();
+        for len in [points.len(), points.len() - 1, 3, 0] {
+            compiled.contains_into(&points[..len], &mut batch);
+            assert_eq!(batch.len(), len);
+            for (q, b) in points.iter().zip(&batch) {
+                assert_eq!(*b, compiled.contains(*q), "{name} {q:?}");
+            }
+        }
+        points.truncate(points.len() - 2);
         assert!(inside > points.len() / 10 && inside < points.len() * 9 / 10, "{name}: {inside} inside");
         assert!(boundary * 1000 < points.len(), "{name}: {boundary} boundary disagreements");
         assert!(!compiled.contains([f64::NAN, 60.0, 0.0]) && compiled.value([60.0, f64::NAN, 0.0]).is_nan());
