@@ -3,6 +3,7 @@ use nalgebra::{Isometry3, IsometryMatrix3, UnitQuaternion, Vector3};
 use super::{KinematicsError, check_q};
 use crate::model::Robot;
 use crate::model::chain::{Chain, apply_motion};
+use crate::model::fk_chain::FkFrame;
 
 /// The frame after the first joints of a chain, kept between forward-kinematics calls
 /// ([`Robot::fk_matrix_sharing`]).
@@ -13,7 +14,7 @@ pub(crate) struct FkPrefix {
     /// Their values.
     q: [f64; FkPrefix::MAX],
     /// The base times their transforms.
-    frame: IsometryMatrix3<f64>,
+    frame: FkFrame,
 }
 
 impl FkPrefix {
@@ -23,7 +24,7 @@ impl FkPrefix {
 
 impl Default for FkPrefix {
     fn default() -> Self {
-        FkPrefix { len: 0, q: [0.0; FkPrefix::MAX], frame: IsometryMatrix3::identity() }
+        FkPrefix { len: 0, q: [0.0; FkPrefix::MAX], frame: FkFrame::of(&IsometryMatrix3::identity()) }
     }
 }
 
@@ -52,10 +53,9 @@ impl Robot {
     pub fn fk_matrix(&self, q: &[f64]) -> Result<IsometryMatrix3<f64>, KinematicsError> {
         check_q(self.dof(), q)?;
         let fk = &self.chain.fk;
-        let mut t = fk.first;
-        Chain::apply_mimics(&mut t, &fk.first_mimics, q);
+        let mut t = fk.start(q);
         fk.walk(&mut t, q, 0..self.dof(), |_, _| {});
-        Ok(t)
+        Ok(t.isometry())
     }
 
     /// [`Robot::fk_matrix`], sharing the product over the first half of the joints (at most
@@ -80,7 +80,7 @@ impl Robot {
         let head = &q[..k];
         let same = prefix.len == k && prefix.q[..k].iter().zip(head).all(|(a, b)| a.to_bits() == b.to_bits());
         if !same {
-            let mut t = fk.first;
+            let mut t = fk.start(q);
             fk.walk(&mut t, q, 0..k, |_, _| {});
             prefix.len = k;
             prefix.q[..k].copy_from_slice(head);
@@ -88,7 +88,7 @@ impl Robot {
         }
         let mut t = prefix.frame;
         fk.walk(&mut t, q, k..self.dof(), |_, _| {});
-        Ok(t)
+        Ok(t.isometry())
     }
 
     /// Every link frame in the world frame: `out[i]` is the frame of link `i + 1`
@@ -149,27 +149,24 @@ impl Robot {
     ) -> IsometryMatrix3<f64> {
         let fk = &self.chain.fk;
         let mut t = match before.as_deref() {
-            Some(b) if from > 0 => b[from],
-            _ => {
-                let mut t = fk.first;
-                Chain::apply_mimics(&mut t, &fk.first_mimics, q);
-                t
-            }
+            Some(b) if from > 0 => FkFrame::of(&b[from]),
+            _ => fk.start(q),
         };
         for i in from..self.dof() {
             let link = &fk.links[i];
             if let Some(b) = before.as_deref_mut() {
-                b[i] = t;
+                b[i] = t.isometry();
             }
-            apply_motion(&mut t, link.prismatic, link.value(q[i]));
-            out[i] = t * link.to_frame;
-            link.after.apply(&mut t);
-            Chain::apply_mimics(&mut t, &link.mimics, q);
+            t.motion(link.prismatic, link.value(q[i]));
+            out[i] = t.isometry() * link.to_frame;
+            t.mul_step(&link.after);
+            t.mimics(&link.mimics, q);
         }
+        let tool = t.isometry();
         if let Some(b) = before {
-            b[self.dof()] = t;
+            b[self.dof()] = tool;
         }
-        t
+        tool
     }
 
     /// Every link frame in the world frame (see [`Robot::frames_into`]), allocating the vector.

@@ -2,7 +2,7 @@ use nalgebra::{Matrix6xX, Vector3};
 
 use super::{KinematicsError, check_q};
 use crate::model::Robot;
-use crate::model::chain::{Chain, MimicStep, apply_motion};
+use crate::model::chain::{MimicStep, apply_motion};
 
 /// The 6×n geometric Jacobian: rows `vx vy vz ωx ωy ωz` in the world frame, one column per joint.
 pub type Jacobian = Matrix6xX<f64>;
@@ -37,15 +37,14 @@ impl Robot {
             });
         }
         let fk = &self.chain.fk;
-        let mut t = fk.first;
-        Chain::apply_mimics(&mut t, &fk.first_mimics, q);
+        let mut t = fk.start(q);
         // First pass: store the axis in the angular rows and the axis point in the linear rows.
         fk.walk(&mut t, q, 0..self.dof(), |i, t| {
             let mut col = out.column_mut(i);
-            col.fixed_rows_mut::<3>(0).copy_from(&t.translation.vector);
-            col.fixed_rows_mut::<3>(3).copy_from(&t.rotation.matrix().column(2));
+            col.fixed_rows_mut::<3>(0).copy_from(&t.translation());
+            col.fixed_rows_mut::<3>(3).copy_from(&t.z_axis());
         });
-        let p = t.translation.vector;
+        let p = t.translation();
         for (i, link) in self.chain.links.iter().enumerate() {
             let mut col = out.column_mut(i);
             let z = Vector3::new(col[3], col[4], col[5]);

@@ -104,7 +104,7 @@ impl<const L: usize> FrameLanes<L> {
         }
     }
 
-    /// Right-multiplies every lane by the DH step `Tz(d)·Tx(a)·Rx(α)` ([`DhStep::apply`]).
+    /// Right-multiplies every lane by the DH step `Tz(d)·Tx(a)·Rx(α)` ([`FkFrame::mul_dh`](crate::model::fk_chain::FkFrame::mul_dh)).
     #[inline(always)]
     fn mul_dh(&mut self, dh: &DhStep) {
         let (a, d, c, s) = (dh.a, dh.d, dh.cos_alpha, dh.sin_alpha);

@@ -18,7 +18,9 @@
 //! when it equals the exact product to rounding ([`REFRAME_TOLERANCE`], checked when the chain
 //! is built); otherwise the link keeps the general constant and the next frame is not moved.
 //! Standard-DH robots are in this form already (their steps are taken as they are, bit for
-//! bit); modified DH and URDF chains are rewritten. Chains with mimic joints, and prismatic
+//! bit); modified DH and URDF chains are rewritten. The last constant (the tool included)
+//! has no next motion frame to move: it becomes `Rz(θ)·`step when it is of that form as it
+//! stands (a tool turned about or set along the last axis), to the same tolerance. Chains with mimic joints, and prismatic
 //! joints (whose motion cannot take an angle offset), keep their constants.
 //!
 //! Forward kinematics evaluates the sines and cosines of pairs of joints together
@@ -27,7 +29,7 @@
 
 use nalgebra::{IsometryMatrix3, Matrix3, Rotation3, Translation3, Vector3};
 
-use super::chain::{Chain, ChainLink, MimicStep, rotate_z, slide_z};
+use super::chain::{ChainLink, MimicStep};
 use crate::angle::sin_cos_lanes;
 
 /// Largest gap (rotation entries; translation entries relative to `1 + |translation|`) between
@@ -73,19 +75,6 @@ impl DhStep {
         );
         IsometryMatrix3::from_parts(Translation3::new(self.a, 0.0, self.d), Rotation3::from_matrix_unchecked(r))
     }
-
-    /// Right-multiplies `t` by the step in place.
-    #[inline(always)]
-    pub fn apply(&self, t: &mut IsometryMatrix3<f64>) {
-        let m = t.rotation.matrix();
-        let (x, y, z) = (m.column(0).into_owned(), m.column(1).into_owned(), m.column(2).into_owned());
-        t.translation.vector += x * self.a + z * self.d;
-        let (c, s) = (self.cos_alpha, self.sin_alpha);
-        // SAFETY of orthonormality: a rotation times Rx(α) is a rotation.
-        let m = t.rotation.matrix_mut_unchecked();
-        m.set_column(1, &(y * c + z * s));
-        m.set_column(2, &(z * c - y * s));
-    }
 }
 
 /// The constant after a joint's motion.
@@ -97,13 +86,129 @@ pub(crate) enum FkStep {
     General(IsometryMatrix3<f64>),
 }
 
-impl FkStep {
-    /// Right-multiplies `t` by the step in place.
+/// A column of a rotation or a translation (a plain array: its products compile to fewer
+/// instructions than nalgebra's 3-vectors or a column padded to four).
+type Column = [f64; 3];
+
+/// `a·x + b·y`, entry by entry.
+#[inline(always)]
+fn combine(x: &Column, a: f64, y: &Column, b: f64) -> Column {
+    std::array::from_fn(|k| x[k] * a + y[k] * b)
+}
+
+/// A rigid transform as columns: the rotation's x, y and z axes and the translation `p`.
+///
+/// The running product of forward kinematics. Every step is written entry by entry in the
+/// order of operations of nalgebra's products of `IsometryMatrix3` (which
+/// [`Robot::frames_into`](crate::model::Robot::frames_into) and the lane kernels of
+/// `kinematics::lanes` also follow), so the results are theirs bit for bit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct FkFrame {
+    /// The rotation's first column.
+    pub x: Column,
+    /// The rotation's second column.
+    pub y: Column,
+    /// The rotation's third column (a joint's axis, before its motion).
+    pub z: Column,
+    /// The translation.
+    pub p: Column,
+}
+
+impl FkFrame {
+    /// The frame of `t`.
     #[inline(always)]
-    pub fn apply(&self, t: &mut IsometryMatrix3<f64>) {
-        match self {
-            FkStep::Dh(dh) => dh.apply(t),
-            FkStep::General(m) => *t *= m,
+    pub fn of(t: &IsometryMatrix3<f64>) -> FkFrame {
+        let m = t.rotation.matrix();
+        let v = t.translation.vector;
+        let col = |j: usize| [m[(0, j)], m[(1, j)], m[(2, j)]];
+        FkFrame { x: col(0), y: col(1), z: col(2), p: [v.x, v.y, v.z] }
+    }
+
+    /// The frame as an isometry.
+    #[inline(always)]
+    pub fn isometry(&self) -> IsometryMatrix3<f64> {
+        let v = |c: &Column| Vector3::new(c[0], c[1], c[2]);
+        let r = Matrix3::from_columns(&[v(&self.x), v(&self.y), v(&self.z)]);
+        IsometryMatrix3::from_parts(Translation3::from(v(&self.p)), Rotation3::from_matrix_unchecked(r))
+    }
+
+    /// The translation.
+    #[inline(always)]
+    pub fn translation(&self) -> Vector3<f64> {
+        Vector3::new(self.p[0], self.p[1], self.p[2])
+    }
+
+    /// The z axis.
+    #[inline(always)]
+    pub fn z_axis(&self) -> Vector3<f64> {
+        Vector3::new(self.z[0], self.z[1], self.z[2])
+    }
+
+    /// Right-multiplies by `Rz(v)` given as `(sin v, cos v)`.
+    #[inline(always)]
+    pub fn rotate_z(&mut self, s: f64, c: f64) {
+        let x = combine(&self.x, c, &self.y, s);
+        self.y = combine(&self.y, c, &self.x, -s);
+        self.x = x;
+    }
+
+    /// Right-multiplies by `Tz(v)`.
+    #[inline(always)]
+    pub fn slide_z(&mut self, v: f64) {
+        self.p = std::array::from_fn(|k| self.p[k] + self.z[k] * v);
+    }
+
+    /// Right-multiplies by the joint motion `Rz(v)` (radians) or `Tz(v)` (metres).
+    #[inline(always)]
+    pub fn motion(&mut self, prismatic: bool, v: f64) {
+        if prismatic {
+            self.slide_z(v);
+        } else {
+            let (s, c) = crate::angle::sin_cos(v);
+            self.rotate_z(s, c);
+        }
+    }
+
+    /// Right-multiplies by the DH step `Tz(d)·Tx(a)·Rx(α)`.
+    #[inline(always)]
+    pub fn mul_dh(&mut self, dh: &DhStep) {
+        let shift = combine(&self.x, dh.a, &self.z, dh.d);
+        self.p = std::array::from_fn(|k| self.p[k] + shift[k]);
+        let (c, s) = (dh.cos_alpha, dh.sin_alpha);
+        let y = combine(&self.y, c, &self.z, s);
+        self.z = combine(&self.z, c, &self.y, -s);
+        self.y = y;
+    }
+
+    /// Right-multiplies by the constant `m`.
+    #[inline(always)]
+    pub fn mul_const(&mut self, m: &IsometryMatrix3<f64>) {
+        let k = m.rotation.matrix();
+        let u = m.translation.vector;
+        let (x, y, z) = (self.x, self.y, self.z);
+        let product = |a: f64, b: f64, c: f64| -> Column { std::array::from_fn(|i| x[i] * a + y[i] * b + z[i] * c) };
+        let shift = product(u[0], u[1], u[2]);
+        self.p = std::array::from_fn(|i| self.p[i] + shift[i]);
+        self.x = product(k[(0, 0)], k[(1, 0)], k[(2, 0)]);
+        self.y = product(k[(0, 1)], k[(1, 1)], k[(2, 1)]);
+        self.z = product(k[(0, 2)], k[(1, 2)], k[(2, 2)]);
+    }
+
+    /// Right-multiplies by the constant `step`.
+    #[inline(always)]
+    pub fn mul_step(&mut self, step: &FkStep) {
+        match step {
+            FkStep::Dh(dh) => self.mul_dh(dh),
+            FkStep::General(m) => self.mul_const(m),
+        }
+    }
+
+    /// Right-multiplies by the mimic motions `steps` (joint values `q`).
+    #[inline(always)]
+    pub fn mimics(&mut self, steps: &[MimicStep], q: &[f64]) {
+        for m in steps {
+            self.motion(m.prismatic, m.value(q));
+            self.mul_const(&m.after);
         }
     }
 }
@@ -138,14 +243,14 @@ impl FkLink {
     /// its angle, [`FkLink::value`]; unused for a prismatic joint), `after` and the mimic
     /// motions (joint values `all`).
     #[inline(always)]
-    fn advance(&self, t: &mut IsometryMatrix3<f64>, q: f64, s: f64, c: f64, all: &[f64]) {
+    fn advance(&self, t: &mut FkFrame, q: f64, s: f64, c: f64, all: &[f64]) {
         if self.prismatic {
-            slide_z(t, self.value(q));
+            t.slide_z(self.value(q));
         } else {
-            rotate_z(t, s, c);
+            t.rotate_z(s, c);
         }
-        self.after.apply(t);
-        Chain::apply_mimics(t, &self.mimics, all);
+        t.mul_step(&self.after);
+        t.mimics(&self.mimics, all);
     }
 }
 
@@ -179,6 +284,12 @@ impl FkChain {
                 (reframe && !link.prismatic && k + 1 < n).then(|| dh_reframe(&g)).flatten()
             {
                 undo = c.inverse();
+                (theta, FkStep::Dh(dh))
+            } else if let Some((theta, dh)) =
+                (reframe && !link.prismatic && k + 1 == n).then(|| dh_turned(&g, g.translation.vector.norm())).flatten()
+            {
+                // The last constant (tool included) is a turned DH step as it stands: the
+                // tool frame stays where it is.
                 (theta, FkStep::Dh(dh))
             } else {
                 (0.0, FkStep::General(g))
@@ -243,8 +354,14 @@ fn dh_reframe(g: &IsometryMatrix3<f64>) -> Option<(IsometryMatrix3<f64>, f64, Dh
     let move_next =
         IsometryMatrix3::from_parts(Translation3::new(0.0, 0.0, delta), Rotation3::from_matrix_unchecked(rz));
     let exact = g * move_next;
-    let m = exact.rotation.matrix();
-    let o = exact.translation.vector;
+    dh_turned(&exact, p.norm()).map(|(theta, step)| (move_next, theta, step))
+}
+
+/// `θ` and the DH step with `g = Rz(θ) · step` to [`REFRAME_TOLERANCE`] (translation gaps
+/// relative to `1 + scale`), or `None` when `g` is not of that form to rounding.
+fn dh_turned(g: &IsometryMatrix3<f64>, scale: f64) -> Option<(f64, DhStep)> {
+    let m = g.rotation.matrix();
+    let o = g.translation.vector;
     let theta = m[(1, 0)].atan2(m[(0, 0)]);
     let alpha = m[(2, 1)].atan2(m[(2, 2)]);
     let (sin_alpha, cos_alpha) = crate::angle::sin_cos(alpha);
@@ -259,24 +376,32 @@ fn dh_reframe(g: &IsometryMatrix3<f64>) -> Option<(IsometryMatrix3<f64>, f64, Dh
     let model = IsometryMatrix3::from_parts(Translation3::identity(), Rotation3::from_matrix_unchecked(rz_theta))
         * step.isometry();
     let rotation_gap = (model.rotation.matrix() - m).amax();
-    let translation_gap = (model.translation.vector - o).amax() / (1.0 + p.norm());
-    (rotation_gap <= REFRAME_TOLERANCE && translation_gap <= REFRAME_TOLERANCE).then_some((move_next, theta, step))
+    let translation_gap = (model.translation.vector - o).amax() / (1.0 + scale);
+    (rotation_gap <= REFRAME_TOLERANCE && translation_gap <= REFRAME_TOLERANCE).then_some((theta, step))
 }
 
 /// Joints whose sines and cosines forward kinematics evaluates together.
 const TRIG_LANES: usize = 2;
 
 impl FkChain {
+    /// The frame `first · Π(first_mimics)` the product starts from (joint values `q`).
+    #[inline(always)]
+    pub fn start(&self, q: &[f64]) -> FkFrame {
+        let mut t = FkFrame::of(&self.first);
+        t.mimics(&self.first_mimics, q);
+        t
+    }
+
     /// Right-multiplies `t` by the motions and constants of joints `joints` (a range of
     /// joint indices) for joint values `q` (all of them, one per joint; mimic motions
     /// included), calling `visit(i, t)` with the frame just before joint `i`'s motion.
     #[inline(always)]
     pub fn walk(
         &self,
-        t: &mut IsometryMatrix3<f64>,
+        t: &mut FkFrame,
         q: &[f64],
         joints: std::ops::Range<usize>,
-        mut visit: impl FnMut(usize, &IsometryMatrix3<f64>),
+        mut visit: impl FnMut(usize, &FkFrame),
     ) {
         let from = joints.start;
         let links = &self.links[joints.clone()];
