@@ -47,7 +47,7 @@ use serde::Serialize;
 
 use super::WorldError;
 use super::cspace::{CspaceGrid, NodeClass};
-use super::rfunction::{Parabola, Primitive, Region};
+use super::rfunction::{Flat, Parabola, Primitive, Region};
 
 /// Number of plane normals tried by the support-plane search.
 const PLANE_DIRECTIONS: usize = 4000;
@@ -186,9 +186,13 @@ fn confusion_of(region: &Region, n: &Nodes) -> Confusion {
         false_forbidden_by_primitive: vec![0; region.primitives.len()],
         rate: 0.0,
     };
-    for (q, class) in n.q.iter().zip(&n.class) {
+    // The region's one membership test (`Region::contains`, here in its compiled batch form).
+    let mut admitted = Vec::with_capacity(n.q.len());
+    region.compile().contains_into(&n.q, &mut admitted);
+    let flat: Vec<Flat> = region.primitives.iter().map(Flat::of).collect();
+    for ((q, class), admitted) in n.q.iter().zip(&n.class).zip(admitted) {
         let truth = *class == NodeClass::Allowed;
-        match (truth, region.contains(*q)) {
+        match (truth, admitted) {
             (true, true) => c.true_allowed += 1,
             (false, true) => {
                 c.false_allowed += 1;
@@ -198,8 +202,8 @@ fn confusion_of(region: &Region, n: &Nodes) -> Confusion {
             }
             (true, false) => {
                 c.false_forbidden += 1;
-                for (k, p) in region.primitives.iter().enumerate() {
-                    if p.value(*q).is_some_and(|x| x < 0.0) {
+                for (k, p) in flat.iter().enumerate() {
+                    if !p.admits_at(*q) {
                         c.false_forbidden_by_primitive[k] += 1;
                     }
                 }
@@ -300,10 +304,12 @@ pub fn fit_region(grid: &CspaceGrid, options: &FitOptions) -> Result<Fit, WorldE
     Ok(Fit { region, joints: n.joints, parts, confusion })
 }
 
-/// Cuts off the nodes still `inside` that `p` forbids (`p < 0`), calling `on_cut` with each.
+/// Cuts off the nodes still `inside` that `p` forbids (the test of [`Region::contains`]),
+/// calling `on_cut` with each.
 fn apply(p: &Primitive, n: &Nodes, inside: &mut [bool], mut on_cut: impl FnMut(usize)) {
+    let p = Flat::of(p);
     for (i, q) in n.q.iter().enumerate() {
-        if inside[i] && p.value(*q).is_some_and(|x| x < 0.0) {
+        if inside[i] && !p.admits_at(*q) {
             inside[i] = false;
             on_cut(i);
         }
@@ -462,8 +468,9 @@ fn fine_axes(a: f64) -> Vec<f64> {
 /// The cost of cutting with `p` the admitted nodes, relative to not cutting.
 fn cut_cost(p: &Primitive, n: &Nodes, targets: &[bool], positives: &[bool], inside: &[bool], w: (f64, f64)) -> f64 {
     let mut cost = 0.0;
+    let p = Flat::of(p);
     for (i, q) in n.q.iter().enumerate() {
-        if inside[i] && p.value(*q).is_some_and(|x| x < 0.0) {
+        if inside[i] && !p.admits_at(*q) {
             if targets[i] {
                 cost -= w.0;
             } else if positives[i] {

@@ -4,7 +4,9 @@
 //!
 //! Every primitive returns a value `X` with `X ≥ 0` on the allowed side. A region is the
 //! left-nested R-conjunction of the six joint-limit inequalities `g1…g6` and then the
-//! primitives in the paper's order (notes 004 §4 C); `q ∈ Λ ⇔ F(q) ≥ 0`.
+//! primitives in the paper's order (notes 004 §4 C); `q ∈ Λ ⇔ F(q) ≥ 0`, decided by the
+//! conjunction's defining property on the exact values of the limits and primitives
+//! ([`Region::contains`], the one membership rule; [`CompiledRegion`] is its fast form).
 
 use serde::Serialize;
 
@@ -90,63 +92,22 @@ pub enum Primitive {
     },
 }
 
-fn cubic(c: &[f64; 4], x: f64) -> f64 {
-    ((c[3] * x + c[2]) * x + c[1]) * x + c[0]
-}
-
-/// `(sin, cos)` of a tilt given in degrees: the trigonometry every primitive evaluation
-/// shares (computed once by [`CompiledRegion`]).
+/// `(sin, cos)` of a tilt given in degrees (computed once per primitive by [`Flat::of`]).
 fn tilt(phi_deg: f64) -> (f64, f64) {
     phi_deg.to_radians().sin_cos()
 }
 
-/// Outside of an ellipse tilted by the angle of `(s, c)` = (sin, cos): `u²/a² + v²/b² − 1`.
-#[inline]
-fn ellipse_outside((s, c): (f64, f64), d3: f64, d4: f64, a: f64, b: f64) -> f64 {
-    let u = d3 * c + d4 * s;
-    let v = -d3 * s + d4 * c;
-    (u / a).powi(2) + (v / b).powi(2) - 1.0
-}
-
-/// The parabolic cylinder's value, its axis tilted by the angle of `(sn, cs)`.
-#[inline]
-fn parabola_value((sn, cs): (f64, f64), vertex: &[f64; 2], p: f64, variant: Parabola, q2: f64, q3: f64) -> f64 {
-    let (d2, d3) = (q2 - vertex[0], q3 - vertex[1]);
-    let s = d2 * cs + d3 * sn;
-    let t = -d2 * sn + d3 * cs;
-    match variant {
-        Parabola::SquareFirst => s * s - 2.0 * p * t,
-        Parabola::SquareSecond => t * t - 2.0 * p * s,
-    }
-}
-
-/// The kinematic ellipse's value (`None` where a semi-axis is ≤ 0: inactive).
-#[inline]
-fn kinematic_value(trig: (f64, f64), [m3, m4, a, b]: [&[f64; 4]; 4], [q2, q3, q4]: [f64; 3]) -> Option<f64> {
-    let (aa, bb) = (cubic(a, q2), cubic(b, q2));
-    if aa <= 0.0 || bb <= 0.0 {
-        return None;
-    }
-    Some(ellipse_outside(trig, q3 - cubic(m3, q2), q4 - cubic(m4, q2), aa, bb))
-}
-
 impl Primitive {
     /// The primitive's value at `q = (q2, q3, q4)` (degrees); `None` when inactive.
+    ///
+    /// Evaluated in the primitive's flat form (the tilt folded into affine coefficients; see
+    /// [`CompiledRegion`]), the one evaluation behind every membership test: the value is
+    /// `≥ 0` exactly when [`Region::contains`] and [`CompiledRegion::contains`] count the
+    /// primitive as satisfied.
     #[must_use]
     #[inline]
     pub fn value(&self, q: [f64; 3]) -> Option<f64> {
-        let [q2, q3, q4] = q;
-        match self {
-            Primitive::HalfSpace { d, b } => Some(d[0] * q2 + d[1] * q3 + d[2] * q4 - b),
-            Primitive::EllipticCylinder { phi_deg, a, b, centre } => {
-                let (c3, c4) = (centre[0] * q2 + centre[1], centre[2] * q2 + centre[3]);
-                Some(ellipse_outside(tilt(*phi_deg), q3 - c3, q4 - c4, *a, *b))
-            }
-            Primitive::ParabolicCylinder { phi_deg, vertex, p, variant } => {
-                Some(parabola_value(tilt(*phi_deg), vertex, *p, *variant, q2, q3))
-            }
-            Primitive::KinematicEllipse { phi_deg, m3, m4, a, b } => kinematic_value(tilt(*phi_deg), [m3, m4, a, b], q),
-        }
+        Flat::of(self).value(q)
     }
 }
 
@@ -174,7 +135,9 @@ impl Region {
         f
     }
 
-    /// `F(q)`; `q ∈ Λ ⇔ F(q) ≥ 0` (boundary included).
+    /// `F(q)`: the left-nested R-conjunction of the limits and the active primitives' values.
+    /// Its sign is the membership ([`Self::contains`]) away from rounding; use it for the
+    /// size of `F` (e.g. a band around the boundary), `contains` for the verdict.
     #[must_use]
     #[inline]
     pub fn value(&self, q: [f64; 3]) -> f64 {
@@ -187,67 +150,189 @@ impl Region {
         CompiledRegion::new(self)
     }
 
-    /// Membership test `F(q) ≥ 0`.
+    /// Membership `q ∈ Λ` (degrees, boundary included), the one membership rule of seed 004:
+    /// `q` within every limit and every active primitive's [`Primitive::value`] `≥ 0` — the
+    /// R-conjunction's defining property `X1 ∧ X2 ≥ 0 ⇔ X1 ≥ 0 and X2 ≥ 0` (eq. 7) applied
+    /// to the exact floating-point values. `false` for a NaN coordinate.
+    ///
+    /// The rounded `F(q) ≥ 0` ([`Self::value`]) can differ only within rounding of a zero:
+    /// a primitive value that is negative but tiny next to the others (e.g. −1e-14 at a
+    /// node on a support plane) is absorbed by `X1 + X2 − √(X1² + X2²)`, so `F` may round
+    /// to 0 where this test says "outside". This test is the stricter one and the one used
+    /// everywhere (fit, confusion counts, [`CompiledRegion::contains`], which is this test
+    /// bit for bit).
     #[must_use]
     #[inline]
     pub fn contains(&self, q: [f64; 3]) -> bool {
-        self.value(q) >= 0.0
+        self.limits.iter().zip(q).all(|([lo, hi], v)| within(*lo, *hi, v))
+            && self.primitives.iter().all(|p| Flat::of(p).admits_at(q))
     }
 }
 
-/// A primitive with its tilt's trigonometry precomputed: evaluated by the same expressions
-/// as [`Primitive::value`], so its values are bit for bit the primitive's.
-#[derive(Debug, Clone, PartialEq)]
-enum Compiled {
-    HalfSpace { d: [f64; 3], b: f64 },
-    EllipticCylinder { trig: (f64, f64), a: f64, b: f64, centre: [f64; 4] },
-    ParabolicCylinder { trig: (f64, f64), vertex: [f64; 2], p: f64, variant: Parabola },
-    KinematicEllipse { trig: (f64, f64), m3: [f64; 4], m4: [f64; 4], a: [f64; 4], b: [f64; 4] },
+/// `lo ≤ v ≤ hi` (`false` for NaN): the limit test of every membership evaluation.
+#[inline(always)]
+fn within(lo: f64, hi: f64, v: f64) -> bool {
+    (v >= lo) & (v <= hi)
 }
 
-impl Compiled {
-    fn new(p: &Primitive) -> Self {
-        match p {
-            Primitive::HalfSpace { d, b } => Compiled::HalfSpace { d: *d, b: *b },
-            Primitive::EllipticCylinder { phi_deg, a, b, centre } => {
-                Compiled::EllipticCylinder { trig: tilt(*phi_deg), a: *a, b: *b, centre: *centre }
-            }
-            Primitive::ParabolicCylinder { phi_deg, vertex, p, variant } => {
-                Compiled::ParabolicCylinder { trig: tilt(*phi_deg), vertex: *vertex, p: *p, variant: *variant }
-            }
-            Primitive::KinematicEllipse { phi_deg, m3, m4, a, b } => {
-                Compiled::KinematicEllipse { trig: tilt(*phi_deg), m3: *m3, m4: *m4, a: *a, b: *b }
-            }
-        }
-    }
-
-    #[inline]
-    fn value(&self, q: [f64; 3]) -> Option<f64> {
-        let [q2, q3, q4] = q;
-        match self {
-            Compiled::HalfSpace { d, b } => Some(d[0] * q2 + d[1] * q3 + d[2] * q4 - b),
-            Compiled::EllipticCylinder { trig, a, b, centre } => {
-                let (c3, c4) = (centre[0] * q2 + centre[1], centre[2] * q2 + centre[3]);
-                Some(ellipse_outside(*trig, q3 - c3, q4 - c4, *a, *b))
-            }
-            Compiled::ParabolicCylinder { trig, vertex, p, variant } => {
-                Some(parabola_value(*trig, vertex, *p, *variant, q2, q3))
-            }
-            Compiled::KinematicEllipse { trig, m3, m4, a, b } => kinematic_value(*trig, [m3, m4, a, b], q),
-        }
-    }
-}
-
-/// A half-space in the flat form `X = c0 + c1·q2 + c2·q3 + c3·q4`.
+/// A half-space in the flat form `X = d0·q2 + d1·q3 + d2·q4 − b`: `[d0, d1, d2, b]` (the
+/// order of the fit's dot products, so a support point's value is exactly 0).
 type Plane = [f64; 4];
 
-/// An elliptic cylinder in the flat form `X = L1² + L2² − 1`, each `Lk = c0 + c1·q2 + c2·q3 +
+/// An elliptic cylinder in the flat form `X = (L1² + L2²) − 1`, each `Lk = c0 + c1·q2 + c2·q3 +
 /// c3·q4` (`u/a` and `v/b`): the coefficients `[L1; L2]`.
 type Ellipse = [f64; 8];
 
 /// A parabolic cylinder in the flat form `X = L1² + L2`, each `Lk = c0 + c1·q2 + c2·q3` (the
 /// squared coordinate and `−2p` times the other): the coefficients `[L1; L2]`.
 type Parabolic = [f64; 6];
+
+/// A kinematic ellipse in the flat form `[sin φ, cos φ, m3, m4, a, b]` (each cubic constant
+/// term first, evaluated on the powers `q2, q2², q2³`): `X = (u²b² + v²a²)/(a²b²) − 1`,
+/// inactive where `a ≤ 0` or `b ≤ 0`.
+type Kinematic = [f64; 18];
+
+#[inline(always)]
+fn plane_value(c: &Plane, q2: f64, q3: f64, q4: f64) -> f64 {
+    c[0] * q2 + c[1] * q3 + c[2] * q4 - c[3]
+}
+
+#[inline(always)]
+fn plane_admits(c: &Plane, q2: f64, q3: f64, q4: f64) -> bool {
+    plane_value(c, q2, q3, q4) >= 0.0
+}
+
+/// `L1² + L2²` of an elliptic cylinder (its value plus 1).
+#[inline(always)]
+fn ellipse_sum(c: &Ellipse, q2: f64, q3: f64, q4: f64) -> f64 {
+    let l1 = c[0] + c[1] * q2 + c[2] * q3 + c[3] * q4;
+    let l2 = c[4] + c[5] * q2 + c[6] * q3 + c[7] * q4;
+    l1 * l1 + l2 * l2
+}
+
+/// The ellipse's value `≥ 0`: `fl(X − 1) ≥ 0 ⇔ X ≥ 1` (rounding keeps the difference's sign).
+#[inline(always)]
+fn ellipse_admits(c: &Ellipse, q2: f64, q3: f64, q4: f64) -> bool {
+    ellipse_sum(c, q2, q3, q4) >= 1.0
+}
+
+#[inline(always)]
+fn parabolic_value(c: &Parabolic, q2: f64, q3: f64) -> f64 {
+    let l1 = c[0] + c[1] * q2 + c[2] * q3;
+    let l2 = c[3] + c[4] * q2 + c[5] * q3;
+    l1 * l1 + l2
+}
+
+#[inline(always)]
+fn parabolic_admits(c: &Parabolic, q2: f64, q3: f64) -> bool {
+    parabolic_value(c, q2, q3) >= 0.0
+}
+
+/// A kinematic ellipse's `(a, b, u²b² + v²a², a²b²)` at `q2` (with its powers `p2 = q2²`,
+/// `p3 = p2·q2`), `q3`, `q4`.
+#[inline(always)]
+fn kinematic_terms(k: &Kinematic, q2: f64, p2: f64, p3: f64, q3: f64, q4: f64) -> (f64, f64, f64, f64) {
+    let (s, c) = (k[0], k[1]);
+    let cubic = |c: &[f64]| c[0] + c[1] * q2 + c[2] * p2 + c[3] * p3;
+    let (d3, d4) = (q3 - cubic(&k[2..6]), q4 - cubic(&k[6..10]));
+    let (a, b) = (cubic(&k[10..14]), cubic(&k[14..18]));
+    let (u, v) = (d3 * c + d4 * s, -d3 * s + d4 * c);
+    let (a2, b2) = (a * a, b * b);
+    (a, b, u * u * b2 + v * v * a2, a2 * b2)
+}
+
+/// Whether a kinematic ellipse with terms `(a, b, n, d)` admits the point: inactive, or
+/// `n/d − 1 ≥ 0` decided without the division. With `n, d ≥ 0` (or NaN), correctly rounded
+/// `n/d ≥ 1 ⇔ n ≥ d` for a finite `d > 0` (below 1 the floats are 2^-53 apart and `n < d`
+/// means `n/d ≤ 1 − 2^-53`); `d = 0` gives `+∞` (admitted) for `n > 0` and NaN for `n = 0`,
+/// `d = +∞` gives 0 or NaN (not admitted).
+#[inline(always)]
+fn kinematic_admits((a, b, n, d): (f64, f64, f64, f64)) -> bool {
+    (a <= 0.0) | (b <= 0.0) | ((n >= d) & (n > 0.0) & (d < f64::INFINITY))
+}
+
+/// One primitive in flat form: the one evaluation of a primitive's value and sign behind
+/// [`Primitive::value`], [`Region::contains`] and [`CompiledRegion`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Flat {
+    Plane(Plane),
+    Ellipse(Ellipse),
+    Parabolic(Parabolic),
+    Kinematic(Kinematic),
+}
+
+impl Flat {
+    /// The flat form of `p` (tilt trigonometry and semi-axes folded into coefficients).
+    pub(crate) fn of(p: &Primitive) -> Self {
+        match p {
+            Primitive::HalfSpace { d, b } => Flat::Plane([d[0], d[1], d[2], *b]),
+            Primitive::EllipticCylinder { phi_deg, a, b, centre: [k3, m3, k4, m4] } => {
+                let (s, c) = tilt(*phi_deg);
+                // u = (q3 − k3·q2 − m3)·c + (q4 − k4·q2 − m4)·s, v = −(…)·s + (…)·c.
+                let u = [-(m3 * c + m4 * s), -(k3 * c + k4 * s), c, s];
+                let v = [m3 * s - m4 * c, k3 * s - k4 * c, -s, c];
+                Flat::Ellipse([u[0] / a, u[1] / a, u[2] / a, u[3] / a, v[0] / b, v[1] / b, v[2] / b, v[3] / b])
+            }
+            Primitive::ParabolicCylinder { phi_deg, vertex: [c2, c3], p, variant } => {
+                let (sn, cs) = tilt(*phi_deg);
+                // s = (q2 − c2)·cs + (q3 − c3)·sn, t = −(q2 − c2)·sn + (q3 − c3)·cs.
+                let s = [-(c2 * cs + c3 * sn), cs, sn];
+                let t = [c2 * sn - c3 * cs, -sn, cs];
+                let (square, linear) = match variant {
+                    Parabola::SquareFirst => (s, t),
+                    Parabola::SquareSecond => (t, s),
+                };
+                let l2 = linear.map(|x| -2.0 * p * x);
+                Flat::Parabolic([square[0], square[1], square[2], l2[0], l2[1], l2[2]])
+            }
+            Primitive::KinematicEllipse { phi_deg, m3, m4, a, b } => {
+                let (s, c) = tilt(*phi_deg);
+                let mut k = [0.0; 18];
+                k[0] = s;
+                k[1] = c;
+                for (slot, coefficients) in k[2..].chunks_exact_mut(4).zip([m3, m4, a, b]) {
+                    slot.copy_from_slice(coefficients);
+                }
+                Flat::Kinematic(k)
+            }
+        }
+    }
+
+    /// The primitive's value (`None` when inactive); `≥ 0` exactly when [`Self::admits`].
+    #[inline]
+    pub(crate) fn value(&self, [q2, q3, q4]: [f64; 3]) -> Option<f64> {
+        match self {
+            Flat::Plane(c) => Some(plane_value(c, q2, q3, q4)),
+            Flat::Ellipse(c) => Some(ellipse_sum(c, q2, q3, q4) - 1.0),
+            Flat::Parabolic(c) => Some(parabolic_value(c, q2, q3)),
+            Flat::Kinematic(k) => {
+                let p2 = q2 * q2;
+                let (a, b, n, d) = kinematic_terms(k, q2, p2, p2 * q2, q3, q4);
+                (a > 0.0 && b > 0.0).then(|| n / d - 1.0)
+            }
+        }
+    }
+
+    /// The primitive's verdict at `q` ([`Self::admits`] with the powers of `q2`).
+    #[inline]
+    pub(crate) fn admits_at(&self, [q2, q3, q4]: [f64; 3]) -> bool {
+        let p2 = q2 * q2;
+        self.admits(q2, p2, p2 * q2, q3, q4)
+    }
+
+    /// The primitive's verdict at `(q2, q3, q4)` (`p2 = q2²`, `p3 = p2·q2`): inactive or its
+    /// value `≥ 0` (see [`ellipse_admits`], [`kinematic_admits`]); the per-kind tests are the
+    /// ones every lane of [`CompiledRegion::contains_into`] evaluates.
+    #[inline(always)]
+    pub(crate) fn admits(&self, q2: f64, p2: f64, p3: f64, q3: f64, q4: f64) -> bool {
+        match self {
+            Flat::Plane(c) => plane_admits(c, q2, q3, q4),
+            Flat::Ellipse(c) => ellipse_admits(c, q2, q3, q4),
+            Flat::Parabolic(c) => parabolic_admits(c, q2, q3),
+            Flat::Kinematic(k) => kinematic_admits(kinematic_terms(k, q2, p2, p3, q3, q4)),
+        }
+    }
+}
 
 /// Configurations per block of [`CompiledRegion::contains_into`] (four SSE2 registers of two
 /// values per quantity).
@@ -259,25 +344,18 @@ fn mask(c: bool) -> u64 {
     u64::from(c).wrapping_neg()
 }
 
-/// A kinematic ellipse in the flat form of [`CompiledRegion::contains`]: `[sin φ, cos φ, m3,
-/// m4, a, b]` (each cubic constant term first).
-type Kinematic = [f64; 18];
-
 /// A [`Region`] compiled into flat coefficient arrays (seed 004's fitted R-function region as
 /// a fast membership test).
 ///
-/// * [`CompiledRegion::contains`] decides `F(q) ≥ 0` by the defining property of the
-///   R-conjunction, `X1 ∧ X2 ≥ 0 ⇔ X1 ≥ 0 and X2 ≥ 0`: every primitive's own sign, in a flat,
-///   branch-free pass over contiguous coefficients (no square root, no division, no tilt
+/// * [`CompiledRegion::contains`] is [`Region::contains`] — the same verdict for every `q`,
+///   computed by the same expressions on the same coefficients — in a flat, branch-free pass
+///   over contiguous coefficients grouped by primitive kind (no square root, no tilt
 ///   trigonometry — it is folded into the coefficients — and no allocation). Half-spaces are
 ///   affine in `q`, an elliptic cylinder is `L1² + L2² ≥ 1` and a parabolic one `L1² + L2 ≥
-///   0` with `Lk` affine; a kinematic
-///   ellipse with semi-axes `a, b > 0` is tested as `u²b² + v²a² − a²b² ≥ 0` (its value times
-///   `a²b²`), inactive where `a ≤ 0` or `b ≤ 0`. It decides the same set as
-///   [`Region::contains`] except where a primitive's value is within rounding of 0 (a node on
-///   a support plane, say), where the composed `F`'s rounding can tip either way.
+///   0` with `Lk` affine; a kinematic ellipse with semi-axes `a, b > 0` is decided without
+///   its division (`u²b² + v²a² ≥ a²b²`, exactly the sign of its value).
 /// * [`CompiledRegion::value`] is `F(q)` itself, bit for bit [`Region::value`], with each
-///   primitive's tilt trigonometry computed once instead of at every evaluation (used where
+///   primitive's flat form computed once instead of at every evaluation (used where
 ///   the size of `F` matters, e.g. the first test's band, [`super::approach::FastRegion`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct CompiledRegion {
@@ -288,49 +366,22 @@ pub struct CompiledRegion {
     ellipses: Vec<Ellipse>,
     parabolas: Vec<Parabolic>,
     kinematic: Vec<Kinematic>,
-    ops: Vec<Compiled>,
+    /// Every primitive's flat form in composition order (for [`Self::value`]).
+    ops: Vec<Flat>,
 }
 
 impl CompiledRegion {
     /// Compiles `region`.
     #[must_use]
     pub fn new(region: &Region) -> Self {
-        let mut planes = Vec::new();
-        let mut ellipses = Vec::new();
-        let mut parabolas = Vec::new();
-        let mut kinematic = Vec::new();
-        for p in &region.primitives {
-            match p {
-                Primitive::HalfSpace { d, b } => planes.push([-b, d[0], d[1], d[2]]),
-                Primitive::EllipticCylinder { phi_deg, a, b, centre: [k3, m3, k4, m4] } => {
-                    let (s, c) = tilt(*phi_deg);
-                    // u = (q3 − k3·q2 − m3)·c + (q4 − k4·q2 − m4)·s, v = −(…)·s + (…)·c.
-                    let u = [-(m3 * c + m4 * s), -(k3 * c + k4 * s), c, s];
-                    let v = [m3 * s - m4 * c, k3 * s - k4 * c, -s, c];
-                    ellipses.push([u[0] / a, u[1] / a, u[2] / a, u[3] / a, v[0] / b, v[1] / b, v[2] / b, v[3] / b]);
-                }
-                Primitive::ParabolicCylinder { phi_deg, vertex: [c2, c3], p, variant } => {
-                    let (sn, cs) = tilt(*phi_deg);
-                    // s = (q2 − c2)·cs + (q3 − c3)·sn, t = −(q2 − c2)·sn + (q3 − c3)·cs.
-                    let s = [-(c2 * cs + c3 * sn), cs, sn];
-                    let t = [c2 * sn - c3 * cs, -sn, cs];
-                    let (square, linear) = match variant {
-                        Parabola::SquareFirst => (s, t),
-                        Parabola::SquareSecond => (t, s),
-                    };
-                    let l2 = linear.map(|x| -2.0 * p * x);
-                    parabolas.push([square[0], square[1], square[2], l2[0], l2[1], l2[2]]);
-                }
-                Primitive::KinematicEllipse { phi_deg, m3, m4, a, b } => {
-                    let (s, c) = tilt(*phi_deg);
-                    let mut k = [0.0; 18];
-                    k[0] = s;
-                    k[1] = c;
-                    for (slot, coefficients) in k[2..].chunks_exact_mut(4).zip([m3, m4, a, b]) {
-                        slot.copy_from_slice(coefficients);
-                    }
-                    kinematic.push(k);
-                }
+        let ops: Vec<Flat> = region.primitives.iter().map(Flat::of).collect();
+        let (mut planes, mut ellipses, mut parabolas, mut kinematic) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        for op in &ops {
+            match *op {
+                Flat::Plane(c) => planes.push(c),
+                Flat::Ellipse(c) => ellipses.push(c),
+                Flat::Parabolic(c) => parabolas.push(c),
+                Flat::Kinematic(k) => kinematic.push(k),
             }
         }
         CompiledRegion {
@@ -341,7 +392,7 @@ impl CompiledRegion {
             ellipses,
             parabolas,
             kinematic,
-            ops: region.primitives.iter().map(Compiled::new).collect(),
+            ops,
         }
     }
 
@@ -351,8 +402,8 @@ impl CompiledRegion {
         &self.source
     }
 
-    /// Membership `q ∈ Λ` (degrees, boundary included): every limit and every active
-    /// primitive non-negative (see the type's documentation). `false` for a NaN coordinate.
+    /// Membership `q ∈ Λ` (degrees, boundary included): [`Region::contains`] (see the type's
+    /// documentation). `false` for a NaN coordinate.
     #[must_use]
     #[inline]
     pub fn contains(&self, q: [f64; 3]) -> bool {
@@ -399,7 +450,8 @@ impl CompiledRegion {
     }
 
     /// The membership kernel over `L` lanes of `(q2, q3, q4)`: the one evaluation behind
-    /// [`Self::contains`] (`L = 1`) and [`Self::contains_into`].
+    /// [`Self::contains`] (`L = 1`) and [`Self::contains_into`], lane by lane the verdicts of
+    /// [`within`] and [`Flat::admits`] (the primitives grouped by kind).
     #[inline(always)]
     #[allow(
         clippy::needless_range_loop,
@@ -411,26 +463,22 @@ impl CompiledRegion {
         for (k, q) in [q2, q3, q4].into_iter().enumerate() {
             let (lo, hi) = (self.lower[k], self.upper[k]);
             for l in 0..L {
-                inside[l] &= mask((q[l] >= lo) & (q[l] <= hi));
+                inside[l] &= mask(within(lo, hi, q[l]));
             }
         }
         for c in &self.planes {
             for l in 0..L {
-                inside[l] &= mask(c[0] + c[1] * q2[l] + c[2] * q3[l] + c[3] * q4[l] >= 0.0);
+                inside[l] &= mask(plane_admits(c, q2[l], q3[l], q4[l]));
             }
         }
         for c in &self.ellipses {
             for l in 0..L {
-                let l1 = c[0] + c[1] * q2[l] + c[2] * q3[l] + c[3] * q4[l];
-                let l2 = c[4] + c[5] * q2[l] + c[6] * q3[l] + c[7] * q4[l];
-                inside[l] &= mask(l1 * l1 + l2 * l2 >= 1.0);
+                inside[l] &= mask(ellipse_admits(c, q2[l], q3[l], q4[l]));
             }
         }
         for c in &self.parabolas {
             for l in 0..L {
-                let l1 = c[0] + c[1] * q2[l] + c[2] * q3[l];
-                let l2 = c[3] + c[4] * q2[l] + c[5] * q3[l];
-                inside[l] &= mask(l1 * l1 + l2 >= 0.0);
+                inside[l] &= mask(parabolic_admits(c, q2[l], q3[l]));
             }
         }
         if !self.kinematic.is_empty() {
@@ -438,15 +486,8 @@ impl CompiledRegion {
             let p2: [f64; L] = std::array::from_fn(|l| q2[l] * q2[l]);
             let p3: [f64; L] = std::array::from_fn(|l| p2[l] * q2[l]);
             for k in &self.kinematic {
-                let (s, c) = (k[0], k[1]);
                 for l in 0..L {
-                    let cubic = |c: &[f64]| c[0] + c[1] * q2[l] + c[2] * p2[l] + c[3] * p3[l];
-                    let (d3, d4) = (q3[l] - cubic(&k[2..6]), q4[l] - cubic(&k[6..10]));
-                    let (a, b) = (cubic(&k[10..14]), cubic(&k[14..18]));
-                    let (u, v) = (d3 * c + d4 * s, -d3 * s + d4 * c);
-                    let (a2, b2) = (a * a, b * b);
-                    let inactive = (a <= 0.0) | (b <= 0.0);
-                    inside[l] &= mask(inactive | (u * u * b2 + v * v * a2 - a2 * b2 >= 0.0));
+                    inside[l] &= mask(kinematic_admits(kinematic_terms(k, q2[l], p2[l], p3[l], q3[l], q4[l])));
                 }
             }
         }
