@@ -599,10 +599,22 @@ pub(crate) fn fit_revolute(angle: f64, limits: &crate::model::Limits) -> f64 {
 /// (`wrap(a − b).abs() < IK_DUPLICATE`), skipping the `fmod` when the plain difference decides.
 #[inline]
 fn same_angle(a: f64, b: f64) -> bool {
+    use std::f64::consts::{PI, TAU};
     let d = (a - b).abs();
     // |d| < IK_DUPLICATE (< π) wraps to itself; |d| in [IK_DUPLICATE, π] also wraps to itself
     // and fails the test; only larger differences can wrap back near 0.
-    d < IK_DUPLICATE || (d > std::f64::consts::PI && crate::angle::wrap(a - b).abs() < IK_DUPLICATE)
+    if d < IK_DUPLICATE {
+        true
+    } else if d <= PI {
+        false
+    } else if d < TAU {
+        // `wrap(a − b)` is `a − b ∓ 2π` here, exactly (Sterbenz: 2π lies within [d, 2d]), of
+        // magnitude `2π − d`, also exact: the same value without the remainder (the two
+        // wrist solutions of an arm differ by about π in θ4 and θ6).
+        TAU - d < IK_DUPLICATE
+    } else {
+        crate::angle::wrap(a - b).abs() < IK_DUPLICATE
+    }
 }
 
 /// Whether two joint vectors are the same solution: revolute values by [`same_angle`], prismatic
@@ -769,12 +781,12 @@ pub(crate) fn finish_within_into<C: CandidateList + ?Sized>(
     out: &mut IkSolutions,
 ) -> Result<(), IkError> {
     let check = Check::new(target);
-    let mut kept = Kept { robot, tolerances, solutions: &mut out.solutions, spare: &mut out.spare.0 };
-    // Every solution goes to the spares, and comes back in order: the result does not depend
-    // on what `out` held, only the buffers are reused.
-    kept.spare.extend(kept.solutions.drain(..).rev());
+    // The solutions of `out` are overwritten in order, then spares (taken back last first),
+    // then new ones: the result does not depend on what `out` held, only the buffers are
+    // reused.
+    let mut kept = Kept { robot, tolerances, len: 0, solutions: &mut out.solutions, spare: &mut out.spare.0 };
     let n = candidates.count();
-    kept.solutions.reserve(n);
+    kept.solutions.reserve(n.saturating_sub(kept.solutions.len()));
     let dof = robot.dof();
     if dof <= LANE_DOF {
         for start in (0..n).step_by(VERIFY_LANES) {
@@ -818,6 +830,8 @@ pub(crate) fn finish_within_into<C: CandidateList + ?Sized>(
             kept.offer(&check, candidates, i, position[0], (sin[0], cos[0]));
         }
     }
+    let len = kept.len;
+    out.spare.0.extend(out.solutions.drain(len..).rev());
     let recycled = match out.failure.take() {
         Some(IkFailure::OutsideLimits { name, .. }) => Some(name),
         _ => None,
@@ -832,6 +846,9 @@ pub(crate) fn finish_within_into<C: CandidateList + ?Sized>(
 struct Kept<'a> {
     robot: &'a Robot,
     tolerances: (f64, f64),
+    /// Number of solutions kept so far: the first `len` of `solutions` (those beyond are
+    /// buffers of an earlier solve, overwritten next).
+    len: usize,
     solutions: &'a mut Vec<IkSolution>,
     spare: &'a mut Vec<IkSolution>,
 }
@@ -858,7 +875,7 @@ impl Kept<'_> {
         }
         let robot = self.robot;
         let q = candidates.joints(i);
-        if let Some(existing) = self.solutions.iter_mut().find(|s| same_q(robot, &s.q, q)) {
+        if let Some(existing) = self.solutions[..self.len].iter_mut().find(|s| same_q(robot, &s.q, q)) {
             for k in candidates.flags(i) {
                 if !existing.singularities.contains(&k) {
                     existing.singularities.push(k);
@@ -866,7 +883,11 @@ impl Kept<'_> {
             }
             return;
         }
-        let mut s = self.spare.pop().unwrap_or_default();
+        if self.len == self.solutions.len() {
+            self.solutions.push(self.spare.pop().unwrap_or_default());
+        }
+        let s = &mut self.solutions[self.len];
+        self.len += 1;
         s.q.clear();
         s.q.extend_from_slice(q);
         s.position_error = position_error;
@@ -888,7 +909,6 @@ impl Kept<'_> {
         s.singularities.extend(candidates.flags(i));
         s.branch.0.clear();
         candidates.take_label(i, &mut s.branch.0);
-        self.solutions.push(s);
     }
 }
 
@@ -1085,5 +1105,100 @@ mod tests {
         // No feasible solution: no index.
         let none = all.restricted_to(&Branch::new([("side", "back")]));
         assert_eq!(none.closest_index(&[0.0, 0.0], &[]), None);
+    }
+
+    /// The pose errors as the scalar check computed them before the lanes (nalgebra's
+    /// products, one tool pose at a time).
+    fn scalar_errors(target: &IkTarget, t: &nalgebra::IsometryMatrix3<f64>) -> (f64, f64) {
+        match target {
+            IkTarget::Pose(pose) => {
+                let r_inv = pose.rotation.to_rotation_matrix().inverse();
+                let dp = (t.translation.vector - pose.translation.vector).norm();
+                let m = (r_inv * t.rotation).into_inner();
+                let vee = Vector3::new(m[(2, 1)] - m[(1, 2)], m[(0, 2)] - m[(2, 0)], m[(1, 0)] - m[(0, 1)]);
+                (dp, crate::angle::atan2(0.5 * vee.norm(), 0.5 * (m.trace() - 1.0)))
+            }
+            IkTarget::Position(p) => ((Point3::from(t.translation.vector) - p).norm(), 0.0),
+        }
+    }
+
+    #[test]
+    fn lane_verification_is_the_scalar_check_bit_for_bit() {
+        // Every preset the lanes verify: the tool poses of `fk_lanes` and the errors of
+        // `Check::errors` are those of `fk_matrix` and the scalar formula, bit for bit, so the
+        // accepted solutions and their reported errors do not depend on the lanes.
+        let mut rng = crate::rng::SplitMix64(16);
+        for name in crate::model::presets::names() {
+            let robot = crate::model::presets::get(name).unwrap();
+            let dof = robot.dof();
+            if dof > LANE_DOF {
+                continue;
+            }
+            for _ in 0..8 {
+                let qs: Vec<Vec<f64>> =
+                    (0..VERIFY_LANES).map(|_| (0..dof).map(|_| (2.0 * rng.next_f64() - 1.0) * 4.0).collect()).collect();
+                let mut lanes = [[0.0; VERIFY_LANES]; LANE_DOF];
+                for (l, q) in qs.iter().enumerate() {
+                    for (j, v) in q.iter().enumerate() {
+                        lanes[j][l] = *v;
+                    }
+                }
+                let t = robot.fk_lanes(&lanes[..dof]);
+                let near = robot.fk(&qs[0]).unwrap();
+                for target in [IkTarget::Pose(near), IkTarget::Position(near.translation.vector.into())] {
+                    let check = Check::new(&target);
+                    let (position, sin, cos) = check.errors(&t);
+                    for (l, q) in qs.iter().enumerate() {
+                        let scalar = robot.fk_matrix(q).unwrap();
+                        let m = scalar.rotation.matrix();
+                        for i in 0..3 {
+                            assert_eq!(t.p[i][l].to_bits(), scalar.translation.vector[i].to_bits(), "{name} {q:?}");
+                            for j in 0..3 {
+                                assert_eq!(t.r[i][j][l].to_bits(), m[(i, j)].to_bits(), "{name} {q:?}");
+                            }
+                        }
+                        let (p, o) = scalar_errors(&target, &scalar);
+                        assert_eq!(position[l].to_bits(), p.to_bits(), "{name} {q:?}");
+                        assert_eq!(check.angle(sin[l], cos[l]).to_bits(), o.to_bits(), "{name} {q:?}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn same_angle_is_the_wrapped_difference_test() {
+        use std::f64::consts::{PI, TAU};
+        let wrapped = |a: f64, b: f64| crate::angle::wrap(a - b).abs() < IK_DUPLICATE;
+        let mut rng = crate::rng::SplitMix64(3);
+        let e = IK_DUPLICATE;
+        let mut pairs = vec![
+            (PI, -PI),
+            (PI - e, -PI),
+            (PI - 0.5 * e, -PI + 0.25 * e),
+            (0.0, TAU),
+            (0.0, TAU - e),
+            (1.0, 1.0 + PI),
+            (-3.0, 3.0),
+        ];
+        for _ in 0..20_000 {
+            let a = (2.0 * rng.next_f64() - 1.0) * 10.0;
+            let k = [0.0, PI, TAU, -TAU, 2.0 * TAU][rng.below(5)];
+            pairs.push((a, a + k + (2.0 * rng.next_f64() - 1.0) * 3.0 * e));
+        }
+        for (a, b) in pairs {
+            assert_eq!(same_angle(a, b), wrapped(a, b), "{a} {b}");
+        }
+    }
+
+    #[test]
+    fn flag_bits_report_the_kinds_in_the_fixed_order() {
+        let all = FlagBits::default()
+            .with(SingularityKind::Wrist, true)
+            .with(SingularityKind::Jacobian, false)
+            .with(SingularityKind::Shoulder, true);
+        assert_eq!(all.iter().collect::<Vec<_>>(), [SingularityKind::Shoulder, SingularityKind::Wrist]);
+        assert_eq!(all.first(), Some(SingularityKind::Shoulder));
+        assert!(FlagBits::default().is_empty() && FlagBits::default().first().is_none());
     }
 }
