@@ -422,8 +422,8 @@ fn limits_failure(solutions: &[IkSolution], buffer: Option<String>) -> Option<Ik
 /// beyond (long chains, numeric solver only).
 pub(crate) type JointValues = SmallVec<[f64; 8]>;
 
-/// The `key=value` pairs of a [`Candidate`]'s branch label, inline up to 3 pairs (every 6R
-/// closed form's `shoulder elbow wrist`); a [`Branch`] once the candidate is verified.
+/// The `key=value` pairs of a [`Candidate`]'s branch label, inline up to 3 pairs; a [`Branch`]
+/// once the candidate is verified (the 6R closed forms use the compact [`Raw6`] instead).
 pub(crate) type Labels = SmallVec<[(Label, Label); 3]>;
 
 /// The singularity flags of a [`Candidate`], inline (there are four kinds).
