@@ -789,30 +789,16 @@ pub(crate) fn finish_within_into<C: CandidateList + ?Sized>(
     kept.solutions.reserve(n.saturating_sub(kept.solutions.len()));
     let dof = robot.dof();
     if dof <= LANE_DOF {
-        for start in (0..n).step_by(VERIFY_LANES) {
-            let len = (n - start).min(VERIFY_LANES);
-            // Lanes of dropped candidates (and beyond `len`) compute the pose of zeros, unused.
-            let mut q = [[0.0; VERIFY_LANES]; LANE_DOF];
-            let mut finite = [false; VERIFY_LANES];
-            for l in 0..len {
-                let v = candidates.joints_mut(start + l);
-                if normalise(robot, v) {
-                    if v.len() != dof {
-                        check_q(dof, v)?;
-                    }
-                    finite[l] = true;
-                    for (lanes, x) in q.iter_mut().zip(v.iter()) {
-                        lanes[l] = *x;
-                    }
-                }
-            }
-            let t = robot.fk_lanes(&q[..dof]);
-            let (position, sin, cos) = check.errors(&t);
-            for l in 0..len {
-                if finite[l] {
-                    kept.offer(&check, candidates, start + l, position[l], (sin[l], cos[l]));
-                }
-            }
+        // Blocks of 8, the rest in the narrowest block that holds it (one candidate of
+        // `solve_branch` takes the one-lane kernel, not an eight-lane one).
+        let mut start = 0;
+        while start < n {
+            start += match n - start {
+                5.. => verify_block::<VERIFY_LANES, C>(&mut kept, &check, candidates, start)?,
+                3..=4 => verify_block::<4, C>(&mut kept, &check, candidates, start)?,
+                2 => verify_block::<2, C>(&mut kept, &check, candidates, start)?,
+                _ => verify_block::<1, C>(&mut kept, &check, candidates, start)?,
+            };
         }
     } else {
         let mut prefix = FkPrefix::default();
@@ -840,6 +826,41 @@ pub(crate) fn finish_within_into<C: CandidateList + ?Sized>(
     out.solver = solver;
     out.differences.set_for_robot(robot);
     Ok(())
+}
+
+/// Verifies up to `L` candidates from `start` together ([`Robot::fk_lanes`], [`Check::errors`])
+/// and offers each finite one to `kept`, in order; returns how many it took.
+fn verify_block<const L: usize, C: CandidateList + ?Sized>(
+    kept: &mut Kept<'_>,
+    check: &Check,
+    candidates: &mut C,
+    start: usize,
+) -> Result<usize, IkError> {
+    let (robot, dof) = (kept.robot, kept.robot.dof());
+    let len = (candidates.count() - start).min(L);
+    // Lanes of dropped candidates (and beyond `len`) compute the pose of zeros, unused.
+    let mut q = [[0.0; L]; LANE_DOF];
+    let mut finite = [false; L];
+    for l in 0..len {
+        let v = candidates.joints_mut(start + l);
+        if normalise(robot, v) {
+            if v.len() != dof {
+                check_q(dof, v)?;
+            }
+            finite[l] = true;
+            for (lanes, x) in q.iter_mut().zip(v.iter()) {
+                lanes[l] = *x;
+            }
+        }
+    }
+    let t = robot.fk_lanes(&q[..dof]);
+    let (position, sin, cos) = check.errors(&t);
+    for l in 0..len {
+        if finite[l] {
+            kept.offer(check, candidates, start + l, position[l], (sin[l], cos[l]));
+        }
+    }
+    Ok(len)
 }
 
 /// The solutions a verification keeps, in order, with the buffers it reuses.
@@ -1157,6 +1178,9 @@ mod tests {
                                 assert_eq!(t.r[i][j][l].to_bits(), m[(i, j)].to_bits(), "{name} {q:?}");
                             }
                         }
+                        // One lane alone (the kernel of a single candidate) gives the same bits.
+                        let one: Vec<Lanes<1>> = q.iter().map(|v| [*v]).collect();
+                        assert_eq!(robot.fk_lanes(&one).p[0][0].to_bits(), t.p[0][l].to_bits(), "{name} {q:?}");
                         let (p, o) = scalar_errors(&target, &scalar);
                         assert_eq!(position[l].to_bits(), p.to_bits(), "{name} {q:?}");
                         assert_eq!(check.angle(sin[l], cos[l]).to_bits(), o.to_bits(), "{name} {q:?}");
