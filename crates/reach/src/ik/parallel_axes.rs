@@ -90,8 +90,8 @@ use serde::Serialize;
 
 use super::spherical_wrist::{Dh6, revolute_dh6};
 use super::{
-    Branch, Candidate, Candidates, ChainFrame, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget,
-    SingularityKind, SingularityMeasures, finish, finish_into, solved,
+    Branch, ChainFrame, FlagBits, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, Raw6, Raw6Set,
+    SingularityKind, SingularityMeasures, finish_into, solved,
 };
 use crate::angle::{atan2, sin_cos};
 use crate::kinematics::check_q;
@@ -641,13 +641,13 @@ impl ParallelAxes {
     }
 
     /// Every candidate (up to 8) for a chain-frame target, and the failure reason if none.
-    fn candidates(&self, frame: &Frame, seed: &[f64; 6]) -> (Candidates, Option<IkFailure>) {
+    fn candidates(&self, frame: &Frame, seed: &[f64; 6]) -> (Raw6Set, Option<IkFailure>) {
         let (z5, c) = self.wrist_point(frame);
         let roots = match self.shoulder_roots(&c, seed[0]) {
             Ok(r) => r,
-            Err(failure) => return (Candidates::new(), Some(failure)),
+            Err(failure) => return (Raw6Set::new(KEYS), Some(failure)),
         };
-        let mut out = Candidates::new();
+        let mut out = Raw6Set::new(KEYS);
         let mut failure: Option<(f64, IkFailure)> = None;
         for root in &roots {
             for wrist in [Wrist::E5, Wrist::MinusE5] {
@@ -681,7 +681,7 @@ impl ParallelAxes {
         shoulder: Shoulder,
         config: Config,
         wrist: Wrist,
-    ) -> Option<Candidate> {
+    ) -> Option<Raw6> {
         let (z5, c) = self.wrist_point(frame);
         let roots = self.shoulder_roots(&c, seed[0]).ok()?;
         let root = roots.iter().find(|r| r.label == shoulder)?;
@@ -699,22 +699,13 @@ impl ParallelAxes {
         wrist: Wrist,
         arm: &Arm,
         elbow_singular: bool,
-    ) -> Candidate {
+    ) -> Raw6 {
         let q: [f64; 6] = std::array::from_fn(|i| self.sign[i] * (theta[i] - self.offset[i]));
-        let mut cand = Candidate::labelled(
-            &q,
-            [("shoulder", root.label.label()), ("config", config.label()), ("wrist", wrist.label())],
-        );
-        if root.singular {
-            cand.singularities.push(SingularityKind::Shoulder);
-        }
-        if elbow_singular {
-            cand.singularities.push(SingularityKind::Elbow);
-        }
-        if arm.wrist_singular {
-            cand.singularities.push(SingularityKind::Wrist);
-        }
-        cand
+        let flags = FlagBits::default()
+            .with(SingularityKind::Shoulder, root.singular)
+            .with(SingularityKind::Elbow, elbow_singular)
+            .with(SingularityKind::Wrist, arm.wrist_singular);
+        Raw6 { q, values: [root.label.label(), config.label(), wrist.label()], flags }
     }
 
     /// The flange pose to solve: the pose target, or the target position with the tool
@@ -730,6 +721,9 @@ impl ParallelAxes {
         })
     }
 }
+
+/// The keys of the branch labels.
+const KEYS: [&str; 3] = ["shoulder", "config", "wrist"];
 
 fn frame_of(t: &Isometry3<f64>) -> Frame {
     let r: Rotation3<f64> = t.rotation.to_rotation_matrix();
@@ -764,8 +758,7 @@ impl IkSolver for ParallelAxes {
         let (mut candidates, failure) = self.candidates(&frame, &seed);
         self.frame.refine(robot, target, &mut candidates);
         let if_empty = failure.unwrap_or_else(|| {
-            let kind =
-                candidates.iter().find_map(|c| c.singularities.first().copied()).unwrap_or(SingularityKind::Jacobian);
+            let kind = candidates.iter().find_map(|c| c.flags.first()).unwrap_or(SingularityKind::Jacobian);
             IkFailure::Singular { kind }
         });
         finish_into(robot, target, &mut candidates, NAME, if_empty, out)
@@ -801,12 +794,13 @@ impl IkSolver for ParallelAxes {
         if let Some(((shoulder, config), wrist)) = parsed {
             let frame = frame_of(&self.frame.target(robot, &Self::pose_of(robot, target, options)?));
             if let Some(cand) = self.branch_candidate(&frame, &seed, shoulder, config, wrist)
-                && cand.singularities.is_empty()
+                && cand.flags.is_empty()
             {
                 let if_empty = IkFailure::Singular { kind: SingularityKind::Jacobian };
-                let mut candidates = [cand];
+                let mut candidates = Raw6Set::new(KEYS);
+                candidates.push(cand);
                 self.frame.refine(robot, target, &mut candidates);
-                let sols = finish(robot, target, &mut candidates, NAME, if_empty)?;
+                let sols = solved(|out| finish_into(robot, target, &mut candidates, NAME, if_empty, out))?;
                 if !sols.solutions.is_empty() {
                     return Ok(sols);
                 }

@@ -4,13 +4,13 @@ use std::borrow::Cow;
 use std::fmt;
 use std::sync::Arc;
 
-use nalgebra::{Isometry3, IsometryMatrix3, Point3, Rotation3, Vector3};
+use nalgebra::{Isometry3, Point3, Rotation3, Vector3};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use smallvec::SmallVec;
 
 use crate::angle::fit_into_limits;
-use crate::kinematics::FkPrefix;
+use crate::kinematics::{FkPrefix, FrameLanes, Lanes, check_q};
 use crate::model::{JointKind, Robot};
 use crate::tolerance::{DH_EQUIVALENT_EXACT, IK_DUPLICATE, IK_ORIENTATION, IK_POSITION, LIMIT_SLACK};
 
@@ -422,8 +422,8 @@ fn limits_failure(solutions: &[IkSolution], buffer: Option<String>) -> Option<Ik
 /// beyond (long chains, numeric solver only).
 pub(crate) type JointValues = SmallVec<[f64; 8]>;
 
-/// The `key=value` pairs of a [`Candidate`]'s branch label, inline up to 3 pairs (every 6R
-/// closed form's `shoulder elbow wrist`); a [`Branch`] once the candidate is verified.
+/// The `key=value` pairs of a [`Candidate`]'s branch label, inline up to 3 pairs; a [`Branch`]
+/// once the candidate is verified (the 6R closed forms use the compact [`Raw6`] instead).
 pub(crate) type Labels = SmallVec<[(Label, Label); 3]>;
 
 /// The singularity flags of a [`Candidate`], inline (there are four kinds).
@@ -441,27 +441,151 @@ impl Candidate {
     pub fn new(q: Vec<f64>, branch: Branch) -> Self {
         Candidate { q: SmallVec::from_vec(q), branch: SmallVec::from_vec(branch.0), singularities: Flags::new() }
     }
+}
 
-    /// A candidate with a label of static names, built without allocating (the closed forms'
-    /// hot path; the `Vec`s of the public [`IkSolution`] are made only for verified ones).
-    pub fn labelled<const N: usize>(q: &[f64], pairs: [(&'static str, &'static str); N]) -> Self {
-        Candidate {
-            q: SmallVec::from_slice(q),
-            branch: pairs.into_iter().map(|(k, v)| (Label::from(k), Label::from(v))).collect(),
-            singularities: Flags::new(),
-        }
+/// The singularity kinds of a [`Raw6`] as bits, reported in one fixed order — shoulder, elbow,
+/// wrist, Jacobian — the order in which every 6R closed form flags them.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub(crate) struct FlagBits(u8);
+
+impl FlagBits {
+    /// The kinds in the order of their bits.
+    const ORDER: [SingularityKind; 4] =
+        [SingularityKind::Shoulder, SingularityKind::Elbow, SingularityKind::Wrist, SingularityKind::Jacobian];
+
+    /// These flags with `kind` added when `on`.
+    #[must_use]
+    pub fn with(self, kind: SingularityKind, on: bool) -> Self {
+        let bit = Self::ORDER.iter().position(|k| *k == kind).map_or(0, |i| 1 << i);
+        if on { FlagBits(self.0 | bit) } else { self }
     }
 
-    /// Whether the candidate is labelled exactly `branch`.
-    pub fn is_on(&self, branch: &Branch) -> bool {
-        self.branch.as_slice() == branch.0.as_slice()
+    /// The kinds set, in the fixed order.
+    pub fn iter(self) -> impl Iterator<Item = SingularityKind> {
+        Self::ORDER.into_iter().enumerate().filter(move |(i, _)| self.0 & (1 << i) != 0).map(|(_, k)| k)
+    }
+
+    /// The first kind set, if any.
+    #[must_use]
+    pub fn first(self) -> Option<SingularityKind> {
+        self.iter().next()
+    }
+
+    /// Whether no kind is set.
+    #[must_use]
+    pub fn is_empty(self) -> bool {
+        self.0 == 0
     }
 }
 
-/// The candidates of one solve: a fixed-capacity set of up to 8 on the stack (every closed
-/// form of a 6R arm has at most 8 solutions), spilling to the heap beyond (sampled
-/// self-motions, numeric starts).
-pub(crate) type Candidates = SmallVec<[Candidate; 8]>;
+/// A raw solution of a 6R closed form (spherical wrist, two-link wrist, parallel axes): the
+/// six joint values, the values of its three-part branch label (the keys are the set's,
+/// [`Raw6Set`]) and its singularity flags — about 100 bytes, no vector. The public
+/// [`IkSolution`] is built only for the verified ones.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Raw6 {
+    pub q: [f64; 6],
+    pub values: [&'static str; 3],
+    pub flags: FlagBits,
+}
+
+/// The raw solutions of one 6R closed-form solve: a fixed-capacity set of up to 8 on the stack
+/// (every such arm has at most 8 solutions), labelled with the same three keys.
+#[derive(Debug, Clone)]
+pub(crate) struct Raw6Set {
+    keys: [&'static str; 3],
+    items: SmallVec<[Raw6; 8]>,
+}
+
+impl Raw6Set {
+    /// An empty set whose labels have the keys `keys`.
+    #[must_use]
+    pub fn new(keys: [&'static str; 3]) -> Self {
+        Raw6Set { keys, items: SmallVec::new() }
+    }
+
+    /// Adds a solution.
+    pub fn push(&mut self, raw: Raw6) {
+        self.items.push(raw);
+    }
+
+    /// The solutions, in the order pushed.
+    pub fn iter(&self) -> impl Iterator<Item = &Raw6> {
+        self.items.iter()
+    }
+
+    /// Whether the set is empty.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.items.is_empty()
+    }
+
+    /// Keeps only the solutions labelled exactly `branch`.
+    pub fn retain_branch(&mut self, branch: &Branch) {
+        let keys = self.keys;
+        self.items.retain(|r| {
+            branch.0.len() == 3
+                && branch
+                    .0
+                    .iter()
+                    .zip(keys.iter().zip(&r.values))
+                    .all(|((k, v), (rk, rv))| k.as_str() == *rk && v.as_str() == *rv)
+        });
+    }
+}
+
+/// The candidates a verification ([`finish_within_into`]) reads: the general [`Candidate`]s
+/// (any joint count, owned labels) or a closed form's compact [`Raw6Set`].
+pub(crate) trait CandidateList {
+    /// Number of candidates.
+    fn count(&self) -> usize;
+    /// Joint values of candidate `i`.
+    fn joints(&self, i: usize) -> &[f64];
+    /// Joint values of candidate `i`, to normalise in place.
+    fn joints_mut(&mut self, i: usize) -> &mut [f64];
+    /// Singularity flags of candidate `i`, in order.
+    fn flags(&self, i: usize) -> impl Iterator<Item = SingularityKind> + '_;
+    /// Appends candidate `i`'s branch label to `out` (moving it out: called once, for a kept
+    /// candidate).
+    fn take_label(&mut self, i: usize, out: &mut Vec<(Label, Label)>);
+}
+
+impl CandidateList for [Candidate] {
+    fn count(&self) -> usize {
+        self.len()
+    }
+    fn joints(&self, i: usize) -> &[f64] {
+        &self[i].q
+    }
+    fn joints_mut(&mut self, i: usize) -> &mut [f64] {
+        &mut self[i].q
+    }
+    fn flags(&self, i: usize) -> impl Iterator<Item = SingularityKind> + '_ {
+        self[i].singularities.iter().copied()
+    }
+    fn take_label(&mut self, i: usize, out: &mut Vec<(Label, Label)>) {
+        out.extend(self[i].branch.drain(..));
+    }
+}
+
+impl CandidateList for Raw6Set {
+    fn count(&self) -> usize {
+        self.items.len()
+    }
+    fn joints(&self, i: usize) -> &[f64] {
+        &self.items[i].q
+    }
+    fn joints_mut(&mut self, i: usize) -> &mut [f64] {
+        &mut self.items[i].q
+    }
+    fn flags(&self, i: usize) -> impl Iterator<Item = SingularityKind> + '_ {
+        self.items[i].flags.iter()
+    }
+    fn take_label(&mut self, i: usize, out: &mut Vec<(Label, Label)>) {
+        let values = self.items[i].values;
+        out.extend(self.keys.iter().zip(values).map(|(k, v)| (Label::from(*k), Label::from(v))));
+    }
+}
 
 /// [`fit_into_limits`] with the IK slack: revolute values as the solvers report them
 /// (wrapped into (−π, π], or moved by whole turns into the joint range). An angle already in
@@ -475,10 +599,22 @@ pub(crate) fn fit_revolute(angle: f64, limits: &crate::model::Limits) -> f64 {
 /// (`wrap(a − b).abs() < IK_DUPLICATE`), skipping the `fmod` when the plain difference decides.
 #[inline]
 fn same_angle(a: f64, b: f64) -> bool {
+    use std::f64::consts::{PI, TAU};
     let d = (a - b).abs();
     // |d| < IK_DUPLICATE (< π) wraps to itself; |d| in [IK_DUPLICATE, π] also wraps to itself
     // and fails the test; only larger differences can wrap back near 0.
-    d < IK_DUPLICATE || (d > std::f64::consts::PI && crate::angle::wrap(a - b).abs() < IK_DUPLICATE)
+    if d < IK_DUPLICATE {
+        true
+    } else if d <= PI {
+        false
+    } else if d < TAU {
+        // `wrap(a − b)` is `a − b ∓ 2π` here, exactly (Sterbenz: 2π lies within [d, 2d]), of
+        // magnitude `2π − d`, also exact: the same value without the remainder (the two
+        // wrist solutions of an arm differ by about π in θ4 and θ6).
+        TAU - d < IK_DUPLICATE
+    } else {
+        crate::angle::wrap(a - b).abs() < IK_DUPLICATE
+    }
 }
 
 /// Whether two joint vectors are the same solution: revolute values by [`same_angle`], prismatic
@@ -501,6 +637,13 @@ enum Check {
     Position(Point3<f64>),
 }
 
+/// Joint count up to which candidates are verified in lanes ([`Robot::fk_lanes`], joint values
+/// on the stack); longer chains take the scalar forward kinematics one candidate at a time.
+const LANE_DOF: usize = 8;
+
+/// Candidates verified together: the 8 solutions of a 6R closed form in one pass.
+const VERIFY_LANES: usize = 8;
+
 impl Check {
     fn new(target: &IkTarget) -> Self {
         match target {
@@ -509,20 +652,45 @@ impl Check {
         }
     }
 
-    /// Pose error of the tool pose `t`: (position metres, orientation radians).
-    fn error(&self, t: &IsometryMatrix3<f64>) -> (f64, f64) {
+    /// Pose errors of the tool poses `t`, lane by lane: the position error (metres) and the
+    /// orientation error's `(sin, cos)` (the angle is `atan2` of them, [`Check::angle`]; both 0
+    /// for a position target).
+    ///
+    /// The angle of `R_targetᵀ·R` is not `acos((tr − 1)/2)`: that is NaN when rounding puts the
+    /// trace above 3 (an exact solution), and imprecise near 0. `atan2(½‖vee(R − Rᵀ)‖, (tr − 1)/2)`
+    /// is neither. Each lane is the scalar formula with nalgebra's order of operations.
+    #[inline(always)]
+    fn errors<const L: usize>(&self, t: &FrameLanes<L>) -> (Lanes<L>, Lanes<L>, Lanes<L>) {
+        let norm = |x: f64, y: f64, z: f64| (x * x + y * y + z * z).sqrt();
         match self {
             Check::Pose(p, r_inv) => {
-                let dp = (t.translation.vector - p).norm();
-                let r = r_inv * t.rotation;
-                // Not `r.angle()`: its `acos((tr − 1)/2)` is NaN when rounding puts the trace above 3
-                // (an exact solution), and imprecise near 0. atan2(½‖vee(R − Rᵀ)‖, (tr − 1)/2) is neither.
-                let m = r.matrix();
-                let vee = Vector3::new(m[(2, 1)] - m[(1, 2)], m[(0, 2)] - m[(2, 0)], m[(1, 0)] - m[(0, 1)]);
-                let sin = 0.5 * vee.norm();
-                (dp, crate::angle::atan2(sin, 0.5 * (m.trace() - 1.0)))
+                let k = r_inv.matrix();
+                let position = std::array::from_fn(|l| norm(t.p[0][l] - p.x, t.p[1][l] - p.y, t.p[2][l] - p.z));
+                // Entry (i, j) of R_targetᵀ·R.
+                let m = |i: usize, j: usize, l: usize| {
+                    k[(i, 0)] * t.r[0][j][l] + k[(i, 1)] * t.r[1][j][l] + k[(i, 2)] * t.r[2][j][l]
+                };
+                let mut sin = [0.0; L];
+                let mut cos = [0.0; L];
+                for l in 0..L {
+                    sin[l] = 0.5 * norm(m(2, 1, l) - m(1, 2, l), m(0, 2, l) - m(2, 0, l), m(1, 0, l) - m(0, 1, l));
+                    cos[l] = 0.5 * (m(0, 0, l) + m(1, 1, l) + m(2, 2, l) - 1.0);
+                }
+                (position, sin, cos)
             }
-            Check::Position(p) => ((Point3::from(t.translation.vector) - p).norm(), 0.0),
+            Check::Position(p) => {
+                let position = std::array::from_fn(|l| norm(t.p[0][l] - p.x, t.p[1][l] - p.y, t.p[2][l] - p.z));
+                (position, [0.0; L], [1.0; L])
+            }
+        }
+    }
+
+    /// The orientation error (radians) of [`Check::errors`]' `(sin, cos)`: 0 for a position target.
+    #[inline]
+    fn angle(&self, sin: f64, cos: f64) -> f64 {
+        match self {
+            Check::Pose(..) => crate::angle::atan2(sin, cos),
+            Check::Position(_) => 0.0,
         }
     }
 }
@@ -536,9 +704,10 @@ impl Check {
 /// * `if_empty` is the reason reported when no candidate survives; when some survive but all
 ///   violate limits the reason is [`IkFailure::OutsideLimits`].
 ///
-/// Every candidate's tool pose is its full forward kinematics ([`Robot::fk_matrix`]);
-/// candidates that share their leading joint values (the two wrist solutions of one arm) share
-/// the product of those joints' transforms ([`FkPrefix`]), with the same result bit for bit.
+/// Every candidate's tool pose is its full forward kinematics: for chains of up to
+/// [`LANE_DOF`] joints, [`VERIFY_LANES`] candidates at a time through [`Robot::fk_lanes`] (each
+/// lane [`Robot::fk_matrix`] of its candidate), longer chains one at a time through
+/// [`Robot::fk_matrix_sharing`].
 pub(crate) fn finish(
     robot: &Robot,
     target: &IkTarget,
@@ -549,11 +718,12 @@ pub(crate) fn finish(
     solved(|out| finish_into(robot, target, candidates, solver, if_empty, out))
 }
 
-/// [`finish`] into a reused `out` (see [`finish_within_into`]).
-pub(crate) fn finish_into(
+/// [`finish`] into a reused `out` (see [`finish_within_into`]), for any [`CandidateList`]: the
+/// 6R closed forms' compact [`Raw6Set`] as well as [`Candidate`]s.
+pub(crate) fn finish_into<C: CandidateList + ?Sized>(
     robot: &Robot,
     target: &IkTarget,
-    candidates: &mut [Candidate],
+    candidates: &mut C,
     solver: &'static str,
     if_empty: IkFailure,
     out: &mut IkSolutions,
@@ -582,58 +752,169 @@ pub(crate) fn finish_within(
     solved(|out| finish_within_into(robot, target, candidates, solver, if_empty, tolerances, out))
 }
 
+/// The revolute values of `q` fitted into their limits ([`fit_revolute`]), in place; `false`
+/// (and `q` untouched) when a value is not finite (the candidate is dropped).
+#[inline]
+fn normalise(robot: &Robot, q: &mut [f64]) -> bool {
+    if q.iter().any(|v| !v.is_finite()) {
+        return false;
+    }
+    for (v, joint) in q.iter_mut().zip(robot.joints()) {
+        if joint.kind == JointKind::Revolute {
+            *v = fit_revolute(*v, &joint.limits);
+        }
+    }
+    true
+}
+
 /// [`finish_within`] writing into `out` ([`IkSolver::solve_into`](super::IkSolver::solve_into)):
 /// `out`'s solutions are overwritten in place (their vectors cleared and refilled, keeping
 /// their capacity), solutions beyond the new count are kept aside as spares and taken back
 /// before any new one is made. The result equals [`finish_within`]'s whatever `out` held.
-pub(crate) fn finish_within_into(
+pub(crate) fn finish_within_into<C: CandidateList + ?Sized>(
     robot: &Robot,
     target: &IkTarget,
-    candidates: &mut [Candidate],
+    candidates: &mut C,
     solver: &'static str,
     if_empty: IkFailure,
-    (position_tolerance, orientation_tolerance): (f64, f64),
+    tolerances: (f64, f64),
     out: &mut IkSolutions,
 ) -> Result<(), IkError> {
     let check = Check::new(target);
-    let IkSolutions { solutions, spare, .. } = out;
-    // Every solution goes to the spares, and comes back in order: the result does not depend
-    // on what `out` held, only the buffers are reused.
-    spare.0.extend(solutions.drain(..).rev());
-    solutions.reserve(candidates.len());
-    let mut prefix = FkPrefix::default();
-    // By reference, moving out only the labels of kept candidates: a closed form's
-    // fixed-capacity set is not copied.
-    for c in candidates.iter_mut() {
-        if c.q.iter().any(|v| !v.is_finite()) {
-            continue;
+    // The solutions of `out` are overwritten in order, then spares (taken back last first),
+    // then new ones: the result does not depend on what `out` held, only the buffers are
+    // reused.
+    let mut kept = Kept { robot, tolerances, len: 0, solutions: &mut out.solutions, spare: &mut out.spare.0 };
+    let n = candidates.count();
+    kept.solutions.reserve(n.saturating_sub(kept.solutions.len()));
+    let dof = robot.dof();
+    if dof <= LANE_DOF {
+        // Blocks of 8, the rest in the narrowest block that holds it (one candidate of
+        // `solve_branch` takes the one-lane kernel, not an eight-lane one).
+        let mut start = 0;
+        while start < n {
+            start += match n - start {
+                5.. => verify_block::<VERIFY_LANES, C>(&mut kept, &check, candidates, start)?,
+                3..=4 => verify_block::<4, C>(&mut kept, &check, candidates, start)?,
+                2 => verify_block::<2, C>(&mut kept, &check, candidates, start)?,
+                _ => verify_block::<1, C>(&mut kept, &check, candidates, start)?,
+            };
         }
-        for (v, joint) in c.q.iter_mut().zip(robot.joints()) {
-            if joint.kind == JointKind::Revolute {
-                *v = fit_revolute(*v, &joint.limits);
+    } else {
+        let mut prefix = FkPrefix::default();
+        for i in 0..n {
+            if !normalise(robot, candidates.joints_mut(i)) {
+                continue;
+            }
+            let t = robot.fk_matrix_sharing(candidates.joints(i), &mut prefix)?;
+            let m = t.rotation.matrix();
+            let t = FrameLanes::<1> {
+                r: std::array::from_fn(|r| std::array::from_fn(|c| [m[(r, c)]])),
+                p: std::array::from_fn(|k| [t.translation.vector[k]]),
+            };
+            let (position, sin, cos) = check.errors(&t);
+            kept.offer(&check, candidates, i, position[0], (sin[0], cos[0]));
+        }
+    }
+    let len = kept.len;
+    out.spare.0.extend(out.solutions.drain(len..).rev());
+    let recycled = match out.failure.take() {
+        Some(IkFailure::OutsideLimits { name, .. }) => Some(name),
+        _ => None,
+    };
+    out.failure = if out.solutions.is_empty() { Some(if_empty) } else { limits_failure(&out.solutions, recycled) };
+    out.solver = solver;
+    out.differences.set_for_robot(robot);
+    Ok(())
+}
+
+/// Verifies up to `L` candidates from `start` together ([`Robot::fk_lanes`], [`Check::errors`])
+/// and offers each finite one to `kept`, in order; returns how many it took.
+fn verify_block<const L: usize, C: CandidateList + ?Sized>(
+    kept: &mut Kept<'_>,
+    check: &Check,
+    candidates: &mut C,
+    start: usize,
+) -> Result<usize, IkError> {
+    let (robot, dof) = (kept.robot, kept.robot.dof());
+    let len = (candidates.count() - start).min(L);
+    // Lanes of dropped candidates (and beyond `len`) compute the pose of zeros, unused.
+    let mut q = [[0.0; L]; LANE_DOF];
+    let mut finite = [false; L];
+    for l in 0..len {
+        let v = candidates.joints_mut(start + l);
+        if normalise(robot, v) {
+            if v.len() != dof {
+                check_q(dof, v)?;
+            }
+            finite[l] = true;
+            for (lanes, x) in q.iter_mut().zip(v.iter()) {
+                lanes[l] = *x;
             }
         }
-        let (position_error, orientation_error) = check.error(&robot.fk_matrix_sharing(&c.q, &mut prefix)?);
-        if position_error > position_tolerance || orientation_error > orientation_tolerance {
-            continue;
+    }
+    let t = robot.fk_lanes(&q[..dof]);
+    let (position, sin, cos) = check.errors(&t);
+    for l in 0..len {
+        if finite[l] {
+            kept.offer(check, candidates, start + l, position[l], (sin[l], cos[l]));
         }
-        if let Some(existing) = solutions.iter_mut().find(|s| same_q(robot, &s.q, &c.q)) {
-            for &k in &c.singularities {
+    }
+    Ok(len)
+}
+
+/// The solutions a verification keeps, in order, with the buffers it reuses.
+struct Kept<'a> {
+    robot: &'a Robot,
+    tolerances: (f64, f64),
+    /// Number of solutions kept so far: the first `len` of `solutions` (those beyond are
+    /// buffers of an earlier solve, overwritten next).
+    len: usize,
+    solutions: &'a mut Vec<IkSolution>,
+    spare: &'a mut Vec<IkSolution>,
+}
+
+impl Kept<'_> {
+    /// Candidate `i` of `candidates` (normalised, its tool pose `position` metres and
+    /// `(sin, cos)` of the orientation error away from the target): dropped when outside the
+    /// tolerances, merged into an equal kept solution (flags united), else kept.
+    fn offer<C: CandidateList + ?Sized>(
+        &mut self,
+        check: &Check,
+        candidates: &mut C,
+        i: usize,
+        position_error: f64,
+        (sin, cos): (f64, f64),
+    ) {
+        let (position_tolerance, orientation_tolerance) = self.tolerances;
+        if position_error > position_tolerance {
+            return;
+        }
+        let orientation_error = check.angle(sin, cos);
+        if orientation_error > orientation_tolerance {
+            return;
+        }
+        let robot = self.robot;
+        let q = candidates.joints(i);
+        if let Some(existing) = self.solutions[..self.len].iter_mut().find(|s| same_q(robot, &s.q, q)) {
+            for k in candidates.flags(i) {
                 if !existing.singularities.contains(&k) {
                     existing.singularities.push(k);
                 }
             }
-            continue;
+            return;
         }
-        let mut s = spare.0.pop().unwrap_or_default();
+        if self.len == self.solutions.len() {
+            self.solutions.push(self.spare.pop().unwrap_or_default());
+        }
+        let s = &mut self.solutions[self.len];
+        self.len += 1;
         s.q.clear();
-        s.q.extend_from_slice(&c.q);
-        s.branch.0.clear();
-        s.branch.0.extend(c.branch.drain(..));
+        s.q.extend_from_slice(q);
         s.position_error = position_error;
         s.orientation_error = orientation_error;
         s.violations.clear();
-        for (i, (j, v)) in robot.joints().iter().zip(&c.q).enumerate() {
+        for (i, (j, v)) in robot.joints().iter().zip(q).enumerate() {
             if !j.limits.contains(*v, LIMIT_SLACK) {
                 s.violations.push(LimitViolation {
                     joint: i + 1,
@@ -646,17 +927,10 @@ pub(crate) fn finish_within_into(
         }
         s.within_limits = s.violations.is_empty();
         s.singularities.clear();
-        s.singularities.extend_from_slice(&c.singularities);
-        solutions.push(s);
+        s.singularities.extend(candidates.flags(i));
+        s.branch.0.clear();
+        candidates.take_label(i, &mut s.branch.0);
     }
-    let recycled = match out.failure.take() {
-        Some(IkFailure::OutsideLimits { name, .. }) => Some(name),
-        _ => None,
-    };
-    out.failure = if out.solutions.is_empty() { Some(if_empty) } else { limits_failure(&out.solutions, recycled) };
-    out.solver = solver;
-    out.differences.set_for_robot(robot);
-    Ok(())
 }
 
 /// The flange pose in the chain's own frame: `base⁻¹ · target · tool⁻¹`.
@@ -699,7 +973,7 @@ impl ChainFrame {
     /// only when it reduces the error, so a singular candidate stays as computed). Nothing for
     /// an exact equivalent, the robot's own table, or a position target (whose solutions keep
     /// an orientation of the solver's choosing). [`finish`] verifies the result as always.
-    pub fn refine(&self, robot: &Robot, target: &IkTarget, candidates: &mut [Candidate]) {
+    pub fn refine<C: CandidateList + ?Sized>(&self, robot: &Robot, target: &IkTarget, candidates: &mut C) {
         let (true, IkTarget::Pose(pose), 6) = (self.refine, target, robot.dof()) else {
             return;
         };
@@ -710,14 +984,15 @@ impl ChainFrame {
             let (w, angle) = super::numeric::rotation_log(&(goal.rotation.matrix() * t.rotation.matrix().transpose()));
             Some((nalgebra::Vector6::new(dp.x, dp.y, dp.z, w.x, w.y, w.z), dp.norm().max(angle)))
         };
-        for c in candidates {
+        for i in 0..candidates.count() {
+            let q = candidates.joints_mut(i);
             for _ in 0..2 {
-                let Some((e, size)) = error(&c.q) else { break };
-                let Ok(jac) = robot.jacobian(&c.q) else { break };
+                let Some((e, size)) = error(q) else { break };
+                let Ok(jac) = robot.jacobian(q) else { break };
                 let Some(dq) = nalgebra::Matrix6::from_iterator(jac.iter().copied()).lu().solve(&e) else { break };
-                let trial: JointValues = c.q.iter().zip(dq.iter()).map(|(q, d)| q + d).collect();
+                let trial: JointValues = q.iter().zip(dq.iter()).map(|(q, d)| q + d).collect();
                 match error(&trial) {
-                    Some((_, smaller)) if smaller < size => c.q = trial,
+                    Some((_, smaller)) if smaller < size => q.copy_from_slice(&trial),
                     _ => break,
                 }
             }
@@ -851,5 +1126,103 @@ mod tests {
         // No feasible solution: no index.
         let none = all.restricted_to(&Branch::new([("side", "back")]));
         assert_eq!(none.closest_index(&[0.0, 0.0], &[]), None);
+    }
+
+    /// The pose errors as the scalar check computed them before the lanes (nalgebra's
+    /// products, one tool pose at a time).
+    fn scalar_errors(target: &IkTarget, t: &nalgebra::IsometryMatrix3<f64>) -> (f64, f64) {
+        match target {
+            IkTarget::Pose(pose) => {
+                let r_inv = pose.rotation.to_rotation_matrix().inverse();
+                let dp = (t.translation.vector - pose.translation.vector).norm();
+                let m = (r_inv * t.rotation).into_inner();
+                let vee = Vector3::new(m[(2, 1)] - m[(1, 2)], m[(0, 2)] - m[(2, 0)], m[(1, 0)] - m[(0, 1)]);
+                (dp, crate::angle::atan2(0.5 * vee.norm(), 0.5 * (m.trace() - 1.0)))
+            }
+            IkTarget::Position(p) => ((Point3::from(t.translation.vector) - p).norm(), 0.0),
+        }
+    }
+
+    #[test]
+    fn lane_verification_is_the_scalar_check_bit_for_bit() {
+        // Every preset the lanes verify: the tool poses of `fk_lanes` and the errors of
+        // `Check::errors` are those of `fk_matrix` and the scalar formula, bit for bit, so the
+        // accepted solutions and their reported errors do not depend on the lanes.
+        let mut rng = crate::rng::SplitMix64(16);
+        for name in crate::model::presets::names() {
+            let robot = crate::model::presets::get(name).unwrap();
+            let dof = robot.dof();
+            if dof > LANE_DOF {
+                continue;
+            }
+            for _ in 0..8 {
+                let qs: Vec<Vec<f64>> =
+                    (0..VERIFY_LANES).map(|_| (0..dof).map(|_| (2.0 * rng.next_f64() - 1.0) * 4.0).collect()).collect();
+                let mut lanes = [[0.0; VERIFY_LANES]; LANE_DOF];
+                for (l, q) in qs.iter().enumerate() {
+                    for (j, v) in q.iter().enumerate() {
+                        lanes[j][l] = *v;
+                    }
+                }
+                let t = robot.fk_lanes(&lanes[..dof]);
+                let near = robot.fk(&qs[0]).unwrap();
+                for target in [IkTarget::Pose(near), IkTarget::Position(near.translation.vector.into())] {
+                    let check = Check::new(&target);
+                    let (position, sin, cos) = check.errors(&t);
+                    for (l, q) in qs.iter().enumerate() {
+                        let scalar = robot.fk_matrix(q).unwrap();
+                        let m = scalar.rotation.matrix();
+                        for i in 0..3 {
+                            assert_eq!(t.p[i][l].to_bits(), scalar.translation.vector[i].to_bits(), "{name} {q:?}");
+                            for j in 0..3 {
+                                assert_eq!(t.r[i][j][l].to_bits(), m[(i, j)].to_bits(), "{name} {q:?}");
+                            }
+                        }
+                        // One lane alone (the kernel of a single candidate) gives the same bits.
+                        let one: Vec<Lanes<1>> = q.iter().map(|v| [*v]).collect();
+                        assert_eq!(robot.fk_lanes(&one).p[0][0].to_bits(), t.p[0][l].to_bits(), "{name} {q:?}");
+                        let (p, o) = scalar_errors(&target, &scalar);
+                        assert_eq!(position[l].to_bits(), p.to_bits(), "{name} {q:?}");
+                        assert_eq!(check.angle(sin[l], cos[l]).to_bits(), o.to_bits(), "{name} {q:?}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn same_angle_is_the_wrapped_difference_test() {
+        use std::f64::consts::{PI, TAU};
+        let wrapped = |a: f64, b: f64| crate::angle::wrap(a - b).abs() < IK_DUPLICATE;
+        let mut rng = crate::rng::SplitMix64(3);
+        let e = IK_DUPLICATE;
+        let mut pairs = vec![
+            (PI, -PI),
+            (PI - e, -PI),
+            (PI - 0.5 * e, -PI + 0.25 * e),
+            (0.0, TAU),
+            (0.0, TAU - e),
+            (1.0, 1.0 + PI),
+            (-3.0, 3.0),
+        ];
+        for _ in 0..20_000 {
+            let a = (2.0 * rng.next_f64() - 1.0) * 10.0;
+            let k = [0.0, PI, TAU, -TAU, 2.0 * TAU][rng.below(5)];
+            pairs.push((a, a + k + (2.0 * rng.next_f64() - 1.0) * 3.0 * e));
+        }
+        for (a, b) in pairs {
+            assert_eq!(same_angle(a, b), wrapped(a, b), "{a} {b}");
+        }
+    }
+
+    #[test]
+    fn flag_bits_report_the_kinds_in_the_fixed_order() {
+        let all = FlagBits::default()
+            .with(SingularityKind::Wrist, true)
+            .with(SingularityKind::Jacobian, false)
+            .with(SingularityKind::Shoulder, true);
+        assert_eq!(all.iter().collect::<Vec<_>>(), [SingularityKind::Shoulder, SingularityKind::Wrist]);
+        assert_eq!(all.first(), Some(SingularityKind::Shoulder));
+        assert!(FlagBits::default().is_empty() && FlagBits::default().first().is_none());
     }
 }

@@ -96,8 +96,8 @@ use nalgebra::{Isometry3, IsometryMatrix3, Matrix3, Point3, Translation3, Vector
 use smallvec::SmallVec;
 
 use super::{
-    Branch, Candidate, Candidates, ChainFrame, Flags, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget,
-    SingularityKind, finish, finish_into, solved,
+    Branch, ChainFrame, FlagBits, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, Raw6, Raw6Set,
+    SingularityKind, finish_into, solved,
 };
 use crate::angle::{atan2, sin_cos, wrap};
 use crate::kinematics::check_q;
@@ -371,6 +371,9 @@ pub(crate) fn joint_values(joints: &[DhJoint; 6], theta: &[f64; 6]) -> [f64; 6] 
     std::array::from_fn(|i| joints[i].q(theta[i]))
 }
 
+/// The keys of an arm-then-wrist closed form's branch labels.
+pub(crate) const ARM_KEYS: [&str; 3] = ["shoulder", "elbow", "wrist"];
+
 /// The arm solutions of one target: at most 2 shoulders × 2 elbows, on the stack.
 pub(crate) type Arms = SmallVec<[Arm; 4]>;
 
@@ -393,15 +396,10 @@ impl Arm {
     }
 
     /// The singularity flags of the arm.
-    pub fn flags(&self) -> Flags {
-        let mut out = Flags::new();
-        if self.shoulder_singular {
-            out.push(SingularityKind::Shoulder);
-        }
-        if self.elbow_singular {
-            out.push(SingularityKind::Elbow);
-        }
-        out
+    pub fn flags(&self) -> FlagBits {
+        FlagBits::default()
+            .with(SingularityKind::Shoulder, self.shoulder_singular)
+            .with(SingularityKind::Elbow, self.elbow_singular)
     }
 }
 
@@ -434,7 +432,7 @@ pub(crate) fn arm_branch(
     branch: &Branch,
     solver: &'static str,
     arms: &[Arm],
-    wrists: impl FnOnce(&Arm, &mut Candidates),
+    wrists: impl FnOnce(&Arm, &mut Raw6Set),
 ) -> Result<Option<IkSolutions>, IkError> {
     let (Some(shoulder), Some(elbow)) = (branch.get("shoulder"), branch.get("elbow")) else {
         return Ok(None);
@@ -449,14 +447,14 @@ pub(crate) fn arm_branch(
     if arms.iter().any(|other| !std::ptr::eq(other, arm) && close(other)) {
         return Ok(None);
     }
-    let mut candidates = Candidates::new();
+    let mut candidates = Raw6Set::new(ARM_KEYS);
     wrists(arm, &mut candidates);
-    candidates.retain(|c| c.is_on(branch));
+    candidates.retain_branch(branch);
     if candidates.is_empty() {
         return Ok(None);
     }
     frame.refine(robot, target, &mut candidates);
-    let sols = finish(robot, target, &mut candidates, solver, fallback_failure(arms))?;
+    let sols = solved(|out| finish_into(robot, target, &mut candidates, solver, fallback_failure(arms), out))?;
     Ok((!sols.solutions.is_empty()).then_some(sols))
 }
 
@@ -660,7 +658,7 @@ impl SphericalWrist {
         flange: &IsometryMatrix3<f64>,
         seed: Option<&[f64; 6]>,
         wrist: Option<&str>,
-        out: &mut Candidates,
+        out: &mut Raw6Set,
     ) {
         let wanted = |label: &str| wrist.is_none_or(|w| w == label);
         let [t1, t2, t3] = arm.theta;
@@ -672,16 +670,9 @@ impl SphericalWrist {
         let z4 = z3.cross(&a); // eq. 26: sin θ5 times the joint-5 axis (up to sign)
         let sin5 = z4.norm();
         let cos5 = -self.s4 * self.s5 * a.dot(&z3); // eq. 22, generalised sign
-        let push = |out: &mut Candidates, theta: [f64; 6], label: &'static str, wrist_singular: bool| {
-            let mut c = Candidate::labelled(
-                &joint_values(&self.joints, &theta),
-                [("shoulder", arm.shoulder), ("elbow", arm.elbow), ("wrist", label)],
-            );
-            c.singularities = arm.flags();
-            if wrist_singular {
-                c.singularities.push(SingularityKind::Wrist);
-            }
-            out.push(c);
+        let push = |out: &mut Raw6Set, theta: [f64; 6], label: &'static str, wrist_singular: bool| {
+            let flags = arm.flags().with(SingularityKind::Wrist, wrist_singular);
+            out.push(Raw6 { q: joint_values(&self.joints, &theta), values: [arm.shoulder, arm.elbow, label], flags });
         };
         if sin5 < IK_PARALLEL_SINE {
             // Wrist singularity: θ4 undetermined; keep the seed's, θ6 takes the rest.
@@ -737,9 +728,9 @@ impl IkSolver for SphericalWrist {
         let w = wrist_centre(&flange, self.joints[5].d);
         let arms = match self.arms(&w, seed.as_ref()) {
             Ok(arms) => arms,
-            Err(failure) => return finish_into(robot, target, &mut [], NAME, failure, out),
+            Err(failure) => return finish_into(robot, target, &mut Raw6Set::new(ARM_KEYS), NAME, failure, out),
         };
-        let mut candidates = Candidates::new();
+        let mut candidates = Raw6Set::new(ARM_KEYS);
         for arm in &arms {
             self.wrists(arm, &flange, seed.as_ref(), None, &mut candidates);
         }

@@ -87,13 +87,13 @@ use std::f64::consts::PI;
 use nalgebra::{IsometryMatrix3, Point3, Rotation3};
 
 use super::spherical_wrist::{
-    Arm, Arms, Dh6, DhJoint, arm_branch, arm_configurations, elbow_label, fallback_failure, flange_goal, free_theta,
-    is_zero_length, joint_values, require_spherical_wrist, revolute_dh6, seed_thetas, unsupported, wrist_arm_twists,
-    wrist_centre, wrist_label,
+    ARM_KEYS, Arm, Arms, Dh6, DhJoint, arm_branch, arm_configurations, elbow_label, fallback_failure, flange_goal,
+    free_theta, is_zero_length, joint_values, require_spherical_wrist, revolute_dh6, seed_thetas, unsupported,
+    wrist_arm_twists, wrist_centre, wrist_label,
 };
 use super::{
-    Branch, Candidate, Candidates, ChainFrame, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget,
-    SingularityKind, finish_into, solved,
+    Branch, ChainFrame, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, Raw6, Raw6Set, SingularityKind,
+    finish_into, solved,
 };
 use crate::angle::{atan2, sin_cos};
 use crate::model::Robot;
@@ -236,7 +236,7 @@ impl TwoLinkWrist {
     }
 
     /// The wrist solutions of one arm branch (step 5), appended to `out`.
-    fn wrists(&self, arm: &Arm, flange: &IsometryMatrix3<f64>, seed: Option<&[f64; 6]>, out: &mut Candidates) {
+    fn wrists(&self, arm: &Arm, flange: &IsometryMatrix3<f64>, seed: Option<&[f64; 6]>, out: &mut Raw6Set) {
         let [t1, t2, t3] = arm.theta;
         // R̃ = (A1·A2·A3)⁻¹·T6, the correct order (notes 001 §6.1 item 1).
         let mut m = Rotation3::from_matrix_unchecked(arm.r03(&self.joints).transpose()) * flange.rotation;
@@ -250,19 +250,13 @@ impl TwoLinkWrist {
         }
         let m = m.matrix();
         let hyp = m[(0, 2)].hypot(m[(1, 2)]);
-        let shoulder_elbow = [("shoulder", arm.shoulder), ("elbow", arm.elbow)];
         let mut push = |euler: [f64; 3], singular: bool| {
             let [phi, psi, chi] = euler;
             let theta5 = -self.s4 * psi;
             let theta = [t1, t2, t3, phi, theta5, self.s6 * chi];
-            let [shoulder, elbow] = shoulder_elbow;
-            let wrist = ("wrist", if singular { "noflip" } else { wrist_label(theta5) });
-            let mut c = Candidate::labelled(&joint_values(&self.joints, &theta), [shoulder, elbow, wrist]);
-            c.singularities = arm.flags();
-            if singular {
-                c.singularities.push(SingularityKind::Wrist);
-            }
-            out.push(c);
+            let wrist = if singular { "noflip" } else { wrist_label(theta5) };
+            let flags = arm.flags().with(SingularityKind::Wrist, singular);
+            out.push(Raw6 { q: joint_values(&self.joints, &theta), values: [arm.shoulder, arm.elbow, wrist], flags });
         };
         if hyp < IK_PARALLEL_SINE {
             // r33 = ±1: only q4 ± q6 is determined; keep q6 (seed, else 0 — the thesis's rule).
@@ -316,9 +310,9 @@ impl IkSolver for TwoLinkWrist {
         let w = wrist_centre(&flange, self.joints[5].d);
         let arms = match self.arms(&w, seed.as_ref()) {
             Ok(arms) => arms,
-            Err(failure) => return finish_into(robot, target, &mut [], NAME, failure, out),
+            Err(failure) => return finish_into(robot, target, &mut Raw6Set::new(ARM_KEYS), NAME, failure, out),
         };
-        let mut candidates = Candidates::new();
+        let mut candidates = Raw6Set::new(ARM_KEYS);
         for arm in &arms {
             self.wrists(arm, &flange, seed.as_ref(), &mut candidates);
         }

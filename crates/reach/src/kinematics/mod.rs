@@ -26,7 +26,7 @@ pub use forward::JointAxis;
 pub use jacobian::Jacobian;
 pub use manipulability::{JacobianAxes, Manipulability};
 
-pub(crate) use lanes::Lanes;
+pub(crate) use lanes::{FrameLanes, Lanes};
 
 use thiserror::Error;
 
