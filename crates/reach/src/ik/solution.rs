@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 use smallvec::SmallVec;
 
 use crate::angle::fit_into_limits;
-use crate::kinematics::{FkPrefix, FrameLanes, Lanes, check_q};
+use crate::kinematics::{FrameLanes, Lanes, check_q};
 use crate::model::{JointKind, Robot};
 use crate::tolerance::{DH_EQUIVALENT_EXACT, IK_DUPLICATE, IK_ORIENTATION, IK_POSITION, LIMIT_SLACK};
 
@@ -707,7 +707,7 @@ impl Check {
 /// Every candidate's tool pose is its full forward kinematics: for chains of up to
 /// [`LANE_DOF`] joints, [`VERIFY_LANES`] candidates at a time through [`Robot::fk_lanes`] (each
 /// lane [`Robot::fk_matrix`] of its candidate), longer chains one at a time through
-/// [`Robot::fk_matrix_sharing`].
+/// [`Robot::fk_matrix`].
 pub(crate) fn finish(
     robot: &Robot,
     target: &IkTarget,
@@ -801,12 +801,11 @@ pub(crate) fn finish_within_into<C: CandidateList + ?Sized>(
             };
         }
     } else {
-        let mut prefix = FkPrefix::default();
         for i in 0..n {
             if !normalise(robot, candidates.joints_mut(i)) {
                 continue;
             }
-            let t = robot.fk_matrix_sharing(candidates.joints(i), &mut prefix)?;
+            let t = robot.fk_matrix(candidates.joints(i))?;
             let m = t.rotation.matrix();
             let t = FrameLanes::<1> {
                 r: std::array::from_fn(|r| std::array::from_fn(|c| [m[(r, c)]])),

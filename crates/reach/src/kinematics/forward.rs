@@ -5,29 +5,6 @@ use crate::model::Robot;
 use crate::model::chain::{Chain, apply_motion};
 use crate::model::fk_chain::FkFrame;
 
-/// The frame after the first joints of a chain, kept between forward-kinematics calls
-/// ([`Robot::fk_matrix_sharing`]).
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct FkPrefix {
-    /// Number of leading joints `frame` covers (0: nothing kept yet).
-    len: usize,
-    /// Their values.
-    q: [f64; FkPrefix::MAX],
-    /// The base times their transforms.
-    frame: FkFrame,
-}
-
-impl FkPrefix {
-    /// Most joints a prefix covers.
-    pub const MAX: usize = 4;
-}
-
-impl Default for FkPrefix {
-    fn default() -> Self {
-        FkPrefix { len: 0, q: [0.0; FkPrefix::MAX], frame: FkFrame::of(&IsometryMatrix3::identity()) }
-    }
-}
-
 /// A joint axis in the world frame: `(point on the axis, unit direction)`.
 pub type JointAxis = (Vector3<f64>, Vector3<f64>);
 
@@ -55,39 +32,6 @@ impl Robot {
         let fk = &self.chain.fk;
         let mut t = fk.start(q);
         fk.walk(&mut t, q, 0..self.dof(), |_, _| {});
-        Ok(t.isometry())
-    }
-
-    /// [`Robot::fk_matrix`], sharing the product over the first half of the joints (at most
-    /// [`FkPrefix::MAX`]) with the previous call given the same `prefix` when those joints'
-    /// values are the same, bit for bit: the IK check of two solutions that differ only in the
-    /// wrist. The result is that of [`Robot::fk_matrix`] bit for bit (same operations in the
-    /// same order). Chains with mimic joints take the full product every time.
-    ///
-    /// # Errors
-    /// [`KinematicsError`] when `q` has the wrong length or a non-finite value.
-    pub(crate) fn fk_matrix_sharing(
-        &self,
-        q: &[f64],
-        prefix: &mut FkPrefix,
-    ) -> Result<IsometryMatrix3<f64>, KinematicsError> {
-        let k = (self.dof() / 2).min(FkPrefix::MAX);
-        if k == 0 || self.chain.has_mimics() {
-            return self.fk_matrix(q);
-        }
-        check_q(self.dof(), q)?;
-        let fk = &self.chain.fk;
-        let head = &q[..k];
-        let same = prefix.len == k && prefix.q[..k].iter().zip(head).all(|(a, b)| a.to_bits() == b.to_bits());
-        if !same {
-            let mut t = fk.start(q);
-            fk.walk(&mut t, q, 0..k, |_, _| {});
-            prefix.len = k;
-            prefix.q[..k].copy_from_slice(head);
-            prefix.frame = t;
-        }
-        let mut t = prefix.frame;
-        fk.walk(&mut t, q, k..self.dof(), |_, _| {});
         Ok(t.isometry())
     }
 

@@ -21,7 +21,6 @@ mod jacobian;
 mod lanes;
 mod manipulability;
 
-pub(crate) use forward::FkPrefix;
 pub use forward::JointAxis;
 pub use jacobian::Jacobian;
 pub use manipulability::{JacobianAxes, Manipulability};
