@@ -20,6 +20,11 @@ Run from the repository root (see bench/peers/README.md):
     python3 -m venv /tmp/pin-venv
     /tmp/pin-venv/bin/pip install -r bench/peers/requirements-urdf.txt
     /tmp/pin-venv/bin/python bench/peers/pinocchio_compare.py [--poses 1000] [--rounds 11]
+
+The compiled Pinocchio program is kept in bench/target/peers/ (one per Pinocchio version) and
+rebuilt only when its source is newer or with --rebuild: its g++ build takes minutes.
+`--reach-bin PATH` times another build of `urdf_timing` (e.g. a copy of the previous one, to
+alternate old and new code against the same Pinocchio program) instead of building it.
 """
 
 import argparse
@@ -42,27 +47,37 @@ ARMS = [
 ]
 
 
-def build(work):
-    """Builds both programs; returns their paths."""
-    subprocess.run(
-        ["cargo", "build", "--release", "--quiet", "--manifest-path", "bench/Cargo.toml", "--bin", "urdf_timing"],
-        check=True,
-    )
-    reach = "bench/target/release/urdf_timing"
+CPP_SOURCE = pathlib.Path("bench/peers/pinocchio/fk_jacobian.cpp")
+
+
+def build(reach_bin, rebuild):
+    """Builds (or reuses) both programs; returns their paths."""
+    if reach_bin is None:
+        subprocess.run(
+            ["cargo", "build", "--release", "--quiet", "--manifest-path", "bench/Cargo.toml", "--bin", "urdf_timing"],
+            check=True,
+        )
+        reach_bin = "bench/target/release/urdf_timing"
+    elif not os.access(reach_bin, os.X_OK):
+        sys.exit(f"--reach-bin {reach_bin}: not an executable file")
+    cache = pathlib.Path("bench/target/peers")
+    cache.mkdir(parents=True, exist_ok=True)
+    cpp = cache / f"fk_jacobian-pinocchio-{pin.__version__}"
+    if not rebuild and cpp.exists() and cpp.stat().st_mtime >= CPP_SOURCE.stat().st_mtime:
+        return reach_bin, str(cpp)
     prefix = pathlib.Path(pin.__file__).resolve()  # cmeel.prefix/lib/python3.X/site-packages/pinocchio
     while prefix.name != "cmeel.prefix":
         prefix = prefix.parent
-    cpp = os.path.join(work, "fk_jacobian")
     subprocess.run(
         ["g++", "-O3", "-DNDEBUG", "-std=c++17",
          # Pinocchio's exported compile definitions (lib/cmake/pinocchio/pinocchioTargets.cmake)
          "-DBOOST_MPL_LIMIT_LIST_SIZE=30", "-DBOOST_MPL_LIMIT_VECTOR_SIZE=30",
          "-DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS", "-DBOOST_FUSION_INVOKE_MAX_ARITY=12",
-         f"-I{prefix}/include", f"-I{prefix}/include/eigen3", "bench/peers/pinocchio/fk_jacobian.cpp",
-         "-o", cpp, f"-L{prefix}/lib", "-lpinocchio_default", "-lboost_serialization", f"-Wl,-rpath,{prefix}/lib"],
+         f"-I{prefix}/include", f"-I{prefix}/include/eigen3", str(CPP_SOURCE),
+         "-o", str(cpp), f"-L{prefix}/lib", "-lpinocchio_default", "-lboost_serialization", f"-Wl,-rpath,{prefix}/lib"],
         check=True,
     )
-    return reach, cpp
+    return reach_bin, str(cpp)
 
 
 def run(cmd):
@@ -73,9 +88,11 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--poses", type=int, default=1000)
     ap.add_argument("--rounds", type=int, default=11, help="alternating rounds (each program: 3 passes per round)")
+    ap.add_argument("--reach-bin", help="an already built urdf_timing to time (default: build it)")
+    ap.add_argument("--rebuild", action="store_true", help="recompile the Pinocchio program")
     args = ap.parse_args()
     work = tempfile.mkdtemp(prefix="reach-pin-")
-    reach, cpp = build(work)
+    reach, cpp = build(args.reach_bin, args.rebuild)
     print(f"reach vs Pinocchio {pin.__version__} (C++), {args.poses} joint vectors per arm, median of "
           f"{args.rounds} alternating rounds; ratio = reach / Pinocchio (< 1: reach faster)")
     print("| arm (URDF) | operation | reach ns/call | Pinocchio ns/call | ratio |")
