@@ -203,14 +203,52 @@ impl FkFrame {
         }
     }
 
-    /// Right-multiplies by the mimic motions `steps` (joint values `q`).
+    /// The rotation.
     #[inline(always)]
-    pub fn mimics(&mut self, steps: &[MimicStep], q: &[f64]) {
+    pub fn rotation(&self) -> Matrix3<f64> {
+        let v = |c: &Column| Vector3::new(c[0], c[1], c[2]);
+        Matrix3::from_columns(&[v(&self.x), v(&self.y), v(&self.z)])
+    }
+
+    /// Right-multiplies by the mimic motions `steps` (joint values `q`), calling `visit` with
+    /// each one and the frame just before it.
+    #[inline(always)]
+    pub fn mimics<'a>(&mut self, steps: &'a [MimicStep], q: &[f64], visit: &mut impl FnMut(Stop<'a>, &FkFrame)) {
         for m in steps {
+            visit(Stop::Mimic(m), self);
             self.motion(m.prismatic, m.value(q));
             self.mul_const(&m.after);
         }
     }
+}
+
+/// Where a walk along a chain product ([`FkChain::walk`], [`Chain::walk`](super::chain::Chain::walk))
+/// shows its visitor the running frame.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Stop<'a> {
+    /// Just before independent joint `i`'s motion (0-based): the frame's z axis is the joint
+    /// axis.
+    Joint(usize),
+    /// Just after joint `i`'s motion, before the constant that follows it.
+    Moved(usize),
+    /// Just before a mimic joint's motion.
+    Mimic(&'a MimicStep),
+}
+
+/// An independent joint of a chain product: the motion, the constant after it and the mimic
+/// motions that follow. [`FkLink`] (the forward-kinematics form) and
+/// [`ChainLink`] (the compiled chain as it stands, whose frames dynamics and
+/// [`Robot::joint_axes`](crate::model::Robot::joint_axes) report) are both walked by
+/// [`walk`], step for step the same operations.
+pub(crate) trait WalkLink {
+    /// Translation along z instead of rotation about z.
+    fn prismatic(&self) -> bool;
+    /// The motion value (radians or metres) for joint value `q`.
+    fn value(&self, q: f64) -> f64;
+    /// Right-multiplies `t` by the constant after the motion.
+    fn mul_after(&self, t: &mut FkFrame);
+    /// Mimic-joint motions between this joint and the next.
+    fn mimics(&self) -> &[MimicStep];
 }
 
 /// One joint of an [`FkChain`]: motion `Rz(sign·q + offset)` (or `Tz`), then `after`, then
@@ -238,19 +276,27 @@ impl FkLink {
     pub fn value(&self, q: f64) -> f64 {
         self.sign * q + self.offset
     }
+}
 
-    /// Right-multiplies `t` by the motion for joint value `q` (given the sine and cosine of
-    /// its angle, [`FkLink::value`]; unused for a prismatic joint), `after` and the mimic
-    /// motions (joint values `all`).
+impl WalkLink for FkLink {
     #[inline(always)]
-    fn advance(&self, t: &mut FkFrame, q: f64, s: f64, c: f64, all: &[f64]) {
-        if self.prismatic {
-            t.slide_z(self.value(q));
-        } else {
-            t.rotate_z(s, c);
-        }
+    fn prismatic(&self) -> bool {
+        self.prismatic
+    }
+
+    #[inline(always)]
+    fn value(&self, q: f64) -> f64 {
+        FkLink::value(self, q)
+    }
+
+    #[inline(always)]
+    fn mul_after(&self, t: &mut FkFrame) {
         t.mul_step(&self.after);
-        t.mimics(&self.mimics, all);
+    }
+
+    #[inline(always)]
+    fn mimics(&self) -> &[MimicStep] {
+        &self.mimics
     }
 }
 
@@ -380,50 +426,111 @@ fn dh_turned(g: &IsometryMatrix3<f64>, scale: f64) -> Option<(f64, DhStep)> {
     (rotation_gap <= REFRAME_TOLERANCE && translation_gap <= REFRAME_TOLERANCE).then_some((theta, step))
 }
 
-/// Joints whose sines and cosines forward kinematics evaluates together.
+/// Joints whose sines and cosines a walk evaluates together.
 const TRIG_LANES: usize = 2;
 
+/// Right-multiplies `t` by the motion of `link` for joint value `q` (given the sine and cosine
+/// of its angle, [`WalkLink::value`]; unused for a prismatic joint), the constant after it and
+/// its mimic motions (joint values `all`), showing `visit` joint `i` before and after its
+/// motion and each mimic motion.
+#[inline(always)]
+fn advance<'a, K: WalkLink>(
+    link: &'a K,
+    i: usize,
+    t: &mut FkFrame,
+    q: f64,
+    (s, c): (f64, f64),
+    all: &[f64],
+    visit: &mut impl FnMut(Stop<'a>, &FkFrame),
+) {
+    visit(Stop::Joint(i), t);
+    if link.prismatic() {
+        t.slide_z(link.value(q));
+    } else {
+        t.rotate_z(s, c);
+    }
+    visit(Stop::Moved(i), t);
+    link.mul_after(t);
+    t.mimics(link.mimics(), all, visit);
+}
+
+/// The frame `first · Π(first_mimics)` a chain product starts from (joint values `q`),
+/// showing `visit` each mimic motion.
+#[inline(always)]
+pub(crate) fn start<'a>(
+    first: &IsometryMatrix3<f64>,
+    first_mimics: &'a [MimicStep],
+    q: &[f64],
+    visit: &mut impl FnMut(Stop<'a>, &FkFrame),
+) -> FkFrame {
+    let mut t = FkFrame::of(first);
+    t.mimics(first_mimics, q, visit);
+    t
+}
+
+/// Right-multiplies `t` by the motions, constants and mimic motions of `links[joints]` (a
+/// range of joint indices; `links` the whole chain) for joint values `q` (all of them, one per
+/// joint), showing `visit` every [`Stop`] on the way. The one walk of every scalar chain
+/// product: forward kinematics, link frames and the Jacobian on the [`FkChain`], joint axes
+/// and dynamics on the compiled [`Chain`](super::chain::Chain).
+#[inline(always)]
+pub(crate) fn walk<'a, K: WalkLink>(
+    links: &'a [K],
+    t: &mut FkFrame,
+    q: &[f64],
+    joints: std::ops::Range<usize>,
+    mut visit: impl FnMut(Stop<'a>, &FkFrame),
+) {
+    let from = joints.start;
+    let values = &q[joints.clone()];
+    let links = &links[joints];
+    let mut i = from;
+    let mut chunks = links.chunks_exact(TRIG_LANES);
+    let mut value_chunks = values.chunks_exact(TRIG_LANES);
+    for (ls, vs) in chunks.by_ref().zip(value_chunks.by_ref()) {
+        let angles: [f64; TRIG_LANES] =
+            std::array::from_fn(|k| if ls[k].prismatic() { 0.0 } else { ls[k].value(vs[k]) });
+        let (s, c) = sin_cos_lanes(&angles);
+        for k in 0..TRIG_LANES {
+            advance(&ls[k], i, t, vs[k], (s[k], c[k]), q, &mut visit);
+            i += 1;
+        }
+    }
+    for (link, &v) in chunks.remainder().iter().zip(value_chunks.remainder()) {
+        let sc = if link.prismatic() { (0.0, 1.0) } else { crate::angle::sin_cos(link.value(v)) };
+        advance(link, i, t, v, sc, q, &mut visit);
+        i += 1;
+    }
+}
+
 impl FkChain {
-    /// The frame `first · Π(first_mimics)` the product starts from (joint values `q`).
+    /// The frame `first · Π(first_mimics)` the product starts from (joint values `q`),
+    /// showing `visit` each mimic motion.
     #[inline(always)]
-    pub fn start(&self, q: &[f64]) -> FkFrame {
-        let mut t = FkFrame::of(&self.first);
-        t.mimics(&self.first_mimics, q);
-        t
+    pub fn start<'a>(&'a self, q: &[f64], visit: &mut impl FnMut(Stop<'a>, &FkFrame)) -> FkFrame {
+        start(&self.first, &self.first_mimics, q, visit)
     }
 
     /// Right-multiplies `t` by the motions and constants of joints `joints` (a range of
     /// joint indices) for joint values `q` (all of them, one per joint; mimic motions
-    /// included), calling `visit(i, t)` with the frame just before joint `i`'s motion.
+    /// included), showing `visit` every [`Stop`] on the way.
     #[inline(always)]
-    pub fn walk(
-        &self,
+    pub fn walk<'a>(
+        &'a self,
         t: &mut FkFrame,
         q: &[f64],
         joints: std::ops::Range<usize>,
-        mut visit: impl FnMut(usize, &FkFrame),
+        visit: impl FnMut(Stop<'a>, &FkFrame),
     ) {
-        let from = joints.start;
-        let links = &self.links[joints.clone()];
-        let values = &q[joints];
-        let mut i = from;
-        let mut chunks = links.chunks_exact(TRIG_LANES);
-        let mut value_chunks = values.chunks_exact(TRIG_LANES);
-        for (ls, vs) in chunks.by_ref().zip(value_chunks.by_ref()) {
-            let angles: [f64; TRIG_LANES] =
-                std::array::from_fn(|k| if ls[k].prismatic { 0.0 } else { ls[k].value(vs[k]) });
-            let (s, c) = sin_cos_lanes(&angles);
-            for k in 0..TRIG_LANES {
-                visit(i, t);
-                ls[k].advance(t, vs[k], s[k], c[k], q);
-                i += 1;
-            }
-        }
-        for (link, &v) in chunks.remainder().iter().zip(value_chunks.remainder()) {
-            let (s, c) = if link.prismatic { (0.0, 1.0) } else { crate::angle::sin_cos(link.value(v)) };
-            visit(i, t);
-            link.advance(t, v, s, c, q);
-            i += 1;
-        }
+        walk(&self.links, t, q, joints, visit);
+    }
+
+    /// The whole product for joint values `q` (the tool pose), showing `visit` every
+    /// [`Stop`] on the way.
+    #[inline(always)]
+    pub fn product<'a>(&'a self, q: &[f64], mut visit: impl FnMut(Stop<'a>, &FkFrame)) -> FkFrame {
+        let mut t = self.start(q, &mut visit);
+        self.walk(&mut t, q, 0..self.links.len(), visit);
+        t
     }
 }
