@@ -50,7 +50,7 @@ use nalgebra::{DMatrix, Matrix3, Vector3};
 use thiserror::Error;
 
 use super::Differences;
-use crate::model::chain::apply_motion;
+use crate::model::fk_chain::Stop;
 use crate::model::{JointKind, LinkInertial, Robot};
 
 /// Why a dynamics quantity could not be computed.
@@ -120,6 +120,7 @@ pub struct Dynamics<'r> {
     bodies: Vec<Body>,
     axis: Vec<Vector3<f64>>,
     origin: Vec<Vector3<f64>>,
+    rotation: Vec<Matrix3<f64>>,
     com: Vec<Vector3<f64>>,
     force: Vec<Vector3<f64>>,
     moment: Vec<Vector3<f64>>,
@@ -155,6 +156,7 @@ impl<'r> Dynamics<'r> {
             bodies,
             axis: v.clone(),
             origin: v.clone(),
+            rotation: vec![Matrix3::zeros(); n],
             com: v.clone(),
             force: v.clone(),
             moment: v,
@@ -239,17 +241,25 @@ impl<'r> Dynamics<'r> {
     /// Recursive Newton–Euler on checked input (module docs), gravity `g` (m/s², world).
     fn rnea(&mut self, q: &[f64], qd: &[f64], qdd: &[f64], g: &Vector3<f64>, tau: &mut [f64]) {
         let chain = &self.robot.chain;
-        let mut t = chain.first;
-        let mut prev_origin = t.translation.vector;
+        // The frames: each joint's axis (before its motion), and the frame after the motion.
+        chain.product(q, |stop, t| match stop {
+            Stop::Joint(i) => self.axis[i] = t.z_axis(),
+            Stop::Moved(i) => {
+                self.origin[i] = t.translation();
+                self.rotation[i] = t.rotation();
+            }
+            // A chain with mimic joints has no dynamics (`Robot::new` rejects mass properties
+            // with mimic joints).
+            Stop::Mimic(_) => {}
+        });
+        let mut prev_origin = chain.first.translation.vector;
         let mut w = Vector3::zeros();
         let mut wd = Vector3::zeros();
         // A uniform gravity field is the same as an upward acceleration of the base.
         let mut acc = -g;
         for (i, link) in chain.links.iter().enumerate() {
-            let z: Vector3<f64> = t.rotation.matrix().column(2).into_owned();
-            let (v, vd, vdd) = (link.sign * q[i], link.sign * qd[i], link.sign * qdd[i]);
-            apply_motion(&mut t, link.prismatic, v);
-            let o = t.translation.vector;
+            let (z, o, rot) = (self.axis[i], self.origin[i], &self.rotation[i]);
+            let (vd, vdd) = (link.sign * qd[i], link.sign * qdd[i]);
             let r = o - prev_origin;
             // Acceleration of the point o as a point of link i−1.
             let mut a = acc + wd.cross(&r) + w.cross(&w.cross(&r));
@@ -260,18 +270,14 @@ impl<'r> Dynamics<'r> {
                 w += z * vd;
             }
             let body = &self.bodies[i];
-            let rot = t.rotation.matrix();
             let c = rot * body.com;
             let a_com = a + wd.cross(&c) + w.cross(&w.cross(&c));
             // Euler's equation in the link's axes (cheaper than rotating the tensor).
             let (w_local, wd_local) = (rot.tr_mul(&w), rot.tr_mul(&wd));
             let iw = body.inertia * w_local;
-            self.axis[i] = z;
-            self.origin[i] = o;
             self.com[i] = c;
             self.force[i] = a_com * body.mass;
             self.moment[i] = rot * (body.inertia * wd_local + w_local.cross(&iw));
-            t *= link.after;
             prev_origin = o;
             acc = a;
         }

@@ -2,8 +2,7 @@ use nalgebra::{Isometry3, IsometryMatrix3, UnitQuaternion, Vector3};
 
 use super::{KinematicsError, check_q};
 use crate::model::Robot;
-use crate::model::chain::{Chain, apply_motion};
-use crate::model::fk_chain::FkFrame;
+use crate::model::fk_chain::{FkFrame, Stop};
 
 /// A joint axis in the world frame: `(point on the axis, unit direction)`.
 pub type JointAxis = (Vector3<f64>, Vector3<f64>);
@@ -29,10 +28,7 @@ impl Robot {
     #[inline]
     pub fn fk_matrix(&self, q: &[f64]) -> Result<IsometryMatrix3<f64>, KinematicsError> {
         check_q(self.dof(), q)?;
-        let fk = &self.chain.fk;
-        let mut t = fk.start(q);
-        fk.walk(&mut t, q, 0..self.dof(), |_, _| {});
-        Ok(t.isometry())
+        Ok(self.chain.fk.product(q, |_, _| {}).isometry())
     }
 
     /// Every link frame in the world frame: `out[i]` is the frame of link `i + 1`
@@ -94,18 +90,17 @@ impl Robot {
         let fk = &self.chain.fk;
         let mut t = match before.as_deref() {
             Some(b) if from > 0 => FkFrame::of(&b[from]),
-            _ => fk.start(q),
+            _ => fk.start(q, &mut |_, _| {}),
         };
-        for i in from..self.dof() {
-            let link = &fk.links[i];
-            if let Some(b) = before.as_deref_mut() {
-                b[i] = t.isometry();
+        fk.walk(&mut t, q, from..self.dof(), |stop, t| match stop {
+            Stop::Joint(i) => {
+                if let Some(b) = before.as_deref_mut() {
+                    b[i] = t.isometry();
+                }
             }
-            t.motion(link.prismatic, link.value(q[i]));
-            out[i] = t.isometry() * link.to_frame;
-            t.mul_step(&link.after);
-            t.mimics(&link.mimics, q);
-        }
+            Stop::Moved(i) => out[i] = t.isometry() * fk.links[i].to_frame,
+            Stop::Mimic(_) => {}
+        });
         let tool = t.isometry();
         if let Some(b) = before {
             b[self.dof()] = tool;
@@ -132,14 +127,12 @@ impl Robot {
     pub fn joint_axes(&self, q: &[f64]) -> Result<Vec<JointAxis>, KinematicsError> {
         check_q(self.dof(), q)?;
         let mut axes = Vec::with_capacity(self.dof());
-        let mut t = self.chain.first;
-        Chain::apply_mimics(&mut t, &self.chain.first_mimics, q);
-        for (link, &v) in self.chain.links.iter().zip(q) {
-            axes.push((t.translation.vector, t.rotation.matrix().column(2) * link.sign));
-            apply_motion(&mut t, link.prismatic, link.sign * v);
-            t *= link.after;
-            Chain::apply_mimics(&mut t, &link.mimics, q);
-        }
+        let links = &self.chain.links;
+        self.chain.product(q, |stop, t| {
+            if let Stop::Joint(i) = stop {
+                axes.push((t.translation(), t.z_axis() * links[i].sign));
+            }
+        });
         Ok(axes)
     }
 

@@ -2,7 +2,7 @@ use nalgebra::{Matrix6xX, Vector3};
 
 use super::{KinematicsError, check_q};
 use crate::model::Robot;
-use crate::model::chain::{MimicStep, apply_motion};
+use crate::model::fk_chain::Stop;
 
 /// The 6×n geometric Jacobian: rows `vx vy vz ωx ωy ωz` in the world frame, one column per joint.
 pub type Jacobian = Matrix6xX<f64>;
@@ -36,13 +36,13 @@ impl Robot {
                 found: out.ncols(),
             });
         }
-        let fk = &self.chain.fk;
-        let mut t = fk.start(q);
         // First pass: store the axis in the angular rows and the axis point in the linear rows.
-        fk.walk(&mut t, q, 0..self.dof(), |i, t| {
-            let mut col = out.column_mut(i);
-            col.fixed_rows_mut::<3>(0).copy_from(&t.translation());
-            col.fixed_rows_mut::<3>(3).copy_from(&t.z_axis());
+        let t = self.chain.fk.product(q, |stop, t| {
+            if let Stop::Joint(i) = stop {
+                let mut col = out.column_mut(i);
+                col.fixed_rows_mut::<3>(0).copy_from(&t.translation());
+                col.fixed_rows_mut::<3>(3).copy_from(&t.z_axis());
+            }
         });
         let p = t.translation();
         for (i, link) in self.chain.links.iter().enumerate() {
@@ -66,33 +66,19 @@ impl Robot {
     /// Second pass for robots with mimic joints: adds `multiplier ×` each mimic joint's column
     /// to its master's column. `p` is the tool point.
     fn add_mimic_columns(&self, q: &[f64], p: &Vector3<f64>, out: &mut Jacobian) {
-        let add = |t: &nalgebra::IsometryMatrix3<f64>, m: &MimicStep, out: &mut Jacobian| {
-            let z: Vector3<f64> = t.rotation.matrix().column(2).into_owned();
+        self.chain.fk.product(q, |stop, t| {
+            let Stop::Mimic(m) = stop else { return };
+            let z = t.z_axis();
             let mut col = out.column_mut(m.master);
             if m.prismatic {
                 let v = z * m.multiplier;
                 col.fixed_rows_mut::<3>(0).zip_apply(&v, |a, b| *a += b);
             } else {
-                let v = z.cross(&(p - t.translation.vector)) * m.multiplier;
+                let v = z.cross(&(p - t.translation())) * m.multiplier;
                 let w = z * m.multiplier;
                 col.fixed_rows_mut::<3>(0).zip_apply(&v, |a, b| *a += b);
                 col.fixed_rows_mut::<3>(3).zip_apply(&w, |a, b| *a += b);
             }
-        };
-        let mut t = self.chain.first;
-        for m in &self.chain.first_mimics {
-            add(&t, m, out);
-            apply_motion(&mut t, m.prismatic, m.value(q));
-            t *= m.after;
-        }
-        for (link, &v) in self.chain.links.iter().zip(q) {
-            apply_motion(&mut t, link.prismatic, link.sign * v);
-            t *= link.after;
-            for m in &link.mimics {
-                add(&t, m, out);
-                apply_motion(&mut t, m.prismatic, m.value(q));
-                t *= m.after;
-            }
-        }
+        });
     }
 }

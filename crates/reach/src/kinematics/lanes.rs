@@ -6,9 +6,9 @@
 //!
 //! The steps are those of [`Robot::fk_matrix`] and [`Robot::jacobian_into`] (the
 //! [`FkChain`](crate::model::fk_chain::FkChain): `first`, each joint's motion with its angle
-//! offset, its DH step or general constant, mimic motions), written out entry by entry in the same
-//! order of operations, so each lane is the scalar result to rounding (in practice bit for
-//! bit). Sines and cosines come from [`sin_cos_lanes`]. [`crate::batch`] feeds blocks of `L`
+//! offset, its DH step or general constant, mimic motions): the scalar walk's frame
+//! [`FkFrame`](crate::model::fk_chain::FkFrame) is one lane of [`FrameLanes`], so every lane
+//! runs the scalar operations in the same order and is the scalar result bit for bit. Sines and cosines come from [`sin_cos_lanes`]. [`crate::batch`] feeds blocks of `L`
 //! rows through these kernels and the remainder through the scalar functions.
 //!
 //! The kernels do not check their input: the callers reject non-finite joint values first (a
@@ -50,7 +50,7 @@ enum Motion<'a> {
 impl<const L: usize> FrameLanes<L> {
     /// The same transform `t` in every lane.
     #[inline(always)]
-    fn splat(t: &IsometryMatrix3<f64>) -> Self {
+    pub(crate) fn splat(t: &IsometryMatrix3<f64>) -> Self {
         let m = t.rotation.matrix();
         let v = t.translation.vector;
         FrameLanes {
@@ -65,30 +65,42 @@ impl<const L: usize> FrameLanes<L> {
         [self.r[0][j], self.r[1][j], self.r[2][j]]
     }
 
+    /// Right-multiplies every lane by `Rz(v)` given as `(sin v, cos v)`.
+    #[inline(always)]
+    pub(crate) fn rotate_z(&mut self, s: &Lanes<L>, c: &Lanes<L>) {
+        for row in &mut self.r {
+            for l in 0..L {
+                let (x, y) = (row[0][l], row[1][l]);
+                row[0][l] = c[l] * x + s[l] * y;
+                row[1][l] = c[l] * y - s[l] * x;
+            }
+        }
+    }
+
+    /// Right-multiplies every lane by `Tz(v)`.
+    #[inline(always)]
+    pub(crate) fn slide_z(&mut self, v: &Lanes<L>) {
+        for i in 0..3 {
+            for l in 0..L {
+                self.p[i][l] += self.r[i][2][l] * v[l];
+            }
+        }
+    }
+
     /// Right-multiplies every lane by its joint motion: `Rz(v)` (radians) or `Tz(v)` (metres).
     #[inline(always)]
-    fn motion(&mut self, prismatic: bool, v: &Lanes<L>) {
+    pub(crate) fn motion(&mut self, prismatic: bool, v: &Lanes<L>) {
         if prismatic {
-            for i in 0..3 {
-                for l in 0..L {
-                    self.p[i][l] += self.r[i][2][l] * v[l];
-                }
-            }
+            self.slide_z(v);
         } else {
             let (s, c) = sin_cos_lanes(v);
-            for row in &mut self.r {
-                for l in 0..L {
-                    let (x, y) = (row[0][l], row[1][l]);
-                    row[0][l] = c[l] * x + s[l] * y;
-                    row[1][l] = c[l] * y - s[l] * x;
-                }
-            }
+            self.rotate_z(&s, &c);
         }
     }
 
     /// Right-multiplies every lane by the constant `m`.
     #[inline(always)]
-    fn mul_const(&mut self, m: &IsometryMatrix3<f64>) {
+    pub(crate) fn mul_const(&mut self, m: &IsometryMatrix3<f64>) {
         let k = m.rotation.matrix();
         let u = m.translation.vector;
         for i in 0..3 {
@@ -104,9 +116,9 @@ impl<const L: usize> FrameLanes<L> {
         }
     }
 
-    /// Right-multiplies every lane by the DH step `Tz(d)·Tx(a)·Rx(α)` ([`FkFrame::mul_dh`](crate::model::fk_chain::FkFrame::mul_dh)).
+    /// Right-multiplies every lane by the DH step `Tz(d)·Tx(a)·Rx(α)`.
     #[inline(always)]
-    fn mul_dh(&mut self, dh: &DhStep) {
+    pub(crate) fn mul_dh(&mut self, dh: &DhStep) {
         let (a, d, c, s) = (dh.a, dh.d, dh.cos_alpha, dh.sin_alpha);
         for i in 0..3 {
             let [x, y, z] = self.r[i];
@@ -120,7 +132,7 @@ impl<const L: usize> FrameLanes<L> {
 
     /// Right-multiplies every lane by the constant `step`.
     #[inline(always)]
-    fn mul_step(&mut self, step: &FkStep) {
+    pub(crate) fn mul_step(&mut self, step: &FkStep) {
         match step {
             FkStep::Dh(dh) => self.mul_dh(dh),
             FkStep::General(m) => self.mul_const(m),

@@ -18,7 +18,7 @@
 
 mod forward;
 mod jacobian;
-mod lanes;
+pub(crate) mod lanes;
 mod manipulability;
 
 pub use forward::JointAxis;

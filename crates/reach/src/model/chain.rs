@@ -26,12 +26,14 @@
 //! motions that sit after independent joint *i* are in that joint's `mimics` (its `after` then
 //! leads to the first of them), those before the first joint in [`Chain::first_mimics`].
 //!
-//! Forward kinematics and the Jacobian run on [`Chain::fk`], the same product with its motion
-//! frames moved onto DH common normals ([`FkChain`]); frames, axes and dynamics on this one.
+//! Forward kinematics, the link frames and the Jacobian run on [`Chain::fk`], the same product
+//! with its motion frames moved onto DH common normals ([`FkChain`]); joint axes and dynamics
+//! on this one ([`Chain::product`]). Both take the one walk and the elementary steps of
+//! [`FkFrame`]; the tests hold them against an independent product of nalgebra isometries.
 
 use nalgebra::{Isometry3, IsometryMatrix3, Matrix3, Rotation3, Translation3, Unit, Vector3};
 
-use super::fk_chain::FkChain;
+use super::fk_chain::{self, FkChain, FkFrame, Stop, WalkLink};
 use super::{Convention, JointGeometry, JointKind, RobotSpec};
 
 /// One joint of the compiled chain.
@@ -212,44 +214,37 @@ impl Chain {
         !self.first_mimics.is_empty() || self.links.iter().any(|l| !l.mimics.is_empty())
     }
 
-    /// Applies the mimic motions `steps` to `t` in place.
+    /// The whole product for joint values `q` (the tool pose) on the constants as compiled,
+    /// showing `visit` every [`Stop`] on the way: the frames dynamics and
+    /// [`Robot::joint_axes`](crate::model::Robot::joint_axes) report (forward kinematics takes
+    /// the same product on [`Chain::fk`]).
     #[inline(always)]
-    pub fn apply_mimics(t: &mut IsometryMatrix3<f64>, steps: &[MimicStep], q: &[f64]) {
-        for m in steps {
-            apply_motion(t, m.prismatic, m.value(q));
-            *t *= m.after;
-        }
+    pub fn product<'a>(&'a self, q: &[f64], mut visit: impl FnMut(Stop<'a>, &FkFrame)) -> FkFrame {
+        let mut t = fk_chain::start(&self.first, &self.first_mimics, q, &mut visit);
+        fk_chain::walk(&self.links, &mut t, q, 0..self.links.len(), visit);
+        t
     }
 }
 
-/// Right-multiplies `t` by the joint motion `Rz(v)` or `Tz(v)` in place.
-#[inline(always)]
-pub(crate) fn apply_motion(t: &mut IsometryMatrix3<f64>, prismatic: bool, v: f64) {
-    if prismatic {
-        slide_z(t, v);
-    } else {
-        let (s, c) = crate::angle::sin_cos(v);
-        rotate_z(t, s, c);
+impl WalkLink for ChainLink {
+    #[inline(always)]
+    fn prismatic(&self) -> bool {
+        self.prismatic
     }
-}
 
-/// Right-multiplies `t` by `Tz(v)` in place.
-#[inline(always)]
-pub(crate) fn slide_z(t: &mut IsometryMatrix3<f64>, v: f64) {
-    let z = t.rotation.matrix().column(2).into_owned();
-    t.translation.vector += z * v;
-}
+    #[inline(always)]
+    fn value(&self, q: f64) -> f64 {
+        self.sign * q
+    }
 
-/// Right-multiplies `t` in place by `Rz(v)` given as `(sin v, cos v)`.
-#[inline(always)]
-pub(crate) fn rotate_z(t: &mut IsometryMatrix3<f64>, s: f64, c: f64) {
-    // SAFETY of orthonormality: a rotation times Rz(v) is a rotation.
-    let m = t.rotation.matrix_mut_unchecked();
-    for r in 0..3 {
-        let x = m[(r, 0)];
-        let y = m[(r, 1)];
-        m[(r, 0)] = c * x + s * y;
-        m[(r, 1)] = c * y - s * x;
+    #[inline(always)]
+    fn mul_after(&self, t: &mut FkFrame) {
+        t.mul_const(&self.after);
+    }
+
+    #[inline(always)]
+    fn mimics(&self) -> &[MimicStep] {
+        &self.mimics
     }
 }
 
@@ -257,14 +252,25 @@ pub(crate) fn rotate_z(t: &mut IsometryMatrix3<f64>, s: f64, c: f64) {
 mod tests {
     use super::*;
 
-    /// The chain product with every constant general, as compiled.
-    fn general_product(chain: &Chain, q: &[f64]) -> IsometryMatrix3<f64> {
+    /// The reference product (test oracle): the compiled chain as it stands, multiplied out
+    /// with nalgebra's isometries, independently of [`FkFrame`] and the walk.
+    fn reference_product(chain: &Chain, q: &[f64]) -> IsometryMatrix3<f64> {
+        let motion = |t: &mut IsometryMatrix3<f64>, prismatic: bool, v: f64| {
+            let m = if prismatic { trans(0.0, 0.0, v) } else { rot_z(v) };
+            *t *= m;
+        };
+        let mimics = |t: &mut IsometryMatrix3<f64>, steps: &[MimicStep]| {
+            for m in steps {
+                motion(t, m.prismatic, m.value(q));
+                *t *= m.after;
+            }
+        };
         let mut t = chain.first;
-        Chain::apply_mimics(&mut t, &chain.first_mimics, q);
+        mimics(&mut t, &chain.first_mimics);
         for (link, &v) in chain.links.iter().zip(q) {
-            apply_motion(&mut t, link.prismatic, link.sign * v);
+            motion(&mut t, link.prismatic, link.sign * v);
             t *= link.after;
-            Chain::apply_mimics(&mut t, &link.mimics, q);
+            mimics(&mut t, &link.mimics);
         }
         t
     }
@@ -288,7 +294,7 @@ mod tests {
     }
 
     #[test]
-    fn the_fk_chain_equals_the_general_product() {
+    fn both_chain_products_equal_the_reference_product() {
         use crate::model::fk_chain::FkStep;
         let ur5 = crate::model::presets::get("ur5").unwrap();
         assert!(ur5.chain.fk.links.iter().all(|l| matches!(l.after, FkStep::Dh(_)) && l.offset == 0.0));
@@ -302,8 +308,11 @@ mod tests {
             for _ in 0..200 {
                 let q: Vec<f64> = (0..robot.dof()).map(|_| (rng.next_f64() * 2.0 - 1.0) * 3.2).collect();
                 let fast = robot.fk_matrix(&q).unwrap();
-                let general = general_product(&robot.chain, &q);
-                let gap = (fast.to_homogeneous() - general.to_homogeneous()).abs().max();
+                let reference = reference_product(&robot.chain, &q);
+                let gap = (fast.to_homogeneous() - reference.to_homogeneous()).abs().max();
+                assert!(gap < 1e-12, "{name}: {q:?}: {gap:e}");
+                let compiled = robot.chain.product(&q, |_, _| {}).isometry();
+                let gap = (compiled.to_homogeneous() - reference.to_homogeneous()).abs().max();
                 assert!(gap < 1e-12, "{name}: {q:?}: {gap:e}");
             }
         }
