@@ -545,8 +545,8 @@ pub(crate) trait CandidateList {
     fn joints_mut(&mut self, i: usize) -> &mut [f64];
     /// Singularity flags of candidate `i`, in order.
     fn flags(&self, i: usize) -> impl Iterator<Item = SingularityKind> + '_;
-    /// Writes candidate `i`'s branch label into `out`, replacing what it held (moving it out:
-    /// called once, for a kept candidate).
+    /// Appends candidate `i`'s branch label to `out` (moving it out: called once, for a kept
+    /// candidate).
     fn take_label(&mut self, i: usize, out: &mut Vec<(Label, Label)>);
 }
 
@@ -564,7 +564,6 @@ impl CandidateList for [Candidate] {
         self[i].singularities.iter().copied()
     }
     fn take_label(&mut self, i: usize, out: &mut Vec<(Label, Label)>) {
-        out.clear();
         out.extend(self[i].branch.drain(..));
     }
 }
@@ -585,7 +584,6 @@ impl CandidateList for Raw6Set {
     #[inline]
     fn take_label(&mut self, i: usize, out: &mut Vec<(Label, Label)>) {
         let values = self.items[i].values;
-        out.clear();
         out.extend(self.keys.iter().zip(values).map(|(k, v)| (Label::from(*k), Label::from(v))));
     }
 }
@@ -956,26 +954,22 @@ impl Kept<'_> {
         s.q.extend_from_slice(q);
         s.position_error = position_error;
         s.orientation_error = orientation_error;
-        // Every joint tested without a branch per joint; the violations listed only when one
-        // is outside.
-        let within = robot.joints().iter().zip(q).fold(true, |all, (j, v)| all & j.limits.contains(*v, LIMIT_SLACK));
-        s.within_limits = within;
         s.violations.clear();
-        if !within {
-            for (i, (j, v)) in robot.joints().iter().zip(q).enumerate() {
-                if !j.limits.contains(*v, LIMIT_SLACK) {
-                    s.violations.push(LimitViolation {
-                        joint: i + 1,
-                        name: robot.joint_name(i).map_or_else(|| Arc::from(j.name.as_str()), Arc::clone),
-                        value: *v,
-                        lower: j.limits.lower,
-                        upper: j.limits.upper,
-                    });
-                }
+        for (i, (j, v)) in robot.joints().iter().zip(q).enumerate() {
+            if !j.limits.contains(*v, LIMIT_SLACK) {
+                s.violations.push(LimitViolation {
+                    joint: i + 1,
+                    name: robot.joint_name(i).map_or_else(|| Arc::from(j.name.as_str()), Arc::clone),
+                    value: *v,
+                    lower: j.limits.lower,
+                    upper: j.limits.upper,
+                });
             }
         }
+        s.within_limits = s.violations.is_empty();
         s.singularities.clear();
         s.singularities.extend(candidates.flags(i));
+        s.branch.0.clear();
         candidates.take_label(i, &mut s.branch.0);
     }
 }
