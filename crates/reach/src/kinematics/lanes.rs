@@ -196,7 +196,7 @@ impl Robot {
         q: &[Lanes<L>],
     ) -> FrameLanes<L> {
         let k = prefix.len();
-        debug_assert!(L % H == 0 && self.prefix_without_mimics(k) && q.len() == self.dof());
+        debug_assert!(L.is_multiple_of(H) && self.prefix_without_mimics(k) && q.len() == self.dof());
         let fk = &self.chain.fk;
         let mut h = FrameLanes::<H>::splat(&fk.first);
         self.walk_links(&mut h, 0, prefix, &mut |_, _| {});
