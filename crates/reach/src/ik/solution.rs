@@ -581,6 +581,7 @@ impl CandidateList for Raw6Set {
     fn flags(&self, i: usize) -> impl Iterator<Item = SingularityKind> + '_ {
         self.items[i].flags.iter()
     }
+    #[inline]
     fn take_label(&mut self, i: usize, out: &mut Vec<(Label, Label)>) {
         let values = self.items[i].values;
         out.extend(self.keys.iter().zip(values).map(|(k, v)| (Label::from(*k), Label::from(v))));
@@ -794,10 +795,10 @@ pub(crate) fn finish_within_into<C: CandidateList + ?Sized>(
         let mut start = 0;
         while start < n {
             start += match n - start {
-                5.. => verify_block::<VERIFY_LANES, C>(&mut kept, &check, candidates, start)?,
-                3..=4 => verify_block::<4, C>(&mut kept, &check, candidates, start)?,
-                2 => verify_block::<2, C>(&mut kept, &check, candidates, start)?,
-                _ => verify_block::<1, C>(&mut kept, &check, candidates, start)?,
+                5.. => verify_block::<VERIFY_LANES, { VERIFY_LANES / 2 }, C>(&mut kept, &check, candidates, start)?,
+                3..=4 => verify_block::<4, 2, C>(&mut kept, &check, candidates, start)?,
+                2 => verify_block::<2, 1, C>(&mut kept, &check, candidates, start)?,
+                _ => verify_block::<1, 1, C>(&mut kept, &check, candidates, start)?,
             };
         }
     } else {
@@ -829,7 +830,12 @@ pub(crate) fn finish_within_into<C: CandidateList + ?Sized>(
 
 /// Verifies up to `L` candidates from `start` together ([`Robot::fk_lanes`], [`Check::errors`])
 /// and offers each finite one to `kept`, in order; returns how many it took.
-fn verify_block<const L: usize, C: CandidateList + ?Sized>(
+///
+/// When consecutive pairs of candidates share their first joint values (the two wrist
+/// solutions of each arm of a 6R closed form share θ1…θ3), the chain up to the last shared
+/// joint is walked once per pair, on `H = L / 2` lanes ([`Robot::fk_lanes_shared`], bit for
+/// bit the same poses); `H = L` walks every lane alone.
+fn verify_block<const L: usize, const H: usize, C: CandidateList + ?Sized>(
     kept: &mut Kept<'_>,
     check: &Check,
     candidates: &mut C,
@@ -852,7 +858,14 @@ fn verify_block<const L: usize, C: CandidateList + ?Sized>(
             }
         }
     }
-    let t = robot.fk_lanes(&q[..dof]);
+    let t = match shared_prefix::<L, H>(robot, &mut q[..dof], &finite, len) {
+        0 => robot.fk_lanes(&q[..dof]),
+        k => {
+            let group = L / H;
+            let prefix: [Lanes<H>; LANE_DOF] = std::array::from_fn(|j| std::array::from_fn(|g| q[j][g * group]));
+            robot.fk_lanes_shared(&prefix[..k], &q[..dof])
+        }
+    };
     let (position, sin, cos) = check.errors(&t);
     for l in 0..len {
         if finite[l] {
@@ -860,6 +873,35 @@ fn verify_block<const L: usize, C: CandidateList + ?Sized>(
         }
     }
     Ok(len)
+}
+
+/// How many leading joints every group of `L / H` consecutive lanes of `q` (`q[j][l]`) shares,
+/// bit for bit, when the chain up to them has no mimic joint (else 0, as for `H = L`). Lanes
+/// not verified (beyond `len`, or not `finite`) take their group's first verified lane's values
+/// first: their poses are not read, so they need not part a group.
+fn shared_prefix<const L: usize, const H: usize>(
+    robot: &Robot,
+    q: &mut [Lanes<L>],
+    finite: &[bool; L],
+    len: usize,
+) -> usize {
+    if H == L {
+        return 0;
+    }
+    let group = L / H;
+    for g in 0..H {
+        let lanes = g * group..(g + 1) * group;
+        let Some(first) = lanes.clone().find(|&l| l < len && finite[l]) else { continue };
+        for l in lanes {
+            if l >= len || !finite[l] {
+                for joint in q.iter_mut() {
+                    joint[l] = joint[first];
+                }
+            }
+        }
+    }
+    let k = q.iter().take_while(|joint| (0..L).all(|l| joint[l].to_bits() == joint[l - l % group].to_bits())).count();
+    if robot.prefix_without_mimics(k) { k } else { 0 }
 }
 
 /// The solutions a verification keeps, in order, with the buffers it reuses.
@@ -1186,6 +1228,61 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    #[test]
+    fn shared_prefix_walk_is_the_lane_walk_bit_for_bit() {
+        // Pairs of lanes sharing their first k joints (as the two wrists of an arm share θ1…θ3):
+        // `shared_prefix` finds k, and the walk of the prefix on 4 lanes gives the poses of the
+        // plain 8-lane walk, bit for bit, for every preset and every k.
+        let mut rng = crate::rng::SplitMix64(42);
+        for name in crate::model::presets::names() {
+            let robot = crate::model::presets::get(name).unwrap();
+            let dof = robot.dof();
+            if dof > LANE_DOF {
+                continue;
+            }
+            for k in 0..=dof {
+                let mut q = [[0.0; VERIFY_LANES]; LANE_DOF];
+                for (j, joint) in q.iter_mut().enumerate().take(dof) {
+                    for l in 0..VERIFY_LANES {
+                        joint[l] = if j < k && l % 2 == 1 { joint[l - 1] } else { (2.0 * rng.next_f64() - 1.0) * 4.0 };
+                    }
+                }
+                let finite = [true; VERIFY_LANES];
+                let found = shared_prefix::<VERIFY_LANES, 4>(&robot, &mut q[..dof], &finite, VERIFY_LANES);
+                let expected = if robot.prefix_without_mimics(k) { k } else { 0 };
+                assert_eq!(found, expected, "{name} k = {k}");
+                let prefix: Vec<Lanes<4>> = q[..k].iter().map(|j| std::array::from_fn(|g| j[2 * g])).collect();
+                if !robot.prefix_without_mimics(k) {
+                    continue;
+                }
+                let shared = robot.fk_lanes_shared(&prefix, &q[..dof]);
+                let plain = robot.fk_lanes(&q[..dof]);
+                for l in 0..VERIFY_LANES {
+                    for i in 0..3 {
+                        assert_eq!(shared.p[i][l].to_bits(), plain.p[i][l].to_bits(), "{name} k = {k}");
+                        for j in 0..3 {
+                            assert_eq!(shared.r[i][j][l].to_bits(), plain.r[i][j][l].to_bits(), "{name} k = {k}");
+                        }
+                    }
+                }
+            }
+            // A lane not verified (beyond the count, or not finite) takes its partner's values
+            // and does not part the pair.
+            let mut q = [[0.0; VERIFY_LANES]; LANE_DOF];
+            for joint in q.iter_mut().take(dof) {
+                for l in 0..VERIFY_LANES {
+                    joint[l] = if l % 2 == 1 { joint[l - 1] } else { rng.next_f64() };
+                }
+                joint[3] = 9.0;
+                joint[7] = -9.0;
+            }
+            let mut finite = [true; VERIFY_LANES];
+            finite[3] = false;
+            let found = shared_prefix::<VERIFY_LANES, 4>(&robot, &mut q[..dof], &finite, 7);
+            assert_eq!(found, if robot.prefix_without_mimics(dof) { dof } else { 0 }, "{name}");
         }
     }
 

@@ -165,13 +165,57 @@ impl Robot {
         let fk = &self.chain.fk;
         let mut t = FrameLanes::splat(&fk.first);
         t.mimics(&fk.first_mimics, q, &mut visit);
-        for (i, (link, qj)) in fk.links.iter().zip(q).enumerate() {
-            visit(Motion::Joint(i), &t);
+        self.walk_links(&mut t, 0, q, &mut visit);
+        t
+    }
+
+    /// The chain product from joint `from` on (its motion, constant and mimics, then the next
+    /// joints' up to `q.len()`), applied to `t`: the loop of [`Robot::walk_lanes`].
+    #[inline(always)]
+    fn walk_links<'a, const L: usize>(
+        &'a self,
+        t: &mut FrameLanes<L>,
+        from: usize,
+        q: &[Lanes<L>],
+        visit: &mut impl FnMut(Motion<'a>, &FrameLanes<L>),
+    ) {
+        for (i, (link, qj)) in self.chain.fk.links.iter().zip(q).enumerate().skip(from) {
+            visit(Motion::Joint(i), t);
             let v: Lanes<L> = std::array::from_fn(|l| link.value(qj[l]));
             t.motion(link.prismatic, &v);
             t.mul_step(&link.after);
-            t.mimics(&link.mimics, q, &mut visit);
+            t.mimics(&link.mimics, q, visit);
         }
+    }
+
+    /// Whether the first `k` joints' part of the chain has no mimic joint, so that
+    /// [`Robot::fk_lanes_shared`] may walk it on fewer lanes.
+    pub(crate) fn prefix_without_mimics(&self, k: usize) -> bool {
+        let fk = &self.chain.fk;
+        k <= fk.links.len() && fk.first_mimics.is_empty() && fk.links[..k].iter().all(|l| l.mimics.is_empty())
+    }
+
+    /// [`Robot::fk_lanes`] of `L` joint vectors whose first `k` joint values are shared by
+    /// groups of `L / H` consecutive lanes (lanes `g·L/H … (g+1)·L/H − 1` take their first `k`
+    /// joints from lane `g` of `prefix`): the chain up to joint `k` is walked on `H` lanes, each
+    /// frame then copied into its group's lanes, and the rest walked on `L` lanes. Every lane is
+    /// bit for bit [`Robot::fk_lanes`]' (the same operations in the same order on the same
+    /// values; the copy is exact). `q` holds all joints (its first `k` are not read);
+    /// [`Robot::prefix_without_mimics`] must hold for `k`.
+    pub(crate) fn fk_lanes_shared<const H: usize, const L: usize>(
+        &self,
+        prefix: &[Lanes<H>],
+        q: &[Lanes<L>],
+    ) -> FrameLanes<L> {
+        let k = prefix.len();
+        debug_assert!(L.is_multiple_of(H) && self.prefix_without_mimics(k) && q.len() == self.dof());
+        let fk = &self.chain.fk;
+        let mut h = FrameLanes::<H>::splat(&fk.first);
+        self.walk_links(&mut h, 0, prefix, &mut |_, _| {});
+        let group = L / H;
+        let spread = |x: &Lanes<H>| -> Lanes<L> { std::array::from_fn(|l| x[l / group]) };
+        let mut t = FrameLanes { r: h.r.map(|row| row.map(|x| spread(&x))), p: h.p.map(|x| spread(&x)) };
+        self.walk_links(&mut t, k, q, &mut |_, _| {});
         t
     }
 
