@@ -1340,6 +1340,42 @@ mod tests {
         assert!(cut_short > 0, "no scan left a segment early");
     }
 
+    /// Where the scan's branch-free test says a row's values fit as they are, the fit into the
+    /// limits gives them back bit for bit, within the limits: at and around (−π, π]'s ends, the
+    /// limits with their slack, whole turns away and NaN, on planar3's limits and others.
+    #[test]
+    fn fits_as_is_is_the_fit_leaving_the_values() {
+        let (_, planar3) = arm();
+        let mut other = planar3.clone();
+        other.limits = [Limits::new(-3.5, 3.5), Limits::new(0.0, 6.0), Limits::UNLIMITED];
+        let mut values = vec![f64::NAN, f64::INFINITY, -f64::INFINITY];
+        for base in [0.0, PI, -PI, 3.5, -3.5, 6.0, PI + LIMIT_SLACK, -PI - LIMIT_SLACK, TAU, -TAU] {
+            for k in -3i64..=3 {
+                let v = base + k as f64 * 0.25;
+                values.extend([v, v.next_up(), v.next_down(), v - LIMIT_SLACK, v + LIMIT_SLACK]);
+            }
+        }
+        let (mut as_is, mut fitted) = (0, 0);
+        for arm in [&planar3, &other] {
+            for &a in &values {
+                for &b in &values {
+                    for c in [0.5, -0.5, a] {
+                        let raw = [a, b, c];
+                        if arm.fits_as_is(&raw) {
+                            as_is += 1;
+                            let (q, within) = arm.fit_row(raw);
+                            assert_eq!(q.map(f64::to_bits), raw.map(f64::to_bits), "{raw:?}");
+                            assert!(within, "{raw:?}");
+                        } else {
+                            fitted += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(as_is > 1000 && fitted > 1000, "{as_is} as is, {fitted} fitted: the sample misses a case");
+    }
+
     fn arm() -> (Robot, PlanarRedundant) {
         let robot = presets::get("planar3").unwrap();
         let arm = PlanarRedundant::from_robot(&robot).unwrap();
