@@ -500,8 +500,9 @@ impl ScanSegment {
             }
         };
         if bent_back {
+            // The rows `finish_row` keeps (`β` of a decided row is not NaN).
             let beta = &self.beta;
-            rows.extend((1..n).filter(|&j| !(beta[j] > PI * (1.0 + BOUNDARY))).map(row));
+            rows.extend((1..n).filter(|&j| beta[j] <= PI * (1.0 + BOUNDARY)).map(row));
         } else {
             rows.extend((1..n).map(row));
         }
