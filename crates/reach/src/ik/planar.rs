@@ -380,6 +380,8 @@ struct ScanSegment {
     /// decidable incrementally), then the angles themselves.
     gamma1: [f64; SCAN_ANCHOR_ROWS],
     beta: [f64; SCAN_ANCHOR_ROWS],
+    /// The finished rows ([`Self::finish`]).
+    rows: SegmentRows,
 }
 
 impl ScanSegment {
@@ -389,6 +391,14 @@ impl ScanSegment {
             b: [[0.0; SCAN_ANCHOR_ROWS]; 2],
             gamma1: [0.0; SCAN_ANCHOR_ROWS],
             beta: [0.0; SCAN_ANCHOR_ROWS],
+            rows: SegmentRows {
+                alpha: [0.0; SCAN_ANCHOR_ROWS],
+                beta: [0.0; SCAN_ANCHOR_ROWS],
+                gamma: [0.0; SCAN_ANCHOR_ROWS],
+                q: [[0.0; SCAN_ANCHOR_ROWS]; 3],
+                as_is: [false; SCAN_ANCHOR_ROWS],
+                index: std::array::from_fn(|j| j as f64),
+            },
         })
     }
 
@@ -434,6 +444,68 @@ impl ScanSegment {
             self.beta[j] = beta;
         }
         n
+    }
+}
+
+/// The rows `1 .. n` of a segment, finished: [`PlanarRedundant::finish_row`]'s rows, bit for
+/// bit, in structure-of-arrays passes (the joint values and the test that their fit into the
+/// limits leaves them as they are, for all rows; [`PlanarRedundant::fit_row`] only for the
+/// rows that test fails), written with one `extend`.
+struct SegmentRows {
+    /// Per row: `α`, `β` clamped to 180°, `γ`, and the joint values before the fit.
+    alpha: [f64; SCAN_ANCHOR_ROWS],
+    beta: [f64; SCAN_ANCHOR_ROWS],
+    gamma: [f64; SCAN_ANCHOR_ROWS],
+    q: [[f64; SCAN_ANCHOR_ROWS]; 3],
+    /// Whether the row's joint values are within the limits as they are.
+    as_is: [bool; SCAN_ANCHOR_ROWS],
+    /// `j as f64` per row `j` (loaded with the other arrays instead of converted per row).
+    index: [f64; SCAN_ANCHOR_ROWS],
+}
+
+impl ScanSegment {
+    /// Appends rows `1 .. n` of the segment (`n` returned by [`Self::fill`]) to `rows`: the
+    /// rows `arm.finish_row(α_min + (i + j)·Δ, β_j, γ1_j + γ2)` gives, bit for bit, for
+    /// `[α_min, i, Δ] = alpha_grid` (`i` as a float: `i + j` is exact).
+    #[allow(
+        clippy::needless_range_loop,
+        reason = "the passes index several arrays by the same row: the form that vectorises"
+    )]
+    fn finish(&mut self, arm: &PlanarRedundant, gamma2: f64, alpha_grid: [f64; 3], n: usize, rows: &mut Vec<ScanRow>) {
+        let [alpha_min, first, step] = alpha_grid;
+        let out = &mut self.rows;
+        // Pass 4: each row's angles, joint values and whether they fit as they are; whether
+        // any row bends back at B (`finish_row` gives no row there).
+        let mut bent_back = false;
+        for j in 1..n {
+            let alpha = alpha_min + (first + out.index[j]) * step;
+            let beta = self.beta[j];
+            bent_back |= beta > PI * (1.0 + BOUNDARY);
+            let beta = beta.min(PI);
+            let gamma = self.gamma1[j] + gamma2;
+            let q = arm.row_joints(alpha, beta, gamma);
+            [out.alpha[j], out.beta[j], out.gamma[j]] = [alpha, beta, gamma];
+            [out.q[0][j], out.q[1][j], out.q[2][j]] = q;
+            out.as_is[j] = arm.fits_as_is(&q);
+        }
+        // The rows, the fit into the limits taken only where the values do not fit as they are.
+        let out = &self.rows;
+        let row = |j: usize| {
+            let raw = [out.q[0][j], out.q[1][j], out.q[2][j]];
+            let (q, within_limits) = if out.as_is[j] { (raw, true) } else { arm.fit_row(raw) };
+            ScanRow {
+                paper: InteriorAngles { alpha: out.alpha[j], beta: out.beta[j], gamma: out.gamma[j] },
+                q,
+                within_limits,
+            }
+        };
+        if bent_back {
+            // The rows `finish_row` keeps (`β` of a decided row is not NaN).
+            let beta = &self.beta;
+            rows.extend((1..n).filter(|&j| beta[j] <= PI * (1.0 + BOUNDARY)).map(row));
+        } else {
+            rows.extend((1..n).map(row));
+        }
     }
 }
 
@@ -796,18 +868,40 @@ impl PlanarRedundant {
             return None;
         }
         let beta = beta.min(PI);
-        let paper = InteriorAngles { alpha, beta, gamma };
+        let (q, within_limits) = self.fit_row(self.row_joints(alpha, beta, gamma));
+        Some(ScanRow { paper: InteriorAngles { alpha, beta, gamma }, q, within_limits })
+    }
+
+    /// The joint values (not fitted into the limits) of the row `α`, `β` (clamped to 180°), `γ`.
+    #[inline(always)]
+    fn row_joints(&self, alpha: f64, beta: f64, gamma: f64) -> [f64; 3] {
         let phi1 = gamma;
         let phi2 = phi1 + beta - PI;
         let phi3 = phi2 + alpha - PI;
-        let raw = self.chain.joints(&[phi1, phi2, phi3]);
+        self.chain.joints(&[phi1, phi2, phi3])
+    }
+
+    /// A row's joint values fitted into the limits ([`fit_revolute`]) and whether they are
+    /// within them.
+    #[inline(always)]
+    fn fit_row(&self, raw: [f64; 3]) -> ([f64; 3], bool) {
         let mut q = [0.0; 3];
         let mut within_limits = true;
         for i in 0..3 {
             q[i] = fit_revolute(raw[i], &self.limits[i]);
             within_limits &= self.limits[i].contains(q[i], LIMIT_SLACK);
         }
-        Some(ScanRow { paper, q, within_limits })
+        (q, within_limits)
+    }
+
+    /// Whether [`Self::fit_row`] gives `(raw, true)`: every value in (−π, π] (which `wrap`, the
+    /// first step of [`fit_revolute`], leaves as it is) and within its limits (which
+    /// [`fit_revolute`] then returns). Branch-free, for the scan's row passes.
+    #[inline(always)]
+    fn fits_as_is(&self, raw: &[f64; 3]) -> bool {
+        raw.iter()
+            .zip(&self.limits)
+            .fold(true, |all, (&v, limits)| all & (v > -PI) & (v <= PI) & limits.contains(v, LIMIT_SLACK))
     }
 
     /// Row `index` computed directly, and the track it starts (when its triangles are well
@@ -962,11 +1056,7 @@ impl PlanarRedundant {
                 continue;
             };
             let decided = segment.fill(frame, &steps, &track, (count - i).min(SCAN_ANCHOR_ROWS));
-            for j in 1..decided {
-                if let Some(row) = arm.finish_row(alpha(i + j), segment.beta[j], segment.gamma1[j] + frame.gamma2) {
-                    rows.push(row);
-                }
-            }
+            segment.finish(&arm, frame.gamma2, [alpha_min, i as f64, step], decided, &mut rows);
             i += decided;
         }
         (rows, direct)
@@ -1249,6 +1339,42 @@ mod tests {
             }
         }
         assert!(cut_short > 0, "no scan left a segment early");
+    }
+
+    /// Where the scan's branch-free test says a row's values fit as they are, the fit into the
+    /// limits gives them back bit for bit, within the limits: at and around (−π, π]'s ends, the
+    /// limits with their slack, whole turns away and NaN, on planar3's limits and others.
+    #[test]
+    fn fits_as_is_is_the_fit_leaving_the_values() {
+        let (_, planar3) = arm();
+        let mut other = planar3.clone();
+        other.limits = [Limits::new(-3.5, 3.5), Limits::new(0.0, 6.0), Limits::UNLIMITED];
+        let mut values = vec![f64::NAN, f64::INFINITY, -f64::INFINITY];
+        for base in [0.0, PI, -PI, 3.5, -3.5, 6.0, PI + LIMIT_SLACK, -PI - LIMIT_SLACK, TAU, -TAU] {
+            for k in -3i64..=3 {
+                let v = base + k as f64 * 0.25;
+                values.extend([v, v.next_up(), v.next_down(), v - LIMIT_SLACK, v + LIMIT_SLACK]);
+            }
+        }
+        let (mut as_is, mut fitted) = (0, 0);
+        for arm in [&planar3, &other] {
+            for &a in &values {
+                for &b in &values {
+                    for c in [0.5, -0.5, a] {
+                        let raw = [a, b, c];
+                        if arm.fits_as_is(&raw) {
+                            as_is += 1;
+                            let (q, within) = arm.fit_row(raw);
+                            assert_eq!(q.map(f64::to_bits), raw.map(f64::to_bits), "{raw:?}");
+                            assert!(within, "{raw:?}");
+                        } else {
+                            fitted += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(as_is > 1000 && fitted > 1000, "{as_is} as is, {fitted} fitted: the sample misses a case");
     }
 
     fn arm() -> (Robot, PlanarRedundant) {
