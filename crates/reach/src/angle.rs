@@ -15,7 +15,7 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 #[inline]
 pub fn wrap(angle: f64) -> f64 {
     // Already in (−π, π]: the `fmod` below would return it unchanged; skip it.
-    if angle > -PI && angle <= PI {
+    if is_wrapped(angle) {
         return angle;
     }
     let mut a = angle % TAU; // in (−2π, 2π)
@@ -25,6 +25,14 @@ pub fn wrap(angle: f64) -> f64 {
         a += TAU;
     }
     a
+}
+
+/// Whether `angle` (radians) lies in (−π, π], where [`wrap`] returns it unchanged (false for
+/// NaN). Branch-free, so it can run over many values at once.
+#[must_use]
+#[inline(always)]
+pub fn is_wrapped(angle: f64) -> bool {
+    (angle > -PI) & (angle <= PI)
 }
 
 /// The signed shortest rotation from `from` to `to`, in (−π, π].

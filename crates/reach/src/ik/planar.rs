@@ -894,14 +894,14 @@ impl PlanarRedundant {
         (q, within_limits)
     }
 
-    /// Whether [`Self::fit_row`] gives `(raw, true)`: every value in (−π, π] (which `wrap`, the
-    /// first step of [`fit_revolute`], leaves as it is) and within its limits (which
+    /// Whether [`Self::fit_row`] gives `(raw, true)`: every value in (−π, π]
+    /// ([`crate::angle::is_wrapped`]: `wrap`, the first step of [`fit_revolute`], leaves it as it is) and within its limits (which
     /// [`fit_revolute`] then returns). Branch-free, for the scan's row passes.
     #[inline(always)]
     fn fits_as_is(&self, raw: &[f64; 3]) -> bool {
         raw.iter()
             .zip(&self.limits)
-            .fold(true, |all, (&v, limits)| all & (v > -PI) & (v <= PI) & limits.contains(v, LIMIT_SLACK))
+            .fold(true, |all, (&v, limits)| all & crate::angle::is_wrapped(v) & limits.contains(v, LIMIT_SLACK))
     }
 
     /// Row `index` computed directly, and the track it starts (when its triangles are well
