@@ -8,8 +8,9 @@
 //! [`FkChain`](crate::model::fk_chain::FkChain): `first`, each joint's motion with its angle
 //! offset, its DH step or general constant, mimic motions): the scalar walk's frame
 //! [`FkFrame`](crate::model::fk_chain::FkFrame) is one lane of [`FrameLanes`], so every lane
-//! runs the scalar operations in the same order and is the scalar result bit for bit. Sines and cosines come from [`sin_cos_lanes`]. [`crate::batch`] feeds blocks of `L`
-//! rows through these kernels and the remainder through the scalar functions.
+//! runs the scalar operations in the same order and is the scalar result bit for bit. Sines
+//! and cosines come from [`sin_cos_lanes`]. [`crate::batch`] feeds blocks of `L` rows through
+//! these kernels and the remainder through the scalar functions.
 //!
 //! The kernels do not check their input: the callers reject non-finite joint values first (a
 //! NaN lane would only give NaN in that lane).
