@@ -48,6 +48,8 @@
 //! * [`Error`] — the one error type, with stable failure codes.
 //! * [`angle`] — wrapping and angle differences.
 //! * [`tolerance`] — the numeric tolerances.
+//! * [`simd`] — the run-time choice of vector instructions (SSE2, AVX2, AVX-512) for the
+//!   batch kernels; results are bit for bit the same at every level.
 //! * [`Cancel`] — a flag a front end sets to stop long work (Ctrl-C).
 //!
 //! ## Bounded resources
@@ -94,6 +96,7 @@ pub mod kinematics;
 pub mod model;
 pub mod motion;
 mod rng;
+pub mod simd;
 pub mod tolerance;
 pub mod world;
 

@@ -344,6 +344,21 @@ fn mask(c: bool) -> u64 {
     u64::from(c).wrapping_neg()
 }
 
+/// [`CompiledRegion::contains_into`] as a [`crate::simd::Kernel`].
+struct Membership<'a> {
+    region: &'a CompiledRegion,
+    qs: &'a [[f64; 3]],
+    out: &'a mut Vec<bool>,
+}
+
+impl crate::simd::Kernel for Membership<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        self.region.contains_into_at(self.qs, self.out);
+    }
+}
+
 /// A [`Region`] compiled into flat coefficient arrays (seed 004's fitted R-function region as
 /// a fast membership test).
 ///
@@ -433,6 +448,12 @@ impl CompiledRegion {
     /// assert_eq!(inside, [true, false, false]);
     /// ```
     pub fn contains_into(&self, qs: &[[f64; 3]], out: &mut Vec<bool>) {
+        crate::simd::run(Membership { region: self, qs, out });
+    }
+
+    /// [`Self::contains_into`]'s kernel, compiled for the level [`crate::simd::run`] picks.
+    #[inline(always)]
+    fn contains_into_at(&self, qs: &[[f64; 3]], out: &mut Vec<bool>) {
         out.clear();
         out.reserve(qs.len());
         let mut blocks = qs.chunks_exact(MEMBERSHIP_LANES);
@@ -569,6 +590,12 @@ mod tests {
         let mut batch = Vec::new();
         compiled.contains_into(&qs, &mut batch);
         assert_eq!(batch.len(), qs.len());
+        // The same verdicts at every vector-instruction level the machine has.
+        for level in crate::simd::levels() {
+            let mut at = Vec::new();
+            crate::simd::run_at(level, Membership { region: &compiled, qs: &qs, out: &mut at });
+            assert_eq!(at, batch, "level {}", level.name());
+        }
         for (i, &q) in qs.iter().enumerate() {
             assert_eq!(compiled.value(q).to_bits(), region.value(q).to_bits(), "{q:?}");
             let values: Vec<Option<f64>> = region.primitives.iter().map(|p| p.value(q)).collect();
