@@ -399,6 +399,11 @@ impl ScanSegment {
                 q: [[0.0; SCAN_ANCHOR_ROWS]; 3],
                 as_is: [false; SCAN_ANCHOR_ROWS],
                 index: std::array::from_fn(|j| j as f64),
+                block: [ScanRow {
+                    paper: InteriorAngles { alpha: 0.0, beta: 0.0, gamma: 0.0 },
+                    q: [0.0; 3],
+                    within_limits: false,
+                }; SCAN_ANCHOR_ROWS],
             },
         })
     }
@@ -431,21 +436,24 @@ impl ScanSegment {
             let turn = atan_small(cross_b * dot_g * inverse);
             self.beta[j] = if small_turn(cross_g, dot_g) & small_turn(cross_b, dot_b) { turn } else { f64::NAN };
         }
-        // Pass 3: the running sums, up to the first row not decidable here.
+        // Pass 3: the running sums, in row order (rows after the first one not decidable
+        // here get sums too; they are not used).
         let (mut gamma1, mut beta) = (track.gamma1, track.beta);
         for j in 1..n {
             gamma1 += self.gamma1[j];
             beta += self.beta[j];
-            // Whether the chain bends back at B (β > 180°) is decided only with a margin far
-            // above the increments' error; near the limit (or NaN) the row is computed directly.
-            let decidable = (beta - PI * (1.0 + BOUNDARY)).abs() > SCAN_DECISION_MARGIN;
-            if !decidable {
-                return j;
-            }
             self.gamma1[j] = gamma1;
             self.beta[j] = beta;
         }
-        n
+        // The first row not decidable here (branch-free, so that it vectorises): whether the
+        // chain bends back at B (β > 180°) is decided only with a margin far above the
+        // increments' error; near the limit (or NaN) the row is computed directly.
+        let mut first = n;
+        for j in 1..n {
+            let decidable = (self.beta[j] - PI * (1.0 + BOUNDARY)).abs() > SCAN_DECISION_MARGIN;
+            first = first.min(if decidable { n } else { j });
+        }
+        first
     }
 }
 
@@ -463,6 +471,8 @@ struct SegmentRows {
     as_is: [bool; SCAN_ANCHOR_ROWS],
     /// `j as f64` per row `j` (loaded with the other arrays instead of converted per row).
     index: [f64; SCAN_ANCHOR_ROWS],
+    /// The rows themselves, appended to the scan's with one copy.
+    block: [ScanRow; SCAN_ANCHOR_ROWS],
 }
 
 impl ScanSegment {
@@ -492,22 +502,23 @@ impl ScanSegment {
             out.as_is[j] = arm.fits_as_is(&q);
         }
         // The rows, the fit into the limits taken only where the values do not fit as they are.
-        let out = &self.rows;
-        let row = |j: usize| {
+        let out = &mut self.rows;
+        for (j, row) in out.block[..n].iter_mut().enumerate().skip(1) {
             let raw = [out.q[0][j], out.q[1][j], out.q[2][j]];
             let (q, within_limits) = if out.as_is[j] { (raw, true) } else { arm.fit_row(raw) };
-            ScanRow {
+            *row = ScanRow {
                 paper: InteriorAngles { alpha: out.alpha[j], beta: out.beta[j], gamma: out.gamma[j] },
                 q,
                 within_limits,
-            }
-        };
+            };
+        }
+        let block = &out.block[1..n];
         if bent_back {
             // The rows `finish_row` keeps (`β` of a decided row is not NaN).
-            let beta = &self.beta;
-            rows.extend((1..n).filter(|&j| beta[j] <= PI * (1.0 + BOUNDARY)).map(row));
+            let keep = |(_, beta): &(&ScanRow, &f64)| **beta <= PI * (1.0 + BOUNDARY);
+            rows.extend(block.iter().zip(&self.beta[1..n]).filter(keep).map(|(row, _)| *row));
         } else {
-            rows.extend((1..n).map(row));
+            rows.extend_from_slice(block);
         }
     }
 }
