@@ -43,6 +43,7 @@ use crate::kinematics::KinematicsError;
 use crate::model::chain::ChainLink;
 use crate::model::planar_angles::InteriorAngles;
 use crate::model::{Limits, Robot};
+use crate::simd;
 use crate::tolerance::{
     BOUNDARY, IK_AXIS_DISTANCE, IK_DUPLICATE, IK_POSITION, LIMIT_SLACK, SCAN_GRID, STRUCTURE_ANGLE, STRUCTURE_LENGTH,
 };
@@ -253,7 +254,7 @@ const SCAN_MAX_TAN: f64 = 1.0 / 64.0;
 
 /// `atan t` for `|t| ≤` [`SCAN_MAX_TAN`]: the Taylor series to `t⁷/7` (alternating: the
 /// truncation error is below `|t|⁹/9` ≤ 6.2e-18 rad).
-#[inline]
+#[inline(always)]
 fn atan_small(t: f64) -> f64 {
     let t2 = t * t;
     t * (1.0 + t2 * (-1.0 / 3.0 + t2 * (1.0 / 5.0 - t2 * (1.0 / 7.0))))
@@ -275,7 +276,7 @@ impl RotationSteps {
     }
 
     /// `(sin, cos)` of the anchor's angle turned by `j` steps (`j <` the table's length).
-    #[inline]
+    #[inline(always)]
     fn turn(&self, (s, c): (f64, f64), j: usize) -> (f64, f64) {
         let (sj, cj) = self.table[j];
         (s * cj + c * sj, c * cj - s * sj)
@@ -398,6 +399,11 @@ impl ScanSegment {
                 q: [[0.0; SCAN_ANCHOR_ROWS]; 3],
                 as_is: [false; SCAN_ANCHOR_ROWS],
                 index: std::array::from_fn(|j| j as f64),
+                block: [ScanRow {
+                    paper: InteriorAngles { alpha: 0.0, beta: 0.0, gamma: 0.0 },
+                    q: [0.0; 3],
+                    within_limits: false,
+                }; SCAN_ANCHOR_ROWS],
             },
         })
     }
@@ -410,6 +416,7 @@ impl ScanSegment {
         clippy::needless_range_loop,
         reason = "the passes index several arrays by the same row: the form that vectorises"
     )]
+    #[inline(always)]
     fn fill(&mut self, frame: &ScanFrame, steps: &RotationSteps, track: &Track, n: usize) -> usize {
         let (g, b) = (&mut self.g, &mut self.b);
         [g[0][0], g[1][0], b[0][0], b[1][0]] = [track.g[0], track.g[1], track.b[0], track.b[1]];
@@ -429,21 +436,24 @@ impl ScanSegment {
             let turn = atan_small(cross_b * dot_g * inverse);
             self.beta[j] = if small_turn(cross_g, dot_g) & small_turn(cross_b, dot_b) { turn } else { f64::NAN };
         }
-        // Pass 3: the running sums, up to the first row not decidable here.
+        // Pass 3: the running sums, in row order (rows after the first one not decidable
+        // here get sums too; they are not used).
         let (mut gamma1, mut beta) = (track.gamma1, track.beta);
         for j in 1..n {
             gamma1 += self.gamma1[j];
             beta += self.beta[j];
-            // Whether the chain bends back at B (β > 180°) is decided only with a margin far
-            // above the increments' error; near the limit (or NaN) the row is computed directly.
-            let decidable = (beta - PI * (1.0 + BOUNDARY)).abs() > SCAN_DECISION_MARGIN;
-            if !decidable {
-                return j;
-            }
             self.gamma1[j] = gamma1;
             self.beta[j] = beta;
         }
-        n
+        // The first row not decidable here (branch-free, so that it vectorises): whether the
+        // chain bends back at B (β > 180°) is decided only with a margin far above the
+        // increments' error; near the limit (or NaN) the row is computed directly.
+        let mut first = n;
+        for j in 1..n {
+            let decidable = (self.beta[j] - PI * (1.0 + BOUNDARY)).abs() > SCAN_DECISION_MARGIN;
+            first = first.min(if decidable { n } else { j });
+        }
+        first
     }
 }
 
@@ -461,6 +471,8 @@ struct SegmentRows {
     as_is: [bool; SCAN_ANCHOR_ROWS],
     /// `j as f64` per row `j` (loaded with the other arrays instead of converted per row).
     index: [f64; SCAN_ANCHOR_ROWS],
+    /// The rows themselves, appended to the scan's with one copy.
+    block: [ScanRow; SCAN_ANCHOR_ROWS],
 }
 
 impl ScanSegment {
@@ -471,6 +483,7 @@ impl ScanSegment {
         clippy::needless_range_loop,
         reason = "the passes index several arrays by the same row: the form that vectorises"
     )]
+    #[inline(always)]
     fn finish(&mut self, arm: &PlanarRedundant, gamma2: f64, alpha_grid: [f64; 3], n: usize, rows: &mut Vec<ScanRow>) {
         let [alpha_min, first, step] = alpha_grid;
         let out = &mut self.rows;
@@ -489,28 +502,29 @@ impl ScanSegment {
             out.as_is[j] = arm.fits_as_is(&q);
         }
         // The rows, the fit into the limits taken only where the values do not fit as they are.
-        let out = &self.rows;
-        let row = |j: usize| {
+        let out = &mut self.rows;
+        for (j, row) in out.block[..n].iter_mut().enumerate().skip(1) {
             let raw = [out.q[0][j], out.q[1][j], out.q[2][j]];
             let (q, within_limits) = if out.as_is[j] { (raw, true) } else { arm.fit_row(raw) };
-            ScanRow {
+            *row = ScanRow {
                 paper: InteriorAngles { alpha: out.alpha[j], beta: out.beta[j], gamma: out.gamma[j] },
                 q,
                 within_limits,
-            }
-        };
+            };
+        }
+        let block = &out.block[1..n];
         if bent_back {
             // The rows `finish_row` keeps (`β` of a decided row is not NaN).
-            let beta = &self.beta;
-            rows.extend((1..n).filter(|&j| beta[j] <= PI * (1.0 + BOUNDARY)).map(row));
+            let keep = |(_, beta): &(&ScanRow, &f64)| **beta <= PI * (1.0 + BOUNDARY);
+            rows.extend(block.iter().zip(&self.beta[1..n]).filter(keep).map(|(row, _)| *row));
         } else {
-            rows.extend((1..n).map(row));
+            rows.extend_from_slice(block);
         }
     }
 }
 
 /// `cross(a, b)` and `dot(a, b)` of two plane vectors.
-#[inline]
+#[inline(always)]
 fn cross_dot(a: [f64; 2], b: [f64; 2]) -> (f64, f64) {
     (a[0] * b[1] - a[1] * b[0], a[0] * b[0] + a[1] * b[1])
 }
@@ -1035,6 +1049,25 @@ impl PlanarRedundant {
     /// of the 180° limit is computed directly and becomes the next anchor, so the set of rows
     /// is the direct computation's.
     fn scan_rows(&self, frame: &ScanFrame, alpha_min: f64, step: f64, count: usize) -> (Vec<ScanRow>, usize) {
+        self.scan_rows_at(simd::level(), frame, alpha_min, step, count)
+    }
+
+    /// [`Self::scan_rows`] compiled for the vector-instruction `level` (the same rows, bit for
+    /// bit, at every level).
+    fn scan_rows_at(
+        &self,
+        level: simd::Level,
+        frame: &ScanFrame,
+        alpha_min: f64,
+        step: f64,
+        count: usize,
+    ) -> (Vec<ScanRow>, usize) {
+        simd::run_at(level, ScanKernel { arm: self, frame, alpha_min, step, count })
+    }
+
+    /// The body of [`Self::scan_rows`], inlined into each level's [`ScanKernel`].
+    #[inline(always)]
+    fn scan_rows_inline(&self, frame: &ScanFrame, alpha_min: f64, step: f64, count: usize) -> (Vec<ScanRow>, usize) {
         let mut rows = Vec::with_capacity(count);
         let mut direct = 0;
         let steps = RotationSteps::new(step, count.min(SCAN_ANCHOR_ROWS));
@@ -1087,6 +1120,25 @@ impl PlanarRedundant {
             rows.extend(row);
         }
         rows
+    }
+}
+
+/// [`PlanarRedundant::scan_rows`] as a [`simd::Kernel`]: the segment passes compiled for each
+/// vector-instruction level, dispatched once per scan.
+struct ScanKernel<'a> {
+    arm: &'a PlanarRedundant,
+    frame: &'a ScanFrame,
+    alpha_min: f64,
+    step: f64,
+    count: usize,
+}
+
+impl simd::Kernel for ScanKernel<'_> {
+    type Output = (Vec<ScanRow>, usize);
+
+    #[inline(always)]
+    fn run(self) -> Self::Output {
+        self.arm.scan_rows_inline(self.frame, self.alpha_min, self.step, self.count)
     }
 }
 
@@ -1255,11 +1307,7 @@ mod tests {
     /// workspace (near both circles, every quadrant) and several steps; most rows incremental.
     #[test]
     fn incremental_scan_rows_are_the_direct_rows() {
-        let (_, equal) = arm();
-        let mut unequal = equal.clone();
-        for (link, l) in unequal.chain.links.iter_mut().zip([1.3, 0.8, 0.6]) {
-            link.length = l;
-        }
+        let (equal, unequal) = equal_and_unequal_arms();
         let mut worst = 0.0f64;
         for (arm, targets) in [
             (&equal, [[2.0, 1.0], [2.4, 0.2], [1.0, 0.1], [2.95, 0.1], [-1.5, 1.5], [0.3, -1.4]]),
@@ -1307,11 +1355,7 @@ mod tests {
     /// steps, β near 180°) and ones that never do, on equal and unequal arms.
     #[test]
     fn segment_kernel_is_the_row_by_row_increments() {
-        let (_, equal) = arm();
-        let mut unequal = equal.clone();
-        for (link, l) in unequal.chain.links.iter_mut().zip([1.3, 0.8, 0.6]) {
-            link.length = l;
-        }
+        let (equal, unequal) = equal_and_unequal_arms();
         let mut cut_short = 0;
         for (arm, targets) in [
             (&equal, [[2.0, 1.0], [2.4, 0.2], [1.0, 0.1], [2.95, 0.1], [-1.5, 1.5], [0.3, -1.4], [1e-3, 1.0]]),
@@ -1325,13 +1369,9 @@ mod tests {
                     let frame = ScanFrame::new(arm.lengths(), target);
                     let (rows, direct) = arm.scan_rows(&frame, alpha_min, step, count);
                     let reference = arm.scan_rows_one_by_one(&frame, alpha_min, step, count);
-                    let bits = |r: &ScanRow| {
-                        let p = [r.paper.alpha, r.paper.beta, r.paper.gamma, r.q[0], r.q[1], r.q[2]];
-                        (p.map(f64::to_bits), r.within_limits)
-                    };
                     assert_eq!(rows.len(), reference.len(), "{target:?} at {step_deg}°");
                     for (a, b) in rows.iter().zip(&reference) {
-                        assert_eq!(bits(a), bits(b), "{target:?} at {step_deg}° row α {}", a.paper.alpha);
+                        assert_eq!(row_bits(a), row_bits(b), "{target:?} at {step_deg}° row α {}", a.paper.alpha);
                     }
                     // Anchors beyond one per full segment: segments cut short.
                     cut_short += usize::from(direct > count.div_ceil(SCAN_ANCHOR_ROWS));
@@ -1339,6 +1379,55 @@ mod tests {
             }
         }
         assert!(cut_short > 0, "no scan left a segment early");
+    }
+
+    /// The scan's kernel ([`ScanKernel`]) gives the same rows, bit for bit, and the same count
+    /// of rows computed directly, at every vector-instruction level the processor has: scans
+    /// with and without segments cut short, rows bent back and rows outside the limits.
+    #[test]
+    fn scan_rows_are_the_same_bits_at_every_simd_level() {
+        let (equal, unequal) = equal_and_unequal_arms();
+        let mut rows_compared = 0;
+        for (arm, targets) in [
+            (&equal, [[2.0, 1.0], [1.0, 0.1], [2.95, 0.1], [-1.5, 1.5], [0.3, -1.4], [1e-3, 1.0]]),
+            (&unequal, [[1.5, 0.5], [2.5, -0.3], [0.2, 0.6], [-1.0, -1.2], [0.7, 0.0], [0.5, 0.4]]),
+        ] {
+            for target in targets {
+                for step_deg in [0.01, 0.003, 0.1, 0.7, 3.0] {
+                    let step = f64::to_radians(step_deg);
+                    let Some(alpha_min) = arm.paper_scan(target, step).unwrap().alpha_min else { continue };
+                    let count = ((PI - alpha_min) / step + SCAN_GRID).floor() as usize + 1;
+                    let frame = ScanFrame::new(arm.lengths(), target);
+                    let (reference, direct) = arm.scan_rows_at(simd::Level::Baseline, &frame, alpha_min, step, count);
+                    for level in simd::levels() {
+                        let (rows, level_direct) = arm.scan_rows_at(level, &frame, alpha_min, step, count);
+                        let at = format!("{target:?} at {step_deg}°, level {}", level.name());
+                        assert_eq!((rows.len(), level_direct), (reference.len(), direct), "{at}");
+                        for (a, b) in rows.iter().zip(&reference) {
+                            assert_eq!(row_bits(a), row_bits(b), "{at} row α {}", a.paper.alpha);
+                        }
+                        rows_compared += rows.len();
+                    }
+                }
+            }
+        }
+        assert!(rows_compared > 100_000, "{rows_compared} rows compared");
+    }
+
+    /// A row's values as bits, to compare rows bit for bit.
+    fn row_bits(r: &ScanRow) -> ([u64; 6], bool) {
+        let p = [r.paper.alpha, r.paper.beta, r.paper.gamma, r.q[0], r.q[1], r.q[2]];
+        (p.map(f64::to_bits), r.within_limits)
+    }
+
+    /// planar3's arm and one with unequal links (1.3, 0.8, 0.6) and planar3's limits.
+    fn equal_and_unequal_arms() -> (PlanarRedundant, PlanarRedundant) {
+        let (_, equal) = arm();
+        let mut unequal = equal.clone();
+        for (link, l) in unequal.chain.links.iter_mut().zip([1.3, 0.8, 0.6]) {
+            link.length = l;
+        }
+        (equal, unequal)
     }
 
     /// Where the scan's branch-free test says a row's values fit as they are, the fit into the
