@@ -96,8 +96,8 @@ use nalgebra::{Isometry3, IsometryMatrix3, Matrix3, Point3, Translation3, Vector
 use smallvec::SmallVec;
 
 use super::{
-    Branch, ChainFrame, FlagBits, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, Raw6, Raw6Set,
-    SingularityKind, finish_into, solved,
+    Branch, ChainFrame, FlagBits, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, LaneSolve, Raw6,
+    Raw6Set, SingularityKind, SolveKernel, finish_into, solved,
 };
 use crate::angle::{atan2, sin_cos, wrap};
 use crate::kinematics::check_q;
@@ -706,16 +706,9 @@ impl SphericalWrist {
     }
 }
 
-impl IkSolver for SphericalWrist {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-
-    fn solve(&self, robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError> {
-        solved(|out| self.solve_into(robot, target, options, out))
-    }
-
-    fn solve_into(
+impl LaneSolve for SphericalWrist {
+    #[inline(always)]
+    fn solve_lanes(
         &self,
         robot: &Robot,
         target: &IkTarget,
@@ -736,6 +729,26 @@ impl IkSolver for SphericalWrist {
         }
         self.frame.refine(robot, target, &mut candidates);
         finish_into(robot, target, &mut candidates, NAME, fallback_failure(&arms), out)
+    }
+}
+
+impl IkSolver for SphericalWrist {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+
+    fn solve(&self, robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError> {
+        solved(|out| self.solve_into(robot, target, options, out))
+    }
+
+    fn solve_into(
+        &self,
+        robot: &Robot,
+        target: &IkTarget,
+        options: &IkOptions,
+        out: &mut IkSolutions,
+    ) -> Result<(), IkError> {
+        crate::simd::run(SolveKernel { solver: self, robot, target, options, out })
     }
 
     /// Only the requested branch's arm and wrist are computed and verified (see
