@@ -326,7 +326,8 @@ fn main() {
         return;
     }
     println!(
-        "reach vs peers, {poses} random joint vectors per arm (SplitMix64 seed 2024), median of {rounds} alternating rounds; ratio = reach / peer (< 1: reach faster)"
+        "reach vs peers, {poses} random joint vectors per arm (SplitMix64 seed 2024), median of {rounds} alternating rounds; ratio = reach / peer (< 1: reach faster); reach SIMD level: {}",
+        reach::simd::level().name()
     );
     println!("| arm | operation | peer | reach ns/call | peer ns/call | ratio | note |");
     println!("|---|---|---|---|---|---|---|");

@@ -92,7 +92,7 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 /// assert!(s[3].is_nan() && c[3].is_nan());
 /// ```
 #[must_use]
-#[inline]
+#[inline(always)]
 pub fn sin_cos_lanes<const L: usize>(x: &[f64; L]) -> ([f64; L], [f64; L]) {
     let mut s = [0.0; L];
     let mut c = [0.0; L];
@@ -183,9 +183,7 @@ fn sin_cos_kernels(x: f64) -> (f64, f64, u64) {
 /// ```
 #[must_use]
 #[inline]
-#[allow(clippy::excessive_precision, reason = "fdlibm's constants as published; each parses to the intended double")]
 pub fn atan2(y: f64, x: f64) -> f64 {
-    const PI_LO: f64 = 1.224_646_799_147_353_177_2e-16;
     if x.is_nan() || y.is_nan() {
         return x + y;
     }
@@ -224,27 +222,79 @@ pub fn atan2(y: f64, x: f64) -> f64 {
 }
 
 /// The biased exponent bits of a finite double (fdlibm's `(hx >> 20) & 0x7ff` on the high word).
-#[inline]
+#[inline(always)]
 fn exponent(v: f64) -> i64 {
     ((v.to_bits() >> 52) & 0x7ff) as i64
 }
 
+/// fdlibm's `atan` breakpoints' angles, high parts (`atan(0.5)`, `atan(1)`, `atan(1.5)`,
+/// `atan(∞)`).
+#[allow(clippy::excessive_precision, reason = "fdlibm's constants as published; each parses to the intended double")]
+const ATANHI: [f64; 4] = [
+    4.636_476_090_008_060_935_15e-01,
+    std::f64::consts::FRAC_PI_4, // fdlibm's 7.85398163397448278999e-01, the same double
+    9.827_937_232_473_290_540_82e-01,
+    FRAC_PI_2, // fdlibm's 1.57079632679489655800e+00, the same double
+];
+
+/// The low parts of [`ATANHI`].
+#[allow(clippy::excessive_precision, reason = "fdlibm's constants as published; each parses to the intended double")]
+const ATANLO: [f64; 4] = [
+    2.269_877_745_296_168_709_24e-17,
+    3.061_616_997_868_383_017_93e-17,
+    1.390_331_103_123_099_845_16e-17,
+    6.123_233_995_736_766_035_87e-17,
+];
+
+/// 2^66: from here on `atan` is ±π/2.
+#[allow(clippy::excessive_precision, reason = "fdlibm's constants as published; each parses to the intended double")]
+const ATAN_HUGE: f64 = 7.378_697_629_483_820_646_4e19;
+
+/// 2^-27: below, `atan(x) = x` to rounding.
+#[allow(clippy::excessive_precision, reason = "fdlibm's constants as published; each parses to the intended double")]
+const ATAN_TINY: f64 = 7.450_580_596_923_828_125e-9;
+
+/// The `π` low part of fdlibm's `atan2` (`π − pi_lo` is π to twice the precision).
+#[allow(clippy::excessive_precision, reason = "fdlibm's constants as published; each parses to the intended double")]
+const PI_LO: f64 = 1.224_646_799_147_353_177_2e-16;
+
 /// fdlibm's `atan` (s_atan.c) for a finite argument.
 #[inline]
-#[allow(clippy::excessive_precision, reason = "fdlibm's constants as published; each parses to the intended double")]
 fn atan(x: f64) -> f64 {
-    const ATANHI: [f64; 4] = [
-        4.636_476_090_008_060_935_15e-01,
-        std::f64::consts::FRAC_PI_4, // fdlibm's 7.85398163397448278999e-01, the same double
-        9.827_937_232_473_290_540_82e-01,
-        FRAC_PI_2, // fdlibm's 1.57079632679489655800e+00, the same double
-    ];
-    const ATANLO: [f64; 4] = [
-        2.269_877_745_296_168_709_24e-17,
-        3.061_616_997_868_383_017_93e-17,
-        1.390_331_103_123_099_845_16e-17,
-        6.123_233_995_736_766_035_87e-17,
-    ];
+    let negative = x.is_sign_negative();
+    let ax = x.abs();
+    if ax >= ATAN_HUGE {
+        // |x| ≥ 2^66: ±π/2.
+        let z = ATANHI[3] + ATANLO[3];
+        return if negative { -z } else { z };
+    }
+    let (id, t) = if ax < 0.4375 {
+        if ax < ATAN_TINY {
+            return x; // |x| < 2^-27: atan(x) = x to rounding
+        }
+        (None, x)
+    } else if ax < 1.1875 {
+        if ax < 0.6875 { (Some(0), (2.0 * ax - 1.0) / (2.0 + ax)) } else { (Some(1), (ax - 1.0) / (ax + 1.0)) }
+    } else if ax < 2.4375 {
+        (Some(2), (ax - 1.5) / (1.0 + 1.5 * ax))
+    } else {
+        (Some(3), -1.0 / ax)
+    };
+    let series = atan_series(t);
+    match id {
+        None => t - series,
+        Some(i) => {
+            let z = ATANHI[i] - ((series - ATANLO[i]) - t);
+            if negative { -z } else { z }
+        }
+    }
+}
+
+/// `t·(s1 + s2)`: fdlibm's degree-11 odd polynomial of `atan` on the reduced argument
+/// (|t| < 7/16), less its first term `t`.
+#[inline(always)]
+#[allow(clippy::excessive_precision, reason = "fdlibm's constants as published; each parses to the intended double")]
+fn atan_series(t: f64) -> f64 {
     const AT: [f64; 11] = [
         3.333_333_333_333_293_180_27e-01,
         -1.999_999_999_987_648_324_76e-01,
@@ -258,36 +308,104 @@ fn atan(x: f64) -> f64 {
         -3.653_157_274_421_691_552_70e-02,
         1.628_582_011_536_578_236_23e-02,
     ];
-    let negative = x.is_sign_negative();
-    let ax = x.abs();
-    if ax >= 7.378_697_629_483_820_646_4e19 {
-        // |x| ≥ 2^66: ±π/2.
-        let z = ATANHI[3] + ATANLO[3];
-        return if negative { -z } else { z };
-    }
-    let (id, t) = if ax < 0.4375 {
-        if ax < 7.450_580_596_923_828_125e-9 {
-            return x; // |x| < 2^-27: atan(x) = x to rounding
-        }
-        (None, x)
-    } else if ax < 1.1875 {
-        if ax < 0.6875 { (Some(0), (2.0 * ax - 1.0) / (2.0 + ax)) } else { (Some(1), (ax - 1.0) / (ax + 1.0)) }
-    } else if ax < 2.4375 {
-        (Some(2), (ax - 1.5) / (1.0 + 1.5 * ax))
-    } else {
-        (Some(3), -1.0 / ax)
-    };
     let z = t * t;
     let w = z * z;
     let s1 = z * (AT[0] + w * (AT[2] + w * (AT[4] + w * (AT[6] + w * (AT[8] + w * AT[10])))));
     let s2 = w * (AT[1] + w * (AT[3] + w * (AT[5] + w * (AT[7] + w * AT[9]))));
-    match id {
-        None => t - t * (s1 + s2),
-        Some(i) => {
-            let z = ATANHI[i] - ((t * (s1 + s2) - ATANLO[i]) - t);
-            if negative { -z } else { z }
+    t * (s1 + s2)
+}
+
+/// [`atan`] of a finite argument without branches (the reduction interval and the tiny and
+/// huge cases chosen by selects, one division for every interval), bit for bit [`atan`]: the
+/// same operations on the same values (`x / 1` is `x`).
+#[inline(always)]
+fn atan_select(x: f64) -> f64 {
+    let ax = x.abs();
+    let (below, low, mid, high) = (ax < 0.4375, ax < 0.6875, ax < 1.1875, ax < 2.4375);
+    // Interval 0 … 3 (none below 7/16): its numerator and denominator, and its breakpoint's
+    // angle, selected as values (no table lookup by lane: a gather).
+    let (num, den, hi, lo) = if below {
+        (x, 1.0, ATANHI[0], ATANLO[0])
+    } else if low {
+        (2.0 * ax - 1.0, 2.0 + ax, ATANHI[0], ATANLO[0])
+    } else if mid {
+        (ax - 1.0, ax + 1.0, ATANHI[1], ATANLO[1])
+    } else if high {
+        (ax - 1.5, 1.0 + 1.5 * ax, ATANHI[2], ATANLO[2])
+    } else {
+        (-1.0, ax, ATANHI[3], ATANLO[3])
+    };
+    let t = num / den;
+    let series = atan_series(t);
+    let reduced = hi - ((series - lo) - t);
+    let reduced = if x.is_sign_negative() { -reduced } else { reduced };
+    let huge = ATANHI[3] + ATANLO[3];
+    let huge = if x.is_sign_negative() { -huge } else { huge };
+    if ax >= ATAN_HUGE {
+        huge
+    } else if ax < ATAN_TINY {
+        x
+    } else if below {
+        t - series
+    } else {
+        reduced
+    }
+}
+
+/// [`atan2`] of every lane, `atan2(y[l], x[l])`, equal to [`atan2`] of each lane bit for bit.
+///
+/// The lanes go through [`atan2`]'s general path together, its branches turned into selects (a
+/// loop without branches over `L` lanes, which the compiler turns into vector instructions);
+/// only a lane with a zero, an infinity or NaN is recomputed by [`atan2`].
+///
+/// # Example
+/// ```
+/// let (y, x) = ([1.0, -2.0, 0.0, 3e-300], [-1.0, 0.5, -1.0, 1.0]);
+/// let a = reach::angle::atan2_lanes(&y, &x);
+/// for l in 0..4 {
+///     assert_eq!(a[l].to_bits(), reach::angle::atan2(y[l], x[l]).to_bits());
+/// }
+/// ```
+#[must_use]
+#[inline(always)]
+pub fn atan2_lanes<const L: usize>(y: &[f64; L], x: &[f64; L]) -> [f64; L] {
+    let mut out = [0.0; L];
+    let mut special = false;
+    for l in 0..L {
+        let (y, x) = (y[l], x[l]);
+        special |= !(y.is_finite() & x.is_finite()) | (y == 0.0) | (x == 0.0);
+        let (sy, sx) = (y.is_sign_negative(), x.is_sign_negative());
+        let one = x == 1.0;
+        let k = exponent(y) - exponent(x);
+        // x = 1: atan(y) itself (y / 1 is y).
+        let a = atan_select(if one { y } else { (y / x).abs() });
+        let z = if k > 60 {
+            FRAC_PI_2 + 0.5 * PI_LO
+        } else if sx & (k < -60) {
+            0.0
+        } else {
+            a
+        };
+        let pi_side = PI - (z - PI_LO);
+        let minus_pi_side = (z - PI_LO) - PI;
+        let quadrant = if sx {
+            if sy { minus_pi_side } else { pi_side }
+        } else if sy {
+            -z
+        } else {
+            z
+        };
+        out[l] = if one { a } else { quadrant };
+    }
+    if special {
+        for l in 0..L {
+            let (y, x) = (y[l], x[l]);
+            if !(y.is_finite() & x.is_finite()) | (y == 0.0) | (x == 0.0) {
+                out[l] = atan2(y, x);
+            }
         }
     }
+    out
 }
 
 /// Degrees to radians.
@@ -376,6 +494,67 @@ mod tests {
             assert_eq!(a.is_sign_negative(), b.is_sign_negative(), "atan2({y}, {x}) = {a} vs {b}");
         }
         assert!(atan2(f64::NAN, 1.0).is_nan() && atan2(1.0, f64::NAN).is_nan());
+    }
+
+    /// [`atan2_lanes`] over chunks of 8 pairs, as a kernel (for every SIMD level).
+    struct Atan2Lanes<'a>(&'a [(f64, f64)]);
+
+    impl crate::simd::Kernel for Atan2Lanes<'_> {
+        type Output = Vec<u64>;
+        #[inline(always)]
+        fn run(self) -> Vec<u64> {
+            let mut out = Vec::with_capacity(self.0.len());
+            for chunk in self.0.chunks_exact(8) {
+                let y: [f64; 8] = std::array::from_fn(|l| chunk[l].0);
+                let x: [f64; 8] = std::array::from_fn(|l| chunk[l].1);
+                out.extend(atan2_lanes(&y, &x).map(f64::to_bits));
+            }
+            out
+        }
+    }
+
+    #[test]
+    fn atan2_lanes_is_atan2_bit_for_bit_at_every_level() {
+        let mut rng = crate::rng::SplitMix64(12);
+        let mut pairs: Vec<(f64, f64)> = Vec::new();
+        for scale in [1e-20, 1e-3, 1.0, 1e3, 1e25] {
+            for _ in 0..20_000 {
+                pairs.push(((rng.next_f64() * 2.0 - 1.0) * scale, rng.next_f64() * 2.0 - 1.0));
+                pairs.push((rng.next_f64() * 2.0 - 1.0, (rng.next_f64() * 2.0 - 1.0) * scale));
+            }
+        }
+        // Every reduction interval and breakpoint, both signs, x = 1 (atan itself), the
+        // exponent cut-offs at 2^±60, the tiny and huge cases, and the special values.
+        let mut values = vec![1e-30, 1e-9, 7.450_580_596_923_828e-9, 0.1, 0.4375, 0.5, 0.6875, 1.0, 1.1875, 2.0];
+        values.extend([2.4375, 10.0, 1e10, 2f64.powi(60), 2f64.powi(61), 1e20, 7.378_697_629_483_82e19, 1e30]);
+        values.extend([1e-310, 0.0, f64::INFINITY, f64::NAN, f64::MIN_POSITIVE, f64::MAX, 2f64.powi(-61)]);
+        for &t in &values {
+            for &u in &values {
+                for (sy, sx) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
+                    pairs.push((sy * t, sx * u));
+                    pairs.push((sy * t, sx));
+                    pairs.push((sy * t * 3.7, sx * 3.7));
+                }
+            }
+        }
+        while !pairs.len().is_multiple_of(8) {
+            pairs.push((0.3, 1.0));
+        }
+        let scalar: Vec<u64> = pairs.iter().map(|&(y, x)| atan2(y, x).to_bits()).collect();
+        let same = |a: u64, b: u64| a == b || (f64::from_bits(a).is_nan() && f64::from_bits(b).is_nan());
+        for level in crate::simd::levels() {
+            let lanes = crate::simd::run_at(level, Atan2Lanes(&pairs));
+            for (k, (&a, &b)) in lanes.iter().zip(&scalar).enumerate() {
+                let (y, x) = pairs[k];
+                assert!(
+                    same(a, b),
+                    "{}: atan2({y}, {x}) lanes {} vs {}",
+                    level.name(),
+                    f64::from_bits(a),
+                    f64::from_bits(b)
+                );
+            }
+        }
     }
 
     #[test]

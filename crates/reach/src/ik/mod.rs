@@ -51,7 +51,9 @@ pub mod yaw_planar3;
 pub mod yaw_two_link;
 
 pub use solution::{Branch, IkFailure, IkSolution, IkSolutions, Label, LimitViolation, SingularityKind};
-pub(crate) use solution::{Candidate, ChainFrame, FlagBits, Raw6, Raw6Set, finish, finish_into, solved};
+pub(crate) use solution::{
+    Candidate, ChainFrame, FlagBits, LaneSolve, Raw6, Raw6Set, SolveKernel, finish, finish_into, solved,
+};
 
 use nalgebra::{Isometry3, Point3};
 use thiserror::Error;

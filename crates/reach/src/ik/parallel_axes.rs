@@ -90,8 +90,8 @@ use serde::Serialize;
 
 use super::spherical_wrist::{Dh6, revolute_dh6};
 use super::{
-    Branch, ChainFrame, FlagBits, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, Raw6, Raw6Set,
-    SingularityKind, SingularityMeasures, finish_into, solved,
+    Branch, ChainFrame, FlagBits, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, LaneSolve, Raw6,
+    Raw6Set, SingularityKind, SingularityMeasures, SolveKernel, finish_into, solved,
 };
 use crate::angle::{atan2, sin_cos};
 use crate::kinematics::check_q;
@@ -736,16 +736,9 @@ fn frame_of(t: &Isometry3<f64>) -> Frame {
     }
 }
 
-impl IkSolver for ParallelAxes {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-
-    fn solve(&self, robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError> {
-        solved(|out| self.solve_into(robot, target, options, out))
-    }
-
-    fn solve_into(
+impl LaneSolve for ParallelAxes {
+    #[inline(always)]
+    fn solve_lanes(
         &self,
         robot: &Robot,
         target: &IkTarget,
@@ -762,6 +755,26 @@ impl IkSolver for ParallelAxes {
             IkFailure::Singular { kind }
         });
         finish_into(robot, target, &mut candidates, NAME, if_empty, out)
+    }
+}
+
+impl IkSolver for ParallelAxes {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+
+    fn solve(&self, robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError> {
+        solved(|out| self.solve_into(robot, target, options, out))
+    }
+
+    fn solve_into(
+        &self,
+        robot: &Robot,
+        target: &IkTarget,
+        options: &IkOptions,
+        out: &mut IkSolutions,
+    ) -> Result<(), IkError> {
+        crate::simd::run(SolveKernel { solver: self, robot, target, options, out })
     }
 
     /// Only the requested branch is computed and verified (see [`IkSolver::solve_branch`]).

@@ -686,13 +686,73 @@ impl Check {
         }
     }
 
-    /// The orientation error (radians) of [`Check::errors`]' `(sin, cos)`: 0 for a position target.
-    #[inline]
-    fn angle(&self, sin: f64, cos: f64) -> f64 {
+    /// The orientation errors (radians) of [`Check::errors`]' `(sin, cos)`, lane by lane
+    /// ([`atan2_lanes`](crate::angle::atan2_lanes), bit for bit `atan2`): 0 for a position
+    /// target.
+    #[inline(always)]
+    fn angles<const L: usize>(&self, sin: &Lanes<L>, cos: &Lanes<L>) -> Lanes<L> {
         match self {
-            Check::Pose(..) => crate::angle::atan2(sin, cos),
-            Check::Position(_) => 0.0,
+            Check::Pose(..) => crate::angle::atan2_lanes(sin, cos),
+            Check::Position(_) => [0.0; L],
         }
+    }
+}
+
+/// The lane part of [`verify_block`]: the tool poses of `L` candidates (`q[j][l]`, the first
+/// `shared` joints shared by groups of `L / H` lanes when `shared > 0`,
+/// [`Robot::fk_lanes_shared`]) and their errors against the target — position (metres) and
+/// orientation (radians). Inlined, so that it is compiled for the SIMD level of the closed
+/// form's kernel ([`SolveKernel`]); every level gives the same bits.
+#[inline(always)]
+fn lane_errors<const L: usize, const H: usize>(
+    robot: &Robot,
+    check: &Check,
+    q: &[Lanes<L>],
+    shared: usize,
+) -> (Lanes<L>, Lanes<L>) {
+    let t = if shared == 0 {
+        robot.fk_lanes(q)
+    } else {
+        let group = L / H;
+        let prefix: [Lanes<H>; LANE_DOF] =
+            std::array::from_fn(|j| if j < shared { std::array::from_fn(|g| q[j][g * group]) } else { [0.0; H] });
+        robot.fk_lanes_shared(&prefix[..shared], q)
+    };
+    let (position, sin, cos) = check.errors(&t);
+    (position, check.angles(&sin, &cos))
+}
+
+/// A solver whose [`IkSolver::solve_into`](super::IkSolver::solve_into) runs as a
+/// [`crate::simd::Kernel`] ([`SolveKernel`]): its lane work — the FK check of the candidates in
+/// [`finish_into`], and the solver's own lanes — compiled for the SIMD level
+/// [`crate::simd::run`] picks.
+pub(crate) trait LaneSolve {
+    /// The solve (what `solve_into` does), with its hot inner functions inlined
+    /// (`#[inline(always)]`).
+    fn solve_lanes(
+        &self,
+        robot: &Robot,
+        target: &IkTarget,
+        options: &super::IkOptions,
+        out: &mut IkSolutions,
+    ) -> Result<(), IkError>;
+}
+
+/// [`LaneSolve::solve_lanes`] as a [`crate::simd::Kernel`].
+pub(crate) struct SolveKernel<'a, S> {
+    pub solver: &'a S,
+    pub robot: &'a Robot,
+    pub target: &'a IkTarget,
+    pub options: &'a super::IkOptions,
+    pub out: &'a mut IkSolutions,
+}
+
+impl<S: LaneSolve> crate::simd::Kernel for SolveKernel<'_, S> {
+    type Output = Result<(), IkError>;
+
+    #[inline(always)]
+    fn run(self) -> Result<(), IkError> {
+        self.solver.solve_lanes(self.robot, self.target, self.options, self.out)
     }
 }
 
@@ -721,6 +781,7 @@ pub(crate) fn finish(
 
 /// [`finish`] into a reused `out` (see [`finish_within_into`]), for any [`CandidateList`]: the
 /// 6R closed forms' compact [`Raw6Set`] as well as [`Candidate`]s.
+#[inline(always)]
 pub(crate) fn finish_into<C: CandidateList + ?Sized>(
     robot: &Robot,
     target: &IkTarget,
@@ -772,6 +833,10 @@ fn normalise(robot: &Robot, q: &mut [f64]) -> bool {
 /// `out`'s solutions are overwritten in place (their vectors cleared and refilled, keeping
 /// their capacity), solutions beyond the new count are kept aside as spares and taken back
 /// before any new one is made. The result equals [`finish_within`]'s whatever `out` held.
+///
+/// Inlined, as the lane kernel it calls, so that a closed form's [`SolveKernel`] compiles it
+/// for its SIMD level.
+#[inline(always)]
 pub(crate) fn finish_within_into<C: CandidateList + ?Sized>(
     robot: &Robot,
     target: &IkTarget,
@@ -813,7 +878,7 @@ pub(crate) fn finish_within_into<C: CandidateList + ?Sized>(
                 p: std::array::from_fn(|k| [t.translation.vector[k]]),
             };
             let (position, sin, cos) = check.errors(&t);
-            kept.offer(&check, candidates, i, position[0], (sin[0], cos[0]));
+            kept.offer(candidates, i, position[0], check.angles(&sin, &cos)[0]);
         }
     }
     let len = kept.len;
@@ -835,6 +900,7 @@ pub(crate) fn finish_within_into<C: CandidateList + ?Sized>(
 /// solutions of each arm of a 6R closed form share θ1…θ3), the chain up to the last shared
 /// joint is walked once per pair, on `H = L / 2` lanes ([`Robot::fk_lanes_shared`], bit for
 /// bit the same poses); `H = L` walks every lane alone.
+#[inline(always)]
 fn verify_block<const L: usize, const H: usize, C: CandidateList + ?Sized>(
     kept: &mut Kept<'_>,
     check: &Check,
@@ -858,18 +924,11 @@ fn verify_block<const L: usize, const H: usize, C: CandidateList + ?Sized>(
             }
         }
     }
-    let t = match shared_prefix::<L, H>(robot, &mut q[..dof], &finite, len) {
-        0 => robot.fk_lanes(&q[..dof]),
-        k => {
-            let group = L / H;
-            let prefix: [Lanes<H>; LANE_DOF] = std::array::from_fn(|j| std::array::from_fn(|g| q[j][g * group]));
-            robot.fk_lanes_shared(&prefix[..k], &q[..dof])
-        }
-    };
-    let (position, sin, cos) = check.errors(&t);
+    let shared = shared_prefix::<L, H>(robot, &mut q[..dof], &finite, len);
+    let (position, orientation) = lane_errors::<L, H>(robot, check, &q[..dof], shared);
     for l in 0..len {
         if finite[l] {
-            kept.offer(check, candidates, start + l, position[l], (sin[l], cos[l]));
+            kept.offer(candidates, start + l, position[l], orientation[l]);
         }
     }
     Ok(len)
@@ -916,23 +975,18 @@ struct Kept<'a> {
 }
 
 impl Kept<'_> {
-    /// Candidate `i` of `candidates` (normalised, its tool pose `position` metres and
-    /// `(sin, cos)` of the orientation error away from the target): dropped when outside the
+    /// Candidate `i` of `candidates` (normalised, its tool pose `position_error` metres and
+    /// `orientation_error` radians away from the target): dropped when outside the
     /// tolerances, merged into an equal kept solution (flags united), else kept.
     fn offer<C: CandidateList + ?Sized>(
         &mut self,
-        check: &Check,
         candidates: &mut C,
         i: usize,
         position_error: f64,
-        (sin, cos): (f64, f64),
+        orientation_error: f64,
     ) {
         let (position_tolerance, orientation_tolerance) = self.tolerances;
-        if position_error > position_tolerance {
-            return;
-        }
-        let orientation_error = check.angle(sin, cos);
-        if orientation_error > orientation_tolerance {
+        if position_error > position_tolerance || orientation_error > orientation_tolerance {
             return;
         }
         let robot = self.robot;
@@ -1224,11 +1278,100 @@ mod tests {
                         assert_eq!(robot.fk_lanes(&one).p[0][0].to_bits(), t.p[0][l].to_bits(), "{name} {q:?}");
                         let (p, o) = scalar_errors(&target, &scalar);
                         assert_eq!(position[l].to_bits(), p.to_bits(), "{name} {q:?}");
-                        assert_eq!(check.angle(sin[l], cos[l]).to_bits(), o.to_bits(), "{name} {q:?}");
+                        assert_eq!(check.angles(&sin, &cos)[l].to_bits(), o.to_bits(), "{name} {q:?}");
                     }
                 }
             }
         }
+    }
+
+    /// The solve of `solver` for `target` at SIMD level `level` ([`SolveKernel`]).
+    fn solve_at<S: LaneSolve>(level: crate::simd::Level, solver: &S, robot: &Robot, target: &IkTarget) -> IkSolutions {
+        let options = super::super::IkOptions::default();
+        let mut out = IkSolutions::default();
+        crate::simd::run_at(level, SolveKernel { solver, robot, target, options: &options, out: &mut out }).unwrap();
+        out
+    }
+
+    /// `a` and `b` with the same solutions, labels and flags, and the same bits in every
+    /// joint value and error.
+    fn assert_same_bits(a: &IkSolutions, b: &IkSolutions, what: &str) {
+        assert_eq!(a, b, "{what}");
+        for (x, y) in a.solutions.iter().zip(&b.solutions) {
+            let bits = |s: &IkSolution| -> Vec<u64> {
+                s.q.iter().chain([&s.position_error, &s.orientation_error]).map(|v| v.to_bits()).collect()
+            };
+            assert_eq!(bits(x), bits(y), "{what}");
+        }
+    }
+
+    #[test]
+    fn closed_form_solves_give_the_same_bits_at_every_simd_level() {
+        use super::super::parallel_axes::ParallelAxes;
+        use super::super::spherical_wrist::SphericalWrist;
+        use super::super::two_link_wrist::TwoLinkWrist;
+        let mut rng = crate::rng::SplitMix64(17);
+        let mut solved_presets = 0;
+        for name in crate::model::presets::names() {
+            let robot = crate::model::presets::get(name).unwrap();
+            if robot.dof() != 6 {
+                continue;
+            }
+            let (sw, tw, pa) = (
+                SphericalWrist::from_robot(&robot),
+                TwoLinkWrist::from_robot(&robot),
+                ParallelAxes::from_robot(&robot),
+            );
+            if sw.is_err() && tw.is_err() && pa.is_err() {
+                continue;
+            }
+            solved_presets += 1;
+            for k in 0..40 {
+                let q: Vec<f64> = robot
+                    .joints()
+                    .iter()
+                    .map(|j| {
+                        let (lo, hi) = (j.limits.lower.max(-3.0), j.limits.upper.min(3.0));
+                        lo + (hi - lo) * rng.next_f64()
+                    })
+                    .collect();
+                // Generic poses, a wrist singularity (q5 = 0) and a position target.
+                let mut q = q;
+                if k == 0 {
+                    q[4] = 0.0;
+                }
+                let pose = robot.fk(&q).unwrap();
+                let targets = [IkTarget::Pose(pose), IkTarget::Position(pose.translation.vector.into())];
+                for target in &targets {
+                    let base = crate::simd::Level::Baseline;
+                    for level in crate::simd::levels() {
+                        let what = format!("{name} {q:?} at {}", level.name());
+                        if let Ok(s) = &sw {
+                            assert_same_bits(
+                                &solve_at(level, s, &robot, target),
+                                &solve_at(base, s, &robot, target),
+                                &what,
+                            );
+                        }
+                        if let Ok(s) = &tw {
+                            assert_same_bits(
+                                &solve_at(level, s, &robot, target),
+                                &solve_at(base, s, &robot, target),
+                                &what,
+                            );
+                        }
+                        if let Ok(s) = &pa {
+                            assert_same_bits(
+                                &solve_at(level, s, &robot, target),
+                                &solve_at(base, s, &robot, target),
+                                &what,
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        assert!(solved_presets >= 4, "puma560, ur5, welder6r, spbu6 at least: {solved_presets}");
     }
 
     #[test]

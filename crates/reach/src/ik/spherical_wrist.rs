@@ -96,10 +96,10 @@ use nalgebra::{Isometry3, IsometryMatrix3, Matrix3, Point3, Translation3, Vector
 use smallvec::SmallVec;
 
 use super::{
-    Branch, ChainFrame, FlagBits, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, Raw6, Raw6Set,
-    SingularityKind, finish_into, solved,
+    Branch, ChainFrame, FlagBits, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, LaneSolve, Raw6,
+    Raw6Set, SingularityKind, SolveKernel, finish_into, solved,
 };
-use crate::angle::{atan2, sin_cos, wrap};
+use crate::angle::{atan2, atan2_lanes, sin_cos, wrap};
 use crate::kinematics::check_q;
 use crate::model::{Convention, JointKind, Robot};
 use crate::tolerance::{BOUNDARY, IK_AXIS_DISTANCE, IK_PARALLEL_SINE, STRUCTURE_ANGLE, STRUCTURE_LENGTH};
@@ -637,31 +637,27 @@ impl SphericalWrist {
         Ok(arms)
     }
 
-    /// θ6 = atan2(n·y5, n·x5) (eqs. 31–37, corrected: x6 = n, arguments swapped).
-    /// `n·x5` and `n·y5` are the first two components of `R05ᵀ·n = R5ᵀ·R4ᵀ·R03ᵀ·n`: three
-    /// matrix-vector products instead of two matrix products of `T05`, from the sines and
-    /// cosines of θ4 and θ5 the caller has.
-    fn theta6(&self, r03: &Matrix3<f64>, sc4: (f64, f64), sc5: (f64, f64), n: &Vector3<f64>) -> f64 {
+    /// The arguments `(n·y5, n·x5)` of θ6 = atan2(n·y5, n·x5) (eqs. 31–37, corrected: x6 = n,
+    /// arguments swapped). `n·x5` and `n·y5` are the first two components of
+    /// `R05ᵀ·n = R5ᵀ·R4ᵀ·R03ᵀ·n`: three matrix-vector products instead of two matrix products
+    /// of `T05`, from the sines and cosines of θ4 and θ5 the caller has.
+    fn theta6_args(&self, r03: &Matrix3<f64>, sc4: (f64, f64), sc5: (f64, f64), n: &Vector3<f64>) -> (f64, f64) {
         let v = r03.tr_mul(n);
         let v = self.joints[3].rotation(sc4).tr_mul(&v);
         let v = self.joints[4].rotation(sc5).tr_mul(&v);
-        atan2(v.y, v.x)
+        (v.y, v.x)
     }
 
-    /// The wrist solutions of one arm branch (only the one labelled `wrist` when given),
-    /// appended to `out`. The flipped wrist is `(θ4 + π, −θ5, θ6 + π)` of the other (eqs.
-    /// 22–37 with sin θ5 negated: both arguments of θ4's and of θ6's atan2 change sign), so
-    /// θ4, θ5 and θ6 are computed once per arm.
-    fn wrists(
-        &self,
-        arm: &Arm,
-        flange: &IsometryMatrix3<f64>,
-        seed: Option<&[f64; 6]>,
-        wrist: Option<&str>,
-        out: &mut Raw6Set,
-    ) {
-        let wanted = |label: &str| wrist.is_none_or(|w| w == label);
-        let [t1, t2, t3] = arm.theta;
+    /// The wrist of one arm branch up to its three `atan2` (θ5, θ4, θ6), which the caller
+    /// evaluates for several arms at once ([`atan2_lanes`]) and hands to
+    /// [`SphericalWrist::push_wrists`].
+    ///
+    /// θ5 ∈ (0, π) (the `acos` branch, sin θ5 = |z4'| > 0) and eq. 23 with the arguments in the
+    /// corrected order (notes 002 §6 item 3), generalised to the α4/α5 signs. The arguments of
+    /// both atan2 are the sines and cosines (θ5: |z3 × a|² + (a·z3)² = 1; θ4: z4' ⊥ z3 has the
+    /// length sin θ5 in the x3–y3 plane), normalised for θ6. At a wrist singularity θ4 is kept
+    /// from the seed and θ6 takes the rest (only θ6's arguments are used).
+    fn wrist_plan(&self, arm: &Arm, flange: &IsometryMatrix3<f64>, seed: Option<&[f64; 6]>) -> WristPlan {
         let m3 = arm.r03(&self.joints);
         let (x3, y3, z3) = (m3.column(0).into_owned(), m3.column(1).into_owned(), m3.column(2).into_owned());
         let r = flange.rotation.matrix();
@@ -670,31 +666,39 @@ impl SphericalWrist {
         let z4 = z3.cross(&a); // eq. 26: sin θ5 times the joint-5 axis (up to sign)
         let sin5 = z4.norm();
         let cos5 = -self.s4 * self.s5 * a.dot(&z3); // eq. 22, generalised sign
+        if sin5 < IK_PARALLEL_SINE {
+            let (theta5, sc5) = if cos5 >= 0.0 { (0.0, (0.0, 1.0)) } else { (PI, (0.0, -1.0)) };
+            let theta4 = free_theta(&self.joints, seed, 3);
+            let (y6, x6) = self.theta6_args(&m3, sin_cos(theta4), sc5, &n);
+            // θ5's and θ4's arguments are placeholders (any finite non-zero pair).
+            return WristPlan { y: [1.0, 1.0, y6], x: [1.0, 1.0, x6], singular: Some((theta4, theta5)) };
+        }
+        let g = -self.s5;
+        let (y4, x4) = (g * z4.dot(&x3), -g * z4.dot(&y3)); // eqs. 23–25
+        let norm4 = (x4 * x4 + y4 * y4).sqrt();
+        let (y6, x6) = self.theta6_args(&m3, (y4 / norm4, x4 / norm4), (sin5, cos5), &n);
+        WristPlan { y: [sin5, y4, y6], x: [cos5, x4, x6], singular: None }
+    }
+
+    /// The wrist solutions of one arm branch (only the one labelled `wrist` when given) from its
+    /// [`WristPlan`] and the plan's angles `[θ5, θ4, θ6]` (`atan2` of its arguments), appended
+    /// to `out`. The flipped wrist is `(θ4 + π, −θ5, θ6 + π)` of the other (eqs. 22–37 with
+    /// sin θ5 negated: both arguments of θ4's and of θ6's atan2 change sign), so θ4, θ5 and θ6
+    /// are computed once per arm. At a wrist singularity, one solution (`noflip`).
+    fn push_wrists(&self, arm: &Arm, plan: &WristPlan, angles: [f64; 3], wrist: Option<&str>, out: &mut Raw6Set) {
+        let wanted = |label: &str| wrist.is_none_or(|w| w == label);
+        let [t1, t2, t3] = arm.theta;
         let push = |out: &mut Raw6Set, theta: [f64; 6], label: &'static str, wrist_singular: bool| {
             let flags = arm.flags().with(SingularityKind::Wrist, wrist_singular);
             out.push(Raw6 { q: joint_values(&self.joints, &theta), values: [arm.shoulder, arm.elbow, label], flags });
         };
-        if sin5 < IK_PARALLEL_SINE {
-            // Wrist singularity: θ4 undetermined; keep the seed's, θ6 takes the rest.
-            if !wanted("noflip") {
-                return;
+        let [theta5, theta4, theta6] = angles;
+        if let Some((theta4, theta5)) = plan.singular {
+            if wanted("noflip") {
+                push(out, [t1, t2, t3, theta4, theta5, theta6], "noflip", true);
             }
-            let (theta5, sc5) = if cos5 >= 0.0 { (0.0, (0.0, 1.0)) } else { (PI, (0.0, -1.0)) };
-            let theta4 = free_theta(&self.joints, seed, 3);
-            let theta6 = self.theta6(&m3, sin_cos(theta4), sc5, &n);
-            push(out, [t1, t2, t3, theta4, theta5, theta6], "noflip", true);
             return;
         }
-        // θ5 ∈ (0, π) (the `acos` branch, sin θ5 = |z4'| > 0) and eq. 23 with the arguments in
-        // the corrected order (notes 002 §6 item 3), generalised to the α4/α5 signs. The
-        // arguments of both atan2 are the sines and cosines (θ5: |z3 × a|² + (a·z3)² = 1;
-        // θ4: z4' ⊥ z3 has the length sin θ5 in the x3–y3 plane), normalised for θ6.
-        let theta5 = atan2(sin5, cos5);
-        let g = -self.s5;
-        let (y4, x4) = (g * z4.dot(&x3), -g * z4.dot(&y3));
-        let theta4 = atan2(y4, x4); // eqs. 23–25
-        let norm4 = (x4 * x4 + y4 * y4).sqrt();
-        let theta6 = self.theta6(&m3, (y4 / norm4, x4 / norm4), (sin5, cos5), &n);
         for (label, theta) in [
             ("noflip", [t1, t2, t3, theta4, theta5, theta6]),
             ("flip", [t1, t2, t3, half_turn(theta4), -theta5, half_turn(theta6)]),
@@ -703,6 +707,69 @@ impl SphericalWrist {
                 push(out, theta, label, false);
             }
         }
+    }
+
+    /// The wrist solutions of every arm branch (only those labelled `wrist` when given),
+    /// appended to `out` in the order of `arms`: the plans of up to four arms, their twelve
+    /// `atan2` in lanes ([`atan2_lanes`], bit for bit [`atan2`]), then the solutions.
+    #[inline(always)]
+    fn wrists(
+        &self,
+        arms: &[Arm],
+        flange: &IsometryMatrix3<f64>,
+        seed: Option<&[f64; 6]>,
+        wrist: Option<&str>,
+        out: &mut Raw6Set,
+    ) {
+        const ARMS: usize = 4;
+        for group in arms.chunks(ARMS) {
+            let plans: SmallVec<[WristPlan; ARMS]> =
+                group.iter().map(|arm| self.wrist_plan(arm, flange, seed)).collect();
+            // Lanes of absent arms: a finite non-zero pair, unused.
+            let (mut y, mut x) = ([1.0; 3 * ARMS], [1.0; 3 * ARMS]);
+            for (k, plan) in plans.iter().enumerate() {
+                y[3 * k..3 * k + 3].copy_from_slice(&plan.y);
+                x[3 * k..3 * k + 3].copy_from_slice(&plan.x);
+            }
+            let angles = atan2_lanes(&y, &x);
+            for (k, (arm, plan)) in group.iter().zip(&plans).enumerate() {
+                self.push_wrists(arm, plan, [angles[3 * k], angles[3 * k + 1], angles[3 * k + 2]], wrist, out);
+            }
+        }
+    }
+}
+
+/// One arm's wrist before its angles ([`SphericalWrist::wrist_plan`]).
+#[derive(Debug, Clone, Copy)]
+struct WristPlan {
+    /// `(y, x)` of the `atan2` of θ5, θ4 and θ6.
+    y: [f64; 3],
+    x: [f64; 3],
+    /// At a wrist singularity: θ4 (the seed's) and θ5 (0 or π); only θ6's arguments are used.
+    singular: Option<(f64, f64)>,
+}
+
+impl LaneSolve for SphericalWrist {
+    #[inline(always)]
+    fn solve_lanes(
+        &self,
+        robot: &Robot,
+        target: &IkTarget,
+        options: &IkOptions,
+        out: &mut IkSolutions,
+    ) -> Result<(), IkError> {
+        target.validate()?;
+        let seed = seed_thetas(&self.joints, options)?;
+        let flange = flange_goal(robot, &self.frame, target, options)?;
+        let w = wrist_centre(&flange, self.joints[5].d);
+        let arms = match self.arms(&w, seed.as_ref()) {
+            Ok(arms) => arms,
+            Err(failure) => return finish_into(robot, target, &mut Raw6Set::new(ARM_KEYS), NAME, failure, out),
+        };
+        let mut candidates = Raw6Set::new(ARM_KEYS);
+        self.wrists(&arms, &flange, seed.as_ref(), None, &mut candidates);
+        self.frame.refine(robot, target, &mut candidates);
+        finish_into(robot, target, &mut candidates, NAME, fallback_failure(&arms), out)
     }
 }
 
@@ -722,20 +789,7 @@ impl IkSolver for SphericalWrist {
         options: &IkOptions,
         out: &mut IkSolutions,
     ) -> Result<(), IkError> {
-        target.validate()?;
-        let seed = seed_thetas(&self.joints, options)?;
-        let flange = flange_goal(robot, &self.frame, target, options)?;
-        let w = wrist_centre(&flange, self.joints[5].d);
-        let arms = match self.arms(&w, seed.as_ref()) {
-            Ok(arms) => arms,
-            Err(failure) => return finish_into(robot, target, &mut Raw6Set::new(ARM_KEYS), NAME, failure, out),
-        };
-        let mut candidates = Raw6Set::new(ARM_KEYS);
-        for arm in &arms {
-            self.wrists(arm, &flange, seed.as_ref(), None, &mut candidates);
-        }
-        self.frame.refine(robot, target, &mut candidates);
-        finish_into(robot, target, &mut candidates, NAME, fallback_failure(&arms), out)
+        crate::simd::run(SolveKernel { solver: self, robot, target, options, out })
     }
 
     /// Only the requested branch's arm and wrist are computed and verified (see
@@ -753,7 +807,7 @@ impl IkSolver for SphericalWrist {
         let w = wrist_centre(&flange, self.joints[5].d);
         if let Ok(arms) = self.arms(&w, seed.as_ref())
             && let Some(sols) = arm_branch(robot, &self.frame, target, branch, NAME, &arms, |arm, out| {
-                self.wrists(arm, &flange, seed.as_ref(), branch.get("wrist"), out);
+                self.wrists(std::slice::from_ref(arm), &flange, seed.as_ref(), branch.get("wrist"), out);
             })?
         {
             return Ok(sols);

@@ -92,8 +92,8 @@ use super::spherical_wrist::{
     wrist_arm_twists, wrist_centre, wrist_label,
 };
 use super::{
-    Branch, ChainFrame, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, Raw6, Raw6Set, SingularityKind,
-    finish_into, solved,
+    Branch, ChainFrame, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, LaneSolve, Raw6, Raw6Set,
+    SingularityKind, SolveKernel, finish_into, solved,
 };
 use crate::angle::{atan2, sin_cos};
 use crate::model::Robot;
@@ -288,16 +288,9 @@ impl TwoLinkWrist {
     }
 }
 
-impl IkSolver for TwoLinkWrist {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-
-    fn solve(&self, robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError> {
-        solved(|out| self.solve_into(robot, target, options, out))
-    }
-
-    fn solve_into(
+impl LaneSolve for TwoLinkWrist {
+    #[inline(always)]
+    fn solve_lanes(
         &self,
         robot: &Robot,
         target: &IkTarget,
@@ -318,6 +311,26 @@ impl IkSolver for TwoLinkWrist {
         }
         self.frame.refine(robot, target, &mut candidates);
         finish_into(robot, target, &mut candidates, NAME, fallback_failure(&arms), out)
+    }
+}
+
+impl IkSolver for TwoLinkWrist {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+
+    fn solve(&self, robot: &Robot, target: &IkTarget, options: &IkOptions) -> Result<IkSolutions, IkError> {
+        solved(|out| self.solve_into(robot, target, options, out))
+    }
+
+    fn solve_into(
+        &self,
+        robot: &Robot,
+        target: &IkTarget,
+        options: &IkOptions,
+        out: &mut IkSolutions,
+    ) -> Result<(), IkError> {
+        crate::simd::run(SolveKernel { solver: self, robot, target, options, out })
     }
 
     /// Only the requested branch's arm and wrist are verified (see

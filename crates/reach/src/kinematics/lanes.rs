@@ -203,6 +203,7 @@ impl Robot {
     /// bit for bit [`Robot::fk_lanes`]' (the same operations in the same order on the same
     /// values; the copy is exact). `q` holds all joints (its first `k` are not read);
     /// [`Robot::prefix_without_mimics`] must hold for `k`.
+    #[inline(always)]
     pub(crate) fn fk_lanes_shared<const H: usize, const L: usize>(
         &self,
         prefix: &[Lanes<H>],
@@ -222,6 +223,7 @@ impl Robot {
 
     /// Tool poses of `L` joint vectors (`q[j][l]`: joint `j` of lane `l`, radians / metres,
     /// finite; `q.len() == dof`): lane `l` is [`Robot::fk_matrix`] of that joint vector.
+    #[inline(always)]
     pub(crate) fn fk_lanes<const L: usize>(&self, q: &[Lanes<L>]) -> FrameLanes<L> {
         self.walk_lanes(q, |_, _| {})
     }
