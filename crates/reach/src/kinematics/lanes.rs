@@ -222,6 +222,7 @@ impl Robot {
 
     /// Tool poses of `L` joint vectors (`q[j][l]`: joint `j` of lane `l`, radians / metres,
     /// finite; `q.len() == dof`): lane `l` is [`Robot::fk_matrix`] of that joint vector.
+    #[inline(always)]
     pub(crate) fn fk_lanes<const L: usize>(&self, q: &[Lanes<L>]) -> FrameLanes<L> {
         self.walk_lanes(q, |_, _| {})
     }
@@ -229,6 +230,7 @@ impl Robot {
     /// Geometric Jacobians of `L` joint vectors (`q` as in [`Robot::fk_lanes`]) into `out`
     /// (`6 × dof` row-major entries of lanes, `out[r * dof + c][l]`): lane `l` is
     /// [`Robot::jacobian_into`] of that joint vector. Returns the tool poses.
+    #[inline(always)]
     pub(crate) fn jacobian_lanes<const L: usize>(&self, q: &[Lanes<L>], out: &mut [Lanes<L>]) -> FrameLanes<L> {
         let dof = self.dof();
         debug_assert_eq!(out.len(), 6 * dof);
