@@ -6,7 +6,11 @@
 //!
 //! The batch groups (`fk_many`, `jacobian_many`) time 10 000 joint vectors per call on a pool
 //! of one thread (the per-core figure) and of two; criterion reports them as poses per second.
-//! `rows_one_at_a_time` is the same work as a plain loop over the one-row functions.
+//! `rows_one_at_a_time` is the same work as a plain loop over the one-row functions. The
+//! batch kernels (and `fk_matrix`) run compiled for the widest vector level the processor has;
+//! `REACH_SIMD=baseline|avx2|avx512` caps it, and the batch ids name the level that ran, so
+//! runs at each level keep their own criterion history (poses per second per core at each
+//! level: the one-thread ids).
 
 use std::hint::black_box;
 
@@ -70,7 +74,8 @@ fn batch_group(c: &mut Criterion, group: &str, f: fn(&reach::Robot, &[f64]) -> r
         for &(name, _) in CASES {
             let robot = presets::get(name).unwrap();
             let q = batch_q(robot.dof());
-            group.bench_function(BenchmarkId::new(name, format!("{threads} thread(s)")), |b| {
+            let id = format!("{threads} thread(s), {}", reach::simd::level().name());
+            group.bench_function(BenchmarkId::new(name, id), |b| {
                 b.iter(|| pool.install(|| f(black_box(&robot), black_box(&q)).unwrap()))
             });
         }

@@ -39,6 +39,7 @@ use crate::jobs::ik::failure_code;
 use crate::jobs::input::Pose;
 use crate::kinematics::{Lanes, check_q};
 use crate::model::Robot;
+use crate::simd::{self, Level};
 
 /// Largest number of rows of one batch call (10 million): 10 million 6-joint poses of all
 /// branches are about 4 GB of output, the most one call should allocate.
@@ -92,7 +93,10 @@ fn map_rows<S, T: Send>(
 /// ([`CHUNK`] is a multiple of both): the fastest of 2, 4 and 8 on the 2-core test machine
 /// (x86_64 with SSE2 only, as the crate is built by default; best of 60 calls of 10 000 rows
 /// on one thread, 2026-12-02): for FK 8 lanes ran ≈ 10 % faster than 4 (and 4 1.5–2.2×
-/// faster than 2), for the Jacobian (twice the live values) 4 ran ≈ 5 % faster than 8.
+/// faster than 2), for the Jacobian (twice the live values) 4 ran ≈ 5 % faster than 8. The
+/// blocks run compiled for the widest level the processor has ([`simd::run`]); there too
+/// (2026-12-03, AVX2 and AVX-512, load average 5–7) 16 rows per FK block ran 10–25 % slower
+/// than 8, and 8 per Jacobian block no faster than 4.
 const FK_LANES: usize = 8;
 /// See [`FK_LANES`].
 const JACOBIAN_LANES: usize = 4;
@@ -136,6 +140,7 @@ fn check_rows(first: usize, q: &[f64], dof: usize) -> Result<()> {
 }
 
 /// The rows of `q` (`dof` numbers a row) as lanes: joint `j` of row `l` at `[j][l]`.
+#[inline(always)]
 fn gather<const L: usize>(q: &[f64], dof: usize, lanes: &mut [Lanes<L>]) {
     for (j, lane) in lanes.iter_mut().enumerate() {
         *lane = std::array::from_fn(|l| q[l * dof + j]);
@@ -148,31 +153,58 @@ fn gather<const L: usize>(q: &[f64], dof: usize, lanes: &mut [Lanes<L>]) {
 ///
 /// # Performance
 /// Rows go through the chain product eight at a time, each matrix entry an array of one value
-/// per row, so the arithmetic runs on vector registers; the last `N mod 8` rows take the
-/// one-row path. 1.8–2.2× the throughput of a loop over [`Robot::fk_matrix`] on one core
+/// per row, so the arithmetic runs on vector registers (compiled for the widest level the
+/// processor has, [`crate::simd`]: one AVX-512 register holds an entry of all eight rows); the
+/// last `N mod 8` rows take the one-row path. 1.8–2.2× the throughput of a loop over [`Robot::fk_matrix`] on one core
 /// (`benches/kinematics.rs`: group `fk_many` against `rows_one_at_a_time`).
 ///
 /// # Errors
 /// [`Error::Request`] with field `q` (shape, cap) or `q[i]` (a non-finite value in row `i`,
 /// the joint named 1-based).
 pub fn fk_many(robot: &Robot, q: &[f64]) -> Result<Vec<f64>> {
-    fk_rows::<FK_LANES>(robot, q)
+    fk_rows::<FK_LANES>(robot, q, simd::level())
 }
 
-/// [`fk_many`] with blocks of `LANES` rows.
-fn fk_rows<const LANES: usize>(robot: &Robot, q: &[f64]) -> Result<Vec<f64>> {
+/// [`fk_many`] with blocks of `LANES` rows, the blocks' kernel compiled for `level`.
+fn fk_rows<const LANES: usize>(robot: &Robot, q: &[f64], level: Level) -> Result<Vec<f64>> {
     let dof = robot.dof();
     let n = rows("q", q.len(), dof)?;
     let mut out = vec![0.0; n * 16];
     fill_rows(q, dof, &mut out, 16, |first, q, out| {
         check_rows(first, q, dof)?;
+        let whole = q.len() / (LANES * dof) * LANES;
+        let (blocks, rest) = q.split_at(whole * dof);
+        let (outs, rest_out) = out.split_at_mut(whole * 16);
         let mut lanes = vec![[0.0; LANES]; dof];
-        let blocks = q.chunks_exact(LANES * dof);
-        let rest = blocks.remainder();
-        let mut outs = out.chunks_exact_mut(LANES * 16);
-        for (q, out) in blocks.zip(&mut outs) {
-            gather::<LANES>(q, dof, &mut lanes);
-            let t = robot.fk_lanes(&lanes);
+        simd::run_at(level, FkBlocks::<LANES> { robot, q: blocks, out: outs, lanes: &mut lanes });
+        let first = first + whole;
+        for (r, (q, pose)) in rest.chunks_exact(dof).zip(rest_out.chunks_exact_mut(16)).enumerate() {
+            let t = robot.fk_matrix(q).map_err(|e| Error::request(format!("q[{}]", first + r), e.to_string()))?;
+            pose.copy_from_slice(&homogeneous(&t));
+        }
+        Ok(())
+    })?;
+    Ok(out)
+}
+
+/// The block loop of [`fk_many`] as a [`simd::Kernel`]: the tool poses of `q` (checked rows,
+/// a whole number of blocks of `L`) into `out` (16 numbers a row); `lanes` (one per joint)
+/// holds a block.
+struct FkBlocks<'a, const L: usize> {
+    robot: &'a Robot,
+    q: &'a [f64],
+    out: &'a mut [f64],
+    lanes: &'a mut [Lanes<L>],
+}
+
+impl<const L: usize> simd::Kernel for FkBlocks<'_, L> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        let (dof, lanes) = (self.robot.dof(), self.lanes);
+        for (q, out) in self.q.chunks_exact(L * dof).zip(self.out.chunks_exact_mut(L * 16)) {
+            gather::<L>(q, dof, lanes);
+            let t = self.robot.fk_lanes(lanes);
             for (l, pose) in out.chunks_exact_mut(16).enumerate() {
                 for i in 0..3 {
                     pose[i * 4..i * 4 + 3].copy_from_slice(&[t.r[i][0][l], t.r[i][1][l], t.r[i][2][l]]);
@@ -181,14 +213,7 @@ fn fk_rows<const LANES: usize>(robot: &Robot, q: &[f64]) -> Result<Vec<f64>> {
                 pose[12..].copy_from_slice(&[0.0, 0.0, 0.0, 1.0]);
             }
         }
-        let first = first + (q.len() - rest.len()) / dof;
-        for (r, (q, pose)) in rest.chunks_exact(dof).zip(outs.into_remainder().chunks_exact_mut(16)).enumerate() {
-            let t = robot.fk_matrix(q).map_err(|e| Error::request(format!("q[{}]", first + r), e.to_string()))?;
-            pose.copy_from_slice(&homogeneous(&t));
-        }
-        Ok(())
-    })?;
-    Ok(out)
+    }
 }
 
 /// The geometric Jacobian of every row of `q` (`N × dof`, SI): `N × 6 × dof`, row-major,
@@ -199,34 +224,29 @@ fn fk_rows<const LANES: usize>(robot: &Robot, q: &[f64]) -> Result<Vec<f64>> {
 /// # Errors
 /// As [`fk_many`].
 pub fn jacobian_many(robot: &Robot, q: &[f64]) -> Result<Vec<f64>> {
-    jacobian_rows::<JACOBIAN_LANES>(robot, q)
+    jacobian_rows::<JACOBIAN_LANES>(robot, q, simd::level())
 }
 
-/// [`jacobian_many`] with blocks of `LANES` rows.
-fn jacobian_rows<const LANES: usize>(robot: &Robot, q: &[f64]) -> Result<Vec<f64>> {
+/// [`jacobian_many`] with blocks of `LANES` rows, the blocks' kernel compiled for `level`.
+fn jacobian_rows<const LANES: usize>(robot: &Robot, q: &[f64], level: Level) -> Result<Vec<f64>> {
     let dof = robot.dof();
     let n = rows("q", q.len(), dof)?;
     let width = 6 * dof;
     let mut out = vec![0.0; n * width];
     fill_rows(q, dof, &mut out, width, |first, q, out| {
         check_rows(first, q, dof)?;
+        let whole = q.len() / (LANES * dof) * LANES;
+        let (blocks, rest) = q.split_at(whole * dof);
+        let (outs, rest_out) = out.split_at_mut(whole * width);
         let mut lanes = vec![[0.0; LANES]; dof];
         let mut j_lanes = vec![[0.0; LANES]; width];
-        let blocks = q.chunks_exact(LANES * dof);
-        let rest = blocks.remainder();
-        let mut outs = out.chunks_exact_mut(LANES * width);
-        for (q, out) in blocks.zip(&mut outs) {
-            gather::<LANES>(q, dof, &mut lanes);
-            robot.jacobian_lanes(&lanes, &mut j_lanes);
-            for (l, j) in out.chunks_exact_mut(width).enumerate() {
-                for (v, lane) in j.iter_mut().zip(&j_lanes) {
-                    *v = lane[l];
-                }
-            }
-        }
+        simd::run_at(
+            level,
+            JacobianBlocks::<LANES> { robot, q: blocks, out: outs, lanes: &mut lanes, j_lanes: &mut j_lanes },
+        );
         let mut one = crate::Jacobian::zeros(dof);
-        let first = first + (q.len() - rest.len()) / dof;
-        for (r, (q, j)) in rest.chunks_exact(dof).zip(outs.into_remainder().chunks_exact_mut(width)).enumerate() {
+        let first = first + whole;
+        for (r, (q, j)) in rest.chunks_exact(dof).zip(rest_out.chunks_exact_mut(width)).enumerate() {
             robot.jacobian_into(q, &mut one).map_err(|e| Error::request(format!("q[{}]", first + r), e.to_string()))?;
             for (k, v) in j.iter_mut().enumerate() {
                 *v = one[(k / dof, k % dof)];
@@ -235,6 +255,35 @@ fn jacobian_rows<const LANES: usize>(robot: &Robot, q: &[f64]) -> Result<Vec<f64
         Ok(())
     })?;
     Ok(out)
+}
+
+/// The block loop of [`jacobian_many`] as a [`simd::Kernel`]: the Jacobians of `q` (checked
+/// rows, a whole number of blocks of `L`) into `out` (`6 × dof` numbers a row); `lanes` (one
+/// per joint) and `j_lanes` (one per Jacobian entry) hold a block.
+struct JacobianBlocks<'a, const L: usize> {
+    robot: &'a Robot,
+    q: &'a [f64],
+    out: &'a mut [f64],
+    lanes: &'a mut [Lanes<L>],
+    j_lanes: &'a mut [Lanes<L>],
+}
+
+impl<const L: usize> simd::Kernel for JacobianBlocks<'_, L> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        let (dof, lanes, j_lanes) = (self.robot.dof(), self.lanes, self.j_lanes);
+        let width = 6 * dof;
+        for (q, out) in self.q.chunks_exact(L * dof).zip(self.out.chunks_exact_mut(L * width)) {
+            gather::<L>(q, dof, lanes);
+            self.robot.jacobian_lanes(lanes, j_lanes);
+            for (l, j) in out.chunks_exact_mut(width).enumerate() {
+                for (v, lane) in j.iter_mut().zip(j_lanes.iter()) {
+                    *v = lane[l];
+                }
+            }
+        }
+    }
 }
 
 /// Every IK solution of many targets, packed into arrays: row `i`'s solutions fill slots
@@ -502,6 +551,47 @@ mod tests {
         for r in 0..6 {
             for c in 0..7 {
                 assert_eq!(j[42 * 42 + r * 7 + c], one[(r, c)]);
+            }
+        }
+    }
+
+    /// A URDF arm (general constants and reframed DH steps), a modified-DH arm with a tool,
+    /// a standard-DH arm and the mimic arm.
+    fn batch_robots() -> Vec<Robot> {
+        let urdf = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/panda.urdf")).unwrap();
+        let chain = crate::model::UrdfChain { base: None, tip: Some("panda_hand".into()) };
+        let mimic = crate::model::UrdfChain { base: Some("base".into()), tip: Some("tool".into()) };
+        let mut robots = vec![
+            Robot::from_urdf_str(&urdf, &chain).unwrap(),
+            Robot::from_urdf_str(include_str!("../tests/data/mimic_arm.urdf"), &mimic).unwrap(),
+        ];
+        robots.extend(["panda", "puma560", "ur5"].map(|n| presets::get(n).unwrap()));
+        robots
+    }
+
+    #[test]
+    fn batch_kernels_give_the_same_bits_at_every_level() {
+        for robot in batch_robots() {
+            let dof = robot.dof();
+            // 2 chunks and a remainder: both block paths and the one-row path.
+            let q = random_q(&robot, 2 * CHUNK + 13, 5);
+            let fk = fk_rows::<FK_LANES>(&robot, &q, Level::Baseline).unwrap();
+            let jac = jacobian_rows::<JACOBIAN_LANES>(&robot, &q, Level::Baseline).unwrap();
+            for (i, row) in q.chunks_exact(dof).enumerate() {
+                let one = robot.fk_matrix(row).unwrap().to_homogeneous();
+                assert!((0..16).all(|k| fk[i * 16 + k].to_bits() == one[(k / 4, k % 4)].to_bits()), "row {i}");
+                let one = robot.jacobian(row).unwrap();
+                let width = 6 * dof;
+                assert!((0..width).all(|k| jac[i * width + k].to_bits() == one[(k / dof, k % dof)].to_bits()));
+            }
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            for level in simd::levels() {
+                let name = level.name();
+                assert_eq!(bits(&fk_rows::<FK_LANES>(&robot, &q, level).unwrap()), bits(&fk), "fk {name}");
+                assert_eq!(bits(&fk_rows::<16>(&robot, &q, level).unwrap()), bits(&fk), "fk 16 {name}");
+                let j = jacobian_rows::<JACOBIAN_LANES>(&robot, &q, level).unwrap();
+                assert_eq!(bits(&j), bits(&jac), "jacobian {name}");
+                assert_eq!(bits(&jacobian_rows::<8>(&robot, &q, level).unwrap()), bits(&jac), "jacobian 8 {name}");
             }
         }
     }

@@ -231,6 +231,7 @@ impl Robot {
     /// Geometric Jacobians of `L` joint vectors (`q` as in [`Robot::fk_lanes`]) into `out`
     /// (`6 × dof` row-major entries of lanes, `out[r * dof + c][l]`): lane `l` is
     /// [`Robot::jacobian_into`] of that joint vector. Returns the tool poses.
+    #[inline(always)]
     pub(crate) fn jacobian_lanes<const L: usize>(&self, q: &[Lanes<L>], out: &mut [Lanes<L>]) -> FrameLanes<L> {
         let dof = self.dof();
         debug_assert_eq!(out.len(), 6 * dof);
