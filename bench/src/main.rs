@@ -292,20 +292,38 @@ fn opw_puma(robot: &Robot, qs: &[Vec<f64>]) -> (OPWKinematics, Rotation3<f64>) {
     panic!("no OPW parameters reproduce reach's puma560");
 }
 
+/// The usage line, printed with an error for a bad argument.
+const USAGE: &str = "usage: reach-peers-bench [--poses N] [--rounds N] [--profile-ik N]";
+
+/// Exits with `message` and the usage line (status 2).
+fn usage_error(message: &str) -> ! {
+    eprintln!("reach-peers-bench: {message}\n{USAGE}");
+    std::process::exit(2)
+}
+
 fn main() {
     let mut poses = 1000;
     let mut rounds = 15;
     let mut profile = None;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
-        let mut value = || args.next().and_then(|v| v.parse().ok()).expect("a count");
+        let mut value = || -> usize {
+            match args.next().map(|v| v.parse::<usize>()) {
+                Some(Ok(n)) if n > 0 => n,
+                _ => usage_error(&format!("{a} needs a positive whole number")),
+            }
+        };
         match a.as_str() {
             "--poses" => poses = value(),
             "--rounds" => rounds = value(),
             // Only reach's Puma 560 closed-form IK (the lean path, as in the table), N passes
             // over the poses: for a profiler.
             "--profile-ik" => profile = Some(value()),
-            other => panic!("unknown argument `{other}` (--poses N, --rounds N, --profile-ik N)"),
+            "-h" | "--help" => {
+                println!("{USAGE}");
+                return;
+            }
+            other => usage_error(&format!("unknown argument `{other}`")),
         }
     }
     if let Some(passes) = profile {
