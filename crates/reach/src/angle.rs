@@ -408,6 +408,19 @@ pub fn atan2_lanes<const L: usize>(y: &[f64; L], x: &[f64; L]) -> [f64; L] {
     out
 }
 
+/// [`atan2`] of every lane, as the lane kernels evaluate it: [`atan2_lanes`] (the lanes
+/// together, branch-free) when `WIDE`, else [`atan2`] lane by lane — the same bits either way.
+///
+/// `WIDE` is the kernel's choice for its SIMD level: with two lanes per instruction (the
+/// x86-64 baseline, SSE2; aarch64's NEON) the branch-free form evaluates every reduction
+/// interval of every lane and costs more than the scalar [`atan2`]'s one branch per lane; from
+/// four lanes per instruction on it costs less.
+#[must_use]
+#[inline(always)]
+pub(crate) fn atan2_each<const WIDE: bool, const L: usize>(y: &[f64; L], x: &[f64; L]) -> [f64; L] {
+    if WIDE { atan2_lanes(y, x) } else { std::array::from_fn(|l| atan2(y[l], x[l])) }
+}
+
 /// Degrees to radians.
 #[must_use]
 #[inline]

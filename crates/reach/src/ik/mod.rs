@@ -52,7 +52,7 @@ pub mod yaw_two_link;
 
 pub use solution::{Branch, IkFailure, IkSolution, IkSolutions, Label, LimitViolation, SingularityKind};
 pub(crate) use solution::{
-    Candidate, ChainFrame, FlagBits, LaneSolve, Raw6, Raw6Set, SolveKernel, finish, finish_into, solved,
+    Candidate, ChainFrame, FlagBits, LaneSolve, Raw6, Raw6Set, finish, finish_into, solve_at, solved,
 };
 
 use nalgebra::{Isometry3, Point3};

@@ -91,7 +91,7 @@ use serde::Serialize;
 use super::spherical_wrist::{Dh6, revolute_dh6};
 use super::{
     Branch, ChainFrame, FlagBits, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, LaneSolve, Raw6,
-    Raw6Set, SingularityKind, SingularityMeasures, SolveKernel, finish_into, solved,
+    Raw6Set, SingularityKind, SingularityMeasures, finish_into, solve_at, solved,
 };
 use crate::angle::{atan2, sin_cos};
 use crate::kinematics::check_q;
@@ -738,7 +738,7 @@ fn frame_of(t: &Isometry3<f64>) -> Frame {
 
 impl LaneSolve for ParallelAxes {
     #[inline(always)]
-    fn solve_lanes(
+    fn solve_lanes<const WIDE: bool>(
         &self,
         robot: &Robot,
         target: &IkTarget,
@@ -754,7 +754,7 @@ impl LaneSolve for ParallelAxes {
             let kind = candidates.iter().find_map(|c| c.flags.first()).unwrap_or(SingularityKind::Jacobian);
             IkFailure::Singular { kind }
         });
-        finish_into(robot, target, &mut candidates, NAME, if_empty, out)
+        finish_into::<WIDE, _>(robot, target, &mut candidates, NAME, if_empty, out)
     }
 }
 
@@ -774,7 +774,7 @@ impl IkSolver for ParallelAxes {
         options: &IkOptions,
         out: &mut IkSolutions,
     ) -> Result<(), IkError> {
-        crate::simd::run(SolveKernel { solver: self, robot, target, options, out })
+        solve_at(crate::simd::level(), self, robot, target, options, out)
     }
 
     /// Only the requested branch is computed and verified (see [`IkSolver::solve_branch`]).
@@ -813,7 +813,7 @@ impl IkSolver for ParallelAxes {
                 let mut candidates = Raw6Set::new(KEYS);
                 candidates.push(cand);
                 self.frame.refine(robot, target, &mut candidates);
-                let sols = solved(|out| finish_into(robot, target, &mut candidates, NAME, if_empty, out))?;
+                let sols = solved(|out| finish_into::<false, _>(robot, target, &mut candidates, NAME, if_empty, out))?;
                 if !sols.solutions.is_empty() {
                     return Ok(sols);
                 }

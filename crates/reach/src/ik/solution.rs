@@ -56,6 +56,12 @@ impl Label {
     pub fn as_str(&self) -> &str {
         &self.0
     }
+
+    /// Whether this label holds the static string `s` itself (the same address and length; a
+    /// cheap sufficient test of equality, `false` for an owned copy of the same text).
+    fn is(&self, s: &'static str) -> bool {
+        matches!(&self.0, Cow::Borrowed(b) if std::ptr::eq(*b, s))
+    }
 }
 
 impl std::ops::Deref for Label {
@@ -460,9 +466,14 @@ impl FlagBits {
         if on { FlagBits(self.0 | bit) } else { self }
     }
 
-    /// The kinds set, in the fixed order.
+    /// The kinds set, in the fixed order (lowest bit first; nothing to visit when none is set).
     pub fn iter(self) -> impl Iterator<Item = SingularityKind> {
-        Self::ORDER.into_iter().enumerate().filter(move |(i, _)| self.0 & (1 << i) != 0).map(|(_, k)| k)
+        let mut bits = self.0;
+        std::iter::from_fn(move || {
+            let i = bits.trailing_zeros() as usize;
+            bits &= bits.wrapping_sub(1);
+            Self::ORDER.get(i).copied()
+        })
     }
 
     /// The first kind set, if any.
@@ -545,8 +556,8 @@ pub(crate) trait CandidateList {
     fn joints_mut(&mut self, i: usize) -> &mut [f64];
     /// Singularity flags of candidate `i`, in order.
     fn flags(&self, i: usize) -> impl Iterator<Item = SingularityKind> + '_;
-    /// Appends candidate `i`'s branch label to `out` (moving it out: called once, for a kept
-    /// candidate).
+    /// Makes `out` (a reused solution's label) candidate `i`'s branch label (moving it out:
+    /// called once, for a kept candidate).
     fn take_label(&mut self, i: usize, out: &mut Vec<(Label, Label)>);
 }
 
@@ -564,6 +575,7 @@ impl CandidateList for [Candidate] {
         self[i].singularities.iter().copied()
     }
     fn take_label(&mut self, i: usize, out: &mut Vec<(Label, Label)>) {
+        out.clear();
         out.extend(self[i].branch.drain(..));
     }
 }
@@ -581,10 +593,17 @@ impl CandidateList for Raw6Set {
     fn flags(&self, i: usize) -> impl Iterator<Item = SingularityKind> + '_ {
         self.items[i].flags.iter()
     }
+    /// A reused solution that holds the same static strings already (the usual case: a solve
+    /// into a reused [`IkSolutions`] returns the branches in the same order) keeps its label.
     #[inline]
     fn take_label(&mut self, i: usize, out: &mut Vec<(Label, Label)>) {
         let values = self.items[i].values;
-        out.extend(self.keys.iter().zip(values).map(|(k, v)| (Label::from(*k), Label::from(v))));
+        let pairs = self.keys.iter().zip(values);
+        if out.len() == 3 && out.iter().zip(pairs.clone()).all(|((k, v), (rk, rv))| k.is(rk) && v.is(rv)) {
+            return;
+        }
+        out.clear();
+        out.extend(pairs.map(|(k, v)| (Label::from(*k), Label::from(v))));
     }
 }
 
@@ -687,12 +706,12 @@ impl Check {
     }
 
     /// The orientation errors (radians) of [`Check::errors`]' `(sin, cos)`, lane by lane
-    /// ([`atan2_lanes`](crate::angle::atan2_lanes), bit for bit `atan2`): 0 for a position
-    /// target.
+    /// ([`atan2_each`](crate::angle::atan2_each): the lanes together when `WIDE`, bit for bit
+    /// `atan2` either way): 0 for a position target.
     #[inline(always)]
-    fn angles<const L: usize>(&self, sin: &Lanes<L>, cos: &Lanes<L>) -> Lanes<L> {
+    fn angles<const WIDE: bool, const L: usize>(&self, sin: &Lanes<L>, cos: &Lanes<L>) -> Lanes<L> {
         match self {
-            Check::Pose(..) => crate::angle::atan2_lanes(sin, cos),
+            Check::Pose(..) => crate::angle::atan2_each::<WIDE, L>(sin, cos),
             Check::Position(_) => [0.0; L],
         }
     }
@@ -702,9 +721,10 @@ impl Check {
 /// `shared` joints shared by groups of `L / H` lanes when `shared > 0`,
 /// [`Robot::fk_lanes_shared`]) and their errors against the target — position (metres) and
 /// orientation (radians). Inlined, so that it is compiled for the SIMD level of the closed
-/// form's kernel ([`SolveKernel`]); every level gives the same bits.
+/// form's kernel ([`SolveKernel`]); every level, and `WIDE` or not ([`Check::angles`]), gives
+/// the same bits.
 #[inline(always)]
-fn lane_errors<const L: usize, const H: usize>(
+fn lane_errors<const WIDE: bool, const L: usize, const H: usize>(
     robot: &Robot,
     check: &Check,
     q: &[Lanes<L>],
@@ -719,17 +739,19 @@ fn lane_errors<const L: usize, const H: usize>(
         robot.fk_lanes_shared(&prefix[..shared], q)
     };
     let (position, sin, cos) = check.errors(&t);
-    (position, check.angles(&sin, &cos))
+    (position, check.angles::<WIDE, L>(&sin, &cos))
 }
 
 /// A solver whose [`IkSolver::solve_into`](super::IkSolver::solve_into) runs as a
 /// [`crate::simd::Kernel`] ([`SolveKernel`]): its lane work — the FK check of the candidates in
 /// [`finish_into`], and the solver's own lanes — compiled for the SIMD level
-/// [`crate::simd::run`] picks.
+/// [`crate::simd::run`] picks ([`solve_at`]).
 pub(crate) trait LaneSolve {
     /// The solve (what `solve_into` does), with its hot inner functions inlined
-    /// (`#[inline(always)]`).
-    fn solve_lanes(
+    /// (`#[inline(always)]`). `WIDE`: whether its lane work is compiled for a level of four
+    /// lanes or more, where the branch-free lane forms pay ([`crate::angle::atan2_each`]); the
+    /// result is the same bit for bit.
+    fn solve_lanes<const WIDE: bool>(
         &self,
         robot: &Robot,
         target: &IkTarget,
@@ -739,7 +761,7 @@ pub(crate) trait LaneSolve {
 }
 
 /// [`LaneSolve::solve_lanes`] as a [`crate::simd::Kernel`].
-pub(crate) struct SolveKernel<'a, S> {
+pub(crate) struct SolveKernel<'a, S, const WIDE: bool> {
     pub solver: &'a S,
     pub robot: &'a Robot,
     pub target: &'a IkTarget,
@@ -747,12 +769,32 @@ pub(crate) struct SolveKernel<'a, S> {
     pub out: &'a mut IkSolutions,
 }
 
-impl<S: LaneSolve> crate::simd::Kernel for SolveKernel<'_, S> {
+impl<S: LaneSolve, const WIDE: bool> crate::simd::Kernel for SolveKernel<'_, S, WIDE> {
     type Output = Result<(), IkError>;
 
     #[inline(always)]
     fn run(self) -> Result<(), IkError> {
-        self.solver.solve_lanes(self.robot, self.target, self.options, self.out)
+        self.solver.solve_lanes::<WIDE>(self.robot, self.target, self.options, self.out)
+    }
+}
+
+/// The solve of a closed form ([`LaneSolve`], its `solve_into`) at SIMD level `level`
+/// ([`crate::simd::level`] in `solve_into`): at the baseline level (two lanes per instruction)
+/// the scalar-per-lane kernel, run directly; above, the wide one through
+/// [`crate::simd::run_at`]. Every level gives the same bits.
+pub(crate) fn solve_at<S: LaneSolve>(
+    level: crate::simd::Level,
+    solver: &S,
+    robot: &Robot,
+    target: &IkTarget,
+    options: &super::IkOptions,
+    out: &mut IkSolutions,
+) -> Result<(), IkError> {
+    use crate::simd::Kernel;
+    if level == crate::simd::Level::Baseline {
+        SolveKernel::<S, false> { solver, robot, target, options, out }.run()
+    } else {
+        crate::simd::run_at(level, SolveKernel::<S, true> { solver, robot, target, options, out })
     }
 }
 
@@ -776,13 +818,14 @@ pub(crate) fn finish(
     solver: &'static str,
     if_empty: IkFailure,
 ) -> Result<IkSolutions, IkError> {
-    solved(|out| finish_into(robot, target, candidates, solver, if_empty, out))
+    solved(|out| finish_into::<false, _>(robot, target, candidates, solver, if_empty, out))
 }
 
 /// [`finish`] into a reused `out` (see [`finish_within_into`]), for any [`CandidateList`]: the
-/// 6R closed forms' compact [`Raw6Set`] as well as [`Candidate`]s.
+/// 6R closed forms' compact [`Raw6Set`] as well as [`Candidate`]s. `WIDE` as in
+/// [`LaneSolve::solve_lanes`] (`false` outside a [`SolveKernel`]).
 #[inline(always)]
-pub(crate) fn finish_into<C: CandidateList + ?Sized>(
+pub(crate) fn finish_into<const WIDE: bool, C: CandidateList + ?Sized>(
     robot: &Robot,
     target: &IkTarget,
     candidates: &mut C,
@@ -790,7 +833,7 @@ pub(crate) fn finish_into<C: CandidateList + ?Sized>(
     if_empty: IkFailure,
     out: &mut IkSolutions,
 ) -> Result<(), IkError> {
-    finish_within_into(robot, target, candidates, solver, if_empty, (IK_POSITION, IK_ORIENTATION), out)
+    finish_within_into::<WIDE, C>(robot, target, candidates, solver, if_empty, (IK_POSITION, IK_ORIENTATION), out)
 }
 
 /// The result of a lean solve (`f`, an [`IkSolver::solve_into`](super::IkSolver::solve_into))
@@ -811,7 +854,7 @@ pub(crate) fn finish_within(
     if_empty: IkFailure,
     tolerances: (f64, f64),
 ) -> Result<IkSolutions, IkError> {
-    solved(|out| finish_within_into(robot, target, candidates, solver, if_empty, tolerances, out))
+    solved(|out| finish_within_into::<false, _>(robot, target, candidates, solver, if_empty, tolerances, out))
 }
 
 /// The revolute values of `q` fitted into their limits ([`fit_revolute`]), in place; `false`
@@ -835,9 +878,9 @@ fn normalise(robot: &Robot, q: &mut [f64]) -> bool {
 /// before any new one is made. The result equals [`finish_within`]'s whatever `out` held.
 ///
 /// Inlined, as the lane kernel it calls, so that a closed form's [`SolveKernel`] compiles it
-/// for its SIMD level.
+/// for its SIMD level (`WIDE` as in [`LaneSolve::solve_lanes`]).
 #[inline(always)]
-pub(crate) fn finish_within_into<C: CandidateList + ?Sized>(
+pub(crate) fn finish_within_into<const WIDE: bool, C: CandidateList + ?Sized>(
     robot: &Robot,
     target: &IkTarget,
     candidates: &mut C,
@@ -860,10 +903,12 @@ pub(crate) fn finish_within_into<C: CandidateList + ?Sized>(
         let mut start = 0;
         while start < n {
             start += match n - start {
-                5.. => verify_block::<VERIFY_LANES, { VERIFY_LANES / 2 }, C>(&mut kept, &check, candidates, start)?,
-                3..=4 => verify_block::<4, 2, C>(&mut kept, &check, candidates, start)?,
-                2 => verify_block::<2, 1, C>(&mut kept, &check, candidates, start)?,
-                _ => verify_block::<1, 1, C>(&mut kept, &check, candidates, start)?,
+                5.. => {
+                    verify_block::<WIDE, VERIFY_LANES, { VERIFY_LANES / 2 }, C>(&mut kept, &check, candidates, start)?
+                }
+                3..=4 => verify_block::<WIDE, 4, 2, C>(&mut kept, &check, candidates, start)?,
+                2 => verify_block::<WIDE, 2, 1, C>(&mut kept, &check, candidates, start)?,
+                _ => verify_block::<WIDE, 1, 1, C>(&mut kept, &check, candidates, start)?,
             };
         }
     } else {
@@ -878,7 +923,7 @@ pub(crate) fn finish_within_into<C: CandidateList + ?Sized>(
                 p: std::array::from_fn(|k| [t.translation.vector[k]]),
             };
             let (position, sin, cos) = check.errors(&t);
-            kept.offer(candidates, i, position[0], check.angles(&sin, &cos)[0]);
+            kept.offer(candidates, i, position[0], check.angles::<false, 1>(&sin, &cos)[0]);
         }
     }
     let len = kept.len;
@@ -901,7 +946,7 @@ pub(crate) fn finish_within_into<C: CandidateList + ?Sized>(
 /// joint is walked once per pair, on `H = L / 2` lanes ([`Robot::fk_lanes_shared`], bit for
 /// bit the same poses); `H = L` walks every lane alone.
 #[inline(always)]
-fn verify_block<const L: usize, const H: usize, C: CandidateList + ?Sized>(
+fn verify_block<const WIDE: bool, const L: usize, const H: usize, C: CandidateList + ?Sized>(
     kept: &mut Kept<'_>,
     check: &Check,
     candidates: &mut C,
@@ -925,7 +970,7 @@ fn verify_block<const L: usize, const H: usize, C: CandidateList + ?Sized>(
         }
     }
     let shared = shared_prefix::<L, H>(robot, &mut q[..dof], &finite, len);
-    let (position, orientation) = lane_errors::<L, H>(robot, check, &q[..dof], shared);
+    let (position, orientation) = lane_errors::<WIDE, L, H>(robot, check, &q[..dof], shared);
     for l in 0..len {
         if finite[l] {
             kept.offer(candidates, start + l, position[l], orientation[l]);
@@ -1023,7 +1068,6 @@ impl Kept<'_> {
         s.within_limits = s.violations.is_empty();
         s.singularities.clear();
         s.singularities.extend(candidates.flags(i));
-        s.branch.0.clear();
         candidates.take_label(i, &mut s.branch.0);
     }
 }
@@ -1278,19 +1322,57 @@ mod tests {
                         assert_eq!(robot.fk_lanes(&one).p[0][0].to_bits(), t.p[0][l].to_bits(), "{name} {q:?}");
                         let (p, o) = scalar_errors(&target, &scalar);
                         assert_eq!(position[l].to_bits(), p.to_bits(), "{name} {q:?}");
-                        assert_eq!(check.angles(&sin, &cos)[l].to_bits(), o.to_bits(), "{name} {q:?}");
+                        assert_eq!(
+                            check.angles::<true, VERIFY_LANES>(&sin, &cos)[l].to_bits(),
+                            o.to_bits(),
+                            "{name} {q:?}"
+                        );
+                        assert_eq!(
+                            check.angles::<false, VERIFY_LANES>(&sin, &cos)[l].to_bits(),
+                            o.to_bits(),
+                            "{name} {q:?}"
+                        );
                     }
                 }
             }
         }
     }
 
-    /// The solve of `solver` for `target` at SIMD level `level` ([`SolveKernel`]).
-    fn solve_at<S: LaneSolve>(level: crate::simd::Level, solver: &S, robot: &Robot, target: &IkTarget) -> IkSolutions {
+    /// The solves of `solver` for `target` at SIMD level `level`: that of `solve_into` at this
+    /// level ([`solve_at`]), and both kernel variants ([`SolveKernel`], `WIDE` or not) run at it.
+    fn solves_at<S: LaneSolve>(
+        level: crate::simd::Level,
+        solver: &S,
+        robot: &Robot,
+        target: &IkTarget,
+    ) -> [IkSolutions; 3] {
         let options = super::super::IkOptions::default();
-        let mut out = IkSolutions::default();
-        crate::simd::run_at(level, SolveKernel { solver, robot, target, options: &options, out: &mut out }).unwrap();
-        out
+        let (mut chosen, mut wide, mut narrow) =
+            (IkSolutions::default(), IkSolutions::default(), IkSolutions::default());
+        solve_at(level, solver, robot, target, &options, &mut chosen).unwrap();
+        crate::simd::run_at(level, SolveKernel::<S, true> { solver, robot, target, options: &options, out: &mut wide })
+            .unwrap();
+        crate::simd::run_at(
+            level,
+            SolveKernel::<S, false> { solver, robot, target, options: &options, out: &mut narrow },
+        )
+        .unwrap();
+        [chosen, wide, narrow]
+    }
+
+    /// Every solve of [`solves_at`] at every level has the bits of `solve_into` at the
+    /// baseline level.
+    fn assert_same_bits_at_every_level<S: LaneSolve>(solver: &S, robot: &Robot, target: &IkTarget, what: &str) {
+        let options = super::super::IkOptions::default();
+        let mut base = IkSolutions::default();
+        solve_at(crate::simd::Level::Baseline, solver, robot, target, &options, &mut base).unwrap();
+        for level in crate::simd::levels() {
+            for (variant, solved) in
+                ["solve_into", "wide kernel", "narrow kernel"].iter().zip(solves_at(level, solver, robot, target))
+            {
+                assert_same_bits(&solved, &base, &format!("{what} at {}, {variant}", level.name()));
+            }
+        }
     }
 
     /// `a` and `b` with the same solutions, labels and flags, and the same bits in every
@@ -1343,30 +1425,15 @@ mod tests {
                 let pose = robot.fk(&q).unwrap();
                 let targets = [IkTarget::Pose(pose), IkTarget::Position(pose.translation.vector.into())];
                 for target in &targets {
-                    let base = crate::simd::Level::Baseline;
-                    for level in crate::simd::levels() {
-                        let what = format!("{name} {q:?} at {}", level.name());
-                        if let Ok(s) = &sw {
-                            assert_same_bits(
-                                &solve_at(level, s, &robot, target),
-                                &solve_at(base, s, &robot, target),
-                                &what,
-                            );
-                        }
-                        if let Ok(s) = &tw {
-                            assert_same_bits(
-                                &solve_at(level, s, &robot, target),
-                                &solve_at(base, s, &robot, target),
-                                &what,
-                            );
-                        }
-                        if let Ok(s) = &pa {
-                            assert_same_bits(
-                                &solve_at(level, s, &robot, target),
-                                &solve_at(base, s, &robot, target),
-                                &what,
-                            );
-                        }
+                    let what = format!("{name} {q:?}");
+                    if let Ok(s) = &sw {
+                        assert_same_bits_at_every_level(s, &robot, target, &what);
+                    }
+                    if let Ok(s) = &tw {
+                        assert_same_bits_at_every_level(s, &robot, target, &what);
+                    }
+                    if let Ok(s) = &pa {
+                        assert_same_bits_at_every_level(s, &robot, target, &what);
                     }
                 }
             }

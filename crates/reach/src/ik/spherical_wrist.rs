@@ -97,10 +97,11 @@ use smallvec::SmallVec;
 
 use super::{
     Branch, ChainFrame, FlagBits, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, LaneSolve, Raw6,
-    Raw6Set, SingularityKind, SolveKernel, finish_into, solved,
+    Raw6Set, SingularityKind, finish_into, solve_at, solved,
 };
-use crate::angle::{atan2, atan2_lanes, sin_cos, wrap};
-use crate::kinematics::check_q;
+use crate::angle::{atan2_each, sin_cos, sin_cos_lanes, wrap};
+use crate::kinematics::{FrameLanes, Lanes, check_q};
+use crate::model::fk_chain::DhStep;
 use crate::model::{Convention, JointKind, Robot};
 use crate::tolerance::{BOUNDARY, IK_AXIS_DISTANCE, IK_PARALLEL_SINE, STRUCTURE_ANGLE, STRUCTURE_LENGTH};
 
@@ -454,7 +455,8 @@ pub(crate) fn arm_branch(
         return Ok(None);
     }
     frame.refine(robot, target, &mut candidates);
-    let sols = solved(|out| finish_into(robot, target, &mut candidates, solver, fallback_failure(arms), out))?;
+    let sols =
+        solved(|out| finish_into::<false, _>(robot, target, &mut candidates, solver, fallback_failure(arms), out))?;
     Ok((!sols.solutions.is_empty()).then_some(sols))
 }
 
@@ -554,7 +556,12 @@ impl SphericalWrist {
     }
 
     /// Every arm solution (θ1, θ2, θ3) for the wrist centre `w`, or why there is none.
-    fn arms(&self, w: &Point3<f64>, seed: Option<&[f64; 6]>) -> Result<Arms, IkFailure> {
+    ///
+    /// The two shoulders' and four arms' angles go through their `atan2` and sines and cosines
+    /// together, in lanes ([`atan2_each`], [`sin_cos_lanes`]: bit for bit [`atan2`](crate::angle::atan2) and
+    /// [`sin_cos`]).
+    #[inline(always)]
+    fn arms<const WIDE: bool>(&self, w: &Point3<f64>, seed: Option<&[f64; 6]>) -> Result<Arms, IkFailure> {
         let [j1, j2, ..] = &self.joints;
         let d = self.lateral;
         let rho2 = w.x * w.x + w.y * w.y;
@@ -567,67 +574,90 @@ impl SphericalWrist {
         }
         let h = h2.sqrt();
         let shoulder_singular = h < IK_AXIS_DISTANCE;
-        let roots: &[f64] = if shoulder_singular { &[0.0] } else { &[1.0, -1.0] };
+        let (sides, roots) = if shoulder_singular { (1, [0.0, 0.0]) } else { (2, [1.0, -1.0]) };
+        let hs = roots.map(|side| side * h);
         let (a2, l2) = (j2.a, self.l2);
-        let mut arms = Arms::new();
+        // θ1 (eq. 4, generalised to the lateral offset d) of both shoulders: the azimuth of the
+        // wrist centre less the offset's angle. With d = 0 on the base axis the angle is
+        // undetermined: keep the seed's.
+        let [azimuth, offset0, offset1] =
+            atan2_each::<WIDE, 3>(&[w.y, -self.s1 * d, -self.s1 * d], &[w.x, hs[0], hs[1]]);
+        let theta1 = if shoulder_singular && is_zero_length(d) {
+            [free_theta(&self.joints, seed, 0); 2]
+        } else {
+            [azimuth - offset0, azimuth - offset1]
+        };
+        let (sin1, cos1) = sin_cos_lanes(&theta1);
+        // Per shoulder: the elbow triangle, or the failure of an unreachable one.
         let mut failure = None;
-        let azimuth = atan2(w.y, w.x);
-        for &side in roots {
-            let hs = side * h;
-            // θ1 (eq. 4, generalised to the lateral offset d). With d = 0 on the base axis
-            // the angle is undetermined: keep the seed's.
-            let theta1 = if shoulder_singular && is_zero_length(d) {
-                free_theta(&self.joints, seed, 0)
-            } else {
-                azimuth - atan2(-self.s1 * d, hs)
-            };
+        let mut reachable = [false; 2];
+        let (mut u, mut v, mut phi, mut cos_phi, mut r) = ([0.0; 2], [0.0; 2], [0.0; 2], [0.0; 2], [0.0; 2]);
+        for i in 0..sides {
             // P11 = A1⁻¹·P_m (eq. 9): (u, v) in the arm plane, the third component is d.
-            let sc1 = sin_cos(theta1);
-            let p11 = j1.rotation(sc1).tr_mul(&(w.coords - Vector3::new(j1.a * sc1.1, j1.a * sc1.0, j1.d)));
-            let (u, v) = (p11.x, p11.y);
-            let r = (u * u + v * v).sqrt(); // |T̄24| (eq. 12)
+            let (s1, c1) = (sin1[i], cos1[i]);
+            let p11 = j1.rotation((s1, c1)).tr_mul(&(w.coords - Vector3::new(j1.a * c1, j1.a * s1, j1.d)));
+            (u[i], v[i]) = (p11.x, p11.y);
+            r[i] = (u[i] * u[i] + v[i] * v[i]).sqrt(); // |T̄24| (eq. 12)
             // cos φ (eq. 16): |cos φ| ≤ 1 ⇔ ||a2| − L2| ≤ R ≤ |a2| + L2.
-            let cos_phi = (a2 * a2 + l2 * l2 - r * r) / (2.0 * a2 * l2);
-            if cos_phi.abs() > 1.0 + BOUNDARY {
+            cos_phi[i] = (a2 * a2 + l2 * l2 - r[i] * r[i]) / (2.0 * a2 * l2);
+            if cos_phi[i].abs() > 1.0 + BOUNDARY {
                 let outer = a2.abs() + l2;
-                let reach = if r > outer { outer } else { (a2.abs() - l2).abs() };
-                failure.get_or_insert(IkFailure::Unreachable { distance: r, reach });
+                let reach = if r[i] > outer { outer } else { (a2.abs() - l2).abs() };
+                failure.get_or_insert(IkFailure::Unreachable { distance: r[i], reach });
                 continue;
             }
-            let phi = cos_phi.clamp(-1.0, 1.0).acos();
-            let elbow_singular = 1.0 - cos_phi.abs() <= BOUNDARY;
-            let (beta, gamma) = if r > IK_AXIS_DISTANCE {
-                // β (eq. 7, x first) and γ (eq. 11). γ is taken from the same triangle as φ —
-                // cos γ = (a2 − L2·cos φ)/R = (a2² + R² − L2²)/(2·a2·R), sin γ = L2·sin φ/R —
-                // so that the two angles stay consistent near the stretched or folded elbow,
-                // where two independent `acos` disagree by ~1e-8 rad (√ of the round-off).
-                let (sin_phi, cos_phi) = sin_cos(phi);
-                (atan2(u, v), atan2(l2 * sin_phi, a2 - l2 * cos_phi))
+            reachable[i] = true;
+            phi[i] = cos_phi[i].clamp(-1.0, 1.0).acos();
+        }
+        // β (eq. 7, x first) and γ (eq. 11) of both shoulders. γ is taken from the same
+        // triangle as φ — cos γ = (a2 − L2·cos φ)/R = (a2² + R² − L2²)/(2·a2·R),
+        // sin γ = L2·sin φ/R — so that the two angles stay consistent near the stretched or
+        // folded elbow, where two independent `acos` disagree by ~1e-8 rad (√ of the round-off).
+        let (sin_phi, cos_phi_of) = sin_cos_lanes(&phi);
+        let [beta0, gamma0, beta1, gamma1] = atan2_each::<WIDE, 4>(
+            &[u[0], l2 * sin_phi[0], u[1], l2 * sin_phi[1]],
+            &[v[0], a2 - l2 * cos_phi_of[0], v[1], a2 - l2 * cos_phi_of[1]],
+        );
+        // θ2 and θ3 of the (up to) four arms, shoulder by shoulder, the triangle root s = +1
+        // first: eq. 5 and eq. 14 with the corrected branch B `−(π − φ + α)` and the α3-sign
+        // generalisation (notes 002 §4.3, §6 item 2).
+        let mut theta23 = [0.0; 8];
+        let mut count = 0;
+        for i in (0..sides).filter(|&i| reachable[i]) {
+            let (beta, gamma) = if r[i] > IK_AXIS_DISTANCE {
+                if i == 0 { (beta0, gamma0) } else { (beta1, gamma1) }
             } else {
                 // Wrist centre on axis 2 (a2 = L2, folded): θ2 undetermined, keep the seed's.
                 (FRAC_PI_2 - free_theta(&self.joints, seed, 1), 0.0)
             };
             for s in [1.0, -1.0] {
-                // eq. 5 and eq. 14 with the corrected branch B `−(π − φ + α)` and the
-                // α3-sign generalisation (notes 002 §4.3, §6 item 2).
-                let theta2 = wrap(FRAC_PI_2 - beta - s * gamma);
-                let theta3 = wrap(s * (PI - phi) + self.s3 * self.alpha);
-                let shoulder = if is_zero_length(d) {
-                    if hs < 0.0 { "back" } else { "front" }
-                } else if self.s1 * d * hs >= 0.0 {
-                    "right"
-                } else {
-                    "left"
-                };
-                let (s2, c2) = sin_cos(theta2);
+                theta23[count] = wrap(FRAC_PI_2 - beta - s * gamma);
+                theta23[4 + count] = wrap(s * (PI - phi[i]) + self.s3 * self.alpha);
+                count += 1;
+            }
+        }
+        let (sin23, cos23) = sin_cos_lanes(&theta23);
+        let mut arms = Arms::new();
+        for i in (0..sides).filter(|&i| reachable[i]) {
+            let elbow_singular = 1.0 - cos_phi[i].abs() <= BOUNDARY || r[i] <= IK_AXIS_DISTANCE;
+            let shoulder = if is_zero_length(d) {
+                if hs[i] < 0.0 { "back" } else { "front" }
+            } else if self.s1 * d * hs[i] >= 0.0 {
+                "right"
+            } else {
+                "left"
+            };
+            for _ in 0..2 {
+                let k = arms.len();
+                let (s2, c2) = (sin23[k], cos23[k]);
                 let e = (a2 * c2, a2 * s2);
                 arms.push(Arm {
-                    theta: [theta1, theta2, theta3],
-                    sin_cos: [sc1, (s2, c2), sin_cos(theta3)],
+                    theta: [theta1[i], theta23[k], theta23[4 + k]],
+                    sin_cos: [(sin1[i], cos1[i]), (s2, c2), (sin23[4 + k], cos23[4 + k])],
                     shoulder,
-                    elbow: elbow_label(self.s1, hs, u, v, e),
+                    elbow: elbow_label(self.s1, hs[i], u[i], v[i], e),
                     shoulder_singular,
-                    elbow_singular: elbow_singular || r <= IK_AXIS_DISTANCE,
+                    elbow_singular,
                 });
             }
         }
@@ -637,55 +667,104 @@ impl SphericalWrist {
         Ok(arms)
     }
 
-    /// The arguments `(n·y5, n·x5)` of θ6 = atan2(n·y5, n·x5) (eqs. 31–37, corrected: x6 = n,
-    /// arguments swapped). `n·x5` and `n·y5` are the first two components of
-    /// `R05ᵀ·n = R5ᵀ·R4ᵀ·R03ᵀ·n`: three matrix-vector products instead of two matrix products
-    /// of `T05`, from the sines and cosines of θ4 and θ5 the caller has.
-    fn theta6_args(&self, r03: &Matrix3<f64>, sc4: (f64, f64), sc5: (f64, f64), n: &Vector3<f64>) -> (f64, f64) {
-        let v = r03.tr_mul(n);
-        let v = self.joints[3].rotation(sc4).tr_mul(&v);
-        let v = self.joints[4].rotation(sc5).tr_mul(&v);
-        (v.y, v.x)
-    }
-
-    /// The wrist of one arm branch up to its three `atan2` (θ5, θ4, θ6), which the caller
-    /// evaluates for several arms at once ([`atan2_lanes`]) and hands to
-    /// [`SphericalWrist::push_wrists`].
+    /// The wrists of up to [`ARMS`] arm branches up to their three `atan2` (θ5, θ4, θ6) each,
+    /// in lanes (lane `k`: arm `k`; lanes beyond `arms` repeat arm 0, unused): the arguments
+    /// `(y, x)` of the twelve `atan2` in groups of [`ARMS`] lanes — θ5's, θ4's, θ6's — and per
+    /// arm at a wrist singularity its `(θ4, θ5)` ([`WristLanes`]). The caller evaluates the `atan2` for all arms
+    /// at once ([`atan2_each`]) and hands them to [`SphericalWrist::push_wrists`].
     ///
-    /// θ5 ∈ (0, π) (the `acos` branch, sin θ5 = |z4'| > 0) and eq. 23 with the arguments in the
-    /// corrected order (notes 002 §6 item 3), generalised to the α4/α5 signs. The arguments of
-    /// both atan2 are the sines and cosines (θ5: |z3 × a|² + (a·z3)² = 1; θ4: z4' ⊥ z3 has the
-    /// length sin θ5 in the x3–y3 plane), normalised for θ6. At a wrist singularity θ4 is kept
-    /// from the seed and θ6 takes the rest (only θ6's arguments are used).
-    fn wrist_plan(&self, arm: &Arm, flange: &IsometryMatrix3<f64>, seed: Option<&[f64; 6]>) -> WristPlan {
-        let m3 = arm.r03(&self.joints);
-        let (x3, y3, z3) = (m3.column(0).into_owned(), m3.column(1).into_owned(), m3.column(2).into_owned());
-        let r = flange.rotation.matrix();
-        let n = r.column(0).into_owned();
-        let a = r.column(2).into_owned();
-        let z4 = z3.cross(&a); // eq. 26: sin θ5 times the joint-5 axis (up to sign)
-        let sin5 = z4.norm();
-        let cos5 = -self.s4 * self.s5 * a.dot(&z3); // eq. 22, generalised sign
-        if sin5 < IK_PARALLEL_SINE {
-            let (theta5, sc5) = if cos5 >= 0.0 { (0.0, (0.0, 1.0)) } else { (PI, (0.0, -1.0)) };
-            let theta4 = free_theta(&self.joints, seed, 3);
-            let (y6, x6) = self.theta6_args(&m3, sin_cos(theta4), sc5, &n);
-            // θ5's and θ4's arguments are placeholders (any finite non-zero pair).
-            return WristPlan { y: [1.0, 1.0, y6], x: [1.0, 1.0, x6], singular: Some((theta4, theta5)) };
+    /// `R03 = R1·R2·R3` as the forward kinematics' lanes build a chain
+    /// ([`FrameLanes::rotate_z`], [`FrameLanes::mul_dh`]); `z4' = z3 × a` (eq. 26) has the length
+    /// sin θ5 and θ5 ∈ (0, π) (the `acos` branch) has `cos θ5 = −sgn(α4)·sgn(α5)·(a·z3)`
+    /// (eq. 22, generalised sign); eq. 23 with the arguments in the corrected order (notes 002
+    /// §6 item 3), generalised to the α4/α5 signs: `θ4 = atan2(g·(z4'·x3), −g·(z4'·y3))`,
+    /// g = −sgn(α5). The arguments of both are the sines and cosines (θ5: |z3 × a|² + (a·z3)² = 1;
+    /// θ4: z4' ⊥ z3 has the length sin θ5 in the x3–y3 plane), normalised for θ6: `(n·y5, n·x5)`
+    /// (eqs. 31–37, corrected: x6 = n, arguments swapped), the first two components of
+    /// `R05ᵀ·n = R5ᵀ·R4ᵀ·R03ᵀ·n` — matrix-vector products instead of the matrix products of
+    /// `T05`. At a wrist singularity (sin θ5 < [`IK_PARALLEL_SINE`]) θ4 is kept from the seed,
+    /// θ5 is 0 or π and θ6 takes the rest (only θ6's arguments are used; θ5's and θ4's are
+    /// placeholders).
+    #[inline(always)]
+    fn wrist_lanes(&self, arms: &[Arm], flange: &IsometryMatrix3<f64>, seed: Option<&[f64; 6]>) -> WristLanes {
+        debug_assert!(!arms.is_empty() && arms.len() <= ARMS);
+        let arm = |k: usize| if k < arms.len() { &arms[k] } else { &arms[0] };
+        let mut r03 = FrameLanes::<ARMS>::splat(&IsometryMatrix3::identity());
+        for (i, joint) in self.joints[..3].iter().enumerate() {
+            let s: Lanes<ARMS> = std::array::from_fn(|k| arm(k).sin_cos[i].0);
+            let c: Lanes<ARMS> = std::array::from_fn(|k| arm(k).sin_cos[i].1);
+            r03.rotate_z(&s, &c);
+            let (sin_alpha, cos_alpha) = joint.sin_cos_alpha;
+            r03.mul_dh(&DhStep { a: 0.0, d: 0.0, cos_alpha, sin_alpha });
         }
-        let g = -self.s5;
-        let (y4, x4) = (g * z4.dot(&x3), -g * z4.dot(&y3)); // eqs. 23–25
-        let norm4 = (x4 * x4 + y4 * y4).sqrt();
-        let (y6, x6) = self.theta6_args(&m3, (y4 / norm4, x4 / norm4), (sin5, cos5), &n);
-        WristPlan { y: [sin5, y4, y6], x: [cos5, x4, x6], singular: None }
+        let m = &r03.r;
+        let r = flange.rotation.matrix();
+        let (n, a) = (r.column(0), r.column(2));
+        let (g, sign5) = (-self.s5, -self.s4 * self.s5);
+        let (mut y, mut x) = ([1.0; 3 * ARMS], [1.0; 3 * ARMS]);
+        let (mut sc4, mut sc5) = (([0.0; ARMS], [0.0; ARMS]), ([0.0; ARMS], [0.0; ARMS]));
+        let mut singular = false;
+        for k in 0..ARMS {
+            let (x3, y3, z3) = (
+                [m[0][0][k], m[1][0][k], m[2][0][k]],
+                [m[0][1][k], m[1][1][k], m[2][1][k]],
+                [m[0][2][k], m[1][2][k], m[2][2][k]],
+            );
+            // eq. 26: sin θ5 times the joint-5 axis (up to sign)
+            let z4 = [z3[1] * a[2] - z3[2] * a[1], z3[2] * a[0] - z3[0] * a[2], z3[0] * a[1] - z3[1] * a[0]];
+            let sin5 = (z4[0] * z4[0] + z4[1] * z4[1] + z4[2] * z4[2]).sqrt();
+            let cos5 = sign5 * (a[0] * z3[0] + a[1] * z3[1] + a[2] * z3[2]);
+            let dot = |u: [f64; 3], v: [f64; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+            let (y4, x4) = (g * dot(z4, x3), -g * dot(z4, y3)); // eqs. 23–25
+            let norm4 = (x4 * x4 + y4 * y4).sqrt();
+            (y[k], x[k]) = (sin5, cos5);
+            (y[ARMS + k], x[ARMS + k]) = (y4, x4);
+            (sc4.0[k], sc4.1[k]) = (y4 / norm4, x4 / norm4);
+            (sc5.0[k], sc5.1[k]) = (sin5, cos5);
+            singular |= sin5 < IK_PARALLEL_SINE;
+        }
+        let mut singular_wrists = [None; ARMS];
+        if singular {
+            for k in 0..ARMS {
+                if y[k] < IK_PARALLEL_SINE {
+                    let (theta5, cos5) = if x[k] >= 0.0 { (0.0, 1.0) } else { (PI, -1.0) };
+                    let theta4 = free_theta(&self.joints, seed, 3);
+                    singular_wrists[k] = Some((theta4, theta5));
+                    (sc4.0[k], sc4.1[k]) = sin_cos(theta4);
+                    (sc5.0[k], sc5.1[k]) = (0.0, cos5);
+                    (y[k], x[k], y[ARMS + k], x[ARMS + k]) = (1.0, 1.0, 1.0, 1.0);
+                }
+            }
+        }
+        // θ6's arguments: R03ᵀ·n, then (Rz(θ4)·Rx(α4))ᵀ, then (Rz(θ5)·Rx(α5))ᵀ (x and y only).
+        let (sa4, ca4) = self.joints[3].sin_cos_alpha;
+        let (sa5, ca5) = self.joints[4].sin_cos_alpha;
+        for k in 0..ARMS {
+            let v: [f64; 3] = std::array::from_fn(|j| m[0][j][k] * n[0] + m[1][j][k] * n[1] + m[2][j][k] * n[2]);
+            let (s4, c4) = (sc4.0[k], sc4.1[k]);
+            let w = [c4 * v[0] + s4 * v[1], c4 * v[1] - s4 * v[0], v[2]];
+            let v = [w[0], ca4 * w[1] + sa4 * w[2], ca4 * w[2] - sa4 * w[1]];
+            let (s5, c5) = (sc5.0[k], sc5.1[k]);
+            let w = [c5 * v[0] + s5 * v[1], c5 * v[1] - s5 * v[0], v[2]];
+            (y[2 * ARMS + k], x[2 * ARMS + k]) = (ca5 * w[1] + sa5 * w[2], w[0]);
+        }
+        WristLanes { y, x, singular: singular_wrists }
     }
 
     /// The wrist solutions of one arm branch (only the one labelled `wrist` when given) from its
-    /// [`WristPlan`] and the plan's angles `[θ5, θ4, θ6]` (`atan2` of its arguments), appended
-    /// to `out`. The flipped wrist is `(θ4 + π, −θ5, θ6 + π)` of the other (eqs. 22–37 with
-    /// sin θ5 negated: both arguments of θ4's and of θ6's atan2 change sign), so θ4, θ5 and θ6
-    /// are computed once per arm. At a wrist singularity, one solution (`noflip`).
-    fn push_wrists(&self, arm: &Arm, plan: &WristPlan, angles: [f64; 3], wrist: Option<&str>, out: &mut Raw6Set) {
+    /// angles `[θ5, θ4, θ6]` ([`SphericalWrist::wrist_lanes`]' arguments' `atan2`; at a wrist
+    /// singularity θ4 and θ5 are `singular`'s), appended to `out`. The flipped wrist is
+    /// `(θ4 + π, −θ5, θ6 + π)` of the other (eqs. 22–37 with sin θ5 negated: both arguments of
+    /// θ4's and of θ6's atan2 change sign), so θ4, θ5 and θ6 are computed once per arm. At a
+    /// wrist singularity, one solution (`noflip`).
+    fn push_wrists(
+        &self,
+        arm: &Arm,
+        singular: Option<(f64, f64)>,
+        angles: [f64; 3],
+        wrist: Option<&str>,
+        out: &mut Raw6Set,
+    ) {
         let wanted = |label: &str| wrist.is_none_or(|w| w == label);
         let [t1, t2, t3] = arm.theta;
         let push = |out: &mut Raw6Set, theta: [f64; 6], label: &'static str, wrist_singular: bool| {
@@ -693,7 +772,7 @@ impl SphericalWrist {
             out.push(Raw6 { q: joint_values(&self.joints, &theta), values: [arm.shoulder, arm.elbow, label], flags });
         };
         let [theta5, theta4, theta6] = angles;
-        if let Some((theta4, theta5)) = plan.singular {
+        if let Some((theta4, theta5)) = singular {
             if wanted("noflip") {
                 push(out, [t1, t2, t3, theta4, theta5, theta6], "noflip", true);
             }
@@ -710,10 +789,11 @@ impl SphericalWrist {
     }
 
     /// The wrist solutions of every arm branch (only those labelled `wrist` when given),
-    /// appended to `out` in the order of `arms`: the plans of up to four arms, their twelve
-    /// `atan2` in lanes ([`atan2_lanes`], bit for bit [`atan2`]), then the solutions.
+    /// appended to `out` in the order of `arms`: up to four arms' wrists in lanes
+    /// ([`SphericalWrist::wrist_lanes`]), their twelve `atan2` in lanes ([`atan2_each`]:
+    /// together when `WIDE`, bit for bit [`atan2`](crate::angle::atan2) either way), then the solutions.
     #[inline(always)]
-    fn wrists(
+    fn wrists<const WIDE: bool>(
         &self,
         arms: &[Arm],
         flange: &IsometryMatrix3<f64>,
@@ -721,37 +801,33 @@ impl SphericalWrist {
         wrist: Option<&str>,
         out: &mut Raw6Set,
     ) {
-        const ARMS: usize = 4;
         for group in arms.chunks(ARMS) {
-            let plans: SmallVec<[WristPlan; ARMS]> =
-                group.iter().map(|arm| self.wrist_plan(arm, flange, seed)).collect();
-            // Lanes of absent arms: a finite non-zero pair, unused.
-            let (mut y, mut x) = ([1.0; 3 * ARMS], [1.0; 3 * ARMS]);
-            for (k, plan) in plans.iter().enumerate() {
-                y[3 * k..3 * k + 3].copy_from_slice(&plan.y);
-                x[3 * k..3 * k + 3].copy_from_slice(&plan.x);
-            }
-            let angles = atan2_lanes(&y, &x);
-            for (k, (arm, plan)) in group.iter().zip(&plans).enumerate() {
-                self.push_wrists(arm, plan, [angles[3 * k], angles[3 * k + 1], angles[3 * k + 2]], wrist, out);
+            let WristLanes { y, x, singular } = self.wrist_lanes(group, flange, seed);
+            let angles = atan2_each::<WIDE, { 3 * ARMS }>(&y, &x);
+            for (k, arm) in group.iter().enumerate() {
+                let arm_angles = [angles[k], angles[ARMS + k], angles[2 * ARMS + k]];
+                self.push_wrists(arm, singular[k], arm_angles, wrist, out);
             }
         }
     }
 }
 
-/// One arm's wrist before its angles ([`SphericalWrist::wrist_plan`]).
-#[derive(Debug, Clone, Copy)]
-struct WristPlan {
-    /// `(y, x)` of the `atan2` of θ5, θ4 and θ6.
-    y: [f64; 3],
-    x: [f64; 3],
-    /// At a wrist singularity: θ4 (the seed's) and θ5 (0 or π); only θ6's arguments are used.
-    singular: Option<(f64, f64)>,
+/// Arm branches whose wrists are solved together in lanes ([`SphericalWrist::wrist_lanes`]):
+/// all four of a solve.
+const ARMS: usize = 4;
+
+/// The wrists of [`ARMS`] arm branches before their angles ([`SphericalWrist::wrist_lanes`]).
+struct WristLanes {
+    /// `(y, x)` of the `atan2` of θ5 (lanes `0..ARMS`), θ4 (`ARMS..2·ARMS`) and θ6.
+    y: [f64; 3 * ARMS],
+    x: [f64; 3 * ARMS],
+    /// Per arm at a wrist singularity: θ4 (the seed's) and θ5 (0 or π).
+    singular: [Option<(f64, f64)>; ARMS],
 }
 
 impl LaneSolve for SphericalWrist {
     #[inline(always)]
-    fn solve_lanes(
+    fn solve_lanes<const WIDE: bool>(
         &self,
         robot: &Robot,
         target: &IkTarget,
@@ -762,14 +838,16 @@ impl LaneSolve for SphericalWrist {
         let seed = seed_thetas(&self.joints, options)?;
         let flange = flange_goal(robot, &self.frame, target, options)?;
         let w = wrist_centre(&flange, self.joints[5].d);
-        let arms = match self.arms(&w, seed.as_ref()) {
+        let arms = match self.arms::<WIDE>(&w, seed.as_ref()) {
             Ok(arms) => arms,
-            Err(failure) => return finish_into(robot, target, &mut Raw6Set::new(ARM_KEYS), NAME, failure, out),
+            Err(failure) => {
+                return finish_into::<WIDE, _>(robot, target, &mut Raw6Set::new(ARM_KEYS), NAME, failure, out);
+            }
         };
         let mut candidates = Raw6Set::new(ARM_KEYS);
-        self.wrists(&arms, &flange, seed.as_ref(), None, &mut candidates);
+        self.wrists::<WIDE>(&arms, &flange, seed.as_ref(), None, &mut candidates);
         self.frame.refine(robot, target, &mut candidates);
-        finish_into(robot, target, &mut candidates, NAME, fallback_failure(&arms), out)
+        finish_into::<WIDE, _>(robot, target, &mut candidates, NAME, fallback_failure(&arms), out)
     }
 }
 
@@ -789,7 +867,7 @@ impl IkSolver for SphericalWrist {
         options: &IkOptions,
         out: &mut IkSolutions,
     ) -> Result<(), IkError> {
-        crate::simd::run(SolveKernel { solver: self, robot, target, options, out })
+        solve_at(crate::simd::level(), self, robot, target, options, out)
     }
 
     /// Only the requested branch's arm and wrist are computed and verified (see
@@ -805,9 +883,9 @@ impl IkSolver for SphericalWrist {
         let seed = seed_thetas(&self.joints, options)?;
         let flange = flange_goal(robot, &self.frame, target, options)?;
         let w = wrist_centre(&flange, self.joints[5].d);
-        if let Ok(arms) = self.arms(&w, seed.as_ref())
+        if let Ok(arms) = self.arms::<false>(&w, seed.as_ref())
             && let Some(sols) = arm_branch(robot, &self.frame, target, branch, NAME, &arms, |arm, out| {
-                self.wrists(std::slice::from_ref(arm), &flange, seed.as_ref(), branch.get("wrist"), out);
+                self.wrists::<false>(std::slice::from_ref(arm), &flange, seed.as_ref(), branch.get("wrist"), out);
             })?
         {
             return Ok(sols);

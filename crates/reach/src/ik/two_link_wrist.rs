@@ -93,7 +93,7 @@ use super::spherical_wrist::{
 };
 use super::{
     Branch, ChainFrame, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, LaneSolve, Raw6, Raw6Set,
-    SingularityKind, SolveKernel, finish_into, solved,
+    SingularityKind, finish_into, solve_at, solved,
 };
 use crate::angle::{atan2, sin_cos};
 use crate::model::Robot;
@@ -290,7 +290,7 @@ impl TwoLinkWrist {
 
 impl LaneSolve for TwoLinkWrist {
     #[inline(always)]
-    fn solve_lanes(
+    fn solve_lanes<const WIDE: bool>(
         &self,
         robot: &Robot,
         target: &IkTarget,
@@ -303,14 +303,16 @@ impl LaneSolve for TwoLinkWrist {
         let w = wrist_centre(&flange, self.joints[5].d);
         let arms = match self.arms(&w, seed.as_ref()) {
             Ok(arms) => arms,
-            Err(failure) => return finish_into(robot, target, &mut Raw6Set::new(ARM_KEYS), NAME, failure, out),
+            Err(failure) => {
+                return finish_into::<WIDE, _>(robot, target, &mut Raw6Set::new(ARM_KEYS), NAME, failure, out);
+            }
         };
         let mut candidates = Raw6Set::new(ARM_KEYS);
         for arm in &arms {
             self.wrists(arm, &flange, seed.as_ref(), &mut candidates);
         }
         self.frame.refine(robot, target, &mut candidates);
-        finish_into(robot, target, &mut candidates, NAME, fallback_failure(&arms), out)
+        finish_into::<WIDE, _>(robot, target, &mut candidates, NAME, fallback_failure(&arms), out)
     }
 }
 
@@ -330,7 +332,7 @@ impl IkSolver for TwoLinkWrist {
         options: &IkOptions,
         out: &mut IkSolutions,
     ) -> Result<(), IkError> {
-        crate::simd::run(SolveKernel { solver: self, robot, target, options, out })
+        solve_at(crate::simd::level(), self, robot, target, options, out)
     }
 
     /// Only the requested branch's arm and wrist are verified (see
