@@ -408,23 +408,6 @@ pub fn atan2_lanes<const L: usize>(y: &[f64; L], x: &[f64; L]) -> [f64; L] {
     out
 }
 
-/// [`sin_cos`] of every lane, as the lane kernels evaluate it: [`sin_cos_lanes`] when `WIDE`,
-/// else [`sin_cos`] lane by lane — the same bits either way (the choice of [`atan2_each`]).
-#[must_use]
-#[inline(always)]
-pub(crate) fn sin_cos_each<const WIDE: bool, const L: usize>(x: &[f64; L]) -> ([f64; L], [f64; L]) {
-    if WIDE {
-        sin_cos_lanes(x)
-    } else {
-        let mut s = [0.0; L];
-        let mut c = [0.0; L];
-        for l in 0..L {
-            (s[l], c[l]) = sin_cos(x[l]);
-        }
-        (s, c)
-    }
-}
-
 /// [`atan2`] of every lane, as the lane kernels evaluate it: [`atan2_lanes`] (the lanes
 /// together, branch-free) when `WIDE`, else [`atan2`] lane by lane — the same bits either way.
 ///

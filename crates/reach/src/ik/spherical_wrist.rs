@@ -99,7 +99,7 @@ use super::{
     Branch, ChainFrame, FlagBits, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, LaneSolve, Raw6,
     Raw6Set, SingularityKind, finish_into, solve_at, solved,
 };
-use crate::angle::{atan2_each, sin_cos, sin_cos_each, wrap};
+use crate::angle::{atan2_each, sin_cos, sin_cos_lanes, wrap};
 use crate::kinematics::{FrameLanes, Lanes, check_q};
 use crate::model::fk_chain::DhStep;
 use crate::model::{Convention, JointKind, Robot};
@@ -558,8 +558,8 @@ impl SphericalWrist {
     /// Every arm solution (θ1, θ2, θ3) for the wrist centre `w`, or why there is none.
     ///
     /// The two shoulders' and four arms' angles go through their `atan2` and sines and cosines
-    /// together, in lanes ([`atan2_each`], [`sin_cos_each`]: bit for bit [`atan2`](crate::angle::atan2)
-    /// and [`sin_cos`]).
+    /// together, in lanes ([`atan2_each`], [`sin_cos_lanes`]: bit for bit [`atan2`](crate::angle::atan2) and
+    /// [`sin_cos`]).
     #[inline(always)]
     fn arms<const WIDE: bool>(&self, w: &Point3<f64>, seed: Option<&[f64; 6]>) -> Result<Arms, IkFailure> {
         let [j1, j2, ..] = &self.joints;
@@ -587,7 +587,7 @@ impl SphericalWrist {
         } else {
             [azimuth - offset0, azimuth - offset1]
         };
-        let (sin1, cos1) = sin_cos_each::<WIDE, 2>(&theta1);
+        let (sin1, cos1) = sin_cos_lanes(&theta1);
         // Per shoulder: the elbow triangle, or the failure of an unreachable one.
         let mut failure = None;
         let mut reachable = [false; 2];
@@ -613,7 +613,7 @@ impl SphericalWrist {
         // triangle as φ — cos γ = (a2 − L2·cos φ)/R = (a2² + R² − L2²)/(2·a2·R),
         // sin γ = L2·sin φ/R — so that the two angles stay consistent near the stretched or
         // folded elbow, where two independent `acos` disagree by ~1e-8 rad (√ of the round-off).
-        let (sin_phi, cos_phi_of) = sin_cos_each::<WIDE, 2>(&phi);
+        let (sin_phi, cos_phi_of) = sin_cos_lanes(&phi);
         let [beta0, gamma0, beta1, gamma1] = atan2_each::<WIDE, 4>(
             &[u[0], l2 * sin_phi[0], u[1], l2 * sin_phi[1]],
             &[v[0], a2 - l2 * cos_phi_of[0], v[1], a2 - l2 * cos_phi_of[1]],
@@ -636,7 +636,7 @@ impl SphericalWrist {
                 count += 1;
             }
         }
-        let (sin23, cos23) = sin_cos_each::<WIDE, 8>(&theta23);
+        let (sin23, cos23) = sin_cos_lanes(&theta23);
         let mut arms = Arms::new();
         for i in (0..sides).filter(|&i| reachable[i]) {
             let elbow_singular = 1.0 - cos_phi[i].abs() <= BOUNDARY || r[i] <= IK_AXIS_DISTANCE;
