@@ -260,25 +260,43 @@ fn atan_small(t: f64) -> f64 {
     t * (1.0 + t2 * (-1.0 / 3.0 + t2 * (1.0 / 5.0 - t2 * (1.0 / 7.0))))
 }
 
+/// Slots of a segment's arrays ([`ScanSegment`], [`RotationSteps`]): the anchor (slot 0) and
+/// [`SCAN_ANCHOR_ROWS`] more, one beyond the segment's last row, so that the passes over the
+/// rows run over a whole number of vectors at every level (no scalar remainder); the values
+/// of slots past a segment's rows are computed and never used.
+const SEGMENT_SLOTS: usize = SCAN_ANCHOR_ROWS + 1;
+
 /// `(sin, cos)` of `α_anchor + j·Δ` for `j` below [`SCAN_ANCHOR_ROWS`] by angle addition from
 /// the anchor's exact `(sin, cos)` and a table of `(sin jΔ, cos jΔ)`: no error accumulates
 /// from row to row (each value is a 2-term product of correctly evaluated factors, within a
 /// few units in the last place of the exact one).
 #[derive(Debug, Clone)]
 struct RotationSteps {
-    table: Vec<(f64, f64)>,
+    /// `sin jΔ` and `cos jΔ` per slot `j` (`0` and `1` beyond the rows asked for).
+    sin: [f64; SEGMENT_SLOTS],
+    cos: [f64; SEGMENT_SLOTS],
 }
 
 impl RotationSteps {
-    /// The rotations by `0, Δ, …, (rows − 1)·Δ`.
+    /// The rotations by `0, Δ, …, (rows − 1)·Δ` (at least; [`crate::angle::sin_cos`] of each,
+    /// evaluated 8 at a time by [`crate::angle::sin_cos_lanes`], the same bits).
     fn new(step: f64, rows: usize) -> Self {
-        RotationSteps { table: (0..rows).map(|j| crate::angle::sin_cos(j as f64 * step)).collect() }
+        const LANES: usize = 8;
+        let mut steps = RotationSteps { sin: [0.0; SEGMENT_SLOTS], cos: [1.0; SEGMENT_SLOTS] };
+        for start in (0..rows.min(SEGMENT_SLOTS)).step_by(LANES) {
+            let angles: [f64; LANES] = std::array::from_fn(|l| (start + l) as f64 * step);
+            let (s, c) = crate::angle::sin_cos_lanes(&angles);
+            let len = LANES.min(SEGMENT_SLOTS - start);
+            steps.sin[start..start + len].copy_from_slice(&s[..len]);
+            steps.cos[start..start + len].copy_from_slice(&c[..len]);
+        }
+        steps
     }
 
-    /// `(sin, cos)` of the anchor's angle turned by `j` steps (`j <` the table's length).
+    /// `(sin, cos)` of the anchor's angle turned by `j` steps (`j <` [`SEGMENT_SLOTS`]).
     #[inline(always)]
     fn turn(&self, (s, c): (f64, f64), j: usize) -> (f64, f64) {
-        let (sj, cj) = self.table[j];
+        let (sj, cj) = (self.sin[j], self.cos[j]);
         (s * cj + c * sj, c * cj - s * sj)
     }
 }
@@ -375,12 +393,12 @@ fn small_turn(cross: f64, dot: f64) -> bool {
 /// polynomials overlap (and pair up in vector instructions) instead of waiting on each other.
 struct ScanSegment {
     /// Direction vectors of `γ1` and `β` per row (components as separate arrays).
-    g: [[f64; SCAN_ANCHOR_ROWS]; 2],
-    b: [[f64; SCAN_ANCHOR_ROWS]; 2],
+    g: [[f64; SEGMENT_SLOTS]; 2],
+    b: [[f64; SEGMENT_SLOTS]; 2],
     /// Per row: the turns of `γ1` and `β` from the previous row (NaN where the row is not
     /// decidable incrementally), then the angles themselves.
-    gamma1: [f64; SCAN_ANCHOR_ROWS],
-    beta: [f64; SCAN_ANCHOR_ROWS],
+    gamma1: [f64; SEGMENT_SLOTS],
+    beta: [f64; SEGMENT_SLOTS],
     /// The finished rows ([`Self::finish`]).
     rows: SegmentRows,
 }
@@ -388,16 +406,16 @@ struct ScanSegment {
 impl ScanSegment {
     fn new() -> Box<Self> {
         Box::new(ScanSegment {
-            g: [[0.0; SCAN_ANCHOR_ROWS]; 2],
-            b: [[0.0; SCAN_ANCHOR_ROWS]; 2],
-            gamma1: [0.0; SCAN_ANCHOR_ROWS],
-            beta: [0.0; SCAN_ANCHOR_ROWS],
+            g: [[0.0; SEGMENT_SLOTS]; 2],
+            b: [[0.0; SEGMENT_SLOTS]; 2],
+            gamma1: [0.0; SEGMENT_SLOTS],
+            beta: [0.0; SEGMENT_SLOTS],
             rows: SegmentRows {
-                alpha: [0.0; SCAN_ANCHOR_ROWS],
-                beta: [0.0; SCAN_ANCHOR_ROWS],
-                gamma: [0.0; SCAN_ANCHOR_ROWS],
-                q: [[0.0; SCAN_ANCHOR_ROWS]; 3],
-                as_is: [false; SCAN_ANCHOR_ROWS],
+                alpha: [0.0; SEGMENT_SLOTS],
+                beta: [0.0; SEGMENT_SLOTS],
+                gamma: [0.0; SEGMENT_SLOTS],
+                q: [[0.0; SEGMENT_SLOTS]; 3],
+                as_is: [false; SEGMENT_SLOTS],
                 index: std::array::from_fn(|j| j as f64),
                 block: [ScanRow {
                     paper: InteriorAngles { alpha: 0.0, beta: 0.0, gamma: 0.0 },
@@ -421,13 +439,13 @@ impl ScanSegment {
         let (g, b) = (&mut self.g, &mut self.b);
         [g[0][0], g[1][0], b[0][0], b[1][0]] = [track.g[0], track.g[1], track.b[0], track.b[1]];
         // Pass 1: each row's direction vectors (NaN where ill conditioned).
-        for j in 1..n {
+        for j in 1..SEGMENT_SLOTS {
             let (conditioned, gj, bj) = frame.vectors_unchecked(steps.turn(track.trig, j));
             let keep = |v: f64| if conditioned { v } else { f64::NAN };
             [g[0][j], g[1][j], b[0][j], b[1][j]] = [keep(gj[0]), keep(gj[1]), keep(bj[0]), keep(bj[1])];
         }
         // Pass 2: each row's turns from the previous row (NaN `β` turn where not small).
-        for j in 1..n {
+        for j in 1..SEGMENT_SLOTS {
             let (cross_g, dot_g) = cross_dot([g[0][j - 1], g[1][j - 1]], [g[0][j], g[1][j]]);
             let (cross_b, dot_b) = cross_dot([b[0][j - 1], b[1][j - 1]], [b[0][j], b[1][j]]);
             // One division for both tangents.
@@ -449,9 +467,9 @@ impl ScanSegment {
         // chain bends back at B (β > 180°) is decided only with a margin far above the
         // increments' error; near the limit (or NaN) the row is computed directly.
         let mut first = n;
-        for j in 1..n {
+        for j in 1..SEGMENT_SLOTS {
             let decidable = (self.beta[j] - PI * (1.0 + BOUNDARY)).abs() > SCAN_DECISION_MARGIN;
-            first = first.min(if decidable { n } else { j });
+            first = first.min(if decidable | (j >= n) { n } else { j });
         }
         first
     }
@@ -463,14 +481,14 @@ impl ScanSegment {
 /// rows that test fails), written with one `extend`.
 struct SegmentRows {
     /// Per row: `α`, `β` clamped to 180°, `γ`, and the joint values before the fit.
-    alpha: [f64; SCAN_ANCHOR_ROWS],
-    beta: [f64; SCAN_ANCHOR_ROWS],
-    gamma: [f64; SCAN_ANCHOR_ROWS],
-    q: [[f64; SCAN_ANCHOR_ROWS]; 3],
+    alpha: [f64; SEGMENT_SLOTS],
+    beta: [f64; SEGMENT_SLOTS],
+    gamma: [f64; SEGMENT_SLOTS],
+    q: [[f64; SEGMENT_SLOTS]; 3],
     /// Whether the row's joint values are within the limits as they are.
-    as_is: [bool; SCAN_ANCHOR_ROWS],
+    as_is: [bool; SEGMENT_SLOTS],
     /// `j as f64` per row `j` (loaded with the other arrays instead of converted per row).
-    index: [f64; SCAN_ANCHOR_ROWS],
+    index: [f64; SEGMENT_SLOTS],
     /// The rows themselves, appended to the scan's with one copy.
     block: [ScanRow; SCAN_ANCHOR_ROWS],
 }
@@ -490,10 +508,10 @@ impl ScanSegment {
         // Pass 4: each row's angles, joint values and whether they fit as they are; whether
         // any row bends back at B (`finish_row` gives no row there).
         let mut bent_back = false;
-        for j in 1..n {
+        for j in 1..SEGMENT_SLOTS {
             let alpha = alpha_min + (first + out.index[j]) * step;
             let beta = self.beta[j];
-            bent_back |= beta > PI * (1.0 + BOUNDARY);
+            bent_back |= (beta > PI * (1.0 + BOUNDARY)) & (j < n);
             let beta = beta.min(PI);
             let gamma = self.gamma1[j] + gamma2;
             let q = arm.row_joints(alpha, beta, gamma);
