@@ -417,6 +417,11 @@ impl ScanSegment {
                 q: [[0.0; SEGMENT_SLOTS]; 3],
                 as_is: [false; SEGMENT_SLOTS],
                 index: std::array::from_fn(|j| j as f64),
+                block: [ScanRow {
+                    paper: InteriorAngles { alpha: 0.0, beta: 0.0, gamma: 0.0 },
+                    q: [0.0; 3],
+                    within_limits: false,
+                }; SCAN_ANCHOR_ROWS],
             },
         })
     }
@@ -473,7 +478,7 @@ impl ScanSegment {
 /// The rows `1 .. n` of a segment, finished: [`PlanarRedundant::finish_row`]'s rows, bit for
 /// bit, in structure-of-arrays passes (the joint values and the test that their fit into the
 /// limits leaves them as they are, for all rows; [`PlanarRedundant::fit_row`] only for the
-/// rows that test fails), then written in place into the scan's rows.
+/// rows that test fails), written with one `extend`.
 struct SegmentRows {
     /// Per row: `α`, `β` clamped to 180°, `γ`, and the joint values before the fit.
     alpha: [f64; SEGMENT_SLOTS],
@@ -484,6 +489,8 @@ struct SegmentRows {
     as_is: [bool; SEGMENT_SLOTS],
     /// `j as f64` per row `j` (loaded with the other arrays instead of converted per row).
     index: [f64; SEGMENT_SLOTS],
+    /// The rows themselves, appended to the scan's with one copy.
+    block: [ScanRow; SCAN_ANCHOR_ROWS],
 }
 
 impl ScanSegment {
@@ -512,33 +519,24 @@ impl ScanSegment {
             [out.q[0][j], out.q[1][j], out.q[2][j]] = q;
             out.as_is[j] = arm.fits_as_is(&q);
         }
-        // The rows, written straight into `rows` (one `resize`, then each row in place), the
-        // fit into the limits taken only where the values do not fit as they are.
-        let out = &self.rows;
-        let start = rows.len();
-        let m = n - 1;
-        rows.resize(start + m, ScanRow::EMPTY);
-        let fields = (&out.alpha[1..n], &out.beta[1..n], &out.gamma[1..n], &out.as_is[1..n]);
-        let q = [&out.q[0][1..n], &out.q[1][1..n], &out.q[2][1..n]];
-        for (k, row) in rows[start..].iter_mut().enumerate() {
-            let raw = [q[0][k], q[1][k], q[2][k]];
-            let (q, within_limits) = if fields.3[k] { (raw, true) } else { arm.fit_row(raw) };
+        // The rows, the fit into the limits taken only where the values do not fit as they are.
+        let out = &mut self.rows;
+        for (j, row) in out.block[..n].iter_mut().enumerate().skip(1) {
+            let raw = [out.q[0][j], out.q[1][j], out.q[2][j]];
+            let (q, within_limits) = if out.as_is[j] { (raw, true) } else { arm.fit_row(raw) };
             *row = ScanRow {
-                paper: InteriorAngles { alpha: fields.0[k], beta: fields.1[k], gamma: fields.2[k] },
+                paper: InteriorAngles { alpha: out.alpha[j], beta: out.beta[j], gamma: out.gamma[j] },
                 q,
                 within_limits,
             };
         }
+        let block = &out.block[1..n];
         if bent_back {
-            // Keep the rows `finish_row` keeps (`β` of a decided row is not NaN), in order.
-            let mut kept = start;
-            for k in 0..m {
-                if self.beta[k + 1] <= PI * (1.0 + BOUNDARY) {
-                    rows[kept] = rows[start + k];
-                    kept += 1;
-                }
-            }
-            rows.truncate(kept);
+            // The rows `finish_row` keeps (`β` of a decided row is not NaN).
+            let keep = |(_, beta): &(&ScanRow, &f64)| **beta <= PI * (1.0 + BOUNDARY);
+            rows.extend(block.iter().zip(&self.beta[1..n]).filter(keep).map(|(row, _)| *row));
+        } else {
+            rows.extend_from_slice(block);
         }
     }
 }
@@ -1171,12 +1169,6 @@ pub struct ScanRow {
     pub q: [f64; 3],
     /// Whether `q` is within the robot's joint limits.
     pub within_limits: bool,
-}
-
-impl ScanRow {
-    /// A placeholder row (all zero), overwritten before it is read.
-    const EMPTY: ScanRow =
-        ScanRow { paper: InteriorAngles { alpha: 0.0, beta: 0.0, gamma: 0.0 }, q: [0.0; 3], within_limits: false };
 }
 
 /// The thesis's configuration table for one target.
