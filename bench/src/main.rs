@@ -6,11 +6,13 @@
 //! ```
 //!
 //! Peers: [`rs-opw-kinematics`](https://crates.io/crates/rs-opw-kinematics) 3.0 (closed-form
-//! OPW kinematics: arms with an orthogonal parallel base and a spherical wrist, so the Puma 560
-//! only; its Jacobian is by finite differences) and [`k`](https://crates.io/crates/k) 0.32
-//! (general chains of nodes; Jacobian; a Jacobian-pseudo-inverse IK from the current joint
-//! values). Each peer is built from reach's own preset and checked against reach's forward
-//! kinematics to 1e-9 before anything is timed, so both solve the same chain.
+//! OPW kinematics: arms with an orthogonal parallel base and a spherical wrist; here the
+//! Puma 560 preset and the KUKA KR 16-2 read from its URDF file, which reach solves in closed
+//! form found from the geometry; its Jacobian is by finite differences) and
+//! [`k`](https://crates.io/crates/k) 0.32 (general chains of nodes; Jacobian; a
+//! Jacobian-pseudo-inverse IK from the current joint values; UR5 and Puma 560). Each peer is
+//! built from the same robot as reach and checked against reach's forward kinematics to 1e-9
+//! before anything is timed, so both solve the same chain.
 //!
 //! Timing: for every comparison, rounds alternate between reach and the peer (each round one
 //! pass over all poses), after a warm-up pass each; the reported time per call is the median
@@ -195,13 +197,16 @@ fn k_fk(arm: &k::SerialChain<f64>, q: &[f64]) -> k::Isometry3<f64> {
     arm.end_transform()
 }
 
-/// Largest position (m) and rotation (rad) difference.
+/// Largest position (m) and rotation (rad) difference; the angle from the relative
+/// quaternion's vector part (`2·asin |v|`), exact near 0 where `acos` of its scalar part reads
+/// rounding as 1e-8 rad.
 fn pose_gap(a: &Isometry3<f64>, b: &Isometry3<f64>) -> (f64, f64) {
-    ((a.translation.vector - b.translation.vector).norm(), a.rotation.angle_to(&b.rotation))
+    let v = (a.rotation.inverse() * b.rotation).imag().norm();
+    ((a.translation.vector - b.translation.vector).norm(), 2.0 * v.min(1.0).asin())
 }
 
 // ------------------------------------------------------------------------------------------
-// rs-opw-kinematics: the Puma 560 as OPW parameters, signs and offsets found by search.
+// rs-opw-kinematics: OPW parameters of reach's robots, signs and offsets found by search.
 // ------------------------------------------------------------------------------------------
 
 fn opw_pose(p: &Pose) -> Isometry3<f64> {
@@ -223,12 +228,10 @@ fn joints6(q: &[f64]) -> Joints {
     [q[0], q[1], q[2], q[3], q[4], q[5]]
 }
 
-/// OPW parameters of reach's `puma560` preset, in reach's joint coordinates: geometry from the
-/// DH table (a1 = 0, a2 = ∓a3, b = ±d3, c1 = d1, c2 = a2, c3 = d4, c4 = d6); the signs of
-/// a2 and b and every joint's sign and offset are found by search so that rs-opw's forward
-/// kinematics equals reach's, up to a constant rotation of the flange frame, which is
-/// returned (`reach flange = opw flange · C`).
-fn opw_puma(robot: &Robot, qs: &[Vec<f64>]) -> (OPWKinematics, Rotation3<f64>) {
+/// OPW geometries of reach's `puma560` preset, in reach's joint coordinates: from the DH
+/// table (a1 = 0, a2 = ∓a3, b = ±d3, c1 = d1, c2 = a2, c3 = d4, c4 = d6), both signs of a2
+/// and b (the search in [`opw_match`] keeps the one that reproduces reach).
+fn opw_puma_geometries(robot: &Robot) -> Vec<Parameters> {
     let dh: Vec<_> = robot
         .joints()
         .iter()
@@ -237,59 +240,106 @@ fn opw_puma(robot: &Robot, qs: &[Vec<f64>]) -> (OPWKinematics, Rotation3<f64>) {
             _ => panic!("puma560 is DH"),
         })
         .collect();
+    let mut out = Vec::new();
+    for s_a2 in [1.0, -1.0] {
+        for s_b in [1.0, -1.0] {
+            out.push(Parameters {
+                a1: 0.0,
+                a2: s_a2 * dh[2].a,
+                b: s_b * dh[2].d,
+                c1: dh[0].d,
+                c2: dh[1].a,
+                c3: dh[3].d,
+                c4: dh[5].d,
+                offsets: [0.0; 6],
+                sign_corrections: [1; 6],
+                dof: 6,
+            });
+        }
+    }
+    out
+}
+
+/// OPW geometries of the KUKA KR 16-2 as its URDF file gives it
+/// (`examples/urdf/kuka_kr16_support/urdf/kr16_2.urdf`: joint a1 at z 0.675, a2 at x 0.26,
+/// a3 0.68 further, a4 at x 0.67 z −0.035, tool0 0.158 past the wrist centre), both signs of
+/// a2 (the search in [`opw_match`] keeps the one that reproduces reach).
+fn opw_kr16_geometries() -> Vec<Parameters> {
+    [-0.035, 0.035]
+        .map(|a2| Parameters {
+            a1: 0.26,
+            a2,
+            b: 0.0,
+            c1: 0.675,
+            c2: 0.68,
+            c3: 0.67,
+            c4: 0.158,
+            offsets: [0.0; 6],
+            sign_corrections: [1; 6],
+            dof: 6,
+        })
+        .to_vec()
+}
+
+/// The wrist centre of a flange `pose` whose z axis is the last joint's, `c4` metres back.
+fn wrist_centre(pose: &Isometry3<f64>, c4: f64) -> Vector3<f64> {
+    pose.translation.vector - c4 * (pose.rotation * Vector3::z())
+}
+
+/// rs-opw parameters that reproduce `robot`'s forward kinematics up to a constant rotation of
+/// the flange frame, which is returned (`reach flange = opw flange · C`): among `geometries`,
+/// every joint's sign and offset (0, ±π/2, π) found by search on five of `qs` (wrist centres to
+/// 1e-9 m for the arm's joints, then positions to 1e-9 m and the flange rotation's constant C
+/// to 1e-9 rad for the wrist's; reach's flange z must be the last joint's axis). The caller
+/// checks the result on all poses.
+fn opw_match(name: &str, robot: &Robot, geometries: &[Parameters], qs: &[Vec<f64>]) -> (OPWKinematics, Rotation3<f64>) {
     let offsets = [0.0, PI / 2.0, PI, -PI / 2.0];
     let probe = &qs[..5];
     let reach_poses: Vec<Isometry3<f64>> = probe.iter().map(|q| robot.fk(q).expect("fk")).collect();
     let choices = |k: usize| (k % 2, (k / 2) % 4); // (sign index, offset index)
-    let params = |s_a2: f64, s_b: f64, sign: [i8; 6], off: [f64; 6]| Parameters {
-        a1: 0.0,
-        a2: s_a2 * dh[2].a,
-        b: s_b * dh[2].d,
-        c1: dh[0].d,
-        c2: dh[1].a,
-        c3: dh[3].d,
-        c4: dh[5].d,
-        offsets: off,
-        sign_corrections: sign,
-        dof: 6,
+    let with = |g: &Parameters, sign: [i8; 6], off: [f64; 6]| {
+        OPWKinematics::new(Parameters { offsets: off, sign_corrections: sign, ..*g })
     };
-    for s_a2 in [1.0, -1.0] {
-        for s_b in [1.0, -1.0] {
-            for arm in 0..512 {
-                let mut sign = [1i8; 6];
-                let mut off = [0.0; 6];
-                for j in 0..3 {
-                    let (s, o) = choices(arm >> (3 * j));
+    for geometry in geometries {
+        for arm in 0..512 {
+            let mut sign = [1i8; 6];
+            let mut off = [0.0; 6];
+            for j in 0..3 {
+                let (s, o) = choices(arm >> (3 * j));
+                sign[j] = if s == 0 { 1 } else { -1 };
+                off[j] = offsets[o];
+            }
+            let opw = with(geometry, sign, off);
+            let centres_match = probe.iter().zip(&reach_poses).all(|(q, t)| {
+                (wrist_centre(&opw_pose(&opw.forward(&joints6(q))), geometry.c4) - wrist_centre(t, geometry.c4)).norm()
+                    < 1e-9
+            });
+            if !centres_match {
+                continue;
+            }
+            for wrist in 0..512 {
+                for j in 3..6 {
+                    let (s, o) = choices(wrist >> (3 * (j - 3)));
                     sign[j] = if s == 0 { 1 } else { -1 };
                     off[j] = offsets[o];
                 }
-                let opw = OPWKinematics::new(params(s_a2, s_b, sign, off));
+                let opw = with(geometry, sign, off);
+                let c = |k: usize| {
+                    let r_opw = opw_pose(&opw.forward(&joints6(&probe[k]))).rotation.to_rotation_matrix();
+                    r_opw.inverse() * reach_poses[k].rotation.to_rotation_matrix()
+                };
+                let c0 = c(0);
                 let positions_match = probe.iter().zip(&reach_poses).all(|(q, t)| {
                     (opw_pose(&opw.forward(&joints6(q))).translation.vector - t.translation.vector).norm() < 1e-9
                 });
-                if !positions_match {
-                    continue;
-                }
-                for wrist in 0..512 {
-                    for j in 3..6 {
-                        let (s, o) = choices(wrist >> (3 * (j - 3)));
-                        sign[j] = if s == 0 { 1 } else { -1 };
-                        off[j] = offsets[o];
-                    }
-                    let opw = OPWKinematics::new(params(s_a2, s_b, sign, off));
-                    let c = |k: usize| {
-                        let r_opw = opw_pose(&opw.forward(&joints6(&probe[k]))).rotation.to_rotation_matrix();
-                        r_opw.inverse() * reach_poses[k].rotation.to_rotation_matrix()
-                    };
-                    let c0 = c(0);
-                    if (1..probe.len()).all(|k| c(k).angle_to(&c0) < 1e-9) {
-                        return (opw, c0);
-                    }
+                // Compared as matrices: an angle by `acos` reads rounding as 1e-8 rad.
+                if positions_match && (1..probe.len()).all(|k| (c(k).matrix() - c0.matrix()).norm() < 1e-9) {
+                    return (opw, c0);
                 }
             }
         }
     }
-    panic!("no OPW parameters reproduce reach's puma560");
+    panic!("no OPW parameters reproduce reach's {name}");
 }
 
 /// The usage line, printed with an error for a bad argument.
@@ -437,97 +487,119 @@ fn main() {
         );
         row(name, "numeric IK", "k JacobianIkSolver", ik, &note);
 
-        if name != "puma560" {
-            continue;
+        if name == "puma560" {
+            let (opw, c) = opw_match(name, &robot, &opw_puma_geometries(&robot), &qs);
+            vs_rs_opw(name, &robot, &opw, c, &qs, rounds, &row);
         }
-        // --- rs-opw-kinematics: Puma 560 only (OPW geometry).
-        let (opw, c) = opw_puma(&robot, &qs);
-        for q in &qs {
-            let t = opw_pose(&opw.forward(&joints6(q)));
-            let t = Isometry3::from_parts(t.translation, t.rotation * UnitQuaternion::from_rotation_matrix(&c));
-            let (dp, da) = pose_gap(&t, &robot.fk(q).expect("fk"));
-            assert!(dp < 1e-9 && da < 1e-9, "puma560: OPW parameters differ from reach by {dp} m, {da} rad");
-        }
-        let q6: Vec<Joints> = qs.iter().map(|q| joints6(q)).collect();
-        let fk = race(
-            n,
-            rounds,
-            |i| {
-                black_box(robot.fk_matrix(black_box(&qs[i])).expect("fk"));
-            },
-            |i| {
-                black_box(opw.forward(black_box(&q6[i])));
-            },
-        );
-        row(name, "FK", "rs-opw-kinematics", fk, "");
-        let mut jac = Jacobian::zeros(6);
-        let jacobian = race(
-            n,
-            rounds,
-            |i| {
-                robot.jacobian_into(black_box(&qs[i]), &mut jac).expect("jacobian");
-                black_box(&jac);
-            },
-            |i| {
-                black_box(rs_opw_kinematics::jacobian::Jacobian::new(&opw, black_box(&q6[i]), 1e-6));
-            },
-        );
-        row(name, "Jacobian", "rs-opw-kinematics", jacobian, "rs-opw: finite differences (6 extra FK)");
-        // Closed-form IK, every branch, each checked by FK in both libraries. rs-opw is given
-        // the same poses in its flange frame (reach flange · C⁻¹) and has no joint limits;
-        // reach flags branches outside the preset's limits. reach is timed on its lean path
-        // (`solve_into` a reused `IkSolutions`, what a real-time loop calls; equal to `solve`'s
-        // result, checked here on every pose); allocations are counted for both of its paths.
-        let cform = SolverKind::SphericalWrist.build(&robot).expect("spherical wrist");
-        let options = IkOptions::default();
-        let reach_targets: Vec<IkTarget> = targets.iter().map(|t| IkTarget::Pose(*t)).collect();
-        let c_inv = UnitQuaternion::from_rotation_matrix(&c.inverse());
-        let opw_targets: Vec<Pose> =
-            targets.iter().map(|t| to_opw_pose(&Isometry3::from_parts(t.translation, t.rotation * c_inv))).collect();
-        let (mut reach_n, mut reach_feasible, mut opw_n) = (0usize, 0usize, 0usize);
-        let mut out = IkSolutions::default();
-        for i in 0..n {
-            let all = cform.solve(&robot, &reach_targets[i], &options).expect("solve");
-            cform.solve_into(&robot, &reach_targets[i], &options, &mut out).expect("solve");
-            assert_eq!(out, all, "solve_into differs from solve");
-            reach_n += all.solutions.len();
-            reach_feasible += all.feasible().count();
-            let sols = opw.inverse(&opw_targets[i]);
-            for s in &sols {
-                let (dp, da) = pose_gap(&robot.fk(s).expect("fk"), &targets[i]);
-                assert!(dp < 1e-6 && da < 1e-6, "rs-opw solution off by {dp} m, {da} rad");
-            }
-            opw_n += sols.len();
-        }
-        let reach_allocs = allocations_per_call(n, |i| {
-            cform.solve_into(&robot, &reach_targets[i], &options, &mut out).expect("solve");
-            black_box(&out);
-        });
-        let reach_solve_allocs = allocations_per_call(n, |i| {
-            black_box(cform.solve(&robot, &reach_targets[i], &options).expect("solve"));
-        });
-        let opw_allocs = allocations_per_call(n, |i| {
-            black_box(opw.inverse(&opw_targets[i]));
-        });
-        let ik = race(
-            n,
-            rounds,
-            |i| {
-                cform.solve_into(&robot, black_box(&reach_targets[i]), &options, &mut out).expect("solve");
-                black_box(&out);
-            },
-            |i| {
-                black_box(opw.inverse(black_box(&opw_targets[i])));
-            },
-        );
-        let note = format!(
-            "all branches, FK-checked; mean solutions per pose: reach {:.2} (of which within limits {:.2}; labelled), rs-opw {:.2} (no limits); reach timed on `solve_into` a reused buffer; heap allocations per solve: reach {reach_allocs:.2} (`solve_into`; `solve`, returning new vectors: {reach_solve_allocs:.2}), rs-opw {opw_allocs:.2}",
-            reach_n as f64 / n as f64,
-            reach_feasible as f64 / n as f64,
-            opw_n as f64 / n as f64
-        );
-        row(name, "closed-form IK", "rs-opw-kinematics", ik, &note);
     }
+    // The KUKA KR 16-2 from its URDF file: reach's closed form found from the geometry.
+    let text = include_str!("../../examples/urdf/kuka_kr16_support/urdf/kr16_2.urdf");
+    let chain = reach::model::UrdfChain { base: None, tip: Some("tool0".into()) };
+    let kr16 = Robot::from_urdf_str(text, &chain).expect("kr16_2 urdf");
+    let qs = random_qs(&kr16, poses, 2024);
+    let (opw, c) = opw_match("kr16_2", &kr16, &opw_kr16_geometries(), &qs);
+    vs_rs_opw("kr16_2 (URDF)", &kr16, &opw, c, &qs, rounds, &row);
+}
+
+/// reach next to rs-opw-kinematics (`opw`, whose flange is reach's · `c⁻¹`) on `robot` at the
+/// joint vectors `qs`: FK, Jacobian and closed-form IK rows of the table.
+fn vs_rs_opw(
+    name: &str,
+    robot: &Robot,
+    opw: &OPWKinematics,
+    c: Rotation3<f64>,
+    qs: &[Vec<f64>],
+    rounds: usize,
+    row: &impl Fn(&str, &str, &str, (f64, f64), &str),
+) {
+    let n = qs.len();
+    let targets: Vec<Isometry3<f64>> = qs.iter().map(|q| robot.fk(q).expect("fk")).collect();
+    // Forward kinematics of rs-opw checked against reach on every pose.
+    for q in qs {
+        let t = opw_pose(&opw.forward(&joints6(q)));
+        let t = Isometry3::from_parts(t.translation, t.rotation * UnitQuaternion::from_rotation_matrix(&c));
+        let (dp, da) = pose_gap(&t, &robot.fk(q).expect("fk"));
+        assert!(dp < 1e-9 && da < 1e-9, "{name}: OPW parameters differ from reach by {dp} m, {da} rad");
+    }
+    let q6: Vec<Joints> = qs.iter().map(|q| joints6(q)).collect();
+    let fk = race(
+        n,
+        rounds,
+        |i| {
+            black_box(robot.fk_matrix(black_box(&qs[i])).expect("fk"));
+        },
+        |i| {
+            black_box(opw.forward(black_box(&q6[i])));
+        },
+    );
+    row(name, "FK", "rs-opw-kinematics", fk, "");
+    let mut jac = Jacobian::zeros(6);
+    let jacobian = race(
+        n,
+        rounds,
+        |i| {
+            robot.jacobian_into(black_box(&qs[i]), &mut jac).expect("jacobian");
+            black_box(&jac);
+        },
+        |i| {
+            black_box(rs_opw_kinematics::jacobian::Jacobian::new(opw, black_box(&q6[i]), 1e-6));
+        },
+    );
+    row(name, "Jacobian", "rs-opw-kinematics", jacobian, "rs-opw: finite differences (6 extra FK)");
+    // Closed-form IK, every branch, each checked by FK in both libraries. rs-opw is given
+    // the same poses in its flange frame (reach flange · C⁻¹) and has no joint limits;
+    // reach flags branches outside the preset's limits. reach is timed on its lean path
+    // (`solve_into` a reused `IkSolutions`, what a real-time loop calls; equal to `solve`'s
+    // result, checked here on every pose); allocations are counted for both of its paths.
+    let cform = SolverKind::detect(robot).build(robot).expect("closed form");
+    let options = IkOptions::default();
+    let reach_targets: Vec<IkTarget> = targets.iter().map(|t| IkTarget::Pose(*t)).collect();
+    let c_inv = UnitQuaternion::from_rotation_matrix(&c.inverse());
+    let opw_targets: Vec<Pose> =
+        targets.iter().map(|t| to_opw_pose(&Isometry3::from_parts(t.translation, t.rotation * c_inv))).collect();
+    let (mut reach_n, mut reach_feasible, mut opw_n) = (0usize, 0usize, 0usize);
+    let mut out = IkSolutions::default();
+    for i in 0..n {
+        let all = cform.solve(robot, &reach_targets[i], &options).expect("solve");
+        cform.solve_into(robot, &reach_targets[i], &options, &mut out).expect("solve");
+        assert_eq!(out, all, "solve_into differs from solve");
+        reach_n += all.solutions.len();
+        reach_feasible += all.feasible().count();
+        let sols = opw.inverse(&opw_targets[i]);
+        for s in &sols {
+            let (dp, da) = pose_gap(&robot.fk(s).expect("fk"), &targets[i]);
+            assert!(dp < 1e-6 && da < 1e-6, "rs-opw solution off by {dp} m, {da} rad");
+        }
+        opw_n += sols.len();
+    }
+    let reach_allocs = allocations_per_call(n, |i| {
+        cform.solve_into(robot, &reach_targets[i], &options, &mut out).expect("solve");
+        black_box(&out);
+    });
+    let reach_solve_allocs = allocations_per_call(n, |i| {
+        black_box(cform.solve(robot, &reach_targets[i], &options).expect("solve"));
+    });
+    let opw_allocs = allocations_per_call(n, |i| {
+        black_box(opw.inverse(&opw_targets[i]));
+    });
+    let ik = race(
+        n,
+        rounds,
+        |i| {
+            cform.solve_into(robot, black_box(&reach_targets[i]), &options, &mut out).expect("solve");
+            black_box(&out);
+        },
+        |i| {
+            black_box(opw.inverse(black_box(&opw_targets[i])));
+        },
+    );
+    let note = format!(
+        "all branches, FK-checked; mean solutions per pose: reach {:.2} (of which within limits {:.2}; labelled), rs-opw {:.2} (no limits); reach timed on `solve_into` a reused buffer; heap allocations per solve: reach {reach_allocs:.2} (`solve_into`; `solve`, returning new vectors: {reach_solve_allocs:.2}), rs-opw {opw_allocs:.2}",
+        reach_n as f64 / n as f64,
+        reach_feasible as f64 / n as f64,
+        opw_n as f64 / n as f64
+    );
+    row(name, "closed-form IK", "rs-opw-kinematics", ik, &note);
 }
 
 fn to_k_iso(t: &Isometry3<f64>) -> k::Isometry3<f64> {
