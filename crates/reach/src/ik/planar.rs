@@ -519,18 +519,22 @@ impl ScanSegment {
             [out.q[0][j], out.q[1][j], out.q[2][j]] = q;
             out.as_is[j] = arm.fits_as_is(&q);
         }
-        // The rows, the fit into the limits taken only where the values do not fit as they are.
+        // The rows, the fit into the limits taken only where the values do not fit as they are
+        // (slot `k` of the block is row `k + 1`).
         let out = &mut self.rows;
-        for (j, row) in out.block[..n].iter_mut().enumerate().skip(1) {
-            let raw = [out.q[0][j], out.q[1][j], out.q[2][j]];
-            let (q, within_limits) = if out.as_is[j] { (raw, true) } else { arm.fit_row(raw) };
+        let m = n - 1;
+        let fields = (&out.alpha[1..n], &out.beta[1..n], &out.gamma[1..n], &out.as_is[1..n]);
+        let q = [&out.q[0][1..n], &out.q[1][1..n], &out.q[2][1..n]];
+        for (k, row) in out.block[..m].iter_mut().enumerate() {
+            let raw = [q[0][k], q[1][k], q[2][k]];
+            let (q, within_limits) = if fields.3[k] { (raw, true) } else { arm.fit_row(raw) };
             *row = ScanRow {
-                paper: InteriorAngles { alpha: out.alpha[j], beta: out.beta[j], gamma: out.gamma[j] },
+                paper: InteriorAngles { alpha: fields.0[k], beta: fields.1[k], gamma: fields.2[k] },
                 q,
                 within_limits,
             };
         }
-        let block = &out.block[1..n];
+        let block = &out.block[..m];
         if bent_back {
             // The rows `finish_row` keeps (`β` of a decided row is not NaN).
             let keep = |(_, beta): &(&ScanRow, &f64)| **beta <= PI * (1.0 + BOUNDARY);
