@@ -599,7 +599,8 @@ impl CandidateList for Raw6Set {
     fn take_label(&mut self, i: usize, out: &mut Vec<(Label, Label)>) {
         let values = self.items[i].values;
         let pairs = self.keys.iter().zip(values);
-        if out.len() == self.keys.len() && out.iter().zip(pairs.clone()).all(|((k, v), (rk, rv))| k.is(rk) && v.is(rv)) {
+        if out.len() == self.keys.len() && out.iter().zip(pairs.clone()).all(|((k, v), (rk, rv))| k.is(rk) && v.is(rv))
+        {
             return;
         }
         out.clear();
