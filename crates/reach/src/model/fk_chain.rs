@@ -386,15 +386,17 @@ fn dh_turned(g: &IsometryMatrix3<f64>, scale: f64) -> Option<(f64, DhStep)> {
     (rotation_gap <= REFRAME_TOLERANCE && translation_gap <= REFRAME_TOLERANCE).then_some((theta, step))
 }
 
-/// Joints whose sines and cosines a walk evaluates together at the baseline level (a pair;
-/// [`FkChain::product_at`] takes more at the wider levels).
+/// Joints whose sines and cosines [`walk`] evaluates together (a pair; [`FkChain::product_at`]
+/// takes more: [`BASELINE_TRIG_LANES`] at the baseline level, 4 or 8 at the wider ones).
 const TRIG_LANES: usize = 2;
 
 /// Joints whose sines and cosines [`FkChain::product_at`] evaluates together at the baseline
 /// level (two lanes per vector: SSE2, NEON) for a chain of up to that many joints: the whole
-/// of a 6-joint arm in one [`walk_by`] block. Measured 2026-12-03 (callgrind instructions per
-/// `fk_matrix`, Puma 560, baseline level): [`walk`]'s pairs 1 513 (inlined there, the pair's
-/// lanes are evaluated one after the other), blocks of 6 ≈ 1 020, of 8 ≈ 1 115, of 4 ≈ 1 155.
+/// of a 6-joint arm in one [`walk_by`] block (three vectors, every lane used). Measured
+/// 2026-12-03, callgrind instructions per call, Puma 560, baseline level: `fk_matrix` 1 513 with
+/// [`walk`]'s pairs (inlined there, the pair's two lanes were evaluated one after the other),
+/// 1 168 with this block; the walk alone (start, walk, isometry) in blocks of 3, 4, 6 and 8:
+/// 1 117, 1 154, 1 018 and 1 115.
 const BASELINE_TRIG_LANES: usize = 6;
 
 /// Right-multiplies `t` by the motion of `link` for joint value `q` (given the sine and cosine
