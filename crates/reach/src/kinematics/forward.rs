@@ -26,7 +26,8 @@ impl Robot {
     /// # Performance
     /// Runs compiled for the widest vector level the processor has ([`crate::simd`]): the
     /// sines and cosines of all joints of a 6- or 7-joint arm in one AVX-512 vector (two AVX2
-    /// ones); the result is the same bit for bit at every level.
+    /// ones; those of a 6-joint arm in three two-lane vectors at the baseline level, SSE2 or
+    /// NEON); the result is the same bit for bit at every level.
     ///
     /// # Errors
     /// [`KinematicsError`] when `q` has the wrong length or a non-finite value.

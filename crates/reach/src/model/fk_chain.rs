@@ -386,9 +386,18 @@ fn dh_turned(g: &IsometryMatrix3<f64>, scale: f64) -> Option<(f64, DhStep)> {
     (rotation_gap <= REFRAME_TOLERANCE && translation_gap <= REFRAME_TOLERANCE).then_some((theta, step))
 }
 
-/// Joints whose sines and cosines a walk evaluates together at the baseline level (a pair;
-/// [`FkChain::product_at`] takes more at the wider levels).
+/// Joints whose sines and cosines [`walk`] evaluates together (a pair; [`FkChain::product_at`]
+/// takes more: [`BASELINE_TRIG_LANES`] at the baseline level, 4 or 8 at the wider ones).
 const TRIG_LANES: usize = 2;
+
+/// Joints whose sines and cosines [`FkChain::product_at`] evaluates together at the baseline
+/// level (two lanes per vector: SSE2, NEON) for a chain of up to that many joints: the whole
+/// of a 6-joint arm in one [`walk_by`] block (three vectors, every lane used). Measured
+/// 2026-12-03, callgrind instructions per call, Puma 560, baseline level: `fk_matrix` 1 513 with
+/// [`walk`]'s pairs (inlined there, the pair's two lanes were evaluated one after the other),
+/// 1 168 with this block; the walk alone (start, walk, isometry) in blocks of 3, 4, 6 and 8:
+/// 1 117, 1 154, 1 018 and 1 115.
+const BASELINE_TRIG_LANES: usize = 6;
 
 /// Right-multiplies `t` by the motion of `link` for joint value `q` (given the sine and cosine
 /// of its angle, [`WalkLink::value`]; unused for a prismatic joint), the constant after it and
@@ -467,6 +476,13 @@ pub(crate) fn walk<'a, K: WalkLink>(
     }
 }
 
+/// The angle whose sine and cosine a walk evaluates for `link` at joint value `v`: its
+/// motion's ([`WalkLink::value`]), 0 for a prismatic joint (unused).
+#[inline(always)]
+fn trig_angle<K: WalkLink>(link: &K, v: f64) -> f64 {
+    if link.prismatic() { 0.0 } else { link.value(v) }
+}
+
 /// [`walk`] with the sines and cosines of `T` joints evaluated together
 /// ([`sin_cos_lanes`](crate::angle::sin_cos_lanes), bit for bit the scalar ones, so `T` does
 /// not change the result): blocks of `T` joints, then the last `joints.len() mod T` together
@@ -483,12 +499,17 @@ pub(crate) fn walk_by<'a, K: WalkLink, const T: usize>(
     let from = joints.start;
     let values = &q[joints.clone()];
     let links = &links[joints];
-    let angle = |l: &K, v: f64| if l.prismatic() { 0.0 } else { l.value(v) };
     let mut i = from;
     let mut chunks = links.chunks_exact(T);
     let mut value_chunks = values.chunks_exact(T);
     for (ls, vs) in chunks.by_ref().zip(value_chunks.by_ref()) {
-        let (s, c) = sin_cos_lanes::<T>(&std::array::from_fn(|k| angle(&ls[k], vs[k])));
+        // Loops over the block rather than `array::from_fn` with a closure: the closure was
+        // left out of line in callers with several walks (the baseline level's `fk_matrix`).
+        let mut angles = [0.0; T];
+        for k in 0..T {
+            angles[k] = trig_angle(&ls[k], vs[k]);
+        }
+        let (s, c) = sin_cos_lanes::<T>(&angles);
         for k in 0..T {
             advance(&ls[k], i + k, t, vs[k], (s[k], c[k]), q, &mut visit);
         }
@@ -496,8 +517,11 @@ pub(crate) fn walk_by<'a, K: WalkLink, const T: usize>(
     }
     let (ls, vs) = (chunks.remainder(), value_chunks.remainder());
     if !ls.is_empty() {
-        let (s, c) =
-            sin_cos_lanes::<T>(&std::array::from_fn(|k| if k < ls.len() { angle(&ls[k], vs[k]) } else { 0.0 }));
+        let mut angles = [0.0; T];
+        for (angle, (link, &v)) in angles.iter_mut().zip(ls.iter().zip(vs)) {
+            *angle = trig_angle(link, v);
+        }
+        let (s, c) = sin_cos_lanes::<T>(&angles);
         for (k, (link, &v)) in ls.iter().zip(vs).enumerate() {
             advance(link, i + k, t, v, (s[k], c[k]), q, &mut visit);
         }
@@ -527,8 +551,9 @@ impl FkChain {
     }
 
     /// The tool pose for joint values `q`, the walk compiled for `level` with the sines and
-    /// cosines of as many joints together as that level's vectors take (4 with AVX2, 8 with
-    /// AVX-512): bit for bit [`FkChain::product`] at every level. What
+    /// cosines of several joints together (4 with AVX2, 8 with AVX-512; at the baseline level
+    /// all of a chain of up to [`BASELINE_TRIG_LANES`] joints, else 8): bit for bit
+    /// [`FkChain::product`] at every level. What
     /// [`Robot::fk_matrix`](crate::model::Robot::fk_matrix) runs.
     #[inline]
     pub fn product_at(&self, q: &[f64], level: Level) -> FkFrame {
@@ -561,7 +586,12 @@ impl simd::Kernel for Product<'_> {
         let mut t = chain.start(q, &mut |_, _| {});
         let all = 0..chain.links.len();
         match self.level {
-            Level::Baseline => walk(&chain.links, &mut t, q, all, |_, _| {}),
+            // Two lanes per vector: six joints in one block (three vectors, every lane
+            // used), seven or more in blocks of eight.
+            Level::Baseline if chain.links.len() <= BASELINE_TRIG_LANES => {
+                walk_by::<_, BASELINE_TRIG_LANES>(&chain.links, &mut t, q, all, |_, _| {});
+            }
+            Level::Baseline => walk_by::<_, 8>(&chain.links, &mut t, q, all, |_, _| {}),
             Level::Avx2 => walk_by::<_, 4>(&chain.links, &mut t, q, all, |_, _| {}),
             Level::Avx512 => walk_by::<_, 8>(&chain.links, &mut t, q, all, |_, _| {}),
         }
@@ -622,6 +652,7 @@ mod tests {
                 assert_eq!(by(|l, t, q| walk_by::<_, 2>(l, t, q, 0..l.len(), |_, _| {})), want);
                 assert_eq!(by(|l, t, q| walk_by::<_, 3>(l, t, q, 0..l.len(), |_, _| {})), want);
                 assert_eq!(by(|l, t, q| walk_by::<_, 4>(l, t, q, 0..l.len(), |_, _| {})), want);
+                assert_eq!(by(|l, t, q| walk_by::<_, 6>(l, t, q, 0..l.len(), |_, _| {})), want);
                 assert_eq!(by(|l, t, q| walk_by::<_, 8>(l, t, q, 0..l.len(), |_, _| {})), want);
                 // A walk in two parts is the whole walk.
                 let mut t = fk.start(&q, &mut |_, _| {});
