@@ -343,7 +343,7 @@ fn opw_match(name: &str, robot: &Robot, geometries: &[Parameters], qs: &[Vec<f64
 }
 
 /// The usage line, printed with an error for a bad argument.
-const USAGE: &str = "usage: reach-peers-bench [--poses N] [--rounds N] [--profile-ik N]";
+const USAGE: &str = "usage: reach-peers-bench [--poses N] [--rounds N] [--profile-ik N [--arm puma560|kr16_2]]";
 
 /// Exits with `message` and the usage line (status 2).
 fn usage_error(message: &str) -> ! {
@@ -355,6 +355,7 @@ fn main() {
     let mut poses = 1000;
     let mut rounds = 15;
     let mut profile = None;
+    let mut profile_arm = String::from("puma560");
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         let mut value = || -> usize {
@@ -366,9 +367,13 @@ fn main() {
         match a.as_str() {
             "--poses" => poses = value(),
             "--rounds" => rounds = value(),
-            // Only reach's Puma 560 closed-form IK (the lean path, as in the table), N passes
+            // Only reach's closed-form IK of one arm (the lean path, as in the table), N passes
             // over the poses: for a profiler.
             "--profile-ik" => profile = Some(value()),
+            "--arm" => match args.next().as_deref() {
+                Some(arm @ ("puma560" | "kr16_2")) => profile_arm = arm.to_string(),
+                _ => usage_error("--arm needs puma560 or kr16_2"),
+            },
             "-h" | "--help" => {
                 println!("{USAGE}");
                 return;
@@ -377,10 +382,10 @@ fn main() {
         }
     }
     if let Some(passes) = profile {
-        let robot = presets::get("puma560").expect("preset");
+        let robot = if profile_arm == "kr16_2" { kr16_urdf() } else { presets::get("puma560").expect("preset") };
         let targets: Vec<IkTarget> =
             random_qs(&robot, poses, 2024).iter().map(|q| IkTarget::Pose(robot.fk(q).expect("fk"))).collect();
-        let cform = SolverKind::SphericalWrist.build(&robot).expect("spherical wrist");
+        let cform = SolverKind::detect(&robot).build(&robot).expect("closed form");
         let options = IkOptions::default();
         let mut out = IkSolutions::default();
         let t0 = Instant::now();
@@ -493,12 +498,17 @@ fn main() {
         }
     }
     // The KUKA KR 16-2 from its URDF file: reach's closed form found from the geometry.
-    let text = include_str!("../../examples/urdf/kuka_kr16_support/urdf/kr16_2.urdf");
-    let chain = reach::model::UrdfChain { base: None, tip: Some("tool0".into()) };
-    let kr16 = Robot::from_urdf_str(text, &chain).expect("kr16_2 urdf");
+    let kr16 = kr16_urdf();
     let qs = random_qs(&kr16, poses, 2024);
     let (opw, c) = opw_match("kr16_2", &kr16, &opw_kr16_geometries(), &qs);
     vs_rs_opw("kr16_2 (URDF)", &kr16, &opw, c, &qs, rounds, &row);
+}
+
+/// The KUKA KR 16-2 read from its URDF file, base_link to tool0.
+fn kr16_urdf() -> Robot {
+    let text = include_str!("../../examples/urdf/kuka_kr16_support/urdf/kr16_2.urdf");
+    let chain = reach::model::UrdfChain { base: None, tip: Some("tool0".into()) };
+    Robot::from_urdf_str(text, &chain).expect("kr16_2 urdf")
 }
 
 /// reach next to rs-opw-kinematics (`opw`, whose flange is reach's · `c⁻¹`) on `robot` at the
