@@ -112,6 +112,24 @@ fn random_qs(robot: &Robot, n: usize, seed: u64) -> Vec<Vec<f64>> {
         .collect()
 }
 
+/// [`race`] of reach's forward kinematics (`fk_matrix`) at the joint vectors `qs` against `peer`.
+fn race_fk(robot: &Robot, qs: &[Vec<f64>], rounds: usize, peer: impl FnMut(usize)) -> (f64, f64) {
+    let reach = |i: usize| {
+        black_box(robot.fk_matrix(black_box(&qs[i])).expect("fk"));
+    };
+    race(qs.len(), rounds, reach, peer)
+}
+
+/// [`race`] of reach's Jacobian (`jacobian_into` a reused matrix) at `qs` against `peer`.
+fn race_jacobian(robot: &Robot, qs: &[Vec<f64>], rounds: usize, peer: impl FnMut(usize)) -> (f64, f64) {
+    let mut jac = Jacobian::zeros(robot.dof());
+    let reach = |i: usize| {
+        robot.jacobian_into(black_box(&qs[i]), &mut jac).expect("jacobian");
+        black_box(&jac);
+    };
+    race(qs.len(), rounds, reach, peer)
+}
+
 /// Median time per call (ns) of `a` and of `b`, alternating rounds over `n` items.
 fn race(n: usize, rounds: usize, mut a: impl FnMut(usize), mut b: impl FnMut(usize)) -> (f64, f64) {
     let pass = |f: &mut dyn FnMut(usize)| {
@@ -419,30 +437,14 @@ fn main() {
             let (dp, da) = pose_gap(&from_k(&k_fk(&arm, q)), &robot.fk(q).expect("fk"));
             assert!(dp < 1e-9 && da < 1e-9, "{name}: k chain differs from reach by {dp} m, {da} rad");
         }
-        let fk = race(
-            n,
-            rounds,
-            |i| {
-                black_box(robot.fk_matrix(black_box(&qs[i])).expect("fk"));
-            },
-            |i| {
-                black_box(k_fk(&arm, black_box(&qs[i])));
-            },
-        );
+        let fk = race_fk(&robot, &qs, rounds, |i| {
+            black_box(k_fk(&arm, black_box(&qs[i])));
+        });
         row(name, "FK", "k", fk, "k: set positions + update_transforms + end_transform");
-        let mut jac = Jacobian::zeros(robot.dof());
-        let jacobian = race(
-            n,
-            rounds,
-            |i| {
-                robot.jacobian_into(black_box(&qs[i]), &mut jac).expect("jacobian");
-                black_box(&jac);
-            },
-            |i| {
-                k_fk(&arm, black_box(&qs[i]));
-                black_box(k::jacobian(&arm));
-            },
-        );
+        let jacobian = race_jacobian(&robot, &qs, rounds, |i| {
+            k_fk(&arm, black_box(&qs[i]));
+            black_box(k::jacobian(&arm));
+        });
         row(name, "Jacobian", "k", jacobian, "both from joint values (k: FK update included)");
 
         // Numeric IK from a seed 0.1 rad from the solution in every joint (tracking), 1e-6.
@@ -532,29 +534,13 @@ fn vs_rs_opw(
         assert!(dp < 1e-9 && da < 1e-9, "{name}: OPW parameters differ from reach by {dp} m, {da} rad");
     }
     let q6: Vec<Joints> = qs.iter().map(|q| joints6(q)).collect();
-    let fk = race(
-        n,
-        rounds,
-        |i| {
-            black_box(robot.fk_matrix(black_box(&qs[i])).expect("fk"));
-        },
-        |i| {
-            black_box(opw.forward(black_box(&q6[i])));
-        },
-    );
+    let fk = race_fk(robot, qs, rounds, |i| {
+        black_box(opw.forward(black_box(&q6[i])));
+    });
     row(name, "FK", "rs-opw-kinematics", fk, "");
-    let mut jac = Jacobian::zeros(6);
-    let jacobian = race(
-        n,
-        rounds,
-        |i| {
-            robot.jacobian_into(black_box(&qs[i]), &mut jac).expect("jacobian");
-            black_box(&jac);
-        },
-        |i| {
-            black_box(rs_opw_kinematics::jacobian::Jacobian::new(opw, black_box(&q6[i]), 1e-6));
-        },
-    );
+    let jacobian = race_jacobian(robot, qs, rounds, |i| {
+        black_box(rs_opw_kinematics::jacobian::Jacobian::new(opw, black_box(&q6[i]), 1e-6));
+    });
     row(name, "Jacobian", "rs-opw-kinematics", jacobian, "rs-opw: finite differences (6 extra FK)");
     // Closed-form IK, every branch, each checked by FK in both libraries. rs-opw is given
     // the same poses in its flange frame (reach flange · C⁻¹) and has no joint limits;

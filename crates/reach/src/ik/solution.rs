@@ -734,9 +734,16 @@ fn lane_errors<const WIDE: bool, const L: usize, const H: usize>(
     let t = if shared == 0 {
         robot.fk_lanes(q)
     } else {
+        // Lane `g · L/H` of each shared joint (a loop: `array::from_fn` stayed an out-of-line
+        // call here).
         let group = L / H;
-        let prefix: [Lanes<H>; LANE_DOF] =
-            std::array::from_fn(|j| if j < shared { std::array::from_fn(|g| q[j][g * group]) } else { [0.0; H] });
+        let shared = shared.min(LANE_DOF).min(q.len());
+        let mut prefix = [[0.0; H]; LANE_DOF];
+        for j in 0..shared {
+            for g in 0..H {
+                prefix[j][g] = q[j][g * group];
+            }
+        }
         robot.fk_lanes_shared(&prefix[..shared], q)
     };
     let (position, sin, cos) = check.errors(&t);

@@ -180,9 +180,16 @@ impl Robot {
         q: &[Lanes<L>],
         visit: &mut impl FnMut(Motion<'a>, &FrameLanes<L>),
     ) {
-        for (i, (link, qj)) in self.chain.fk.links.iter().zip(q).enumerate().skip(from) {
+        // Indexed loops, not iterator adapters or `array::from_fn`: those stayed out-of-line
+        // calls (`Enumerate::nth`, `try_from_fn`) inside the wide IK kernels.
+        let links = &self.chain.fk.links;
+        for i in from..links.len().min(q.len()) {
+            let (link, qj) = (&links[i], &q[i]);
             visit(Motion::Joint(i), t);
-            let v: Lanes<L> = std::array::from_fn(|l| link.value(qj[l]));
+            let mut v: Lanes<L> = [0.0; L];
+            for l in 0..L {
+                v[l] = link.value(qj[l]);
+            }
             t.motion(link.prismatic, &v);
             t.mul_step(&link.after);
             t.mimics(&link.mimics, q, visit);
@@ -214,9 +221,18 @@ impl Robot {
         let fk = &self.chain.fk;
         let mut h = FrameLanes::<H>::splat(&fk.first);
         self.walk_links(&mut h, 0, prefix, &mut |_, _| {});
+        // Each of the H frames copied into its group of L / H lanes (loops: `array::map` stayed
+        // an out-of-line `try_map` call inside the wide IK kernels).
         let group = L / H;
-        let spread = |x: &Lanes<H>| -> Lanes<L> { std::array::from_fn(|l| x[l / group]) };
-        let mut t = FrameLanes { r: h.r.map(|row| row.map(|x| spread(&x))), p: h.p.map(|x| spread(&x)) };
+        let mut t = FrameLanes { r: [[[0.0; L]; 3]; 3], p: [[0.0; L]; 3] };
+        for l in 0..L {
+            for a in 0..3 {
+                for b in 0..3 {
+                    t.r[a][b][l] = h.r[a][b][l / group];
+                }
+                t.p[a][l] = h.p[a][l / group];
+            }
+        }
         self.walk_links(&mut t, k, q, &mut |_, _| {});
         t
     }
