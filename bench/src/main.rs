@@ -10,9 +10,11 @@
 //! Puma 560 preset and the KUKA KR 16-2 read from its URDF file, which reach solves in closed
 //! form found from the geometry; its Jacobian is by finite differences) and
 //! [`k`](https://crates.io/crates/k) 0.32 (general chains of nodes; Jacobian; a
-//! Jacobian-pseudo-inverse IK from the current joint values; UR5 and Puma 560). Each peer is
-//! built from the same robot as reach and checked against reach's forward kinematics to 1e-9
-//! before anything is timed, so both solve the same chain.
+//! Jacobian-pseudo-inverse IK from the current joint values; UR5 and Puma 560) and
+//! [`ik-geo`](https://crates.io/crates/ik-geo) 0.1.2 (IK-Geo's subproblem decomposition; the
+//! UR5's closed form; it builds the NLopt C library, so `cmake` must be installed). Each peer
+//! is built from the same robot as reach and checked against reach's forward kinematics to
+//! 1e-9 before anything is timed, so both solve the same chain.
 //!
 //! Timing: for every comparison, rounds alternate between reach and the peer (each round one
 //! pass over all poses), after a warm-up pass each; the reported time per call is the median
@@ -360,6 +362,154 @@ fn opw_match(name: &str, robot: &Robot, geometries: &[Parameters], qs: &[Vec<f64
     panic!("no OPW parameters reproduce reach's {name}");
 }
 
+// ------------------------------------------------------------------------------------------
+// ik-geo: reach's UR5 in ik-geo's product-of-exponentials form, signs and offsets found by search.
+// ------------------------------------------------------------------------------------------
+
+/// ik-geo's form of an arm: its solver, and per joint `q_geo = sign · q − offset`.
+struct GeoArm {
+    solver: ik_geo::robot::Robot,
+    sign: [f64; 6],
+    offset: [f64; 6],
+}
+
+impl GeoArm {
+    /// ik-geo's joint values for reach's `q`.
+    fn to_geo(&self, q: &[f64]) -> [f64; 6] {
+        std::array::from_fn(|j| self.sign[j] * q[j] - self.offset[j])
+    }
+
+    /// reach's joint values for ik-geo's `q`.
+    fn reach_joints(&self, q: &[f64]) -> Vec<f64> {
+        (0..6).map(|j| self.sign[j] * (q[j] + self.offset[j])).collect()
+    }
+
+    /// ik-geo's forward kinematics at reach's joint values: rotation (row-major) and position.
+    fn fk(&self, q: &[f64]) -> (Rotation3<f64>, Vector3<f64>) {
+        let (r, p) = self.solver.fk(&self.to_geo(q));
+        (Rotation3::from_matrix_unchecked(nalgebra::Matrix3::from_fn(|i, j| r[(i, j)])), Vector3::new(p[0], p[1], p[2]))
+    }
+}
+
+/// reach's `ur5` preset in ik-geo's UR5 layout (its `Ur5::get_kin`: joint axes z, y, y, y,
+/// −z, y at zero) with the preset's own lengths from its DH table (ik-geo's hard-coded UR5
+/// differs from it by 5e-5 m in a3 and d5), solved by ik-geo's `three_parallel_two_intersecting`;
+/// every joint's sign and offset (0, ±π/2, π) found by search so that ik-geo's tool position
+/// equals reach's on five of `qs` (1e-9 m; the position does not depend on the last joint),
+/// then the last joint's and the constant flange rotation C (`reach flange = geo flange · C`,
+/// to 1e-9 as matrices). The caller checks the result on all poses.
+fn ikgeo_ur5(robot: &Robot, qs: &[Vec<f64>]) -> (GeoArm, Rotation3<f64>) {
+    use ik_geo::inverse_kinematics::auxiliary::Matrix3x7;
+    use ik_geo::nalgebra::{Matrix3x6, Vector3 as V3};
+    let dh: Vec<_> = robot
+        .joints()
+        .iter()
+        .map(|j| match &j.geometry {
+            JointGeometry::Dh(p) => *p,
+            _ => panic!("ur5 is DH"),
+        })
+        .collect();
+    let (ex, ey, ez) = (V3::x(), V3::y(), V3::z());
+    let h = Matrix3x6::from_columns(&[ez, ey, ey, ey, -ez, ey]);
+    let p = Matrix3x7::from_columns(&[
+        dh[0].d * ez,
+        V3::zeros(),
+        dh[1].a.abs() * ex,
+        dh[2].a.abs() * ex,
+        dh[3].d * ey,
+        -dh[4].d * ez,
+        dh[5].d * ey,
+    ]);
+    let offsets = [0.0, PI / 2.0, PI, -PI / 2.0];
+    let probe = &qs[..5];
+    let reach_poses: Vec<Isometry3<f64>> = probe.iter().map(|q| robot.fk(q).expect("fk")).collect();
+    let mut arm =
+        GeoArm { solver: ik_geo::robot::three_parallel_two_intersecting(h, p), sign: [1.0; 6], offset: [0.0; 6] };
+    let choose = |arm: &mut GeoArm, j: usize, k: usize| {
+        arm.sign[j] = if k.is_multiple_of(2) { 1.0 } else { -1.0 };
+        arm.offset[j] = offsets[(k / 2) % 4];
+    };
+    for first in 0..8usize.pow(5) {
+        for j in 0..5 {
+            choose(&mut arm, j, first >> (3 * j));
+        }
+        let positions_match =
+            probe.iter().zip(&reach_poses).all(|(q, t)| (arm.fk(q).1 - t.translation.vector).norm() < 1e-9);
+        if !positions_match {
+            continue;
+        }
+        for last in 0..8 {
+            choose(&mut arm, 5, last);
+            let c = |k: usize| arm.fk(&probe[k]).0.inverse() * reach_poses[k].rotation.to_rotation_matrix();
+            let c0 = c(0);
+            if (1..probe.len()).all(|k| (c(k).matrix() - c0.matrix()).norm() < 1e-9) {
+                return (arm, c0);
+            }
+        }
+    }
+    panic!("no ik-geo form reproduces reach's ur5");
+}
+
+/// reach's UR5 closed form next to ik-geo's on the joint vectors `qs`: both FK-checked, ik-geo's
+/// least-squares answers (not solutions) left out.
+fn vs_ikgeo(robot: &Robot, qs: &[Vec<f64>], rounds: usize, row: &impl Fn(&str, &str, &str, (f64, f64), &str)) {
+    use ik_geo::nalgebra::{Matrix3 as M3, Vector3 as V3};
+    use ik_geo::robot::IKSolver;
+    let (geo, c) = ikgeo_ur5(robot, qs);
+    let n = qs.len();
+    let targets: Vec<Isometry3<f64>> = qs.iter().map(|q| robot.fk(q).expect("fk")).collect();
+    for (q, t) in qs.iter().zip(&targets) {
+        let (r, p) = geo.fk(q);
+        let (dp, da) = pose_gap(&Isometry3::from_parts(p.into(), UnitQuaternion::from_rotation_matrix(&(r * c))), t);
+        assert!(dp < 1e-9 && da < 1e-9, "ur5: ik-geo's form differs from reach by {dp} m, {da} rad");
+    }
+    let c_inv = c.inverse();
+    let geo_targets: Vec<(M3<f64>, V3<f64>)> = targets
+        .iter()
+        .map(|t| {
+            let r = t.rotation.to_rotation_matrix() * c_inv;
+            let p = t.translation.vector;
+            (M3::from_fn(|i, j| r[(i, j)]), V3::new(p.x, p.y, p.z))
+        })
+        .collect();
+    let cform = SolverKind::detect(robot).build(robot).expect("closed form");
+    let options = IkOptions::default();
+    let reach_targets: Vec<IkTarget> = targets.iter().map(|t| IkTarget::Pose(*t)).collect();
+    let (mut reach_n, mut geo_n, mut geo_ls) = (0usize, 0usize, 0usize);
+    for i in 0..n {
+        reach_n += cform.solve(robot, &reach_targets[i], &options).expect("solve").solutions.len();
+        for (q, least_squares) in geo.solver.ik(geo_targets[i].0, geo_targets[i].1) {
+            if least_squares {
+                geo_ls += 1;
+                continue;
+            }
+            let q = geo.reach_joints(q.as_slice());
+            let (dp, da) = pose_gap(&robot.fk(&q).expect("fk"), &targets[i]);
+            assert!(dp < 1e-6 && da < 1e-6, "ik-geo solution off by {dp} m, {da} rad");
+            geo_n += 1;
+        }
+    }
+    let mut out = IkSolutions::default();
+    let ik = race(
+        n,
+        rounds,
+        |i| {
+            cform.solve_into(robot, black_box(&reach_targets[i]), &options, &mut out).expect("solve");
+            black_box(&out);
+        },
+        |i| {
+            black_box(geo.solver.ik(black_box(geo_targets[i].0), black_box(geo_targets[i].1)));
+        },
+    );
+    let note = format!(
+        "all branches; mean solutions per pose: reach {:.2} (FK-verified, labelled, limits flagged), ik-geo {:.2} exact (checked here by reach's FK; not by itself) + {:.2} least-squares answers",
+        reach_n as f64 / n as f64,
+        geo_n as f64 / n as f64,
+        geo_ls as f64 / n as f64
+    );
+    row("ur5", "closed-form IK", "ik-geo", ik, &note);
+}
+
 /// The usage line, printed with an error for a bad argument.
 const USAGE: &str = "usage: reach-peers-bench [--poses N] [--rounds N] [--profile-ik N [--arm puma560|kr16_2]]";
 
@@ -497,6 +647,8 @@ fn main() {
         if name == "puma560" {
             let (opw, c) = opw_match(name, &robot, &opw_puma_geometries(&robot), &qs);
             vs_rs_opw(name, &robot, &opw, c, &qs, rounds, &row);
+        } else {
+            vs_ikgeo(&robot, &qs, rounds, &row);
         }
     }
     // The KUKA KR 16-2 from its URDF file: reach's closed form found from the geometry.
