@@ -511,7 +511,7 @@ fn vs_ikgeo(robot: &Robot, qs: &[Vec<f64>], rounds: usize, row: &impl Fn(&str, &
 }
 
 /// The usage line, printed with an error for a bad argument.
-const USAGE: &str = "usage: reach-peers-bench [--poses N] [--rounds N] [--profile-ik N [--arm puma560|kr16_2]]";
+const USAGE: &str = "usage: reach-peers-bench [--poses N] [--rounds N] [--profile-ik N [--arm puma560|kr16_2|ur5]]";
 
 /// Exits with `message` and the usage line (status 2).
 fn usage_error(message: &str) -> ! {
@@ -539,8 +539,8 @@ fn main() {
             // over the poses: for a profiler.
             "--profile-ik" => profile = Some(value()),
             "--arm" => match args.next().as_deref() {
-                Some(arm @ ("puma560" | "kr16_2")) => profile_arm = arm.to_string(),
-                _ => usage_error("--arm needs puma560 or kr16_2"),
+                Some(arm @ ("puma560" | "kr16_2" | "ur5")) => profile_arm = arm.to_string(),
+                _ => usage_error("--arm needs puma560, kr16_2 or ur5"),
             },
             "-h" | "--help" => {
                 println!("{USAGE}");
@@ -550,7 +550,7 @@ fn main() {
         }
     }
     if let Some(passes) = profile {
-        let robot = if profile_arm == "kr16_2" { kr16_urdf() } else { presets::get("puma560").expect("preset") };
+        let robot = if profile_arm == "kr16_2" { kr16_urdf() } else { presets::get(&profile_arm).expect("preset") };
         let targets: Vec<IkTarget> =
             random_qs(&robot, poses, 2024).iter().map(|q| IkTarget::Pose(robot.fk(q).expect("fk"))).collect();
         let cform = SolverKind::detect(&robot).build(&robot).expect("closed form");
