@@ -32,7 +32,7 @@ use reach::Robot;
 use reach::ik::numeric::{Numeric, NumericOptions, SearchMode};
 use reach::ik::{IkOptions, IkSolutions, IkSolver, IkTarget, SolverKind};
 use reach::kinematics::Jacobian;
-use reach::model::{Convention, JointGeometry, JointKind, presets};
+use reach::model::{Convention, DhParams, JointGeometry, JointKind, presets};
 use reach_peers_bench::median;
 use rs_opw_kinematics::glam::{DQuat, DVec3};
 use rs_opw_kinematics::kinematic_traits::{Joints, Kinematics, Pose};
@@ -130,6 +130,24 @@ fn race_jacobian(robot: &Robot, qs: &[Vec<f64>], rounds: usize, peer: impl FnMut
         black_box(&jac);
     };
     race(qs.len(), rounds, reach, peer)
+}
+
+/// [`race`] of reach's closed form `solver` (`solve_into` a reused buffer, default options: what
+/// a real-time loop calls) on `targets` against `peer`.
+fn race_ik(
+    robot: &Robot,
+    solver: &dyn IkSolver,
+    targets: &[IkTarget],
+    rounds: usize,
+    peer: impl FnMut(usize),
+) -> (f64, f64) {
+    let options = IkOptions::default();
+    let mut out = IkSolutions::default();
+    let reach = |i: usize| {
+        solver.solve_into(robot, black_box(&targets[i]), &options, &mut out).expect("solve");
+        black_box(&out);
+    };
+    race(targets.len(), rounds, reach, peer)
 }
 
 /// Median time per call (ns) of `a` and of `b`, alternating rounds over `n` items.
@@ -248,18 +266,20 @@ fn joints6(q: &[f64]) -> Joints {
     [q[0], q[1], q[2], q[3], q[4], q[5]]
 }
 
+/// The DH rows of a robot described in DH (a preset), one per joint.
+fn dh_table(robot: &Robot) -> Vec<DhParams> {
+    let row = |j: &reach::model::Joint| match &j.geometry {
+        JointGeometry::Dh(p) => *p,
+        _ => panic!("{}: joint {} is not described in DH", robot.name(), j.name),
+    };
+    robot.joints().iter().map(row).collect()
+}
+
 /// OPW geometries of reach's `puma560` preset, in reach's joint coordinates: from the DH
 /// table (a1 = 0, a2 = ∓a3, b = ±d3, c1 = d1, c2 = a2, c3 = d4, c4 = d6), both signs of a2
 /// and b (the search in [`opw_match`] keeps the one that reproduces reach).
 fn opw_puma_geometries(robot: &Robot) -> Vec<Parameters> {
-    let dh: Vec<_> = robot
-        .joints()
-        .iter()
-        .map(|j| match &j.geometry {
-            JointGeometry::Dh(p) => *p,
-            _ => panic!("puma560 is DH"),
-        })
-        .collect();
+    let dh = dh_table(robot);
     let mut out = Vec::new();
     for s_a2 in [1.0, -1.0] {
         for s_b in [1.0, -1.0] {
@@ -401,14 +421,7 @@ impl GeoArm {
 fn ikgeo_ur5(robot: &Robot, qs: &[Vec<f64>]) -> (GeoArm, Rotation3<f64>) {
     use ik_geo::inverse_kinematics::auxiliary::Matrix3x7;
     use ik_geo::nalgebra::{Matrix3x6, Vector3 as V3};
-    let dh: Vec<_> = robot
-        .joints()
-        .iter()
-        .map(|j| match &j.geometry {
-            JointGeometry::Dh(p) => *p,
-            _ => panic!("ur5 is DH"),
-        })
-        .collect();
+    let dh = dh_table(robot);
     let (ex, ey, ez) = (V3::x(), V3::y(), V3::z());
     let h = Matrix3x6::from_columns(&[ez, ey, ey, ey, -ez, ey]);
     let p = Matrix3x7::from_columns(&[
@@ -489,18 +502,9 @@ fn vs_ikgeo(robot: &Robot, qs: &[Vec<f64>], rounds: usize, row: &impl Fn(&str, &
             geo_n += 1;
         }
     }
-    let mut out = IkSolutions::default();
-    let ik = race(
-        n,
-        rounds,
-        |i| {
-            cform.solve_into(robot, black_box(&reach_targets[i]), &options, &mut out).expect("solve");
-            black_box(&out);
-        },
-        |i| {
-            black_box(geo.solver.ik(black_box(geo_targets[i].0), black_box(geo_targets[i].1)));
-        },
-    );
+    let ik = race_ik(robot, cform.as_ref(), &reach_targets, rounds, |i| {
+        black_box(geo.solver.ik(black_box(geo_targets[i].0), black_box(geo_targets[i].1)));
+    });
     let note = format!(
         "all branches; mean solutions per pose: reach {:.2} (FK-verified, labelled, limits flagged), ik-geo {:.2} exact (checked here by reach's FK; not by itself) + {:.2} least-squares answers",
         reach_n as f64 / n as f64,
@@ -730,17 +734,9 @@ fn vs_rs_opw(
     let opw_allocs = allocations_per_call(n, |i| {
         black_box(opw.inverse(&opw_targets[i]));
     });
-    let ik = race(
-        n,
-        rounds,
-        |i| {
-            cform.solve_into(robot, black_box(&reach_targets[i]), &options, &mut out).expect("solve");
-            black_box(&out);
-        },
-        |i| {
-            black_box(opw.inverse(black_box(&opw_targets[i])));
-        },
-    );
+    let ik = race_ik(robot, cform.as_ref(), &reach_targets, rounds, |i| {
+        black_box(opw.inverse(black_box(&opw_targets[i])));
+    });
     let note = format!(
         "all branches, FK-checked; mean solutions per pose: reach {:.2} (of which within limits {:.2}; labelled), rs-opw {:.2} (no limits); reach timed on `solve_into` a reused buffer; heap allocations per solve: reach {reach_allocs:.2} (`solve_into`; `solve`, returning new vectors: {reach_solve_allocs:.2}), rs-opw {opw_allocs:.2}",
         reach_n as f64 / n as f64,
