@@ -460,8 +460,7 @@ pub(crate) fn walk<'a, K: WalkLink>(
     let mut chunks = links.chunks_exact(TRIG_LANES);
     let mut value_chunks = values.chunks_exact(TRIG_LANES);
     for (ls, vs) in chunks.by_ref().zip(value_chunks.by_ref()) {
-        let angles: [f64; TRIG_LANES] =
-            std::array::from_fn(|k| if ls[k].prismatic() { 0.0 } else { ls[k].value(vs[k]) });
+        let angles: [f64; TRIG_LANES] = std::array::from_fn(|k| trig_angle(&ls[k], vs[k]));
         let (s, c) = sin_cos_lanes(&angles);
         // Written out: a loop over the pair kept its counter in some callers (measured again
         // 2026-12-03 as `walk_by::<_, 2>`: `jacobian_into` +5.6 % instructions).
@@ -470,14 +469,13 @@ pub(crate) fn walk<'a, K: WalkLink>(
         i += TRIG_LANES;
     }
     for (link, &v) in chunks.remainder().iter().zip(value_chunks.remainder()) {
-        let sc = if link.prismatic() { (0.0, 1.0) } else { crate::angle::sin_cos(link.value(v)) };
-        advance(link, i, t, v, sc, q, &mut visit);
+        advance(link, i, t, v, crate::angle::sin_cos(trig_angle(link, v)), q, &mut visit);
         i += 1;
     }
 }
 
-/// The angle whose sine and cosine a walk evaluates for `link` at joint value `v`: its
-/// motion's ([`WalkLink::value`]), 0 for a prismatic joint (unused).
+/// The angle whose sine and cosine a walk ([`walk`], [`walk_by`]) evaluates for `link` at joint
+/// value `v`: its motion's ([`WalkLink::value`]), 0 for a prismatic joint (unused).
 #[inline(always)]
 fn trig_angle<K: WalkLink>(link: &K, v: f64) -> f64 {
     if link.prismatic() { 0.0 } else { link.value(v) }
