@@ -93,7 +93,7 @@ use super::{
     Branch, ChainFrame, FlagBits, IkError, IkFailure, IkOptions, IkSolutions, IkSolver, IkTarget, LaneSolve, Raw6,
     Raw6Set, SingularityKind, SingularityMeasures, finish_into, solve_at, solved,
 };
-use crate::angle::{atan2, sin_cos};
+use crate::angle::{atan2, atan2_each, sin_cos};
 use crate::kinematics::check_q;
 use crate::model::Robot;
 use crate::tolerance::{BOUNDARY, IK_AXIS_DISTANCE, IK_PARALLEL_SINE, STRUCTURE_ANGLE, STRUCTURE_LENGTH};
@@ -317,6 +317,22 @@ struct ShoulderRoot {
     singular: bool,
 }
 
+/// One shoulder root's frames up to the wrist, shared by its two wrists: the wrist `−e5`
+/// negates z4, x4 and x5 exactly (eq. 11), and with them θ5 (eq. 21: both `z4` and the
+/// cross product's factors change sign, so only the `atan2`'s first argument does).
+#[derive(Debug, Clone, Copy)]
+struct ShoulderArm {
+    x1: Vector3<f64>,
+    z1: Vector3<f64>,
+    z3: Vector3<f64>,
+    /// z4 = e5, x4 and x5 of the wrist `e5`.
+    z4: Vector3<f64>,
+    x4: Vector3<f64>,
+    x5: Vector3<f64>,
+    wrist_sine: f64,
+    wrist_singular: bool,
+}
+
 /// Everything of one (shoulder, wrist) branch before the elbow configuration is chosen.
 #[derive(Debug, Clone, Copy)]
 struct Arm {
@@ -326,12 +342,21 @@ struct Arm {
     /// In-plane vector r2·e_r2 (perpendicular to z1).
     v: Vector3<f64>,
     r2: f64,
-    wrist_sine: f64,
-    wrist_singular: bool,
-    /// θ1, θ5 and θ6 (eq. 21): they do not depend on the elbow configuration, so both
-    /// configurations of the arm share them.
-    theta_156: [f64; 3],
 }
+
+/// The directions `[x2, x3]` of links 2 and 3 of one arm and configuration.
+type Links = [Vector3<f64>; 2];
+
+/// The `atan2` arguments `(y, x)` of one solve's angles (eq. 21), evaluated together in lanes
+/// ([`atan2_each`]): per branch `b = 4·shoulder + 2·wrist + config` θ2, θ3, θ4 at `b`,
+/// `BRANCHES + b`, `2·BRANCHES + b`; per shoulder `s` θ1, θ5 (wrist `e5`), θ6 (`e5`) and θ6
+/// (`−e5`) at [`SHOULDER_LANES`] `+ s`, `+ 2 + s`, `+ 4 + s`, `+ 6 + s`. Unused lanes hold
+/// `(1, 1)`.
+const BRANCHES: usize = 8;
+/// The first lane of the shoulders' angles (see [`BRANCHES`]).
+const SHOULDER_LANES: usize = 3 * BRANCHES;
+/// All lanes of a solve's angles (see [`BRANCHES`]).
+const ANGLE_LANES: usize = SHOULDER_LANES + 8;
 
 /// The chain-frame target: tool point and axes.
 #[derive(Debug, Clone, Copy)]
@@ -342,10 +367,11 @@ struct Frame {
     z6: Vector3<f64>,
 }
 
-/// atan2(axis·(from × to), from·to): the angle from `from` to `to` about `axis` (eq. 21).
-#[inline]
-fn angle_about(axis: &Vector3<f64>, from: &Vector3<f64>, to: &Vector3<f64>) -> f64 {
-    atan2(axis.dot(&from.cross(to)), from.dot(to))
+/// `(axis·(from × to), from·to)`: the `atan2` arguments of the angle from `from` to `to`
+/// about `axis` (eq. 21).
+#[inline(always)]
+fn angle_args(axis: &Vector3<f64>, from: &Vector3<f64>, to: &Vector3<f64>) -> (f64, f64) {
+    (axis.dot(&from.cross(to)), from.dot(to))
 }
 
 fn is_angle(value: f64, target: f64) -> bool {
@@ -469,8 +495,9 @@ impl ParallelAxes {
         let mut out = TargetMeasures { column_distance: rho, lateral_offset: self.lateral.abs(), arms: [None; 4] };
         if let Ok(roots) = self.shoulder_roots(&c, seed[0]) {
             for root in &roots {
+                let shared = self.shoulder_arm(&frame, &z5, root, seed[5]);
                 for (j, wrist) in [Wrist::E5, Wrist::MinusE5].into_iter().enumerate() {
-                    let arm = self.arm(&frame, &z5, &c, root, wrist, seed[5]);
+                    let arm = self.arm(&shared, &c, wrist);
                     let (l2, l3) = (self.a[1], self.a[2]);
                     let delta =
                         (l2 * l2 + arm.r2 * arm.r2 - l3 * l3) / (2.0 * l2.abs() * arm.r2.max(f64::MIN_POSITIVE));
@@ -485,7 +512,7 @@ impl ParallelAxes {
                         r2: arm.r2,
                         delta,
                         cos_elbow,
-                        wrist_sine: arm.wrist_sine,
+                        wrist_sine: shared.wrist_sine,
                     });
                 }
             }
@@ -540,22 +567,15 @@ impl ParallelAxes {
         ])
     }
 
-    /// Steps 3–4 of the method for one shoulder root and wrist sign.
-    fn arm(
-        &self,
-        f: &Frame,
-        z5: &Vector3<f64>,
-        c: &Vector3<f64>,
-        root: &ShoulderRoot,
-        wrist: Wrist,
-        seed_theta6: f64,
-    ) -> Arm {
+    /// Steps 3–4 of the method for one shoulder root, up to the wrist sign: the frames both
+    /// wrists share ([`ShoulderArm`]).
+    #[inline(always)]
+    fn shoulder_arm(&self, f: &Frame, z5: &Vector3<f64>, root: &ShoulderRoot, seed_theta6: f64) -> ShoulderArm {
         let (s1, c1) = sin_cos(root.theta1);
         let x1 = Vector3::new(c1, s1, 0.0);
         let z1 = Vector3::new(s1, -c1, 0.0) * self.s_alpha1;
-        let z2 = z1 * self.c_alpha2;
-        let z3 = z2 * self.c_alpha3;
-        // e5 = ±(w × e6)/sin∠(w, e6)  (eq. 11).
+        let z3 = z1 * self.c_alpha2 * self.c_alpha3;
+        // e5 = (w × e6)/sin∠(w, e6)  (eq. 11; the wrist flip is its negation).
         let u = z1.cross(z5);
         let wrist_sine = u.norm();
         let wrist_singular = wrist_sine <= IK_PARALLEL_SINE;
@@ -566,30 +586,50 @@ impl ParallelAxes {
             let x5 = f.x6 * c6 - (f.y6 * self.c_alpha6 - f.z6 * self.s_alpha6) * s6;
             let y5 = z5.cross(&x5);
             let e5 = y5 * self.s_alpha5;
-            (e5 - z1 * e5.dot(&z1)).normalize() * wrist.sign()
+            (e5 - z1 * e5.dot(&z1)).normalize()
         } else {
-            u * (wrist.sign() / wrist_sine)
+            u * (1.0 / wrist_sine)
         };
         let x4 = z3.cross(&z4) * self.s_alpha4;
-        // B = C − d5·e5 (eq. 12), then back along the wrist-pitch link and the lateral offsets.
+        let x5 = z4.cross(z5) * self.s_alpha5;
+        let x5 = x5 / x5.norm();
+        ShoulderArm { x1, z1, z3, z4, x4, x5, wrist_sine, wrist_singular }
+    }
+
+    /// Step 4 for one wrist sign: B = C − d5·e5 (eq. 12), then back along the wrist-pitch link
+    /// and the lateral offsets to the in-plane vector r2·e_r2.
+    #[inline(always)]
+    fn arm(&self, shared: &ShoulderArm, c: &Vector3<f64>, wrist: Wrist) -> Arm {
+        let ShoulderArm { x1, z1, z3, .. } = *shared;
+        let z2 = z1 * self.c_alpha2;
+        let (z4, x4) = (shared.z4 * wrist.sign(), shared.x4 * wrist.sign());
         let o4 = c - z4 * self.d[4];
         let o3 = o4 - z3 * self.d[3] - x4 * self.a[3];
         let o1 = Vector3::new(0.0, 0.0, self.d[0]) + x1 * self.a[0];
         let v = o3 - o1 - z1 * self.d[1] - z2 * self.d[2];
         let v = v - z1 * v.dot(&z1); // exact in-plane part (the residue is round-off or ≤ ρ at the shoulder singularity)
-        let x5 = z4.cross(z5) * self.s_alpha5;
-        let x5 = x5 / x5.norm();
-        let theta_156 =
-            [angle_about(&Vector3::z(), &Vector3::x(), &x1), angle_about(&z4, &x4, &x5), angle_about(z5, &x5, &f.x6)];
-        Arm { x1, z1, x4, v, r2: v.norm(), wrist_sine, wrist_singular, theta_156 }
+        Arm { x1, z1, x4, v, r2: v.norm() }
     }
 
-    /// Steps 5–8 for one arm and configuration: DH angles θ1…θ6, or `Err` = out of reach.
-    fn angles(&self, arm: &Arm, config: Config, seed_theta2: f64) -> Result<([f64; 6], bool), IkFailure> {
+    /// The `atan2` arguments of θ1, θ5 (wrist `e5`; `−e5`: −θ5) and θ6 (`e5`, `−e5`) of one
+    /// shoulder (eq. 21).
+    #[inline(always)]
+    fn shoulder_args(shared: &ShoulderArm, f: &Frame, z5: &Vector3<f64>) -> [(f64, f64); 4] {
+        [
+            angle_args(&Vector3::z(), &Vector3::x(), &shared.x1),
+            angle_args(&shared.z4, &shared.x4, &shared.x5),
+            angle_args(z5, &shared.x5, &f.x6),
+            angle_args(z5, &-shared.x5, &f.x6),
+        ]
+    }
+
+    /// Steps 5–7 for one arm: the directions x2, x3 of links 2 and 3 of the configurations
+    /// `[+β, −β]` (equal at r2 = 0, from the seed's θ2), whether the elbow is singular, or
+    /// `Err` = out of reach.
+    #[inline(always)]
+    fn links(&self, arm: &Arm, seed_theta2: f64) -> Result<([Links; 2], bool), IkFailure> {
         let (l2, l3) = (self.a[1].abs(), self.a[2].abs());
         let z1 = arm.z1;
-        let z2 = z1 * self.c_alpha2;
-        let z3 = z2 * self.c_alpha3;
         // Direction of link 2 (from the shoulder towards the elbow), a2 of the paper.
         let (link2, elbow_singular) = if arm.r2 <= IK_AXIS_DISTANCE {
             // r2 = 0: only possible for l2 = l3 (else |Δ| = ∞): the folded arm, θ2 free.
@@ -598,7 +638,8 @@ impl ParallelAxes {
             }
             let (s2, c2) = sin_cos(seed_theta2);
             let x2 = arm.x1 * c2 + z1.cross(&arm.x1) * s2;
-            (x2 * self.a[1].signum(), true)
+            let link2 = x2 * self.a[1].signum();
+            ([link2, link2], true)
         } else {
             // Reachability and the elbow singularity are decided on the cosine of the elbow
             // angle, c3 = (r2² − a2² − a3²)/(2·a2·a3), which is ±1 exactly when |Δ| = 1 and
@@ -619,61 +660,98 @@ impl ParallelAxes {
             let Some([plus, minus]) = chace(&e_r2, &z1, delta, 0.0) else {
                 return Err(IkFailure::Singular { kind: SingularityKind::Elbow });
             };
-            let dir = match config {
-                Config::PlusBeta => plus,
-                Config::MinusBeta => minus,
-            };
-            (dir.normalize(), singular)
+            ([plus.normalize(), minus.normalize()], singular)
         };
-        let x2 = link2 * self.a[1].signum();
-        // a3 = (r2·e_r2 − l2·a2)/l3  (eq. 18), with signed DH lengths.
-        let x3 = ((arm.v - x2 * self.a[1]) / self.a[2]).normalize();
-        let [theta1, theta5, theta6] = arm.theta_156;
-        let theta = [
-            theta1,
-            angle_about(&z1, &arm.x1, &x2),
-            angle_about(&z2, &x2, &x3),
-            angle_about(&z3, &x3, &arm.x4),
-            theta5,
-            theta6,
-        ];
-        Ok((theta, elbow_singular))
+        Ok((
+            link2.map(|link2| {
+                let x2 = link2 * self.a[1].signum();
+                // a3 = (r2·e_r2 − l2·a2)/l3  (eq. 18), with signed DH lengths.
+                let x3 = ((arm.v - x2 * self.a[1]) / self.a[2]).normalize();
+                [x2, x3]
+            }),
+            elbow_singular,
+        ))
+    }
+
+    /// The `atan2` arguments of θ2, θ3 and θ4 (eq. 21) of one arm and configuration from its
+    /// links `[x2, x3]` ([`ParallelAxes::links`]).
+    #[inline(always)]
+    fn link_args(&self, arm: &Arm, [x2, x3]: &Links) -> [(f64, f64); 3] {
+        let z2 = arm.z1 * self.c_alpha2;
+        let z3 = z2 * self.c_alpha3;
+        [angle_args(&arm.z1, &arm.x1, x2), angle_args(&z2, x2, x3), angle_args(&z3, x3, &arm.x4)]
     }
 
     /// Every candidate (up to 8) for a chain-frame target, and the failure reason if none.
-    fn candidates(&self, frame: &Frame, seed: &[f64; 6]) -> (Raw6Set, Option<IkFailure>) {
+    ///
+    /// The two shoulders' frames are shared by their wrists ([`ShoulderArm`]), the two
+    /// configurations of an arm by one Chace solve ([`ParallelAxes::links`]), and the angles
+    /// of all branches go through their `atan2` together ([`atan2_each`]: in lanes when
+    /// `WIDE`, bit for bit [`atan2`] either way; see [`BRANCHES`]).
+    #[inline(always)]
+    fn candidates<const WIDE: bool>(&self, frame: &Frame, seed: &[f64; 6]) -> (Raw6Set, Option<IkFailure>) {
+        let mut out = Raw6Set::new(KEYS);
         let (z5, c) = self.wrist_point(frame);
         let roots = match self.shoulder_roots(&c, seed[0]) {
             Ok(r) => r,
-            Err(failure) => return (Raw6Set::new(KEYS), Some(failure)),
+            Err(failure) => return (out, Some(failure)),
         };
-        let mut out = Raw6Set::new(KEYS);
         let mut failure: Option<(f64, IkFailure)> = None;
-        for root in &roots {
-            for wrist in [Wrist::E5, Wrist::MinusE5] {
-                let arm = self.arm(frame, &z5, &c, root, wrist, seed[5]);
-                for config in [Config::PlusBeta, Config::MinusBeta] {
-                    match self.angles(&arm, config, seed[1]) {
-                        Ok((theta, elbow_singular)) => {
-                            out.push(self.candidate(&theta, root, config, wrist, &arm, elbow_singular));
-                        }
-                        Err(f) => {
-                            let excess = match &f {
-                                IkFailure::Unreachable { distance, reach } => (distance - reach).abs(),
-                                _ => f64::INFINITY,
-                            };
-                            if failure.as_ref().is_none_or(|(e, _)| excess < *e) {
-                                failure = Some((excess, f));
+        let (mut y, mut x) = ([1.0; ANGLE_LANES], [1.0; ANGLE_LANES]);
+        let mut branches = [None; BRANCHES];
+        let mut wrist_singular = [false; 2];
+        for (s, root) in roots.iter().enumerate() {
+            let shared = self.shoulder_arm(frame, &z5, root, seed[5]);
+            wrist_singular[s] = shared.wrist_singular;
+            for (i, (ys, xs)) in Self::shoulder_args(&shared, frame, &z5).into_iter().enumerate() {
+                (y[SHOULDER_LANES + 2 * i + s], x[SHOULDER_LANES + 2 * i + s]) = (ys, xs);
+            }
+            for (w, wrist) in [Wrist::E5, Wrist::MinusE5].into_iter().enumerate() {
+                let arm = self.arm(&shared, &c, wrist);
+                match self.links(&arm, seed[1]) {
+                    Ok((links, elbow_singular)) => {
+                        for (k, links) in links.iter().enumerate() {
+                            let b = 4 * s + 2 * w + k;
+                            for (i, (ys, xs)) in self.link_args(&arm, links).into_iter().enumerate() {
+                                (y[i * BRANCHES + b], x[i * BRANCHES + b]) = (ys, xs);
                             }
+                            branches[b] = Some(elbow_singular);
+                        }
+                    }
+                    Err(f) => {
+                        let excess = match &f {
+                            IkFailure::Unreachable { distance, reach } => (distance - reach).abs(),
+                            _ => f64::INFINITY,
+                        };
+                        if failure.as_ref().is_none_or(|(e, _)| excess < *e) {
+                            failure = Some((excess, f));
                         }
                     }
                 }
             }
         }
+        let angles = atan2_each::<WIDE, ANGLE_LANES>(&y, &x);
+        for (b, elbow_singular) in branches.into_iter().enumerate() {
+            let Some(elbow_singular) = elbow_singular else { continue };
+            let (s, w, k) = (b / 4, (b / 2) % 2, b % 2);
+            let theta5 = angles[SHOULDER_LANES + 2 + s];
+            let theta = [
+                angles[SHOULDER_LANES + s],
+                angles[b],
+                angles[BRANCHES + b],
+                angles[2 * BRANCHES + b],
+                if w == 0 { theta5 } else { -theta5 },
+                angles[SHOULDER_LANES + 4 + 2 * w + s],
+            ];
+            let (config, wrist) = ([Config::PlusBeta, Config::MinusBeta][k], [Wrist::E5, Wrist::MinusE5][w]);
+            out.push(self.candidate(&theta, &roots[s], config, wrist, wrist_singular[s], elbow_singular));
+        }
         (out, failure.map(|(_, f)| f))
     }
 
-    /// The candidate of one branch, `None` when the branch has no root here.
+    /// The candidate of one branch, `None` when the branch has no root here: the steps of
+    /// [`ParallelAxes::candidates`] for that branch alone, each `atan2` by [`atan2`] (the same
+    /// bits as the lanes').
     fn branch_candidate(
         &self,
         frame: &Frame,
@@ -685,26 +763,40 @@ impl ParallelAxes {
         let (z5, c) = self.wrist_point(frame);
         let roots = self.shoulder_roots(&c, seed[0]).ok()?;
         let root = roots.iter().find(|r| r.label == shoulder)?;
-        let arm = self.arm(frame, &z5, &c, root, wrist, seed[5]);
-        let (theta, elbow_singular) = self.angles(&arm, config, seed[1]).ok()?;
-        Some(self.candidate(&theta, root, config, wrist, &arm, elbow_singular))
+        let shared = self.shoulder_arm(frame, &z5, root, seed[5]);
+        let arm = self.arm(&shared, &c, wrist);
+        let (links, elbow_singular) = self.links(&arm, seed[1]).ok()?;
+        let k = match config {
+            Config::PlusBeta => 0,
+            Config::MinusBeta => 1,
+        };
+        let angle = |(y, x): (f64, f64)| atan2(y, x);
+        let [theta1, theta5, theta6_e5, theta6_minus_e5] = Self::shoulder_args(&shared, frame, &z5).map(angle);
+        let [theta2, theta3, theta4] = self.link_args(&arm, &links[k]).map(angle);
+        let (theta5, theta6) = match wrist {
+            Wrist::E5 => (theta5, theta6_e5),
+            Wrist::MinusE5 => (-theta5, theta6_minus_e5),
+        };
+        let theta = [theta1, theta2, theta3, theta4, theta5, theta6];
+        Some(self.candidate(&theta, root, config, wrist, shared.wrist_singular, elbow_singular))
     }
 
     /// The labelled, flagged candidate of DH angles `theta`.
+    #[inline(always)]
     fn candidate(
         &self,
         theta: &[f64; 6],
         root: &ShoulderRoot,
         config: Config,
         wrist: Wrist,
-        arm: &Arm,
+        wrist_singular: bool,
         elbow_singular: bool,
     ) -> Raw6 {
         let q: [f64; 6] = std::array::from_fn(|i| self.sign[i] * (theta[i] - self.offset[i]));
         let flags = FlagBits::default()
             .with(SingularityKind::Shoulder, root.singular)
             .with(SingularityKind::Elbow, elbow_singular)
-            .with(SingularityKind::Wrist, arm.wrist_singular);
+            .with(SingularityKind::Wrist, wrist_singular);
         Raw6 { q, values: [root.label.label(), config.label(), wrist.label()], flags }
     }
 
@@ -748,7 +840,7 @@ impl LaneSolve for ParallelAxes {
         target.validate()?;
         let seed = self.seed_theta(robot, options)?;
         let frame = frame_of(&self.frame.target(robot, &Self::pose_of(robot, target, options)?));
-        let (mut candidates, failure) = self.candidates(&frame, &seed);
+        let (mut candidates, failure) = self.candidates::<WIDE>(&frame, &seed);
         self.frame.refine(robot, target, &mut candidates);
         let if_empty = failure.unwrap_or_else(|| {
             let kind = candidates.iter().find_map(|c| c.flags.first()).unwrap_or(SingularityKind::Jacobian);
