@@ -128,6 +128,7 @@ const NAME: &str = "parallel-axes";
 /// assert!(ei.cross(&ej).dot(&plus) > 0.0 && ei.cross(&ej).dot(&minus) < 0.0);
 /// ```
 #[must_use]
+#[inline(always)]
 pub fn chace(e_i: &Vector3<f64>, e_j: &Vector3<f64>, c_ik: f64, c_jk: f64) -> Option<[Vector3<f64>; 2]> {
     let c_ij = e_i.dot(e_j);
     let n = e_i.cross(e_j);
