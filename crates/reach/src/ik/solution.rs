@@ -638,6 +638,22 @@ fn same_angle(a: f64, b: f64) -> bool {
     }
 }
 
+/// Whether two joint values are different by [`same_angle`] *and* by the prismatic rule of
+/// [`same_q`], whatever the joint's kind: `true` proves that two joint vectors differing so at
+/// one joint are different solutions; `false` proves nothing (`NaN` gives `false`). The lane
+/// screen of [`verify_block`], branch-free.
+#[inline(always)]
+fn surely_distinct(a: f64, b: f64) -> bool {
+    use std::f64::consts::TAU;
+    let d = (a - b).abs();
+    let e = TAU - d;
+    // Revolute, d < 2π: for d ≤ π, e ≥ π > IK_DUPLICATE and the test is d ≥ IK_DUPLICATE,
+    // where [`same_angle`] is false; for d in (π, 2π), e < π < d and the test is
+    // 2π − d ≥ IK_DUPLICATE, [`same_angle`]'s own (exact) term. Prismatic: either way
+    // d ≥ IK_DUPLICATE. d ≥ 2π proves nothing here.
+    (d < TAU) & ((if d < e { d } else { e }) >= IK_DUPLICATE)
+}
+
 /// Whether two joint vectors are the same solution: revolute values by [`same_angle`], prismatic
 /// ones literally (`|a − b| < IK_DUPLICATE` metres — 0 m and 2π m are different).
 /// Compared from the last joint: branches of an arm share their first joints (the two wrist
@@ -901,7 +917,7 @@ pub(crate) fn finish_within_into<const WIDE: bool, C: CandidateList + ?Sized>(
     // The solutions of `out` are overwritten in order, then spares (taken back last first),
     // then new ones: the result does not depend on what `out` held, only the buffers are
     // reused.
-    let mut kept = Kept { robot, tolerances, len: 0, solutions: &mut out.solutions, spare: &mut out.spare.0 };
+    let mut kept = Kept { robot, tolerances, len: 0, block: 0, solutions: &mut out.solutions, spare: &mut out.spare.0 };
     let n = candidates.count();
     kept.solutions.reserve(n.saturating_sub(kept.solutions.len()));
     let dof = robot.dof();
@@ -931,7 +947,7 @@ pub(crate) fn finish_within_into<const WIDE: bool, C: CandidateList + ?Sized>(
                 p: std::array::from_fn(|k| [t.translation.vector[k]]),
             };
             let (position, sin, cos) = check.errors(&t);
-            kept.offer(candidates, i, position[0], check.angles::<false, 1>(&sin, &cos)[0]);
+            kept.offer(candidates, i, position[0], check.angles::<false, 1>(&sin, &cos)[0], Screen::default());
         }
     }
     let len = kept.len;
@@ -979,12 +995,52 @@ fn verify_block<const WIDE: bool, const L: usize, const H: usize, C: CandidateLi
     }
     let shared = shared_prefix::<L, H>(robot, &mut q[..dof], &finite, len);
     let (position, orientation) = lane_errors::<WIDE, L, H>(robot, check, &q[..dof], shared);
+    let screens = screen::<L>(robot, &q[..dof]);
+    kept.block = kept.len;
     for l in 0..len {
         if finite[l] {
-            kept.offer(candidates, start + l, position[l], orientation[l]);
+            kept.offer(candidates, start + l, position[l], orientation[l], screens[l]);
         }
     }
     Ok(len)
+}
+
+/// What the lanes of one block prove about each candidate before it is offered to [`Kept`],
+/// so that the usual case skips the per-joint loops.
+#[derive(Clone, Copy, Default)]
+struct Screen {
+    /// (The default proves nothing.) Every joint within its limits ([`Limits::contains`](crate::model::Limits::contains)
+    /// with [`LIMIT_SLACK`], the test of the violation list): no violation to look for.
+    within: bool,
+    /// The last joint's value is [`surely_distinct`] from that of every earlier lane of the
+    /// block: no solution kept from this block can be the same.
+    distinct: bool,
+}
+
+/// The [`Screen`] of each lane of `q` (`q[j][l]`, `q.len()` joints ≥ 1). Lanes whose candidate
+/// is dropped hold copies of another lane's values (see [`shared_prefix`]), which can only
+/// clear a later lane's `distinct`: a screen never claims more than holds.
+#[inline(always)]
+fn screen<const L: usize>(robot: &Robot, q: &[Lanes<L>]) -> [Screen; L] {
+    let mut within = [true; L];
+    for (joint, lanes) in robot.joints().iter().zip(q) {
+        for l in 0..L {
+            within[l] &= joint.limits.contains(lanes[l], LIMIT_SLACK);
+        }
+    }
+    let last = &q[q.len() - 1];
+    let mut distinct = [true; L];
+    // Each lane against every other, masked to the earlier ones: whole vectors, no triangle.
+    for (m, &earlier) in last.iter().enumerate() {
+        for l in 0..L {
+            distinct[l] &= (l <= m) | surely_distinct(last[l], earlier);
+        }
+    }
+    let mut screens = [Screen::default(); L];
+    for l in 0..L {
+        screens[l] = Screen { within: within[l], distinct: distinct[l] };
+    }
+    screens
 }
 
 /// How many leading joints every group of `L / H` consecutive lanes of `q` (`q[j][l]`) shares,
@@ -1023,20 +1079,25 @@ struct Kept<'a> {
     /// Number of solutions kept so far: the first `len` of `solutions` (those beyond are
     /// buffers of an earlier solve, overwritten next).
     len: usize,
+    /// Number of solutions kept before the current block of [`verify_block`]: a candidate
+    /// screened [`Screen::distinct`] is compared with these only.
+    block: usize,
     solutions: &'a mut Vec<IkSolution>,
     spare: &'a mut Vec<IkSolution>,
 }
 
 impl Kept<'_> {
     /// Candidate `i` of `candidates` (normalised, its tool pose `position_error` metres and
-    /// `orientation_error` radians away from the target): dropped when outside the
-    /// tolerances, merged into an equal kept solution (flags united), else kept.
+    /// `orientation_error` radians away from the target, `screen` what its block proved):
+    /// dropped when outside the tolerances, merged into an equal kept solution (flags
+    /// united), else kept.
     fn offer<C: CandidateList + ?Sized>(
         &mut self,
         candidates: &mut C,
         i: usize,
         position_error: f64,
         orientation_error: f64,
+        screen: Screen,
     ) {
         let (position_tolerance, orientation_tolerance) = self.tolerances;
         if position_error > position_tolerance || orientation_error > orientation_tolerance {
@@ -1044,7 +1105,8 @@ impl Kept<'_> {
         }
         let robot = self.robot;
         let q = candidates.joints(i);
-        if let Some(existing) = self.solutions[..self.len].iter_mut().find(|s| same_q(robot, &s.q, q)) {
+        let compared = if screen.distinct { self.block } else { self.len };
+        if let Some(existing) = self.solutions[..compared].iter_mut().find(|s| same_q(robot, &s.q, q)) {
             for k in candidates.flags(i) {
                 if !existing.singularities.contains(&k) {
                     existing.singularities.push(k);
@@ -1062,7 +1124,8 @@ impl Kept<'_> {
         s.position_error = position_error;
         s.orientation_error = orientation_error;
         s.violations.clear();
-        for (i, (j, v)) in robot.joints().iter().zip(q).enumerate() {
+        let joints = if screen.within { &[][..] } else { robot.joints() };
+        for (i, (j, v)) in joints.iter().zip(q).enumerate() {
             if !j.limits.contains(*v, LIMIT_SLACK) {
                 s.violations.push(LimitViolation {
                     joint: i + 1,
@@ -1527,6 +1590,34 @@ mod tests {
         for (a, b) in pairs {
             assert_eq!(same_angle(a, b), wrapped(a, b), "{a} {b}");
         }
+    }
+
+    #[test]
+    fn surely_distinct_claims_only_what_both_rules_prove() {
+        // `surely_distinct` ⇒ different by the revolute rule and by the prismatic one, on the
+        // boundaries (IK_DUPLICATE, π, 2π, NaN) and on random pairs near them; and it does
+        // prove the usual cases (distinct branches, the two wrists about π apart).
+        use std::f64::consts::{PI, TAU};
+        let e = IK_DUPLICATE;
+        let mut rng = crate::rng::SplitMix64(5);
+        let mut pairs = vec![(0.0, e), (0.0, 0.5 * e), (PI, -PI), (0.0, PI), (0.0, TAU - e), (0.0, TAU - 2.0 * e)];
+        pairs.extend([(0.0, TAU), (0.0, TAU + e), (1.0, f64::NAN), (0.0, f64::INFINITY), (PI - 0.5 * e, -PI)]);
+        for _ in 0..20_000 {
+            let a = (2.0 * rng.next_f64() - 1.0) * 10.0;
+            let k = [0.0, PI, TAU, -TAU, 2.0 * TAU][rng.below(5)];
+            pairs.push((a, a + k + (2.0 * rng.next_f64() - 1.0) * 3.0 * e));
+        }
+        let mut proved = 0;
+        for (a, b) in pairs {
+            if surely_distinct(a, b) {
+                proved += 1;
+                assert!(!same_angle(a, b), "revolute {a} {b}");
+                assert!((a - b).abs() >= IK_DUPLICATE, "prismatic {a} {b}");
+            }
+        }
+        assert!(proved > 5_000, "{proved}");
+        assert!(surely_distinct(0.3, 0.3 + PI) && surely_distinct(0.3, 0.3 - PI + 1e-12) && surely_distinct(-2.0, 1.0));
+        assert!(!surely_distinct(1.0, 1.0) && !surely_distinct(1.0, 1.0 + TAU) && !surely_distinct(1.0, f64::NAN));
     }
 
     #[test]
