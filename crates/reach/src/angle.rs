@@ -18,6 +18,11 @@ pub fn wrap(angle: f64) -> f64 {
     if is_wrapped(angle) {
         return angle;
     }
+    // Within one turn of 0 (an angle plus a joint offset): the `fmod` returns `angle` itself
+    // (it is exact), so the same result without it.
+    if angle.abs() < TAU {
+        return if angle > PI { angle - TAU } else { angle + TAU };
+    }
     let mut a = angle % TAU; // in (−2π, 2π)
     if a > PI {
         a -= TAU;
@@ -473,6 +478,27 @@ mod tests {
     }
 
     /// Units in the last place of `b` between `a` and `b`.
+    #[test]
+    fn wrap_within_a_turn_is_the_remainder_rule_bit_for_bit() {
+        // The shortcut for |angle| < 2π returns what the `fmod` path returns, to the bit.
+        let by_fmod = |angle: f64| {
+            let mut a = angle % TAU;
+            if a > PI {
+                a -= TAU;
+            } else if a <= -PI {
+                a += TAU;
+            }
+            a
+        };
+        let mut rng = crate::rng::SplitMix64(11);
+        let mut xs = vec![PI, -PI, TAU, -TAU, PI + 1e-15, -PI - 1e-15, TAU - 1e-15, -TAU + 1e-15, 1.5 * PI];
+        xs.extend((0..50_000).map(|_| (2.0 * rng.next_f64() - 1.0) * 2.5 * TAU));
+        for x in xs {
+            let want = if is_wrapped(x) { x } else { by_fmod(x) };
+            assert_eq!(wrap(x).to_bits(), want.to_bits(), "{x}");
+        }
+    }
+
     fn ulps(a: f64, b: f64) -> f64 {
         let step = f64::from_bits(b.abs().to_bits() + 1) - b.abs();
         (a - b).abs() / step
