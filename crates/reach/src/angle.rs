@@ -477,7 +477,6 @@ mod tests {
         assert_eq!(wrap(0.0), 0.0);
     }
 
-    /// Units in the last place of `b` between `a` and `b`.
     #[test]
     fn wrap_within_a_turn_is_the_remainder_rule_bit_for_bit() {
         // The shortcut for |angle| < 2π returns what the `fmod` path returns, to the bit.
@@ -499,6 +498,7 @@ mod tests {
         }
     }
 
+    /// Units in the last place of `b` between `a` and `b`.
     fn ulps(a: f64, b: f64) -> f64 {
         let step = f64::from_bits(b.abs().to_bits() + 1) - b.abs();
         (a - b).abs() / step

@@ -1006,10 +1006,10 @@ fn verify_block<const WIDE: bool, const L: usize, const H: usize, C: CandidateLi
 }
 
 /// What the lanes of one block prove about each candidate before it is offered to [`Kept`],
-/// so that the usual case skips the per-joint loops.
+/// so that the usual case skips the per-joint loops. The default proves nothing.
 #[derive(Clone, Copy, Default)]
 struct Screen {
-    /// (The default proves nothing.) Every joint within its limits ([`Limits::contains`](crate::model::Limits::contains)
+    /// Every joint within its limits ([`Limits::contains`](crate::model::Limits::contains)
     /// with [`LIMIT_SLACK`], the test of the violation list): no violation to look for.
     within: bool,
     /// The last joint's value is [`surely_distinct`] from that of every earlier lane of the
@@ -1017,9 +1017,9 @@ struct Screen {
     distinct: bool,
 }
 
-/// The [`Screen`] of each lane of `q` (`q[j][l]`, `q.len()` joints ≥ 1). Lanes whose candidate
-/// is dropped hold copies of another lane's values (see [`shared_prefix`]), which can only
-/// clear a later lane's `distinct`: a screen never claims more than holds.
+/// The [`Screen`] of each lane of `q` (`q[j][l]`, `q.len()` joints ≥ 1). Lanes without a
+/// verified candidate hold zeros or another lane's values (see [`shared_prefix`]); they can
+/// only clear a later lane's `distinct`, so a screen never claims more than holds.
 #[inline(always)]
 fn screen<const L: usize>(robot: &Robot, q: &[Lanes<L>]) -> [Screen; L] {
     let mut within = [true; L];
