@@ -18,8 +18,8 @@ pub fn wrap(angle: f64) -> f64 {
     if is_wrapped(angle) {
         return angle;
     }
-    // Within one turn of 0 (an angle plus a joint offset): the `fmod` returns `angle` itself
-    // (it is exact), so the same result without it.
+    // Within one turn of 0 (an angle plus a joint offset): `angle % TAU` is `angle` itself
+    // (|angle| < 2π), so the same result without the `fmod`.
     if angle.abs() < TAU {
         return if angle > PI { angle - TAU } else { angle + TAU };
     }

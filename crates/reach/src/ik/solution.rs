@@ -647,10 +647,10 @@ fn surely_distinct(a: f64, b: f64) -> bool {
     use std::f64::consts::TAU;
     let d = (a - b).abs();
     let e = TAU - d;
-    // Revolute, d < 2π: for d ≤ π, e ≥ π > IK_DUPLICATE and the test is d ≥ IK_DUPLICATE,
-    // where [`same_angle`] is false; for d in (π, 2π), e < π < d and the test is
-    // 2π − d ≥ IK_DUPLICATE, [`same_angle`]'s own (exact) term. Prismatic: either way
-    // d ≥ IK_DUPLICATE. d ≥ 2π proves nothing here.
+    // Revolute, d < 2π: for d ≤ π, e ≥ π > IK_DUPLICATE and the test is d ≥ IK_DUPLICATE
+    // (at d = π the minimum is e = π), where `same_angle` is false; for d in (π, 2π),
+    // e < π < d and the test is 2π − d ≥ IK_DUPLICATE, `same_angle`'s own (exact) term.
+    // Prismatic: either way d ≥ IK_DUPLICATE. d ≥ 2π proves nothing here.
     (d < TAU) & ((if d < e { d } else { e }) >= IK_DUPLICATE)
 }
 
@@ -978,7 +978,8 @@ fn verify_block<const WIDE: bool, const L: usize, const H: usize, C: CandidateLi
 ) -> Result<usize, IkError> {
     let (robot, dof) = (kept.robot, kept.robot.dof());
     let len = (candidates.count() - start).min(L);
-    // Lanes of dropped candidates (and beyond `len`) compute the pose of zeros, unused.
+    // Lanes of dropped candidates (and beyond `len`) compute the pose of zeros or of another
+    // lane's values ([`shared_prefix`]), unused.
     let mut q = [[0.0; L]; LANE_DOF];
     let mut finite = [false; L];
     for l in 0..len {
@@ -1080,7 +1081,8 @@ struct Kept<'a> {
     /// buffers of an earlier solve, overwritten next).
     len: usize,
     /// Number of solutions kept before the current block of [`verify_block`]: a candidate
-    /// screened [`Screen::distinct`] is compared with these only.
+    /// screened [`Screen::distinct`] is compared with these only (unused on the scalar path,
+    /// whose candidates are never screened distinct).
     block: usize,
     solutions: &'a mut Vec<IkSolution>,
     spare: &'a mut Vec<IkSolution>,
