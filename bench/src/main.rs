@@ -463,18 +463,62 @@ fn ikgeo_ur5(robot: &Robot, qs: &[Vec<f64>]) -> (GeoArm, Rotation3<f64>) {
     panic!("no ik-geo form reproduces reach's ur5");
 }
 
-/// reach's UR5 closed form next to ik-geo's on the joint vectors `qs`: both FK-checked, ik-geo's
-/// least-squares answers (not solutions) left out.
-fn vs_ikgeo(robot: &Robot, qs: &[Vec<f64>], rounds: usize, row: &impl Fn(&str, &str, &str, (f64, f64), &str)) {
+/// reach's spherical-wrist `robot` (joints 2 and 3 parallel) in ik-geo's product-of-exponentials
+/// form read off its own zero configuration, for ik-geo's `spherical_two_parallel`: joint `i`'s
+/// world axis `h_i` is the angular part of the Jacobian's column at q = 0, a point on it the one
+/// closest to the tool point (`p_e + ω × v`) — for joints 4–6 the wrist centre, where their
+/// axes meet — and `p` the vectors between consecutive points. ik-geo's joint values are then
+/// reach's, and the constant flange rotation is `C = R(0)` (`reach flange = geo flange · C`).
+/// The caller checks the form on every pose.
+fn ikgeo_spherical(robot: &Robot) -> (GeoArm, Rotation3<f64>) {
+    use ik_geo::inverse_kinematics::auxiliary::Matrix3x7;
+    use ik_geo::nalgebra::{Matrix3x6, Vector3 as V3};
+    let zero = [0.0; 6];
+    let t0 = robot.fk(&zero).expect("fk");
+    let jac = robot.jacobian(&zero).expect("jacobian");
+    let tip = t0.translation.vector;
+    let axis = |i: usize| Vector3::new(jac[(3, i)], jac[(4, i)], jac[(5, i)]);
+    let point = |i: usize| tip + axis(i).cross(&Vector3::new(jac[(0, i)], jac[(1, i)], jac[(2, i)]));
+    // The wrist centre: the point of axis 4 closest to axis 5 (they meet there).
+    let (a, u, w) = (point(3), axis(3), axis(4));
+    let r = a - point(4);
+    let uw = u.dot(&w);
+    let centre = a + (uw * w.dot(&r) - u.dot(&r)) / (1.0 - uw * uw) * u;
+    let o = [point(0), point(1), point(2), centre, centre, centre];
+    let geo = |x: Vector3<f64>| V3::new(x.x, x.y, x.z);
+    let h = Matrix3x6::from_columns(&std::array::from_fn::<_, 6, _>(|i| geo(axis(i))));
+    let p = Matrix3x7::from_columns(&[
+        geo(o[0]),
+        geo(o[1] - o[0]),
+        geo(o[2] - o[1]),
+        geo(o[3] - o[2]),
+        V3::zeros(),
+        V3::zeros(),
+        geo(tip - o[5]),
+    ]);
+    let arm = GeoArm { solver: ik_geo::robot::spherical_two_parallel(h, p), sign: [1.0; 6], offset: [0.0; 6] };
+    (arm, t0.rotation.to_rotation_matrix())
+}
+
+/// reach's closed form next to ik-geo's form `geo` of the same arm (`reach flange = geo flange
+/// · c`) on the joint vectors `qs`: both FK-checked, ik-geo's least-squares answers (not
+/// solutions) left out.
+fn vs_ikgeo(
+    name: &str,
+    robot: &Robot,
+    (geo, c): (GeoArm, Rotation3<f64>),
+    qs: &[Vec<f64>],
+    rounds: usize,
+    row: &impl Fn(&str, &str, &str, (f64, f64), &str),
+) {
     use ik_geo::nalgebra::{Matrix3 as M3, Vector3 as V3};
     use ik_geo::robot::IKSolver;
-    let (geo, c) = ikgeo_ur5(robot, qs);
     let n = qs.len();
     let targets: Vec<Isometry3<f64>> = qs.iter().map(|q| robot.fk(q).expect("fk")).collect();
     for (q, t) in qs.iter().zip(&targets) {
         let (r, p) = geo.fk(q);
         let (dp, da) = pose_gap(&Isometry3::from_parts(p.into(), UnitQuaternion::from_rotation_matrix(&(r * c))), t);
-        assert!(dp < 1e-9 && da < 1e-9, "ur5: ik-geo's form differs from reach by {dp} m, {da} rad");
+        assert!(dp < 1e-9 && da < 1e-9, "{name}: ik-geo's form differs from reach by {dp} m, {da} rad");
     }
     let c_inv = c.inverse();
     let geo_targets: Vec<(M3<f64>, V3<f64>)> = targets
@@ -498,7 +542,7 @@ fn vs_ikgeo(robot: &Robot, qs: &[Vec<f64>], rounds: usize, row: &impl Fn(&str, &
             }
             let q = geo.reach_joints(q.as_slice());
             let (dp, da) = pose_gap(&robot.fk(&q).expect("fk"), &targets[i]);
-            assert!(dp < 1e-6 && da < 1e-6, "ik-geo solution off by {dp} m, {da} rad");
+            assert!(dp < 1e-6 && da < 1e-6, "{name}: ik-geo solution off by {dp} m, {da} rad");
             geo_n += 1;
         }
     }
@@ -511,7 +555,7 @@ fn vs_ikgeo(robot: &Robot, qs: &[Vec<f64>], rounds: usize, row: &impl Fn(&str, &
         geo_n as f64 / n as f64,
         geo_ls as f64 / n as f64
     );
-    row("ur5", "closed-form IK", "ik-geo", ik, &note);
+    row(name, "closed-form IK", "ik-geo", ik, &note);
 }
 
 /// The usage line, printed with an error for a bad argument.
@@ -651,8 +695,9 @@ fn main() {
         if name == "puma560" {
             let (opw, c) = opw_match(name, &robot, &opw_puma_geometries(&robot), &qs);
             vs_rs_opw(name, &robot, &opw, c, &qs, rounds, &row);
+            vs_ikgeo(name, &robot, ikgeo_spherical(&robot), &qs, rounds, &row);
         } else {
-            vs_ikgeo(&robot, &qs, rounds, &row);
+            vs_ikgeo(name, &robot, ikgeo_ur5(&robot, &qs), &qs, rounds, &row);
         }
     }
     // The KUKA KR 16-2 from its URDF file: reach's closed form found from the geometry.
@@ -660,6 +705,7 @@ fn main() {
     let qs = random_qs(&kr16, poses, 2024);
     let (opw, c) = opw_match("kr16_2", &kr16, &opw_kr16_geometries(), &qs);
     vs_rs_opw("kr16_2 (URDF)", &kr16, &opw, c, &qs, rounds, &row);
+    vs_ikgeo("kr16_2 (URDF)", &kr16, ikgeo_spherical(&kr16), &qs, rounds, &row);
 }
 
 /// The KUKA KR 16-2 read from its URDF file, base_link to tool0.
