@@ -383,7 +383,8 @@ fn opw_match(name: &str, robot: &Robot, geometries: &[Parameters], qs: &[Vec<f64
 }
 
 // ------------------------------------------------------------------------------------------
-// ik-geo: reach's UR5 in ik-geo's product-of-exponentials form, signs and offsets found by search.
+// ik-geo: reach's arms in ik-geo's product-of-exponentials form (the UR5 in ik-geo's own layout,
+// signs and offsets found by search; spherical-wrist arms read off reach's zero configuration).
 // ------------------------------------------------------------------------------------------
 
 /// ik-geo's form of an arm: its solver, and per joint `q_geo = sign · q − offset`.
