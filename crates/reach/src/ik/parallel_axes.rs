@@ -368,6 +368,19 @@ struct Frame {
     z6: Vector3<f64>,
 }
 
+/// θ1…θ6 of one branch from its shoulder's angles `[θ1, θ5, θ6 (e5), θ6 (−e5)]`
+/// ([`ParallelAxes::shoulder_args`]) and its arm's `[θ2, θ3, θ4]`
+/// ([`ParallelAxes::link_args`]): the wrist `−e5` negates θ5 and takes its own θ6 (eq. 21).
+#[inline(always)]
+fn branch_theta(shoulder: [f64; 4], link: [f64; 3], wrist: Wrist) -> [f64; 6] {
+    let [theta1, theta5, theta6_e5, theta6_minus_e5] = shoulder;
+    let (theta5, theta6) = match wrist {
+        Wrist::E5 => (theta5, theta6_e5),
+        Wrist::MinusE5 => (-theta5, theta6_minus_e5),
+    };
+    [theta1, link[0], link[1], link[2], theta5, theta6]
+}
+
 /// `(axis·(from × to), from·to)`: the `atan2` arguments of the angle from `from` to `to`
 /// about `axis` (eq. 21).
 #[inline(always)]
@@ -735,16 +748,12 @@ impl ParallelAxes {
         for (b, elbow_singular) in branches.into_iter().enumerate() {
             let Some(elbow_singular) = elbow_singular else { continue };
             let (s, w, k) = (b / 4, (b / 2) % 2, b % 2);
-            let theta5 = angles[SHOULDER_LANES + 2 + s];
-            let theta = [
-                angles[SHOULDER_LANES + s],
-                angles[b],
-                angles[BRANCHES + b],
-                angles[2 * BRANCHES + b],
-                if w == 0 { theta5 } else { -theta5 },
-                angles[SHOULDER_LANES + 4 + 2 * w + s],
-            ];
             let (config, wrist) = ([Config::PlusBeta, Config::MinusBeta][k], [Wrist::E5, Wrist::MinusE5][w]);
+            let theta = branch_theta(
+                std::array::from_fn(|i| angles[SHOULDER_LANES + 2 * i + s]),
+                std::array::from_fn(|i| angles[i * BRANCHES + b]),
+                wrist,
+            );
             out.push(self.candidate(&theta, &roots[s], config, wrist, wrist_singular[s], elbow_singular));
         }
         (out, failure.map(|(_, f)| f))
@@ -772,13 +781,11 @@ impl ParallelAxes {
             Config::MinusBeta => 1,
         };
         let angle = |(y, x): (f64, f64)| atan2(y, x);
-        let [theta1, theta5, theta6_e5, theta6_minus_e5] = Self::shoulder_args(&shared, frame, &z5).map(angle);
-        let [theta2, theta3, theta4] = self.link_args(&arm, &links[k]).map(angle);
-        let (theta5, theta6) = match wrist {
-            Wrist::E5 => (theta5, theta6_e5),
-            Wrist::MinusE5 => (-theta5, theta6_minus_e5),
-        };
-        let theta = [theta1, theta2, theta3, theta4, theta5, theta6];
+        let theta = branch_theta(
+            Self::shoulder_args(&shared, frame, &z5).map(angle),
+            self.link_args(&arm, &links[k]).map(angle),
+            wrist,
+        );
         Some(self.candidate(&theta, root, config, wrist, shared.wrist_singular, elbow_singular))
     }
 
