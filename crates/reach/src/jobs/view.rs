@@ -413,6 +413,22 @@ pub enum ViewShapeKind {
         /// Radius, metres.
         radius_m: f64,
     },
+    /// A solid cylinder.
+    Cylinder {
+        /// Centre (middle of the axis), metres.
+        center_m: [f64; 3],
+        /// World ← cylinder rotation, `[w, x, y, z]`; the axis is the rotated z.
+        quat_wxyz: [f64; 4],
+        /// Radius, metres.
+        radius_m: f64,
+        /// Length along the axis, metres.
+        length_m: f64,
+    },
+    /// The convex hull of these points (a mesh obstacle as it is checked).
+    ConvexMesh {
+        /// The vertices, metres.
+        vertices_m: Vec<[f64; 3]>,
+    },
     /// `{p : normal·p ≤ offset_m}`; `normal` points to the free side.
     HalfSpace {
         /// Unit outward normal.
@@ -449,6 +465,13 @@ impl ViewShapeKind {
                 quat_wxyz: quat_wxyz(&UnitQuaternion::from_matrix(rotation)),
             },
             Shape::Capsule { a, b, radius } => ViewShapeKind::Capsule { a_m: xyz(a), b_m: xyz(b), radius_m: *radius },
+            Shape::Cylinder { center, rotation, radius, half_length } => ViewShapeKind::Cylinder {
+                center_m: xyz(center),
+                quat_wxyz: quat_wxyz(&UnitQuaternion::from_matrix(rotation)),
+                radius_m: *radius,
+                length_m: 2.0 * half_length,
+            },
+            Shape::ConvexMesh { vertices } => ViewShapeKind::ConvexMesh { vertices_m: vertices.iter().map(xyz).collect() },
             Shape::HalfSpace { normal, offset } => ViewShapeKind::HalfSpace { normal: xyz(normal), offset_m: *offset },
         }
     }

@@ -252,6 +252,9 @@ impl Robot {
             inertials: Vec::new(),
             gravity: *self.gravity(),
             mimics: Vec::new(),
+            // The bodies are fixed to the robot's own frames, not to the equivalent's.
+            bodies: Vec::new(),
+            disabled_collisions: Vec::new(),
         };
         // The tool: the robot's tool pose in the equivalent's last frame at q = 0.
         let last = Robot::new(spec.clone())?.fk_matrix(&zero).map_err(kinematics)?;

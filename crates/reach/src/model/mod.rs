@@ -7,6 +7,7 @@
 //! [`Robot::from_toml_str`] and [`Robot::from_urdf_str`]; the shipped presets are in
 //! [`presets`].
 
+mod body;
 mod dh_equivalent;
 mod error;
 mod inertia;
@@ -20,6 +21,7 @@ pub(crate) mod fk_chain;
 pub mod planar_angles;
 pub mod presets;
 
+pub use body::{BodyShape, LinkBody, MAX_MESH_TRIANGLES, mesh_vertices, srdf_disabled_pairs};
 pub use error::ModelError;
 pub use inertia::{LinkInertial, STANDARD_GRAVITY};
 pub use joint::{

@@ -4,8 +4,8 @@ use nalgebra::{Isometry3, Vector3};
 
 use super::chain::Chain;
 use super::{
-    Convention, Joint, JointDrive, JointGeometry, JointKind, LinkGeometry, LinkInertial, MimicJoint, ModelError,
-    STANDARD_GRAVITY, StepMode,
+    Convention, Joint, JointDrive, JointGeometry, JointKind, LinkBody, LinkGeometry, LinkInertial, MimicJoint,
+    ModelError, STANDARD_GRAVITY, StepMode,
 };
 
 /// Plain-data description of a robot, SI units and radians, before validation.
@@ -33,6 +33,13 @@ pub struct RobotSpec {
     /// Joints that follow another joint (URDF `<mimic>`), in chain order; empty for most
     /// robots. Only in the URDF convention, and not together with mass properties.
     pub mimics: Vec<MimicJoint>,
+    /// The collision body: solids fixed to the chain's frames (URDF `<collision>`, TOML
+    /// `[[bodies]]`). Empty: the robot is checked as its stick figure, the segments between
+    /// frame origins swept by [`RobotSpec::links`]' radii.
+    pub bodies: Vec<LinkBody>,
+    /// Pairs of bodies (by name) never checked against each other (SRDF
+    /// `disable_collisions`, TOML `disabled_collisions`).
+    pub disabled_collisions: Vec<[String; 2]>,
 }
 
 impl RobotSpec {
@@ -50,6 +57,8 @@ impl RobotSpec {
             inertials: Vec::new(),
             gravity: Vector3::new(0.0, 0.0, -STANDARD_GRAVITY),
             mimics: Vec::new(),
+            bodies: Vec::new(),
+            disabled_collisions: Vec::new(),
         }
     }
 }
@@ -125,6 +134,7 @@ impl Robot {
         }
         check_inertials(&spec)?;
         check_mimics(&spec)?;
+        super::body::validate_bodies(&spec.bodies, &spec.disabled_collisions, spec.joints.len())?;
         let chain = Chain::compile(&spec);
         let names = spec.joints.iter().map(|j| Arc::from(j.name.as_str())).collect();
         Ok(Robot { spec, chain, names })
@@ -184,6 +194,34 @@ impl Robot {
     #[must_use]
     pub fn links(&self) -> &[LinkGeometry] {
         &self.spec.links
+    }
+
+    /// The collision body, one entry per link that has solids (empty: the stick figure; see
+    /// [`RobotSpec::bodies`]).
+    #[must_use]
+    pub fn bodies(&self) -> &[LinkBody] {
+        &self.spec.bodies
+    }
+
+    /// The body pairs (by name) never checked against each other.
+    #[must_use]
+    pub fn disabled_collisions(&self) -> &[[String; 2]] {
+        &self.spec.disabled_collisions
+    }
+
+    /// This robot with `pairs` added to its disabled collision pairs (an SRDF's
+    /// `disable_collisions`, [`super::srdf_disabled_pairs`]).
+    ///
+    /// # Errors
+    /// [`ModelError::Links`] when a pair names a link that has no body.
+    pub fn with_disabled_collisions(&self, pairs: &[[String; 2]]) -> Result<Robot, ModelError> {
+        let mut spec = self.spec.clone();
+        for p in pairs {
+            if !spec.disabled_collisions.contains(p) {
+                spec.disabled_collisions.push(p.clone());
+            }
+        }
+        Robot::new(spec)
     }
 
     /// Capsule radius of each of the `dof + 1` segments of [`Robot::joint_positions`]'s

@@ -4,7 +4,8 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use serde::Deserialize;
 
 use super::{
-    Convention, DhParams, Joint, JointDrive, JointGeometry, JointKind, Limits, LinkGeometry, LinkInertial, ModelError,
+    BodyShape, Convention, DhParams, Joint, JointDrive, JointGeometry, JointKind, Limits, LinkBody, LinkGeometry,
+    LinkInertial, ModelError,
     Robot, RobotSpec, STANDARD_GRAVITY, StepMode, Wiring,
 };
 
@@ -107,6 +108,10 @@ struct RobotFile {
     joints: Vec<JointField>,
     #[serde(default)]
     links: Vec<LinkField>,
+    #[serde(default)]
+    bodies: Vec<BodyField>,
+    #[serde(default)]
+    disabled_collisions: Vec<[String; 2]>,
     /// Gravitational acceleration in the world frame, m/s² (not scaled by `length_unit`).
     gravity: Option<[f64; 3]>,
 }
@@ -201,6 +206,100 @@ fn default_kind() -> JointKind {
 #[serde(deny_unknown_fields)]
 struct LinkField {
     radius: f64,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BodyField {
+    name: String,
+    frame: usize,
+    parent: Option<String>,
+    shapes: Vec<BodyShapeField>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BodyShapeField {
+    shape: String,
+    center: Option<[f64; 3]>,
+    radius: Option<f64>,
+    a: Option<[f64; 3]>,
+    b: Option<[f64; 3]>,
+    size: Option<[f64; 3]>,
+    length: Option<f64>,
+    #[serde(default)]
+    rpy: [f64; 3],
+}
+
+impl BodyShapeField {
+    /// The solid in SI units; `ls`, `an`: the file's length and angle scales.
+    fn to_shape(&self, body: &str, index: usize, ls: f64, an: f64) -> Result<BodyShape, ModelError> {
+        let fail = |m: String| ModelError::Links(format!("body `{body}`, shape {index} ({}): {m}", self.shape));
+        let need3 = |v: Option<[f64; 3]>, f: &str| {
+            v.map(|v| Vector3::from(v) * ls).ok_or_else(|| fail(format!("needs `{f}`")))
+        };
+        let need = |v: Option<f64>, f: &str| v.map(|v| v * ls).ok_or_else(|| fail(format!("needs `{f}`")));
+        let allowed: &[&str] = match self.shape.as_str() {
+            "sphere" => &["center", "radius"],
+            "capsule" => &["a", "b", "radius"],
+            "box" => &["center", "size", "rpy"],
+            "cylinder" => &["center", "radius", "length", "rpy"],
+            other => {
+                return Err(fail(format!(
+                    "unknown shape `{other}` (expected sphere, capsule, box or cylinder; meshes come from URDF <collision>)"
+                )));
+            }
+        };
+        let given = [
+            ("center", self.center.is_some()),
+            ("radius", self.radius.is_some()),
+            ("a", self.a.is_some()),
+            ("b", self.b.is_some()),
+            ("size", self.size.is_some()),
+            ("length", self.length.is_some()),
+            ("rpy", self.rpy != [0.0; 3]),
+        ];
+        if let Some((f, _)) = given.iter().find(|(f, g)| *g && !allowed.contains(f)) {
+            return Err(fail(format!("field `{f}` does not belong to a {}", self.shape)));
+        }
+        let pose = |c: Vector3<f64>| Isometry3::from_parts(c.into(), xyz_rpy([0.0; 3], self.rpy, 1.0, an).rotation);
+        Ok(match self.shape.as_str() {
+            "sphere" => BodyShape::Sphere { center: need3(self.center, "center")?, radius: need(self.radius, "radius")? },
+            "capsule" => BodyShape::Capsule {
+                a: need3(self.a, "a")?,
+                b: need3(self.b, "b")?,
+                radius: need(self.radius, "radius")?,
+            },
+            "box" => BodyShape::Box { pose: pose(need3(self.center, "center")?), half_extents: need3(self.size, "size")? * 0.5 },
+            _ => BodyShape::Cylinder {
+                pose: pose(need3(self.center, "center")?),
+                radius: need(self.radius, "radius")?,
+                half_length: need(self.length, "length")? * 0.5,
+            },
+        })
+    }
+}
+
+/// The `[[bodies]]` of a robot file in SI units: each body's parent is the one named, or else
+/// the body on the nearest lower frame (the link before it in the chain).
+fn bodies_of(fields: &[BodyField], ls: f64, an: f64) -> Result<Vec<LinkBody>, ModelError> {
+    let mut bodies = Vec::with_capacity(fields.len());
+    for b in fields {
+        let shapes = b.shapes.iter().enumerate().map(|(i, s)| s.to_shape(&b.name, i + 1, ls, an)).collect::<Result<_, _>>()?;
+        let parent = match &b.parent {
+            Some(p) => Some(fields.iter().position(|o| &o.name == p).ok_or_else(|| {
+                ModelError::Links(format!("body `{}`: parent `{p}` is not a body of this file", b.name))
+            })?),
+            None => fields
+                .iter()
+                .enumerate()
+                .filter(|(_, o)| o.frame < b.frame)
+                .max_by_key(|(_, o)| o.frame)
+                .map(|(i, _)| i),
+        };
+        bodies.push(LinkBody { name: b.name.clone(), frame: b.frame, parent, shapes });
+    }
+    Ok(bodies)
 }
 
 /// Converts an `xyz` (file length unit) + `rpy` (file angle unit, fixed axes X then Y then Z,
@@ -323,6 +422,8 @@ impl Robot {
             inertials,
             gravity: file.gravity.map_or(Vector3::new(0.0, 0.0, -STANDARD_GRAVITY), Vector3::from),
             mimics: Vec::new(),
+            bodies: bodies_of(&file.bodies, ls, an)?,
+            disabled_collisions: file.disabled_collisions,
         };
         Ok((Robot::new(spec)?, units))
     }

@@ -8,7 +8,9 @@ use nalgebra::{Isometry3, Unit, Vector3};
 use super::LinkInertial;
 
 use super::toml_format::xyz_rpy;
-use super::{Convention, Joint, JointGeometry, JointKind, Limits, MimicJoint, ModelError, Robot, RobotSpec};
+use super::{
+    BodyShape, Convention, Joint, JointGeometry, JointKind, Limits, LinkBody, MimicJoint, ModelError, Robot, RobotSpec,
+};
 use crate::tolerance::AXIS_MIN_NORM;
 
 /// Which serial chain of a URDF tree to import.
@@ -23,7 +25,42 @@ pub struct UrdfChain {
     pub tip: Option<String>,
 }
 
+/// How [`Robot::from_urdf_str_with`] builds the robot's collision body from `<collision>`.
+#[derive(Default)]
+pub struct UrdfBodyOptions<'a> {
+    /// Positions of movable joints off the chain (a gripper's fingers), by joint name: radians
+    /// or metres. A joint not named sits at 0 clamped into its limits; a mimic joint follows
+    /// its master's value.
+    pub locked: &'a [(String, f64)],
+    /// Reads a collision mesh file, given its `filename` as the URDF writes it
+    /// (`package://…`, relative, `file://`). `None`: meshes are not read, and a link with a
+    /// mesh carries a [`BodyShape::Missing`] solid (kinematics work; collision checks refuse).
+    #[allow(clippy::type_complexity)]
+    pub meshes: Option<&'a dyn Fn(&str) -> Result<Vec<u8>, String>>,
+}
+
 impl Robot {
+    /// [`Robot::from_urdf_str`] with the collision body's options: the positions of joints
+    /// off the chain and a reader of collision mesh files.
+    ///
+    /// Every link below the chain's base becomes a [`LinkBody`] carrying its `<collision>`
+    /// elements (each with its `<origin>`): box, cylinder, sphere, capsule, and meshes (STL,
+    /// OBJ; checked as their convex hulls, [`BodyShape::ConvexMesh`]) scaled by their
+    /// `scale`. A link rides on the chain frame of the last movable chain joint above it,
+    /// placed through the fixed joints and the locked joints off the chain between them.
+    ///
+    /// # Errors
+    /// As [`Robot::from_urdf_str`]; [`ModelError::Urdf`] naming the link and file when a mesh
+    /// cannot be read or parsed ([`super::mesh_vertices`]), or a locked joint does not exist.
+    pub fn from_urdf_str_with(text: &str, chain: &UrdfChain, options: &UrdfBodyOptions) -> Result<Robot, ModelError> {
+        let robot = Robot::from_urdf_str(text, chain)?;
+        let urdf = urdf_rs::read_from_string(text).map_err(|e| ModelError::Urdf(one_line(&e.to_string())))?;
+        let (base, _, path) = chain_path(&urdf, chain)?;
+        let mut spec = robot.spec().clone();
+        spec.bodies = collision_bodies(&urdf, base, &path, options)?;
+        Robot::new(spec)
+    }
+
     /// Imports the serial chain from `chain.base` to `chain.tip` of a URDF document.
     ///
     /// Revolute, continuous and prismatic joints become joints (continuous ones unlimited);
@@ -84,7 +121,7 @@ impl Robot {
         let mut mimics: Vec<MimicJoint> = Vec::new();
         let mut inertials: Vec<LinkInertial> = Vec::new();
         let mut pending = Isometry3::identity();
-        for j in path {
+        for j in &path {
             let mut origin = pending * xyz_rpy(j.origin.xyz.0, j.origin.rpy.0, 1.0, 1.0);
             let kind = match j.joint_type {
                 urdf_rs::JointType::Fixed => None,
@@ -190,12 +227,134 @@ impl Robot {
             base: Isometry3::identity(),
             tool: pending,
             links: Vec::new(),
+            bodies: collision_bodies(&urdf, base, &path, &UrdfBodyOptions::default())?,
             inertials: if massless || !mimics.is_empty() { Vec::new() } else { inertials },
             mimics,
             ..RobotSpec::new("", Convention::Urdf, Vec::new())
         };
         Robot::new(spec)
     }
+}
+
+/// The collision bodies of every link below `base` (see [`Robot::from_urdf_str_with`]).
+fn collision_bodies(
+    urdf: &urdf_rs::Robot,
+    base: &str,
+    path: &[&urdf_rs::Joint],
+    options: &UrdfBodyOptions,
+) -> Result<Vec<LinkBody>, ModelError> {
+    for (name, value) in options.locked {
+        match urdf.joints.iter().find(|j| &j.name == name) {
+            None => return Err(ModelError::Urdf(format!("locked joint `{name}` does not exist"))),
+            Some(_) if !value.is_finite() => {
+                return Err(ModelError::Urdf(format!("locked joint `{name}`: position must be finite, got {value}")));
+            }
+            Some(_) => {}
+        }
+    }
+    // The chain's frames: the independent movable joints on the path, 1-based.
+    let frames: BTreeMap<&str, usize> = path
+        .iter()
+        .filter(|j| movable(j) && j.mimic.is_none())
+        .enumerate()
+        .map(|(i, j)| (j.name.as_str(), i + 1))
+        .collect();
+    let value_of = |j: &urdf_rs::Joint| -> f64 {
+        let own = |j: &urdf_rs::Joint| {
+            options.locked.iter().find(|(n, _)| n == &j.name).map_or_else(
+                || if j.joint_type == urdf_rs::JointType::Continuous { 0.0 } else { 0.0_f64.clamp(j.limit.lower.min(j.limit.upper), j.limit.upper.max(j.limit.lower)) },
+                |(_, v)| *v,
+            )
+        };
+        match &j.mimic {
+            Some(m) => {
+                let master = urdf.joints.iter().find(|x| x.name == m.joint).map_or(0.0, own);
+                m.multiplier.unwrap_or(1.0) * master + m.offset.unwrap_or(0.0)
+            }
+            None => own(j),
+        }
+    };
+    struct Place {
+        frame: usize,
+        pose: Isometry3<f64>,
+        /// Why the link cannot be placed on a chain frame (below a moving mimic joint).
+        lost: Option<String>,
+    }
+    let mut bodies: Vec<LinkBody> = Vec::new();
+    let mut queue: Vec<(&str, Place, Option<usize>)> =
+        vec![(base, Place { frame: 0, pose: Isometry3::identity(), lost: None }, None)];
+    while let Some((name, place, parent)) = queue.pop() {
+        let link = urdf.links.iter().find(|l| l.name == name);
+        let mut shapes = Vec::new();
+        for c in link.map_or(&[][..], |l| &l.collision) {
+            if let Some(why) = &place.lost {
+                shapes.push(BodyShape::Missing { what: format!("link `{name}`: {why}") });
+                continue;
+            }
+            let pose = place.pose * xyz_rpy(c.origin.xyz.0, c.origin.rpy.0, 1.0, 1.0);
+            let shape = match &c.geometry {
+                urdf_rs::Geometry::Sphere { radius } => {
+                    BodyShape::Sphere { center: pose.translation.vector, radius: *radius }
+                }
+                urdf_rs::Geometry::Box { size } => {
+                    BodyShape::Box { pose, half_extents: Vector3::from(size.0) * 0.5 }
+                }
+                urdf_rs::Geometry::Cylinder { radius, length } => {
+                    BodyShape::Cylinder { pose, radius: *radius, half_length: length * 0.5 }
+                }
+                urdf_rs::Geometry::Capsule { radius, length } => {
+                    let half = pose.rotation * Vector3::new(0.0, 0.0, length * 0.5);
+                    let c = pose.translation.vector;
+                    BodyShape::Capsule { a: c - half, b: c + half, radius: *radius }
+                }
+                urdf_rs::Geometry::Mesh { filename, scale } => match options.meshes {
+                    None => BodyShape::Missing {
+                        what: format!("link `{name}`: collision mesh `{filename}` is not loaded (read the URDF from its file)"),
+                    },
+                    Some(read) => {
+                        let bytes = read(filename)
+                            .map_err(|e| ModelError::Urdf(format!("link `{name}`: collision mesh `{filename}`: {e}")))?;
+                        let vertices = super::mesh_vertices(filename, &bytes)
+                            .map_err(|e| ModelError::Urdf(format!("link `{name}`: {e}")))?;
+                        let k = scale.map_or(Vector3::repeat(1.0), |s| Vector3::from(s.0));
+                        let vertices = vertices
+                            .iter()
+                            .map(|v| (pose * nalgebra::Point3::from(v.component_mul(&k))).coords)
+                            .collect();
+                        BodyShape::ConvexMesh { source: filename.clone(), vertices }
+                    }
+                },
+            };
+            shapes.push(shape);
+        }
+        let index = bodies.len();
+        bodies.push(LinkBody { name: name.to_string(), frame: place.frame, parent, shapes });
+        for j in urdf.joints.iter().filter(|j| j.parent.link == name) {
+            let child = if let Some(&frame) = frames.get(j.name.as_str()) {
+                Place { frame, pose: Isometry3::identity(), lost: place.lost.clone() }
+            } else {
+                let moving_mimic = movable(j)
+                    && j.mimic.as_ref().is_some_and(|m| frames.contains_key(m.joint.as_str()));
+                let lost = place.lost.clone().or_else(|| {
+                    moving_mimic.then(|| format!("it follows the moving mimic joint `{}`, not a chain frame", j.name))
+                });
+                let mut pose = place.pose * xyz_rpy(j.origin.xyz.0, j.origin.rpy.0, 1.0, 1.0);
+                if movable(j) && lost.is_none() {
+                    let axis = Vector3::from(j.axis.xyz.0).try_normalize(AXIS_MIN_NORM).unwrap_or_else(Vector3::z);
+                    let v = value_of(j);
+                    pose *= if j.joint_type == urdf_rs::JointType::Prismatic {
+                        Isometry3::translation(axis.x * v, axis.y * v, axis.z * v)
+                    } else {
+                        Isometry3::rotation(axis * v)
+                    };
+                }
+                Place { frame: place.frame, pose, lost }
+            };
+            queue.push((j.child.link.as_str(), child, Some(index)));
+        }
+    }
+    // Links without solids stay: they carry the adjacency between their parent and children.
+    Ok(bodies)
 }
 
 /// The serial chain `chain` selects in a parsed URDF tree: its base link, its tip link and the
