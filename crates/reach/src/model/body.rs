@@ -189,6 +189,10 @@ pub struct LinkBody {
     pub parent: Option<usize>,
     /// The solids, in frame `frame`'s coordinates.
     pub shapes: Vec<BodyShape>,
+    /// Every point within this distance of the solids belongs to the body too, metres (≥ 0;
+    /// MoveIt's link padding): a clearance of the padded body is a clearance above the
+    /// padding of the solids.
+    pub padding: f64,
 }
 
 /// Checks a robot's bodies and disabled pairs against its number of joints.
@@ -205,6 +209,12 @@ pub(crate) fn validate_bodies(bodies: &[LinkBody], disabled: &[[String; 2]], dof
         }
         if bodies[..i].iter().any(|o| o.name == b.name) {
             return Err(ModelError::Links(format!("two bodies are named `{}`", b.name)));
+        }
+        if !(b.padding.is_finite() && b.padding >= 0.0) {
+            return Err(ModelError::Links(format!(
+                "body `{}`: `padding` must be a finite number ≥ 0, got {}",
+                b.name, b.padding
+            )));
         }
         if let Some(p) = b.parent
             && p >= bodies.len()

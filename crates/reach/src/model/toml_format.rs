@@ -215,6 +215,8 @@ struct BodyField {
     frame: usize,
     parent: Option<String>,
     shapes: Vec<BodyShapeField>,
+    #[serde(default)]
+    padding: f64,
 }
 
 #[derive(Deserialize)]
@@ -297,7 +299,7 @@ fn bodies_of(fields: &[BodyField], ls: f64, an: f64) -> Result<Vec<LinkBody>, Mo
                 .max_by_key(|(_, o)| o.frame)
                 .map(|(i, _)| i),
         };
-        bodies.push(LinkBody { name: b.name.clone(), frame: b.frame, parent, shapes });
+        bodies.push(LinkBody { name: b.name.clone(), frame: b.frame, parent, shapes, padding: b.padding * ls });
     }
     Ok(bodies)
 }

@@ -328,7 +328,7 @@ fn collision_bodies(
             shapes.push(shape);
         }
         let index = bodies.len();
-        bodies.push(LinkBody { name: name.to_string(), frame: place.frame, parent, shapes });
+        bodies.push(LinkBody { name: name.to_string(), frame: place.frame, parent, shapes, padding: 0.0 });
         for j in urdf.joints.iter().filter(|j| j.parent.link == name) {
             let child = if let Some(&frame) = frames.get(j.name.as_str()) {
                 Place { frame, pose: Isometry3::identity(), lost: place.lost.clone() }

@@ -260,8 +260,9 @@ impl FastRegion {
     }
 }
 
-/// A copy of `robot` whose link capsules are grown by `safe_distance`: a positive clearance
-/// of the grown links is a clearance above the safe distance of the original ones.
+/// A copy of `robot` whose link capsules and bodies ([`crate::model::LinkBody::padding`]) are
+/// grown by `safe_distance`: a positive clearance of the grown links is a clearance above the
+/// safe distance of the original ones.
 ///
 /// # Errors
 /// [`WorldError::Input`] for a negative or non-finite distance.
@@ -272,7 +273,11 @@ pub fn grown_robot(robot: &Robot, safe_distance: f64) -> Result<Robot, WorldErro
     let links: Vec<LinkGeometry> = (0..robot.dof())
         .map(|k| LinkGeometry { radius: robot.links().get(k).map_or(0.0, |l| l.radius) + safe_distance })
         .collect();
-    Robot::new(RobotSpec { links, ..robot.spec().clone() }).map_err(|e| WorldError::Input(e.to_string()))
+    let mut bodies = robot.bodies().to_vec();
+    for b in &mut bodies {
+        b.padding += safe_distance;
+    }
+    Robot::new(RobotSpec { links, bodies, ..robot.spec().clone() }).map_err(|e| WorldError::Input(e.to_string()))
 }
 
 /// The task: error and Jacobian rows.

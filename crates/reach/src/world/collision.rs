@@ -3,6 +3,7 @@
 use nalgebra::{IsometryMatrix3, Vector3};
 use serde::Serialize;
 
+use super::elements::Elements;
 use super::sweep::{Clearances, Sweep, SweepOptions, segment_rate, sweep};
 use super::{Scene, Touching, WorldError};
 use crate::model::Robot;
@@ -68,12 +69,14 @@ impl Verdict {
 /// Clearance between one link and one obstacle.
 #[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub struct LinkClearance {
-    /// 1-based link number (`dof + 1` is the segment from the last frame to the tool point).
+    /// 1-based link number ([`CollisionChecker`]'s numbering).
     pub link: usize,
+    /// The link's name ([`CollisionChecker::link_name`]).
+    pub link_name: String,
     /// Obstacle name.
     pub obstacle: String,
-    /// Signed clearance, metres: distance between the link's capsule and the obstacle, or
-    /// minus the penetration depth of the link axis less the link radius.
+    /// Signed clearance, metres: the smallest over the link's solids of the distance to the
+    /// obstacle (a certified lower bound where GJK measures it), negative when they overlap.
     pub clearance_m: f64,
     /// Whether this pair collides under the scene's touching policy.
     pub colliding: bool,
@@ -86,7 +89,11 @@ pub struct SelfClearance {
     pub link_a: usize,
     /// 1-based link number.
     pub link_b: usize,
-    /// Distance between the two capsules, metres (negative: overlap).
+    /// Name of link `a`.
+    pub name_a: String,
+    /// Name of link `b`.
+    pub name_b: String,
+    /// Smallest distance between the two links' solids, metres (negative: overlap).
     pub clearance_m: f64,
     /// Whether they collide under the touching policy (always `false` for an exempt pair).
     pub colliding: bool,
@@ -124,16 +131,24 @@ pub struct Report {
 
 /// Checks configurations of one robot against one scene.
 ///
-/// Links are the segments between consecutive points of
-/// [`Robot::joint_positions`] (base origin, every frame origin, tool point): segment `k`
-/// (0-based) is link `k + 1`, the last one (last frame → tool point) is link `dof + 1` and
-/// takes the last link's radius. Segments shorter than 1 nm (coincident frames) are skipped;
-/// two remaining segments are adjacent when they are consecutive in that list (they share a
-/// joint), and only non-adjacent pairs are tested for self-collision.
+/// The robot is its collision body ([`Robot::bodies`]): every solid of every link, placed by
+/// the link's chain frame; links are numbered `1..` in the order of [`Robot::bodies`] and named
+/// by [`CollisionChecker::link_name`]. Two links are checked against each other unless they
+/// are adjacent (one is the nearest ancestor with solids of the other), the robot disables
+/// the pair ([`Robot::disabled_collisions`], an SRDF) or the scene allows it
+/// ([`Scene::allowed_self_collisions`]).
+///
+/// A robot without bodies is checked as its **stick figure**: the segments between
+/// consecutive points of [`Robot::joint_positions`] (base origin, every frame origin, tool
+/// point), swept by the links' radii: segment `k` (0-based) is link `k + 1`, the last one
+/// (last frame → tool point) is link `dof + 1` and takes the last link's radius. Segments
+/// shorter than 1 nm (coincident frames) are skipped; two remaining segments are adjacent
+/// when they are consecutive in that list (they share a joint).
 ///
 /// # Performance
 /// [`CollisionChecker::check`] allocates nothing: forward kinematics into preallocated frames,
-/// then one exact distance (with early outs for boxes) per pair, stopping at the first hit.
+/// the solids placed, then one distance per pair (closed forms for spheres and capsules, GJK
+/// for boxes, cylinders and meshes), after a bounding-sphere test, stopping at the first hit.
 #[derive(Debug, Clone)]
 pub struct CollisionChecker<'a> {
     robot: &'a Robot,
@@ -144,17 +159,21 @@ pub struct CollisionChecker<'a> {
     before: Vec<IsometryMatrix3<f64>>,
     prefix_valid: bool,
     points: Vec<Vector3<f64>>,
-    radii: Vec<f64>,
+    /// The robot's solids and where they are.
+    elements: Elements<'a>,
+    /// Elements tested against obstacles (stick segments of non-zero length; every solid).
     active: Vec<usize>,
+    /// Element pairs tested against each other, with whether the scene or robot exempts
+    /// them (stick: recomputed per configuration from `active`; bodies: fixed).
+    pairs: Vec<(usize, usize, bool)>,
     margin: f64,
     /// Bounding sphere of each obstacle (broad phase; `None`: always tested).
     bounds: Vec<Option<(Vector3<f64>, f64)>>,
-    max_radius: f64,
-    /// Per 0-based link `i`: bit `j` set when the pair `(i, j)` is exempt from self-collision.
-    exempt: Vec<u64>,
-    /// An allowed-collision entry that names no link of the robot (reported by `check`).
+    /// Per pair of 0-based links `(i, j)`, at `i · links + j`: exempt from self-collision.
+    exempt: Vec<bool>,
+    /// A bad allowed-collision entry or an incomplete body (reported by `check`).
     exempt_error: Option<WorldError>,
-    /// The link pairs of the swept check in progress ([`Clearances::prepare`]).
+    /// The element pairs of the swept check in progress ([`Clearances::prepare`]).
     sweep_pairs: Vec<(usize, usize)>,
     /// The instant of [`CollisionChecker::check_at`] and [`CollisionChecker::report_at`],
     /// seconds from the start of the motion: where moving obstacles are.
@@ -197,14 +216,19 @@ impl PairSurvey {
     }
 }
 
-/// The name of 0-based link `k` for allowed-collision entries.
-fn link_name(robot: &Robot, k: usize) -> String {
-    robot.joints().get(k).map_or_else(|| "tool".to_string(), |j| j.name.clone())
-}
-
-/// Resolves one link name of an allowed-collision entry to a 0-based link index: a joint
-/// name (link `k` ends at joint `k`'s frame), `link<k>` (1-based) or `tool` (link `dof + 1`).
-fn link_index(robot: &Robot, name: &str) -> Result<usize, WorldError> {
+/// Resolves one link name of an allowed-collision entry to a 0-based link index: a body's
+/// name; for the stick figure a joint name (link `k` ends at joint `k`'s frame), `link<k>`
+/// (1-based) or `tool` (link `dof + 1`).
+fn link_index(robot: &Robot, elements: &Elements, name: &str) -> Result<usize, WorldError> {
+    if !elements.stick {
+        return elements.names.iter().position(|b| b == name).ok_or_else(|| {
+            WorldError::Input(format!(
+                "allowed collisions: unknown link `{name}` (the links of {} with bodies: {})",
+                robot.name(),
+                elements.names.join(", ")
+            ))
+        });
+    }
     let n = robot.dof();
     if let Some(k) = robot.joints().iter().position(|j| j.name == name) {
         return Ok(k);
@@ -226,32 +250,32 @@ fn link_index(robot: &Robot, name: &str) -> Result<usize, WorldError> {
     )))
 }
 
-/// The exemption bit masks of `scene`'s allowed-collision list for `robot`.
-fn exempt_masks(robot: &Robot, scene: &Scene) -> Result<Vec<u64>, WorldError> {
-    let n = robot.dof();
-    if n + 1 > 64 && !scene.allowed_self_collisions.is_empty() {
-        return Err(WorldError::Input(format!("allowed_self_collisions: at most 63 joints, the robot has {n}")));
-    }
-    let mut masks = vec![0_u64; n + 1];
-    for [a, b] in &scene.allowed_self_collisions {
-        let (i, j) = (link_index(robot, a)?, link_index(robot, b)?);
+/// The exempt link pairs (`i · links + j`, both orders) of the robot's disabled pairs and the
+/// scene's allowed-collision list.
+fn exempt_matrix(robot: &Robot, elements: &Elements, scene: &Scene) -> Result<Vec<bool>, WorldError> {
+    let links = elements.names.len();
+    let mut exempt = vec![false; links * links];
+    for [a, b] in robot.disabled_collisions().iter().chain(&scene.allowed_self_collisions) {
+        let (i, j) = (link_index(robot, elements, a)?, link_index(robot, elements, b)?);
         if i == j {
             return Err(WorldError::Input(format!(
                 "allowed_self_collisions: pair [`{a}`, `{b}`] names one link twice"
             )));
         }
-        masks[i] |= 1 << j;
-        masks[j] |= 1 << i;
+        exempt[i * links + j] = true;
+        exempt[j * links + i] = true;
     }
-    Ok(masks)
+    Ok(exempt)
 }
 
 impl<'a> CollisionChecker<'a> {
-    /// Prepares buffers for `robot` in `scene`, checking the scene's allowed-collision list.
+    /// Prepares buffers for `robot` in `scene`, checking the scene's allowed-collision list
+    /// and the robot's body.
     ///
     /// # Errors
-    /// [`WorldError::Input`] naming the entry when [`Scene::allowed_self_collisions`] names a
-    /// link the robot does not have, or one link twice.
+    /// [`WorldError::Input`] naming the entry when the allowed-collision lists name a link the
+    /// robot does not have, or one link twice; naming the link when the robot's body has a
+    /// solid that was not loaded ([`crate::model::BodyShape::Missing`]).
     pub fn try_new(robot: &'a Robot, scene: &'a Scene) -> Result<Self, WorldError> {
         let checker = CollisionChecker::new(robot, scene);
         match checker.exempt_error {
@@ -260,36 +284,61 @@ impl<'a> CollisionChecker<'a> {
         }
     }
 
-    /// Prepares buffers for `robot` in `scene`. A bad allowed-collision list is reported by
-    /// every [`CollisionChecker::check`] and [`CollisionChecker::report`] (use
-    /// [`CollisionChecker::try_new`] to see it at once).
+    /// Prepares buffers for `robot` in `scene`. A bad allowed-collision list or an incomplete
+    /// body is reported by every [`CollisionChecker::check`] and [`CollisionChecker::report`]
+    /// (use [`CollisionChecker::try_new`] to see it at once).
     #[must_use]
     pub fn new(robot: &'a Robot, scene: &'a Scene) -> Self {
         let n = robot.dof();
-        let radii = robot.segment_radii();
-        let exempt = exempt_masks(robot, scene);
+        let (elements, mut error) = match Elements::of(robot) {
+            Ok(e) => (e, None),
+            Err(e) => {
+                // An incomplete body: checked as an empty one, every check refused.
+                let empty = Elements::of_nothing();
+                (empty, Some(e))
+            }
+        };
+        let exempt = exempt_matrix(robot, &elements, scene);
+        let links = elements.names.len();
+        if error.is_none() {
+            error = exempt.as_ref().err().cloned();
+        }
+        let exempt = exempt.unwrap_or_else(|_| vec![false; links * links]);
         let margin = match scene.touching {
             Touching::Closed => CONTACT,
             Touching::Open => -CONTACT,
         };
-        CollisionChecker {
+        let mut checker = CollisionChecker {
             robot,
             scene,
             frames: vec![IsometryMatrix3::identity(); n],
             before: vec![IsometryMatrix3::identity(); n + 1],
             prefix_valid: false,
             points: vec![Vector3::zeros(); n + 2],
-            radii,
-            active: Vec::with_capacity(n + 1),
+            active: Vec::with_capacity(elements.list.len()),
+            pairs: Vec::new(),
+            elements,
             margin,
             bounds: scene.obstacles.iter().map(|o| o.shape.bounding_sphere()).collect(),
-            max_radius: robot.links().iter().map(|l| l.radius).fold(0.0, f64::max),
-            exempt: exempt.as_ref().map_or_else(|_| vec![0; n + 1], Clone::clone),
-            exempt_error: exempt.err(),
+            exempt,
+            exempt_error: error,
             sweep_pairs: Vec::new(),
             time: 0.0,
             span: None,
+        };
+        if !checker.elements.stick {
+            checker.active = (0..checker.elements.list.len()).collect();
+            let list = &checker.elements.list;
+            for i in 0..list.len() {
+                for j in i + 1..list.len() {
+                    let (a, b) = (list[i].link, list[j].link);
+                    if a != b && !checker.elements.adjacent(a, b) {
+                        checker.pairs.push((i, j, checker.exempt[a * links + b]));
+                    }
+                }
+            }
         }
+        checker
     }
 
     /// The robot.
@@ -302,6 +351,21 @@ impl<'a> CollisionChecker<'a> {
     #[must_use]
     pub fn scene(&self) -> &Scene {
         self.scene
+    }
+
+    /// The name of 1-based link `link` of this checker's verdicts and reports: the body's
+    /// name, or for the stick figure the name of the joint whose frame ends the segment
+    /// (`tool` for the last one).
+    #[must_use]
+    pub fn link_name(&self, link: usize) -> &str {
+        link.checked_sub(1).and_then(|k| self.elements.names.get(k)).map_or("?", String::as_str)
+    }
+
+    /// Whether the robot is checked by its collision body (`false`: its stick figure, see the
+    /// type's docs).
+    #[must_use]
+    pub fn has_bodies(&self) -> bool {
+        !self.elements.stick
     }
 
     /// Computes the link points of `q` into the buffers.
@@ -320,18 +384,31 @@ impl<'a> CollisionChecker<'a> {
         Ok(())
     }
 
-    /// Sets the link points from the frames in the buffers and the tool pose.
+    /// Sets the link points and places the solids from the frames in the buffers and the
+    /// tool pose.
     fn set_points(&mut self, tool: &IsometryMatrix3<f64>) {
-        self.points[0] = self.robot.base().translation.vector;
+        let base = self.robot.base();
+        self.points[0] = base.translation.vector;
         for (p, f) in self.points[1..].iter_mut().zip(&self.frames) {
             *p = f.translation.vector;
         }
         let last = self.points.len() - 1;
         self.points[last] = tool.translation.vector;
-        self.active.clear();
-        for k in 0..last {
-            if (self.points[k + 1] - self.points[k]).norm_squared() > MIN_SEGMENT * MIN_SEGMENT {
-                self.active.push(k);
+        let base = IsometryMatrix3::from_parts(base.translation, base.rotation.to_rotation_matrix());
+        self.elements.place(&base, &self.frames, &self.points);
+        if self.elements.stick {
+            self.active.clear();
+            for k in 0..last {
+                if (self.points[k + 1] - self.points[k]).norm_squared() > MIN_SEGMENT * MIN_SEGMENT {
+                    self.active.push(k);
+                }
+            }
+            self.pairs.clear();
+            let links = self.elements.names.len();
+            for (x, &i) in self.active.iter().enumerate() {
+                for &j in self.active.iter().skip(x + 2) {
+                    self.pairs.push((i, j, self.exempt[i * links + j]));
+                }
             }
         }
     }
@@ -358,31 +435,6 @@ impl<'a> CollisionChecker<'a> {
         Ok(self.classify())
     }
 
-    /// Whether the pair of 0-based links `i`, `j` is on the scene's allowed-collision list.
-    #[inline]
-    fn exempt_pair(&self, i: usize, j: usize) -> bool {
-        // `checked_shr`: robots of 64 or more joints have no list (all masks 0).
-        self.exempt[i].checked_shr(u32::try_from(j).unwrap_or(u32::MAX)).is_some_and(|m| m & 1 == 1)
-    }
-
-    /// Every pair of links in the buffers that are not adjacent (not consecutive among the
-    /// segments of non-zero length), with whether it is exempt.
-    fn link_pairs(&self) -> impl Iterator<Item = (usize, usize, bool)> + '_ {
-        let act = &self.active;
-        act.iter()
-            .enumerate()
-            .flat_map(move |(x, &i)| act.iter().skip(x + 2).map(move |&j| (i, j, self.exempt_pair(i, j))))
-    }
-
-    /// Clearance between the capsules of 0-based links `i` and `j` in the buffers, metres.
-    #[inline]
-    fn pair_clearance(&self, i: usize, j: usize) -> f64 {
-        super::distance::segment_segment_sq(&self.points[i], &self.points[i + 1], &self.points[j], &self.points[j + 1])
-            .sqrt()
-            - self.radii[i]
-            - self.radii[j]
-    }
-
     /// World positions of the link points of the last checked configuration (base origin,
     /// frame origins, tool point).
     #[must_use]
@@ -396,7 +448,8 @@ impl<'a> CollisionChecker<'a> {
     ///
     /// # Errors
     /// [`WorldError::Kinematics`] when `q` has the wrong length or a non-finite value;
-    /// [`WorldError::Input`] when the scene's allowed-collision list names an unknown link.
+    /// [`WorldError::Input`] when the allowed-collision lists name an unknown link or the
+    /// robot's body is incomplete.
     pub fn check(&mut self, q: &[f64]) -> Result<Verdict, WorldError> {
         self.check_at(q, 0.0)
     }
@@ -421,6 +474,11 @@ impl<'a> CollisionChecker<'a> {
         Ok(())
     }
 
+    /// The 1-based link of element `e`.
+    fn link_of(&self, e: usize) -> usize {
+        self.elements.list[e].link + 1
+    }
+
     /// Classifies the configuration in the buffers.
     #[inline]
     fn classify(&self) -> Verdict {
@@ -430,35 +488,33 @@ impl<'a> CollisionChecker<'a> {
                 return Verdict::OutsideZone { zone: i };
             }
         }
-        for (i, j, exempt) in self.link_pairs() {
-            if !exempt && self.pair_clearance(i, j) <= self.margin {
-                return Verdict::SelfCollision { link_a: i + 1, link_b: j + 1 };
+        let spheres = &self.elements.spheres;
+        for &(i, j, exempt) in &self.pairs {
+            if exempt {
+                continue;
+            }
+            let ((ci, ri), (cj, rj)) = (spheres[i], spheres[j]);
+            let gap = ri + rj + self.margin.max(0.0);
+            if (ci - cj).norm_squared() > gap * gap {
+                continue;
+            }
+            if self.elements.pair_clearance(i, j) <= self.margin {
+                return Verdict::SelfCollision { link_a: self.link_of(i), link_b: self.link_of(j) };
             }
         }
-        let act = &self.active;
-        // Broad phase: a sphere around every link point (centre of their bounding box).
-        let (mut lo, mut hi) = (self.points[0], self.points[0]);
-        for p in &self.points[1..] {
-            lo = lo.inf(p);
-            hi = hi.sup(p);
-        }
-        let centre = (lo + hi) * 0.5;
-        let reach = self.points.iter().map(|p| (p - centre).norm_squared()).fold(0.0, f64::max).sqrt()
-            + self.max_radius
-            + self.margin.max(0.0);
         for (o, obstacle) in self.scene.obstacles.iter().enumerate() {
-            // A moving obstacle at `time`: the link points taken relative to its displacement.
+            // A moving obstacle at `time`: the solids taken relative to its displacement.
             let shift = obstacle.displacement(self.time);
-            if let Some((c, r)) = self.bounds[o] {
-                let gap = r + reach;
-                if (c + shift - centre).norm_squared() > gap * gap {
-                    continue;
+            for &e in &self.active {
+                if let Some((c, r)) = self.bounds[o] {
+                    let (ce, re) = spheres[e];
+                    let gap = r + re + self.margin.max(0.0);
+                    if (c + shift - ce).norm_squared() > gap * gap {
+                        continue;
+                    }
                 }
-            }
-            for &k in act {
-                let (a, b) = (self.points[k] - shift, self.points[k + 1] - shift);
-                if obstacle.shape.segment_within(&a, &b, self.radii[k], self.margin) {
-                    return Verdict::Obstacle { link: k + 1, obstacle: o };
+                if self.elements.obstacle_within(e, &obstacle.shape, &shift, self.margin) {
+                    return Verdict::Obstacle { link: self.link_of(e), obstacle: o };
                 }
             }
         }
@@ -467,8 +523,8 @@ impl<'a> CollisionChecker<'a> {
 
     /// Samples `samples` configurations uniformly within the joint limits (revolute joints
     /// with infinite limits over `[−π, π)`), seeded by `seed`, and counts per pair of
-    /// non-adjacent links how often they collide, ignoring the scene's allowed-collision list.
-    /// Pairs that collide [`PairSurvey::always`] are the candidates for that list.
+    /// non-adjacent links how often they collide, ignoring the allowed-collision lists.
+    /// Pairs that collide [`PairSurvey::always`] are the candidates for those lists.
     ///
     /// # Errors
     /// [`WorldError::Input`] for `samples == 0` or a prismatic joint with an infinite limit;
@@ -476,6 +532,9 @@ impl<'a> CollisionChecker<'a> {
     pub fn survey_self_collisions(&mut self, samples: usize, seed: u64) -> Result<Vec<PairSurvey>, WorldError> {
         if samples == 0 {
             return Err(WorldError::Input("the self-collision survey needs at least one sample".into()));
+        }
+        if let Some(e) = &self.exempt_error {
+            return Err(e.clone());
         }
         let mut ranges = Vec::with_capacity(self.robot.dof());
         for j in self.robot.joints() {
@@ -491,9 +550,10 @@ impl<'a> CollisionChecker<'a> {
                 )));
             }
         }
-        let n = self.robot.dof() + 1;
+        let n = self.elements.names.len();
         let mut counts = vec![0_usize; n * n];
         let mut seen = vec![false; n * n];
+        let mut hit = vec![false; n * n];
         let mut rng = crate::rng::SplitMix64(seed);
         let mut q = vec![0.0; ranges.len()];
         for _ in 0..samples {
@@ -501,12 +561,14 @@ impl<'a> CollisionChecker<'a> {
                 *v = lo + (hi - lo) * rng.next_f64();
             }
             self.update_points(&q)?;
-            for (x, &i) in self.active.iter().enumerate() {
-                for &j in self.active.iter().skip(x + 2) {
-                    seen[i * n + j] = true;
-                    if self.pair_clearance(i, j) <= self.margin {
-                        counts[i * n + j] += 1;
-                    }
+            hit.fill(false);
+            for &(i, j, _) in &self.pairs {
+                let (a, b) = (self.elements.list[i].link, self.elements.list[j].link);
+                let (a, b) = (a.min(b), a.max(b));
+                seen[a * n + b] = true;
+                if !hit[a * n + b] && self.elements.pair_clearance(i, j) <= self.margin {
+                    hit[a * n + b] = true;
+                    counts[a * n + b] += 1;
                 }
             }
         }
@@ -517,8 +579,8 @@ impl<'a> CollisionChecker<'a> {
                     out.push(PairSurvey {
                         link_a: i + 1,
                         link_b: j + 1,
-                        name_a: link_name(self.robot, i),
-                        name_b: link_name(self.robot, j),
+                        name_a: self.elements.names[i].clone(),
+                        name_b: self.elements.names[j].clone(),
                         colliding: counts[i * n + j],
                         samples,
                     });
@@ -538,7 +600,8 @@ impl<'a> CollisionChecker<'a> {
     }
 
     /// Every clearance of `q` at time `t` (seconds from the start of the motion; moving
-    /// obstacles translated by `velocity·t`).
+    /// obstacles translated by `velocity·t`): per link and obstacle, and per pair of links
+    /// checked against each other, the smallest clearance of their solids.
     ///
     /// # Errors
     /// As [`CollisionChecker::check_at`].
@@ -556,32 +619,50 @@ impl<'a> CollisionChecker<'a> {
                 Contact { zone: z.name.clone(), signed_distance_m: sd, inside: sd < -CONTACT }
             })
             .collect();
-        let mut links = Vec::new();
-        for &k in &self.active {
+        let mut links: Vec<LinkClearance> = Vec::new();
+        for &e in &self.active {
+            let link = self.link_of(e);
             for o in &self.scene.obstacles {
                 let shift = o.displacement(self.time);
-                let c = o.shape.segment_sdf(&(self.points[k] - shift), &(self.points[k + 1] - shift)) - self.radii[k];
-                links.push(LinkClearance {
-                    link: k + 1,
-                    obstacle: o.name.clone(),
-                    clearance_m: c,
-                    colliding: c <= self.margin,
-                });
+                let c = self.elements.obstacle_clearance(e, &o.shape, &shift);
+                match links.iter_mut().find(|l| l.link == link && l.obstacle == o.name) {
+                    Some(l) if c < l.clearance_m => {
+                        l.clearance_m = c;
+                        l.colliding = c <= self.margin;
+                    }
+                    Some(_) => {}
+                    None => links.push(LinkClearance {
+                        link,
+                        link_name: self.link_name(link).to_string(),
+                        obstacle: o.name.clone(),
+                        clearance_m: c,
+                        colliding: c <= self.margin,
+                    }),
+                }
             }
         }
-        let self_pairs: Vec<SelfClearance> = self
-            .link_pairs()
-            .map(|(i, j, exempt)| {
-                let d = self.pair_clearance(i, j);
-                SelfClearance {
-                    link_a: i + 1,
-                    link_b: j + 1,
+        let mut self_pairs: Vec<SelfClearance> = Vec::new();
+        for &(i, j, exempt) in &self.pairs {
+            let d = self.elements.pair_clearance(i, j);
+            let (a, b) = (self.link_of(i), self.link_of(j));
+            let (a, b) = (a.min(b), a.max(b));
+            match self_pairs.iter_mut().find(|p| p.link_a == a && p.link_b == b) {
+                Some(p) if d < p.clearance_m => {
+                    p.clearance_m = d;
+                    p.colliding = !exempt && d <= self.margin;
+                }
+                Some(_) => {}
+                None => self_pairs.push(SelfClearance {
+                    link_a: a,
+                    link_b: b,
+                    name_a: self.link_name(a).to_string(),
+                    name_b: self.link_name(b).to_string(),
                     clearance_m: d,
                     colliding: !exempt && d <= self.margin,
                     exempt,
-                }
-            })
-            .collect();
+                }),
+            }
+        }
         let min_obstacle_clearance_m = links.iter().map(|l| l.clearance_m).reduce(f64::min);
         let min_self_clearance_m = self_pairs.iter().map(|l| l.clearance_m).reduce(f64::min);
         Ok(Report { verdict, links, self_pairs, tool_zone, min_obstacle_clearance_m, min_self_clearance_m })
@@ -772,15 +853,15 @@ impl CollisionChecker<'_> {
     fn swept_pair(&self, c: usize) -> SweptPair {
         let zones = self.scene.tool_zone.len();
         let obstacles = self.scene.obstacles.len();
-        let segments = self.points.len() - 1;
+        let elements = self.elements.list.len();
         if c < zones {
             SweptPair::ToolZone { zone: c }
-        } else if c < zones + segments * obstacles {
-            let k = (c - zones) / obstacles.max(1);
-            SweptPair::Obstacle { link: k + 1, obstacle: (c - zones) % obstacles.max(1) }
+        } else if c < zones + elements * obstacles {
+            let e = (c - zones) / obstacles.max(1);
+            SweptPair::Obstacle { link: self.link_of(e), obstacle: (c - zones) % obstacles.max(1) }
         } else {
-            let (i, j) = self.sweep_pairs.get(c - zones - segments * obstacles).copied().unwrap_or((0, 0));
-            SweptPair::SelfPair { link_a: i + 1, link_b: j + 1 }
+            let (i, j) = self.sweep_pairs.get(c - zones - elements * obstacles).copied().unwrap_or((0, 0));
+            SweptPair::SelfPair { link_a: self.link_of(i), link_b: self.link_of(j) }
         }
     }
 
@@ -796,43 +877,47 @@ impl CollisionChecker<'_> {
 }
 
 impl Clearances for CollisionChecker<'_> {
-    /// Rates from [`segment_rate`]: each segment's length is bounded by the larger of its
-    /// lengths at `a` and `b` (a segment vector is affine in a prismatic joint's value, so its
-    /// length is convex along the motion), and every revolute joint's axis passes through the
-    /// frame origin before or after it.
+    /// Rates from [`segment_rate`] ([`Elements::rate`]): each chain segment's length is
+    /// bounded by the larger of its lengths at `a` and `b` (a segment vector is affine in a
+    /// prismatic joint's value, so its length is convex along the motion), every revolute
+    /// joint's axis passes through the frame origin before or after it, and every point of a
+    /// solid fixed to frame `f` lies within the solid's farthest distance from `f`'s origin.
     fn prepare(&mut self, a: &[f64], b: &[f64]) -> Result<Vec<f64>, WorldError> {
         self.update(a)?;
-        let (lengths_a, pairs_a): (Vec<f64>, Vec<(usize, usize)>) =
-            (self.segment_lengths(), self.link_pairs().filter(|p| !p.2).map(|(i, j, _)| (i, j)).collect());
+        let lengths_a = self.segment_lengths();
+        let pairs_a: Vec<(usize, usize)> = self.pairs.iter().filter(|p| !p.2).map(|&(i, j, _)| (i, j)).collect();
         self.update(b)?;
         let lengths: Vec<f64> = self.segment_lengths().iter().zip(&lengths_a).map(|(x, y)| x.max(*y)).collect();
-        let pairs_b: Vec<(usize, usize)> = self.link_pairs().filter(|p| !p.2).map(|(i, j, _)| (i, j)).collect();
-        self.sweep_pairs = pairs_a.into_iter().filter(|p| pairs_b.contains(p)).collect();
+        let pairs_b: Vec<(usize, usize)> = self.pairs.iter().filter(|p| !p.2).map(|&(i, j, _)| (i, j)).collect();
+        self.sweep_pairs = if self.elements.stick {
+            pairs_a.into_iter().filter(|p| pairs_b.contains(p)).collect()
+        } else {
+            pairs_b
+        };
         let revolute: Vec<bool> =
             self.robot.joints().iter().map(|j| j.kind == crate::model::JointKind::Revolute).collect();
         let delta: Vec<f64> = a.iter().zip(b).map(|(x, y)| y - x).collect();
         let segments = lengths.len();
-        let rate = |k: usize| segment_rate(&lengths, &revolute, &delta, 0, k, self.radii[k]);
         let tool = segment_rate(&lengths, &revolute, &delta, 0, segments - 1, 0.0);
         let mut rates = vec![tool; self.scene.tool_zone.len()];
         // A moving obstacle travels |v|·(t_b − t_a) over the motion: relative to it every link
         // point moves that much farther per unit of s (0 for a fixed obstacle).
         let duration = self.span.map_or(0.0, |(ta, tb)| tb - ta);
         let travel: Vec<f64> = self.scene.obstacles.iter().map(|o| o.velocity.norm() * duration).collect();
-        for k in 0..segments {
-            let r = rate(k);
+        for e in 0..self.elements.list.len() {
+            let r = self.elements.rate(e, &lengths, &revolute, &delta, 0);
             rates.extend(travel.iter().map(|t| r + t));
         }
-        // Links i < j move relative to each other only by joints i..=j: the joints before i
-        // move both rigidly (joint i does too in standard DH, not in modified DH or URDF).
+        // Two solids move relative to each other only by the joints between their frames
+        // (stick segments i < j: joints i..=j, as joint i moves segment i in modified DH and URDF).
         rates.extend(
-            self.sweep_pairs.iter().map(|&(i, j)| segment_rate(&lengths, &revolute, &delta, i, j, self.radii[j])),
+            self.sweep_pairs.iter().map(|&(i, j)| self.elements.pair_rate(i, j, &lengths, &revolute, &delta)),
         );
         Ok(rates)
     }
 
-    /// Moving obstacles where they are at the instant of `s` (the link points taken relative
-    /// to their displacement).
+    /// Moving obstacles where they are at the instant of `s` (the solids taken relative to
+    /// their displacement).
     fn evaluate(&mut self, s: f64, q: &[f64], out: &mut [f64]) -> Result<(), WorldError> {
         self.update(q)?;
         let time = self.time_of(s);
@@ -842,26 +927,22 @@ impl Clearances for CollisionChecker<'_> {
             out[c] = -z.shape.point_sdf(&tool);
             c += 1;
         }
-        for k in 0..self.points.len() - 1 {
+        for e in 0..self.elements.list.len() {
+            let (centre, radius) = self.elements.spheres[e];
             for (o, bound) in self.scene.obstacles.iter().zip(&self.bounds) {
                 let shift = o.displacement(time);
-                let (a, b) = (&(self.points[k] - shift), &(self.points[k + 1] - shift));
-                // A far box: the distance to its bounding sphere is a lower bound, which keeps
-                // the sweep sound and spares the exact box distance (up to 14 point/edge
-                // distances). Other shapes have cheap closed forms.
-                let far = match (&o.shape, bound) {
-                    (super::Shape::Box { .. }, Some((centre, r))) => {
-                        Some(super::distance::point_segment_sq(centre, a, b).sqrt() - r - self.radii[k])
-                            .filter(|lb| *lb > FAR_BOX)
-                    }
-                    _ => None,
-                };
-                out[c] = far.unwrap_or_else(|| o.shape.segment_sdf(a, b) - self.radii[k]);
+                // A far obstacle: the distance between bounding spheres is a lower bound, which
+                // keeps the sweep sound and spares the exact distance (up to 14 point/edge
+                // distances for a box, GJK for a cylinder or mesh).
+                let far = bound
+                    .map(|(c, r)| (c + shift - centre).norm() - r - radius)
+                    .filter(|lb| *lb > FAR_BOX && !matches!(o.shape, super::Shape::Sphere { .. } | super::Shape::Point { .. }));
+                out[c] = far.unwrap_or_else(|| self.elements.obstacle_clearance(e, &o.shape, &shift));
                 c += 1;
             }
         }
         for &(i, j) in &self.sweep_pairs {
-            out[c] = self.pair_clearance(i, j);
+            out[c] = self.elements.pair_clearance(i, j);
             c += 1;
         }
         Ok(())

@@ -252,8 +252,9 @@ mod tests {
         let cyl = Convex::Cylinder(Vector3::zeros(), Vector3::z(), 0.2, 0.5);
         let r = *Rotation3::from_euler_angles(0.0, 0.0, 0.7).matrix();
         let bx = Convex::Box(Vector3::new(0.5 + 0.1, 0.0, 0.0), r, Vector3::new(0.1, 0.1, 0.1));
-        // The box's nearest point: its centre minus its half-diagonal in the x–y plane along −x.
-        let near = 0.6 - 0.1 * (0.7_f64.cos() + 0.7_f64.sin());
+        // The box's nearest point to the axis is its corner R·(−0.1, 0.1) from the centre.
+        let (c, s) = (0.7_f64.cos(), 0.7_f64.sin());
+        let near = (0.6 - 0.1 * (c + s)).hypot(0.1 * (c - s));
         let g = distance(&cyl, &bx);
         assert!((g - (near - 0.2)).abs() < 1e-8, "{g} vs {}", near - 0.2);
         // The hull of a tetrahedron against a point below its base.

@@ -33,6 +33,7 @@ mod collision;
 pub mod cspace;
 pub mod detour;
 pub mod distance;
+mod elements;
 mod gjk;
 pub mod fit;
 pub mod planner;
