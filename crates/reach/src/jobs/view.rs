@@ -471,7 +471,9 @@ impl ViewShapeKind {
                 radius_m: *radius,
                 length_m: 2.0 * half_length,
             },
-            Shape::ConvexMesh { vertices } => ViewShapeKind::ConvexMesh { vertices_m: vertices.iter().map(xyz).collect() },
+            Shape::ConvexMesh { vertices } => {
+                ViewShapeKind::ConvexMesh { vertices_m: vertices.iter().map(xyz).collect() }
+            }
             Shape::HalfSpace { normal, offset } => ViewShapeKind::HalfSpace { normal: xyz(normal), offset_m: *offset },
         }
     }

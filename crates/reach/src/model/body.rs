@@ -129,7 +129,11 @@ impl BodyShape {
             if v.iter().all(|x| x.is_finite()) { Ok(()) } else { Err(format!("`{name}` must be finite, got {v:?}")) }
         };
         let positive = |name: &str, v: f64| {
-            if v.is_finite() && v > 0.0 { Ok(()) } else { Err(format!("`{name}` must be a finite number > 0, got {v}")) }
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(format!("`{name}` must be a finite number > 0, got {v}"))
+            }
         };
         let pose_ok = |pose: &Isometry3<f64>| {
             finite("pose", pose.translation.vector.as_slice())?;
@@ -422,7 +426,12 @@ mod tests {
         let text = r#"<robot name="r"><disable_collisions link1="a" link2="b" reason="Adjacent"/>
             <disable_collisions link1="c" link2="d" reason="Never"/></robot>"#;
         assert_eq!(srdf_disabled_pairs(text).unwrap(), vec![["a".to_string(), "b".into()], ["c".into(), "d".into()]]);
-        assert!(srdf_disabled_pairs("<robot><disable_collisions link1=\"a\"/></robot>").unwrap_err().to_string().contains("link2"));
+        assert!(
+            srdf_disabled_pairs("<robot><disable_collisions link1=\"a\"/></robot>")
+                .unwrap_err()
+                .to_string()
+                .contains("link2")
+        );
         assert!(srdf_disabled_pairs("<robot>").is_err());
     }
 }

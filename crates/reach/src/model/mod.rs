@@ -30,4 +30,4 @@ pub use joint::{
 };
 pub use robot::{Robot, RobotSpec};
 pub use toml_format::{AngleUnit, FileUnits, LengthUnit};
-pub use urdf::{UrdfChain, urdf_chain_links, urdf_visual_meshes};
+pub use urdf::{UrdfBodyOptions, UrdfChain, urdf_chain_links, urdf_visual_meshes};

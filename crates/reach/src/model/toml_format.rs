@@ -5,8 +5,7 @@ use serde::Deserialize;
 
 use super::{
     BodyShape, Convention, DhParams, Joint, JointDrive, JointGeometry, JointKind, Limits, LinkBody, LinkGeometry,
-    LinkInertial, ModelError,
-    Robot, RobotSpec, STANDARD_GRAVITY, StepMode, Wiring,
+    LinkInertial, ModelError, Robot, RobotSpec, STANDARD_GRAVITY, StepMode, Wiring,
 };
 
 /// Length unit of a description file.
@@ -237,9 +236,8 @@ impl BodyShapeField {
     /// The solid in SI units; `ls`, `an`: the file's length and angle scales.
     fn to_shape(&self, body: &str, index: usize, ls: f64, an: f64) -> Result<BodyShape, ModelError> {
         let fail = |m: String| ModelError::Links(format!("body `{body}`, shape {index} ({}): {m}", self.shape));
-        let need3 = |v: Option<[f64; 3]>, f: &str| {
-            v.map(|v| Vector3::from(v) * ls).ok_or_else(|| fail(format!("needs `{f}`")))
-        };
+        let need3 =
+            |v: Option<[f64; 3]>, f: &str| v.map(|v| Vector3::from(v) * ls).ok_or_else(|| fail(format!("needs `{f}`")));
         let need = |v: Option<f64>, f: &str| v.map(|v| v * ls).ok_or_else(|| fail(format!("needs `{f}`")));
         let allowed: &[&str] = match self.shape.as_str() {
             "sphere" => &["center", "radius"],
@@ -266,13 +264,18 @@ impl BodyShapeField {
         }
         let pose = |c: Vector3<f64>| Isometry3::from_parts(c.into(), xyz_rpy([0.0; 3], self.rpy, 1.0, an).rotation);
         Ok(match self.shape.as_str() {
-            "sphere" => BodyShape::Sphere { center: need3(self.center, "center")?, radius: need(self.radius, "radius")? },
+            "sphere" => {
+                BodyShape::Sphere { center: need3(self.center, "center")?, radius: need(self.radius, "radius")? }
+            }
             "capsule" => BodyShape::Capsule {
                 a: need3(self.a, "a")?,
                 b: need3(self.b, "b")?,
                 radius: need(self.radius, "radius")?,
             },
-            "box" => BodyShape::Box { pose: pose(need3(self.center, "center")?), half_extents: need3(self.size, "size")? * 0.5 },
+            "box" => BodyShape::Box {
+                pose: pose(need3(self.center, "center")?),
+                half_extents: need3(self.size, "size")? * 0.5,
+            },
             _ => BodyShape::Cylinder {
                 pose: pose(need3(self.center, "center")?),
                 radius: need(self.radius, "radius")?,
@@ -287,7 +290,8 @@ impl BodyShapeField {
 fn bodies_of(fields: &[BodyField], ls: f64, an: f64) -> Result<Vec<LinkBody>, ModelError> {
     let mut bodies = Vec::with_capacity(fields.len());
     for b in fields {
-        let shapes = b.shapes.iter().enumerate().map(|(i, s)| s.to_shape(&b.name, i + 1, ls, an)).collect::<Result<_, _>>()?;
+        let shapes =
+            b.shapes.iter().enumerate().map(|(i, s)| s.to_shape(&b.name, i + 1, ls, an)).collect::<Result<_, _>>()?;
         let parent = match &b.parent {
             Some(p) => Some(fields.iter().position(|o| &o.name == p).ok_or_else(|| {
                 ModelError::Links(format!("body `{}`: parent `{p}` is not a body of this file", b.name))

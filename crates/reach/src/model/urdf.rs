@@ -262,7 +262,13 @@ fn collision_bodies(
     let value_of = |j: &urdf_rs::Joint| -> f64 {
         let own = |j: &urdf_rs::Joint| {
             options.locked.iter().find(|(n, _)| n == &j.name).map_or_else(
-                || if j.joint_type == urdf_rs::JointType::Continuous { 0.0 } else { 0.0_f64.clamp(j.limit.lower.min(j.limit.upper), j.limit.upper.max(j.limit.lower)) },
+                || {
+                    if j.joint_type == urdf_rs::JointType::Continuous {
+                        0.0
+                    } else {
+                        0.0_f64.clamp(j.limit.lower.min(j.limit.upper), j.limit.upper.max(j.limit.lower))
+                    }
+                },
                 |(_, v)| *v,
             )
         };
@@ -296,9 +302,7 @@ fn collision_bodies(
                 urdf_rs::Geometry::Sphere { radius } => {
                     BodyShape::Sphere { center: pose.translation.vector, radius: *radius }
                 }
-                urdf_rs::Geometry::Box { size } => {
-                    BodyShape::Box { pose, half_extents: Vector3::from(size.0) * 0.5 }
-                }
+                urdf_rs::Geometry::Box { size } => BodyShape::Box { pose, half_extents: Vector3::from(size.0) * 0.5 },
                 urdf_rs::Geometry::Cylinder { radius, length } => {
                     BodyShape::Cylinder { pose, radius: *radius, half_length: length * 0.5 }
                 }
@@ -309,11 +313,14 @@ fn collision_bodies(
                 }
                 urdf_rs::Geometry::Mesh { filename, scale } => match options.meshes {
                     None => BodyShape::Missing {
-                        what: format!("link `{name}`: collision mesh `{filename}` is not loaded (read the URDF from its file)"),
+                        what: format!(
+                            "link `{name}`: collision mesh `{filename}` is not loaded (read the URDF from its file)"
+                        ),
                     },
                     Some(read) => {
-                        let bytes = read(filename)
-                            .map_err(|e| ModelError::Urdf(format!("link `{name}`: collision mesh `{filename}`: {e}")))?;
+                        let bytes = read(filename).map_err(|e| {
+                            ModelError::Urdf(format!("link `{name}`: collision mesh `{filename}`: {e}"))
+                        })?;
                         let vertices = super::mesh_vertices(filename, &bytes)
                             .map_err(|e| ModelError::Urdf(format!("link `{name}`: {e}")))?;
                         let k = scale.map_or(Vector3::repeat(1.0), |s| Vector3::from(s.0));
@@ -333,8 +340,8 @@ fn collision_bodies(
             let child = if let Some(&frame) = frames.get(j.name.as_str()) {
                 Place { frame, pose: Isometry3::identity(), lost: place.lost.clone() }
             } else {
-                let moving_mimic = movable(j)
-                    && j.mimic.as_ref().is_some_and(|m| frames.contains_key(m.joint.as_str()));
+                let moving_mimic =
+                    movable(j) && j.mimic.as_ref().is_some_and(|m| frames.contains_key(m.joint.as_str()));
                 let lost = place.lost.clone().or_else(|| {
                     moving_mimic.then(|| format!("it follows the moving mimic joint `{}`, not a chain frame", j.name))
                 });

@@ -889,11 +889,8 @@ impl Clearances for CollisionChecker<'_> {
         self.update(b)?;
         let lengths: Vec<f64> = self.segment_lengths().iter().zip(&lengths_a).map(|(x, y)| x.max(*y)).collect();
         let pairs_b: Vec<(usize, usize)> = self.pairs.iter().filter(|p| !p.2).map(|&(i, j, _)| (i, j)).collect();
-        self.sweep_pairs = if self.elements.stick {
-            pairs_a.into_iter().filter(|p| pairs_b.contains(p)).collect()
-        } else {
-            pairs_b
-        };
+        self.sweep_pairs =
+            if self.elements.stick { pairs_a.into_iter().filter(|p| pairs_b.contains(p)).collect() } else { pairs_b };
         let revolute: Vec<bool> =
             self.robot.joints().iter().map(|j| j.kind == crate::model::JointKind::Revolute).collect();
         let delta: Vec<f64> = a.iter().zip(b).map(|(x, y)| y - x).collect();
@@ -910,9 +907,7 @@ impl Clearances for CollisionChecker<'_> {
         }
         // Two solids move relative to each other only by the joints between their frames
         // (stick segments i < j: joints i..=j, as joint i moves segment i in modified DH and URDF).
-        rates.extend(
-            self.sweep_pairs.iter().map(|&(i, j)| self.elements.pair_rate(i, j, &lengths, &revolute, &delta)),
-        );
+        rates.extend(self.sweep_pairs.iter().map(|&(i, j)| self.elements.pair_rate(i, j, &lengths, &revolute, &delta)));
         Ok(rates)
     }
 
@@ -934,9 +929,9 @@ impl Clearances for CollisionChecker<'_> {
                 // A far obstacle: the distance between bounding spheres is a lower bound, which
                 // keeps the sweep sound and spares the exact distance (up to 14 point/edge
                 // distances for a box, GJK for a cylinder or mesh).
-                let far = bound
-                    .map(|(c, r)| (c + shift - centre).norm() - r - radius)
-                    .filter(|lb| *lb > FAR_BOX && !matches!(o.shape, super::Shape::Sphere { .. } | super::Shape::Point { .. }));
+                let far = bound.map(|(c, r)| (c + shift - centre).norm() - r - radius).filter(|lb| {
+                    *lb > FAR_BOX && !matches!(o.shape, super::Shape::Sphere { .. } | super::Shape::Point { .. })
+                });
                 out[c] = far.unwrap_or_else(|| self.elements.obstacle_clearance(e, &o.shape, &shift));
                 c += 1;
             }

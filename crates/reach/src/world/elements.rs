@@ -121,7 +121,11 @@ impl<'a> Elements<'a> {
                     }
                     BodyShape::Box { pose, half_extents } => {
                         let c = pose.translation.vector;
-                        (Local::Box(c, *pose.rotation.to_rotation_matrix().matrix(), *half_extents), 0.0, (c, half_extents.norm()))
+                        (
+                            Local::Box(c, *pose.rotation.to_rotation_matrix().matrix(), *half_extents),
+                            0.0,
+                            (c, half_extents.norm()),
+                        )
                     }
                     BodyShape::Cylinder { pose, radius, half_length } => {
                         let c = pose.translation.vector;
@@ -199,7 +203,12 @@ impl<'a> Elements<'a> {
 
     /// Places every element: `frames[k − 1]` is frame `k`, `base` frame 0, `points` the
     /// chain points (base origin, frame origins, tool point).
-    pub(crate) fn place(&mut self, base: &IsometryMatrix3<f64>, frames: &[IsometryMatrix3<f64>], points: &[Vector3<f64>]) {
+    pub(crate) fn place(
+        &mut self,
+        base: &IsometryMatrix3<f64>,
+        frames: &[IsometryMatrix3<f64>],
+        points: &[Vector3<f64>],
+    ) {
         for ((e, placed), sphere) in self.list.iter().zip(&mut self.placed).zip(&mut self.spheres) {
             let f = if e.frame == 0 { base } else { &frames[(e.frame - 1).min(frames.len() - 1)] };
             let at = |v: &Vector3<f64>| (f * Point3::from(*v)).coords;

@@ -34,8 +34,9 @@ pub mod cspace;
 pub mod detour;
 pub mod distance;
 mod elements;
-mod gjk;
 pub mod fit;
+mod gjk;
+pub mod moveit;
 pub mod planner;
 pub mod rfunction;
 mod scene;
@@ -46,6 +47,7 @@ pub mod sweep;
 pub use collision::{
     CollisionChecker, Contact, LinkClearance, PairSurvey, PathSweep, Report, SelfClearance, SweptPair, Verdict,
 };
+pub use moveit::PlanRequest;
 pub use planner::{Blocked, Goal, Plan, PlanError, PlanOptions, PlanStats, plan};
 pub use scene::{Obstacle, Scene, Touching};
 pub use shape::Shape;

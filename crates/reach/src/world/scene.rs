@@ -71,6 +71,7 @@ impl Obstacle {
 /// the shape's fields give its place at time 0, the start of the motion checked).
 /// Shapes and their fields: `point` (`at`), `sphere` (`center`, `radius`), `aabb` (`min`,
 /// `max`), `box` (`center`, `half_extents`, optional `rpy`), `capsule` (`a`, `b`, `radius`),
+/// `cylinder` (`center`, `radius`, `length`, optional `rpy`; the axis is the rotated z),
 /// `halfspace` (`point`, `outward_normal`), `rectangle` (`center`, `half_extents = [hx, hy]`,
 /// optional `rpy`; the rectangle lies in its local x–y plane).
 /// `allowed_self_collisions = [["wrist_1", "wrist_3"]]` (optional) exempts link pairs from
@@ -127,13 +128,15 @@ struct ShapeField {
     b: Option<[f64; 3]>,
     point: Option<[f64; 3]>,
     outward_normal: Option<[f64; 3]>,
+    length: Option<f64>,
     velocity: Option<[f64; 3]>,
 }
 
 impl ShapeField {
     fn present(&self) -> Vec<&'static str> {
         let mut v = Vec::new();
-        let fields: [(&'static str, bool); 11] = [
+        let fields: [(&'static str, bool); 12] = [
+            ("length", self.length.is_some()),
             ("at", self.at.is_some()),
             ("center", self.center.is_some()),
             ("radius", self.radius.is_some()),
@@ -330,12 +333,13 @@ fn build_shape(what: &'static str, name: &str, f: &ShapeField, ls: f64, an: f64)
         "capsule" => (&["a", "b", "radius"], &[]),
         "halfspace" => (&["point", "outward_normal"], &[]),
         "rectangle" => (&["center", "half_extents"], &["rpy"]),
+        "cylinder" => (&["center", "radius", "length"], &["rpy"]),
         other => {
             return Err(shape_error(
                 what,
                 name,
                 other,
-                "unknown shape (expected point, sphere, aabb, box, capsule, halfspace or rectangle)",
+                "unknown shape (expected point, sphere, aabb, box, capsule, cylinder, halfspace or rectangle)",
             ));
         }
     };
@@ -388,10 +392,12 @@ fn build_shape(what: &'static str, name: &str, f: &ShapeField, ls: f64, an: f64)
     {
         return Err(shape_error(what, name, kind, format!("`half_extents` must be finite numbers, got {h:?}")));
     }
-    if let Some(r) = f.radius
-        && !r.is_finite()
-    {
-        return Err(shape_error(what, name, kind, format!("`radius` must be a finite number, got {r}")));
+    for (field, x) in [("radius", f.radius), ("length", f.length)] {
+        if let Some(x) = x
+            && !x.is_finite()
+        {
+            return Err(shape_error(what, name, kind, format!("`{field}` must be a finite number, got {x}")));
+        }
     }
     let shape = match kind {
         "point" => Shape::Point { at: v(f.at) },
@@ -418,6 +424,12 @@ fn build_shape(what: &'static str, name: &str, f: &ShapeField, ls: f64, an: f64)
         "box" => Shape::Box { center: v(f.center), half_extents: half(3)?, rotation: rotation(f.rpy) },
         "rectangle" => Shape::Box { center: v(f.center), half_extents: half(2)?, rotation: rotation(f.rpy) },
         "capsule" => Shape::Capsule { a: v(f.a), b: v(f.b), radius: f.radius.unwrap_or_default() * ls },
+        "cylinder" => Shape::Cylinder {
+            center: v(f.center),
+            rotation: rotation(f.rpy),
+            radius: f.radius.unwrap_or_default() * ls,
+            half_length: f.length.unwrap_or_default() * ls * 0.5,
+        },
         _ => {
             let n = Vector3::from(f.outward_normal.unwrap_or_default());
             let norm = n.norm();
@@ -433,7 +445,7 @@ fn build_shape(what: &'static str, name: &str, f: &ShapeField, ls: f64, an: f64)
 }
 
 /// Checks a shape's numbers (also for shapes built in code).
-fn validate(what: &'static str, name: &str, shape: &Shape) -> Result<(), WorldError> {
+pub(super) fn validate(what: &'static str, name: &str, shape: &Shape) -> Result<(), WorldError> {
     let kind = shape.kind();
     let finite3 = |v: &Vector3<f64>| v.iter().all(|x| x.is_finite());
     let err = |m: String| Err(shape_error(what, name, kind, m));
@@ -469,6 +481,38 @@ fn validate(what: &'static str, name: &str, shape: &Shape) -> Result<(), WorldEr
                 return err("`rotation` is not orthonormal".into());
             }
             Ok(())
+        }
+        Shape::Cylinder { center, rotation, radius, half_length } => {
+            if !finite3(center) || !rotation.iter().all(|x| x.is_finite()) {
+                return err("centre and rotation must be finite".into());
+            }
+            if !(radius.is_finite() && *radius > 0.0 && half_length.is_finite() && *half_length > 0.0) {
+                return err(format!(
+                    "`radius` and `length` must be positive numbers, got {radius} m and {} m",
+                    2.0 * half_length
+                ));
+            }
+            if (rotation.transpose() * rotation - Matrix3::identity()).amax()
+                > crate::tolerance::ROTATION_ORTHONORMALITY
+            {
+                return err("`rotation` is not orthonormal".into());
+            }
+            Ok(())
+        }
+        Shape::ConvexMesh { vertices } => {
+            if vertices.is_empty() {
+                err("a mesh needs at least one vertex".into())
+            } else if vertices.len() > 3 * crate::model::MAX_MESH_TRIANGLES {
+                err(format!(
+                    "{} vertices, more than the cap of {}",
+                    vertices.len(),
+                    3 * crate::model::MAX_MESH_TRIANGLES
+                ))
+            } else if !vertices.iter().all(finite3) {
+                err("every vertex must be finite".into())
+            } else {
+                Ok(())
+            }
         }
         Shape::HalfSpace { normal, offset } => {
             if !finite3(normal) || !offset.is_finite() || (normal.norm() - 1.0).abs() > 1e-9 {

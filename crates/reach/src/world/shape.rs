@@ -158,7 +158,9 @@ impl Shape {
     pub(crate) fn convex_distance(&self, other: &Convex) -> f64 {
         match self.convex() {
             None => {
-                let Shape::HalfSpace { normal, offset } = self else { unreachable!("only a half-space has no support") };
+                let Shape::HalfSpace { normal, offset } = self else {
+                    unreachable!("only a half-space has no support")
+                };
                 normal.dot(&other.support(&-normal)) - offset
             }
             Some((c, r)) => {
