@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 use reach::Robot;
 use reach::jobs::RobotInput;
-use reach::model::{FileUnits, UrdfChain, presets};
+use reach::model::{FileUnits, UrdfChain, mesh_file_path, presets};
 
 use crate::error::{CliError, one_line};
 
@@ -37,6 +37,11 @@ pub struct RobotArgs {
     /// URDF only: the link the chain ends at (default: the only leaf below the base).
     #[arg(long, value_name = "LINK")]
     pub tip: Option<String>,
+
+    /// URDF only: a MoveIt SRDF whose `disable_collisions` link pairs are never checked
+    /// against each other (TOML robots list them as `disabled_collisions`).
+    #[arg(long, value_name = "FILE")]
+    pub srdf: Option<PathBuf>,
 }
 
 /// Which description format a robot file is written in.
@@ -97,9 +102,21 @@ impl RobotArgs {
     /// [`CliError::BadInput`] for an unknown preset, an unreadable or malformed file, or
     /// `--base`/`--tip` given for a TOML robot.
     pub fn load(&self) -> Result<LoadedRobot, CliError> {
-        let loaded = load_robot(&self.robot, &self.urdf_chain())?;
-        if loaded.units.is_some() && (self.base.is_some() || self.tip.is_some()) {
-            let flag = if self.base.is_some() { "--base" } else { "--tip" };
+        let srdf = match &self.srdf {
+            None => None,
+            Some(p) => Some(std::fs::read_to_string(p).map_err(|e| {
+                CliError::bad_input(format!("cannot read SRDF file `{}`: {}", p.display(), one_line(&e.to_string())))
+            })?),
+        };
+        let loaded = load_robot_with(&self.robot, &self.urdf_chain(), srdf)?;
+        if loaded.units.is_some() && (self.base.is_some() || self.tip.is_some() || self.srdf.is_some()) {
+            let flag = if self.base.is_some() {
+                "--base"
+            } else if self.tip.is_some() {
+                "--tip"
+            } else {
+                "--srdf"
+            };
             return Err(CliError::bad_input(format!(
                 "{flag} applies to URDF robots only, but `{}` is a {}",
                 self.robot,
@@ -135,9 +152,18 @@ pub fn robot_input(arg: &str, chain: &UrdfChain) -> Result<(RobotInput, RobotSou
     let format = file_format(path, &text);
     let input = match format {
         FileFormat::Toml => RobotInput::Toml { text },
-        FileFormat::Urdf => RobotInput::Urdf { text, base: chain.base.clone(), tip: chain.tip.clone() },
+        FileFormat::Urdf => RobotInput::urdf(text, chain, |filename| read_mesh(path, filename))
+            .map_err(|e| CliError::bad_input(format!("{arg}: {e}")))?,
     };
     Ok((input, RobotSource::File { path: path.to_path_buf(), format }))
+}
+
+/// The bytes of the mesh file `filename` of the URDF file `urdf` ([`mesh_file_path`]):
+/// `None` when there is no such file, an error naming the file when it cannot be read.
+pub fn read_mesh(urdf: &Path, filename: &str) -> Option<Result<Vec<u8>, String>> {
+    let canonical = std::fs::canonicalize(urdf).unwrap_or_else(|_| urdf.to_path_buf());
+    let file = mesh_file_path(&canonical, filename, &|d: &Path| d.is_dir()).ok()?;
+    file.exists().then(|| std::fs::read(&file).map_err(|e| format!("{}: {}", file.display(), one_line(&e.to_string()))))
 }
 
 /// Resolves a preset name or file path to a robot; `chain` selects the chain of a URDF file.
@@ -145,7 +171,18 @@ pub fn robot_input(arg: &str, chain: &UrdfChain) -> Result<(RobotInput, RobotSou
 /// # Errors
 /// [`CliError::BadInput`] for an unknown preset or an unreadable or malformed file.
 pub fn load_robot(arg: &str, chain: &UrdfChain) -> Result<LoadedRobot, CliError> {
-    let (input, source) = robot_input(arg, chain)?;
+    load_robot_with(arg, chain, None)
+}
+
+/// [`load_robot`] with the text of an SRDF for a URDF robot.
+///
+/// # Errors
+/// As [`load_robot`].
+pub fn load_robot_with(arg: &str, chain: &UrdfChain, srdf: Option<String>) -> Result<LoadedRobot, CliError> {
+    let (mut input, source) = robot_input(arg, chain)?;
+    if let RobotInput::Urdf { srdf: s, .. } = &mut input {
+        *s = srdf;
+    }
     let loaded = input.load().map_err(|e| match (&source, &e) {
         (RobotSource::Preset(_), reach::Error::Model(reach::ModelError::UnknownPreset { name, known })) => {
             CliError::bad_input(format!("unknown robot `{name}`: not a preset (known: {known}) and not a robot file"))

@@ -249,16 +249,36 @@ impl Robot {
     /// A robot from a TOML or URDF description file (URDF by extension `.urdf` / `.xml` or a
     /// text starting with `<`); `base` and `tip` select a URDF chain.
     #[staticmethod]
-    #[pyo3(signature = (path, base=None, tip=None))]
-    fn from_file(path: std::path::PathBuf, base: Option<String>, tip: Option<String>) -> PyResult<Self> {
+    #[pyo3(signature = (path, base=None, tip=None, srdf=None))]
+    fn from_file(
+        path: std::path::PathBuf,
+        base: Option<String>,
+        tip: Option<String>,
+        srdf: Option<std::path::PathBuf>,
+    ) -> PyResult<Self> {
         let text = std::fs::read_to_string(&path)
             .map_err(|e| PyOSError::new_err(format!("cannot read robot file `{}`: {e}", path.display())))?;
         let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
         let urdf = matches!(ext.as_deref(), Some("urdf" | "xml")) || text.trim_start().starts_with('<');
-        if !urdf && (base.is_some() || tip.is_some()) {
-            return Err(value_err("base/tip select a chain of a URDF file; this is a TOML description"));
+        if !urdf && (base.is_some() || tip.is_some() || srdf.is_some()) {
+            return Err(value_err("base/tip/srdf apply to a URDF file; this is a TOML description"));
         }
-        Robot::from_input(if urdf { RobotInput::Urdf { text, base, tip } } else { RobotInput::Toml { text } })
+        if !urdf {
+            return Robot::from_input(RobotInput::Toml { text });
+        }
+        let canonical = std::fs::canonicalize(&path).unwrap_or_else(|_| path.clone());
+        let read = |filename: &str| {
+            let file = reach::model::mesh_file_path(&canonical, filename, &|d: &std::path::Path| d.is_dir()).ok()?;
+            file.exists().then(|| std::fs::read(&file).map_err(|e| format!("{}: {e}", file.display())))
+        };
+        let mut input = RobotInput::urdf(text, &reach::model::UrdfChain { base, tip }, read).map_err(value_err)?;
+        if let (Some(srdf), RobotInput::Urdf { srdf: s, .. }) = (srdf, &mut input) {
+            *s = Some(
+                std::fs::read_to_string(&srdf)
+                    .map_err(|e| PyOSError::new_err(format!("cannot read SRDF file `{}`: {e}", srdf.display())))?,
+            );
+        }
+        Robot::from_input(input)
     }
 
     /// A robot from the text of a TOML description.

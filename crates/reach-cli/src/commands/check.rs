@@ -170,13 +170,18 @@ fn write_text(robot: &reach::Robot, report: &CheckReport, out: &mut dyn Write) -
     if !report.links.is_empty() {
         writeln!(out, "link clearances (negative = penetration):")?;
         let mut t = Table::new(&[
-            ("link", Align::Right),
+            ("link", Align::Left),
             ("obstacle", Align::Left),
             ("clearance [m]", Align::Right),
             ("colliding", Align::Left),
         ]);
         for l in &report.links {
-            t.row(vec![l.link.to_string(), l.obstacle.clone(), fixed(l.clearance_m, 6), l.colliding.to_string()]);
+            t.row(vec![
+                format!("{} {}", l.link, l.link_name),
+                l.obstacle.clone(),
+                fixed(l.clearance_m, 6),
+                l.colliding.to_string(),
+            ]);
         }
         t.write(out, "  ")?;
     }
@@ -184,7 +189,11 @@ fn write_text(robot: &reach::Robot, report: &CheckReport, out: &mut dyn Write) -
         writeln!(out, "non-adjacent link pairs:")?;
         let mut t = Table::new(&[("links", Align::Left), ("clearance [m]", Align::Right), ("colliding", Align::Left)]);
         for p in &report.self_pairs {
-            t.row(vec![format!("{}-{}", p.link_a, p.link_b), fixed(p.clearance_m, 6), p.colliding.to_string()]);
+            t.row(vec![
+                format!("{}-{} {} / {}", p.link_a, p.link_b, p.name_a, p.name_b),
+                fixed(p.clearance_m, 6),
+                p.colliding.to_string(),
+            ]);
         }
         t.write(out, "  ")?;
     }

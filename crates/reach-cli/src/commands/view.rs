@@ -4,7 +4,7 @@
 //! are inlined. A robot read from a URDF file is drawn with its visual meshes, inlined too.
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use clap::Args;
 use reach::jobs::view::{ViewCspaceRequest, ViewUrdf};
@@ -133,7 +133,7 @@ pub fn run(args: &ViewArgs, out: &mut dyn Write) -> Result<(), CliError> {
 }
 
 /// For a robot read from a URDF file: the document (as read for the robot) with every visual
-/// mesh it references, read from disk ([`mesh_path`] resolves the addresses); `None` for other
+/// mesh it references, read from disk ([`reach::model::mesh_file_path`] resolves the addresses); `None` for other
 /// robots.
 fn urdf_with_meshes(args: &ViewArgs, loaded: &LoadedRobot) -> Result<Option<ViewUrdf>, CliError> {
     let (RobotSource::File { path, .. }, RobotInput::Urdf { text, .. }) = (&loaded.source, &loaded.input) else {
@@ -141,7 +141,9 @@ fn urdf_with_meshes(args: &ViewArgs, loaded: &LoadedRobot) -> Result<Option<View
     };
     let urdf = ViewUrdf::read(text, &args.robot.urdf_chain(), |filename| {
         let fail = |message: String| reach::Error::File { what: "mesh file", message };
-        let file = mesh_path(path, filename).map_err(|why| fail(format!("`{filename}`: {why}")))?;
+        let canonical = std::fs::canonicalize(path).unwrap_or_else(|_| path.clone());
+        let file = reach::model::mesh_file_path(&canonical, filename, &|d: &std::path::Path| d.is_dir())
+            .map_err(|why| fail(format!("`{filename}`: {why}")))?;
         std::fs::read(&file).map_err(|e| fail(format!("`{filename}` ({}): {e}", file.display())))
     })
     .map_err(|e| {
@@ -154,29 +156,3 @@ fn urdf_with_meshes(args: &ViewArgs, loaded: &LoadedRobot) -> Result<Option<View
     Ok(Some(urdf))
 }
 
-/// The file a URDF mesh address names: `package://NAME/REST` is `REST` below the nearest
-/// directory named `NAME` above the URDF file (the ROS package layout, examples/urdf/README.md);
-/// `file:///PATH` is `/PATH`; an address without a scheme is relative to the URDF file's
-/// directory.
-///
-/// # Errors
-/// A reason for another scheme or a package with no such directory above the URDF file.
-fn mesh_path(urdf: &Path, filename: &str) -> Result<PathBuf, String> {
-    let urdf = std::fs::canonicalize(urdf).unwrap_or_else(|_| urdf.to_path_buf());
-    let dir = urdf.parent().unwrap_or(Path::new("."));
-    if let Some(rest) = filename.strip_prefix("package://") {
-        let (package, rest) = rest.split_once('/').ok_or("no file after the package name")?;
-        return dir
-            .ancestors()
-            .find(|a| a.file_name().is_some_and(|n| n == package))
-            .map(|root| root.join(rest))
-            .ok_or_else(|| format!("no directory `{package}` above {}", urdf.display()));
-    }
-    if let Some(abs) = filename.strip_prefix("file://") {
-        return Ok(PathBuf::from(abs));
-    }
-    if filename.contains("://") {
-        return Err("only package://, file:// and relative addresses can be read".into());
-    }
-    Ok(dir.join(filename))
-}

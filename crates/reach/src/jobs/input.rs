@@ -17,7 +17,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result, one_line};
 use crate::ik::IkTarget;
-use crate::model::{FileUnits, JointKind, Robot, UrdfChain, presets};
+use std::collections::BTreeMap;
+
+use crate::model::{FileUnits, JointKind, Robot, UrdfBodyOptions, UrdfChain, presets};
 use crate::motion::JointSample;
 use crate::tolerance::{LIMIT_SLACK, ROTATION_ORTHONORMALITY};
 
@@ -42,6 +44,17 @@ pub enum RobotInput {
         /// The link the chain ends at (default: the only leaf below the base).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         tip: Option<String>,
+        /// The collision mesh files, by their `filename` as the document writes it: the
+        /// file's bytes, base64 (standard alphabet). A mesh not given leaves its link's body
+        /// incomplete: kinematics work, collision checks are refused naming the file.
+        #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+        meshes: BTreeMap<String, String>,
+        /// The text of a MoveIt SRDF whose `disable_collisions` pairs are never checked.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        srdf: Option<String>,
+        /// Positions of movable joints off the chain (a gripper's fingers), radians or metres.
+        #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+        locked: BTreeMap<String, f64>,
     },
 }
 
@@ -55,6 +68,37 @@ pub struct LoadedRobot {
 }
 
 impl RobotInput {
+    /// A URDF robot's input with its collision meshes: `read` gives a mesh file's bytes by
+    /// its `filename` as the document writes it (`None`: not available, the body stays
+    /// incomplete; see [`RobotInput::Urdf`]).
+    ///
+    /// # Errors
+    /// A reason naming the file that `read` could not read; the document itself is checked
+    /// by [`RobotInput::load`].
+    pub fn urdf(
+        text: String,
+        chain: &UrdfChain,
+        read: impl Fn(&str) -> Option<std::result::Result<Vec<u8>, String>>,
+    ) -> std::result::Result<RobotInput, String> {
+        use base64::Engine as _;
+        let mut meshes = BTreeMap::new();
+        // A document that does not parse is reported when the robot is loaded.
+        for filename in crate::model::urdf_collision_meshes(&text).unwrap_or_default() {
+            if let Some(bytes) = read(&filename) {
+                let bytes = bytes.map_err(|e| format!("collision mesh `{filename}`: {e}"))?;
+                meshes.insert(filename, base64::engine::general_purpose::STANDARD.encode(bytes));
+            }
+        }
+        Ok(RobotInput::Urdf {
+            text,
+            base: chain.base.clone(),
+            tip: chain.tip.clone(),
+            meshes,
+            srdf: None,
+            locked: BTreeMap::new(),
+        })
+    }
+
     /// Parses the robot.
     ///
     /// # Errors
@@ -73,8 +117,20 @@ impl RobotInput {
                 let (robot, units) = Robot::from_toml_str_with_units(text)?;
                 Ok(LoadedRobot { robot, units: Some(units) })
             }
-            RobotInput::Urdf { text, base, tip } => {
-                let robot = Robot::from_urdf_str(text, &UrdfChain { base: base.clone(), tip: tip.clone() })?;
+            RobotInput::Urdf { text, base, tip, meshes, srdf, locked } => {
+                use base64::Engine as _;
+                let chain = UrdfChain { base: base.clone(), tip: tip.clone() };
+                let read = |file: &str| -> Option<std::result::Result<Vec<u8>, String>> {
+                    meshes.get(file).map(|b| {
+                        base64::engine::general_purpose::STANDARD.decode(b).map_err(|e| format!("not base64: {e}"))
+                    })
+                };
+                let locked: Vec<(String, f64)> = locked.iter().map(|(k, v)| (k.clone(), *v)).collect();
+                let options = UrdfBodyOptions { locked: &locked, meshes: Some(&read) };
+                let mut robot = Robot::from_urdf_str_with(text, &chain, &options)?;
+                if let Some(srdf) = srdf {
+                    robot = robot.with_disabled_collisions(&crate::model::srdf_disabled_pairs(srdf)?)?;
+                }
                 Ok(LoadedRobot { robot, units: None })
             }
         }

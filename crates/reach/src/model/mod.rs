@@ -30,4 +30,6 @@ pub use joint::{
 };
 pub use robot::{Robot, RobotSpec};
 pub use toml_format::{AngleUnit, FileUnits, LengthUnit};
-pub use urdf::{UrdfBodyOptions, UrdfChain, urdf_chain_links, urdf_visual_meshes};
+pub use urdf::{
+    UrdfBodyOptions, UrdfChain, mesh_file_path, urdf_chain_links, urdf_collision_meshes, urdf_visual_meshes,
+};

@@ -33,10 +33,11 @@ pub struct UrdfBodyOptions<'a> {
     /// its master's value.
     pub locked: &'a [(String, f64)],
     /// Reads a collision mesh file, given its `filename` as the URDF writes it
-    /// (`package://…`, relative, `file://`). `None`: meshes are not read, and a link with a
-    /// mesh carries a [`BodyShape::Missing`] solid (kinematics work; collision checks refuse).
+    /// (`package://…`, relative, `file://`): `None` when the file is not available, and the
+    /// link carries a [`BodyShape::Missing`] solid (kinematics work; collision checks refuse),
+    /// `Some(Err(reason))` when it cannot be read (an error). No reader: no mesh is available.
     #[allow(clippy::type_complexity)]
-    pub meshes: Option<&'a dyn Fn(&str) -> Result<Vec<u8>, String>>,
+    pub meshes: Option<&'a dyn Fn(&str) -> Option<Result<Vec<u8>, String>>>,
 }
 
 impl Robot {
@@ -311,14 +312,14 @@ fn collision_bodies(
                     let c = pose.translation.vector;
                     BodyShape::Capsule { a: c - half, b: c + half, radius: *radius }
                 }
-                urdf_rs::Geometry::Mesh { filename, scale } => match options.meshes {
+                urdf_rs::Geometry::Mesh { filename, scale } => match options.meshes.and_then(|read| read(filename)) {
                     None => BodyShape::Missing {
                         what: format!(
                             "link `{name}`: collision mesh `{filename}` is not loaded (read the URDF from its file)"
                         ),
                     },
-                    Some(read) => {
-                        let bytes = read(filename).map_err(|e| {
+                    Some(bytes) => {
+                        let bytes = bytes.map_err(|e| {
                             ModelError::Urdf(format!("link `{name}`: collision mesh `{filename}`: {e}"))
                         })?;
                         let vertices = super::mesh_vertices(filename, &bytes)
@@ -481,16 +482,63 @@ pub fn urdf_chain_links(text: &str, chain: &UrdfChain) -> Result<(String, String
 /// # Errors
 /// [`ModelError::Urdf`] for XML errors.
 pub fn urdf_visual_meshes(text: &str) -> Result<Vec<String>, ModelError> {
+    mesh_files(text, |l| l.visual.iter().map(|v| &v.geometry).collect())
+}
+
+/// The `filename` of every `<collision>` mesh of a URDF document, as
+/// [`urdf_visual_meshes`] lists the visual ones.
+///
+/// # Errors
+/// [`ModelError::Urdf`] for XML errors.
+pub fn urdf_collision_meshes(text: &str) -> Result<Vec<String>, ModelError> {
+    mesh_files(text, |l| l.collision.iter().map(|c| &c.geometry).collect())
+}
+
+/// The distinct mesh file names of the geometries `of` picks from each link.
+fn mesh_files(text: &str, of: impl Fn(&urdf_rs::Link) -> Vec<&urdf_rs::Geometry>) -> Result<Vec<String>, ModelError> {
     let urdf = urdf_rs::read_from_string(text).map_err(|e| ModelError::Urdf(one_line(&e.to_string())))?;
     let mut files: Vec<String> = Vec::new();
-    for visual in urdf.links.iter().flat_map(|l| &l.visual) {
-        if let urdf_rs::Geometry::Mesh { filename, .. } = &visual.geometry
+    for geometry in urdf.links.iter().flat_map(of) {
+        if let urdf_rs::Geometry::Mesh { filename, .. } = geometry
             && !files.contains(filename)
         {
             files.push(filename.clone());
         }
     }
     Ok(files)
+}
+
+/// The file a URDF mesh address names, for the URDF file at `urdf` (an absolute path, for
+/// `package://` to search its ancestors): `package://NAME/REST` is `REST` below the nearest
+/// directory named `NAME` above the URDF file (the ROS package layout), or else below the
+/// directory `NAME` beside the URDF file (MotionBenchMaker's layout; `is_dir` tells whether a
+/// directory exists); `file:///PATH` is `/PATH`; an address without a scheme is relative to
+/// the URDF file's directory.
+///
+/// # Errors
+/// A reason for another scheme or a package with no such directory above or beside the file.
+pub fn mesh_file_path(
+    urdf: &std::path::Path,
+    filename: &str,
+    is_dir: &dyn Fn(&std::path::Path) -> bool,
+) -> Result<std::path::PathBuf, String> {
+    let dir = urdf.parent().unwrap_or(std::path::Path::new("."));
+    if let Some(rest) = filename.strip_prefix("package://") {
+        let (package, rest) = rest.split_once('/').ok_or("no file after the package name")?;
+        return dir
+            .ancestors()
+            .find(|a| a.file_name().is_some_and(|n| n == package))
+            .map(|root| root.join(rest))
+            .or_else(|| Some(dir.join(package)).filter(|d| is_dir(d)).map(|d| d.join(rest)))
+            .ok_or_else(|| format!("no directory `{package}` above or beside {}", urdf.display()));
+    }
+    if let Some(abs) = filename.strip_prefix("file://") {
+        return Ok(std::path::PathBuf::from(abs));
+    }
+    if filename.contains("://") {
+        return Err("only package://, file:// and relative addresses can be read".into());
+    }
+    Ok(dir.join(filename))
 }
 
 fn cycle(link: &str) -> ModelError {

@@ -30,9 +30,9 @@ fn spherized() -> Robot {
 
 /// The Panda with its collision meshes (OBJ, `package://meshes/…` beside the URDF).
 fn meshed() -> Robot {
-    let reader = |f: &str| -> Result<Vec<u8>, String> {
-        let rest = f.strip_prefix("package://").ok_or("not a package address")?;
-        std::fs::read(format!("{DATA}/{rest}")).map_err(|e| e.to_string())
+    let reader = |f: &str| -> Option<Result<Vec<u8>, String>> {
+        let rest = f.strip_prefix("package://")?;
+        Some(std::fs::read(format!("{DATA}/{rest}")).map_err(|e| e.to_string()))
     };
     let options = UrdfBodyOptions { meshes: Some(&reader), ..Default::default() };
     let robot = Robot::from_urdf_str_with(&read("panda.urdf"), &hand_chain(), &options).unwrap();
@@ -219,11 +219,11 @@ fn bad_bodies_and_scenes_are_refused_with_the_culprit_named() {
     let err = CollisionChecker::try_new(&robot, &scene).unwrap_err().to_string();
     assert!(err.contains("panda_link0") && err.contains("link0.obj") && err.contains("not loaded"), "{err}");
     // A mesh file that cannot be read names the link and the file.
-    let reader = |_: &str| -> Result<Vec<u8>, String> { Err("No such file".into()) };
+    let reader = |_: &str| -> Option<Result<Vec<u8>, String>> { Some(Err("No such file".into())) };
     let options = UrdfBodyOptions { meshes: Some(&reader), ..Default::default() };
     let err = Robot::from_urdf_str_with(&read("panda.urdf"), &hand_chain(), &options).unwrap_err().to_string();
     assert!(err.contains("panda_link0") && err.contains("link0.obj") && err.contains("No such file"), "{err}");
-    let empty = |_: &str| -> Result<Vec<u8>, String> { Ok(Vec::new()) };
+    let empty = |_: &str| -> Option<Result<Vec<u8>, String>> { Some(Ok(Vec::new())) };
     let options = UrdfBodyOptions { meshes: Some(&empty), ..Default::default() };
     let err = Robot::from_urdf_str_with(&read("panda.urdf"), &hand_chain(), &options).unwrap_err().to_string();
     assert!(err.contains("empty"), "{err}");

@@ -279,7 +279,7 @@ pub fn approach_with_cancel(robot: &Robot, request: &ApproachRequest, cancel: &C
         samples: a.samples.len(),
         safe_distance_m: d,
         min_margin_m: moved.then_some(a.min_margin).filter(|m| m.is_finite()),
-        closest: a.closest.map(|p| swept_pair_text(&p, &scene)),
+        closest: a.closest.map(|p| swept_pair_text(&p, &CollisionChecker::new(robot, &scene))),
         closest_pair: a.closest,
         position_error_m,
         orientation_error_deg,

@@ -69,7 +69,7 @@ impl SweptReport {
     /// The report of a sweep in `scene`; `span`: the motion's time interval, seconds, when
     /// timed.
     #[must_use]
-    pub fn of(sweep: &Sweep, pair: SweptPair, scene: &Scene, span: Option<[f64; 2]>) -> Self {
+    pub fn of(sweep: &Sweep, pair: SweptPair, checker: &CollisionChecker, span: Option<[f64; 2]>) -> Self {
         let checked = sweep.evaluations > 0 && sweep.min_clearance.is_finite();
         SweptReport {
             clear: sweep.clear,
@@ -78,7 +78,7 @@ impl SweptReport {
             at: sweep.at,
             t_s: span.map(|[a, b]| a + sweep.at * (b - a)),
             pair: checked.then_some(pair),
-            pair_text: checked.then(|| swept_pair_text(&pair, scene)),
+            pair_text: checked.then(|| swept_pair_text(&pair, checker)),
             evaluations: sweep.evaluations,
         }
     }
@@ -114,13 +114,13 @@ impl SweptPathReport {
             Some(times) => checker.swept_path_timed(points, times, &options)?,
             None => checker.swept_path(points, &options)?,
         };
-        Ok(path.map(|p| Self::of(&p, scene)))
+        Ok(path.map(|p| Self::of(&p, &checker)))
     }
 
-    /// The report of a path sweep in `scene`.
+    /// The report of a path sweep by `checker`.
     #[must_use]
-    pub fn of(path: &PathSweep, scene: &Scene) -> Self {
-        let mut swept = SweptReport::of(&path.closest, path.pair, scene, None);
+    pub fn of(path: &PathSweep, checker: &CollisionChecker) -> Self {
+        let mut swept = SweptReport::of(&path.closest, path.pair, checker, None);
         swept.t_s = path.t_s;
         swept.clear = path.clear;
         if swept.lower_bound_m.is_some() {
@@ -171,28 +171,32 @@ pub struct CheckReport {
     pub samples: Option<SweptPathReport>,
 }
 
-/// The verdict in words, naming the obstacle or zone.
+/// The verdict of `checker` in words, naming the links (number and name), obstacle or zone.
 #[must_use]
-pub fn verdict_text(verdict: &Verdict, scene: &Scene) -> String {
+pub fn verdict_text(verdict: &Verdict, checker: &CollisionChecker) -> String {
+    let scene = checker.scene();
+    let link = |k: &usize| format!("link {k} (`{}`)", checker.link_name(*k));
     match verdict {
         Verdict::Free => "free".into(),
         Verdict::OutsideZone { zone } => format!("tool outside zone `{}`", scene.tool_zone[*zone].name),
-        Verdict::SelfCollision { link_a, link_b } => format!("self-collision: links {link_a} and {link_b}"),
-        Verdict::Obstacle { link, obstacle } => {
-            format!("collision: link {link} with `{}`", scene.obstacles[*obstacle].name)
+        Verdict::SelfCollision { link_a, link_b } => format!("self-collision: {} and {}", link(link_a), link(link_b)),
+        Verdict::Obstacle { link: k, obstacle } => {
+            format!("collision: {} with `{}`", link(k), scene.obstacles[*obstacle].name)
         }
     }
 }
 
-/// What a swept clearance measures, in words, naming the obstacle or zone.
+/// What a swept clearance of `checker` measures, in words, naming the links, obstacle or zone.
 #[must_use]
-pub fn swept_pair_text(pair: &SweptPair, scene: &Scene) -> String {
+pub fn swept_pair_text(pair: &SweptPair, checker: &CollisionChecker) -> String {
+    let scene = checker.scene();
+    let link = |k: &usize| format!("link {k} (`{}`)", checker.link_name(*k));
     match pair {
         SweptPair::ToolZone { zone } => {
             format!("tool point and the boundary of zone `{}`", scene.tool_zone[*zone].name)
         }
-        SweptPair::Obstacle { link, obstacle } => format!("link {link} and `{}`", scene.obstacles[*obstacle].name),
-        SweptPair::SelfPair { link_a, link_b } => format!("links {link_a} and {link_b}"),
+        SweptPair::Obstacle { link: k, obstacle } => format!("{} and `{}`", link(k), scene.obstacles[*obstacle].name),
+        SweptPair::SelfPair { link_a, link_b } => format!("{} and {}", link(link_a), link(link_b)),
     }
 }
 
@@ -254,7 +258,7 @@ pub fn check(robot: &Robot, request: &CheckRequest) -> Result<CheckReport> {
                 Some(span) => checker.swept_timed(&q, &target, span, &options)?,
                 None => checker.swept(&q, &target, &options)?,
             };
-            Some(MotionCheckReport { to_deg: to.display(robot), swept: SweptReport::of(&swept, pair, &scene, span) })
+            Some(MotionCheckReport { to_deg: to.display(robot), swept: SweptReport::of(&swept, pair, &checker, span) })
         }
     };
     let samples = match (&request.samples, &request.to) {
@@ -275,7 +279,7 @@ pub fn check(robot: &Robot, request: &CheckRequest) -> Result<CheckReport> {
     Ok(CheckReport {
         robot: robot.name().to_string(),
         q_deg: request.q.display(robot),
-        verdict_text: verdict_text(&report.verdict, &scene),
+        verdict_text: verdict_text(&report.verdict, &checker),
         verdict: report.verdict,
         links: report.links,
         self_pairs: report.self_pairs,

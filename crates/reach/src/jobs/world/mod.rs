@@ -72,13 +72,34 @@ fn start_and_goal(
     Ok((start, goal))
 }
 
-/// Parses a request's scene text.
+/// Parses a request's scene text: a MoveIt planning scene (YAML, [`Scene::from_moveit_yaml`])
+/// when a line starts with one of the message's top-level keys (`world:`, `robot_state:`,
+/// `name:`, …; a TOML file writes `key = value`), else the TOML scene format.
 ///
 /// # Errors
 /// [`crate::Error::World`]: [`crate::world::WorldError::Parse`] with the line and column of
-/// malformed TOML, or the shape or entry that is invalid.
+/// malformed TOML or YAML, or the shape, object or entry that is invalid.
 pub fn parse_scene(text: &str) -> Result<Scene> {
-    Ok(Scene::from_toml_str(text)?)
+    if is_moveit_scene(text) { Ok(Scene::from_moveit_yaml(text)?) } else { Ok(Scene::from_toml_str(text)?) }
+}
+
+/// Whether `text` is written as a MoveIt planning scene (see [`parse_scene`]).
+#[must_use]
+pub fn is_moveit_scene(text: &str) -> bool {
+    const KEYS: [&str; 9] = [
+        "world",
+        "robot_state",
+        "robot_model_name",
+        "name",
+        "fixed_frame_transforms",
+        "allowed_collision_matrix",
+        "link_padding",
+        "link_scale",
+        "is_diff",
+    ];
+    text.lines().any(|l| {
+        l.split_once(':').is_some_and(|(key, _)| KEYS.contains(&key.trim_end()) && !key.starts_with([' ', '\t']))
+    })
 }
 
 #[cfg(test)]
@@ -86,6 +107,14 @@ mod tests {
     use super::*;
     use crate::jobs::{Job, Report};
     use crate::world::WorldError;
+
+    #[test]
+    fn moveit_scenes_and_toml_scenes_are_told_apart() {
+        assert!(is_moveit_scene("world:\n  collision_objects: []\n"));
+        assert!(!is_moveit_scene("length_unit = \"m\"\n[[obstacles]]\nname = \"world: x\"\n"));
+        let scene = parse_scene("world:\n  collision_objects:\n    - id: b\n      primitives: [{type: sphere, dimensions: [0.1]}]\n      primitive_poses: [{position: [1, 0, 0]}]\n").unwrap();
+        assert_eq!(scene.obstacles.len(), 1);
+    }
 
     #[test]
     fn a_malformed_scene_is_a_world_error_with_line_and_column() {
