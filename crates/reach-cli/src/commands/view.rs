@@ -155,4 +155,3 @@ fn urdf_with_meshes(args: &ViewArgs, loaded: &LoadedRobot) -> Result<Option<View
     })?;
     Ok(Some(urdf))
 }
-

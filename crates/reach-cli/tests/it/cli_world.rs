@@ -297,9 +297,9 @@ fn moves_and_sampled_motions_are_checked_against_a_scene() {
     let run = reach(&[&through[..], &["--scene", scene, "--csv", csv.to_str().unwrap()]].concat());
     assert_eq!(run.code, 3, "{}", run.stderr);
     assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
-    assert!(run.stderr.contains("not proven clear of the scene: link 3 and `post` at t = "), "{}", run.stderr);
+    assert!(run.stderr.contains("not proven clear of the scene: link 3 (`A`) and `post` at t = "), "{}", run.stderr);
     assert!(!csv.exists(), "an infeasible motion's samples are not written");
-    assert!(run.stdout.contains("swept check: NOT proven clear: link 3 and `post`"), "{}", run.stdout);
+    assert!(run.stdout.contains("swept check: NOT proven clear: link 3 (`A`) and `post`"), "{}", run.stdout);
     let around = dir.join("around.csv");
     let text = ok(&[
         "move",
@@ -369,9 +369,9 @@ fn moving_obstacles_are_checked_in_time_or_refused() {
     let hit = check("3");
     assert_eq!(hit["clear"], false, "{hit}");
     assert!((hit["t_s"].as_f64().unwrap() - 2.0).abs() < 1e-5, "{hit}");
-    assert_eq!(hit["pair_text"], "link 3 and `ball`");
+    assert_eq!(hit["pair_text"], "link 3 (`A`) and `ball`");
     let text = ok(&["check", "planar3", path, "0", "0", "0", "--to", "0,0,0", "--duration", "3"]);
-    assert!(text.contains("NOT proven clear: link 3 and `ball` at") && text.contains("t = 2.0000 s"), "{text}");
+    assert!(text.contains("NOT proven clear: link 3 (`A`) and `ball` at") && text.contains("t = 2.0000 s"), "{text}");
 
     fails(&["check", "planar3", path, "0", "0", "0", "--to", "0,0,0"], 2, &["--duration", "`ball` moves"]);
     fails(&["check", "planar3", path, "0", "0", "0", "--to", "0,0,0", "--duration", "0"], 2, &["--duration"]);

@@ -199,6 +199,123 @@ pub struct LinkBody {
     pub padding: f64,
 }
 
+/// A capsule that contains every point of `points` (and so their convex hull): its axis
+/// along the points' principal direction (the covariance's largest eigenvector), its radius
+/// the largest distance of a point from that axis, its ends pulled in as far as the
+/// hemispherical caps still cover every point. `None` for no point or a non-finite one.
+///
+/// The fit is tight for elongated links (an arm's tube) and loose for flat or L-shaped
+/// ones; [`BodyShape::farthest_from`] and a test against the points prove what it encloses.
+#[must_use]
+pub fn enclosing_capsule(points: &[Vector3<f64>]) -> Option<BodyShape> {
+    if points.is_empty() || !points.iter().all(|p| p.iter().all(|x| x.is_finite())) {
+        return None;
+    }
+    let n = points.len() as f64;
+    let c = points.iter().sum::<Vector3<f64>>() / n;
+    let cov = points.iter().fold(nalgebra::Matrix3::zeros(), |m, p| m + (p - c) * (p - c).transpose()) / n;
+    let eigen = nalgebra::SymmetricEigen::new(cov);
+    let (k, _) =
+        eigen.eigenvalues.iter().enumerate().fold((0, f64::MIN), |b, (i, v)| if *v > b.1 { (i, *v) } else { b });
+    let pca = eigen.eigenvectors.column(k).into_owned().try_normalize(1e-300).unwrap_or_else(Vector3::z);
+    // The axis passes through the centre of the smallest circle around the points projected
+    // on the plane across it (the smallest radius for that direction); the direction starts
+    // at the principal one (which tilts with uneven sampling) and turns while that radius
+    // shrinks.
+    let across = |u: &Vector3<f64>| {
+        let e1 = u.cross(&if u.x.abs() < 0.9 { Vector3::x() } else { Vector3::y() }).normalize();
+        let e2 = u.cross(&e1);
+        let flat: Vec<[f64; 2]> = points.iter().map(|p| [(p - c).dot(&e1), (p - c).dot(&e2)]).collect();
+        let ([x, y], r) = smallest_circle(&flat);
+        (r, c + e1 * x + e2 * y, e1, e2)
+    };
+    let (mut u, mut best) = (pca, across(&pca));
+    let mut step = 0.05;
+    while step > 1e-4 {
+        let (_, _, e1, e2) = best;
+        let tries = [u + e1 * step, u - e1 * step, u + e2 * step, u - e2 * step].map(|v| v.normalize());
+        match tries.iter().map(|v| (*v, across(v))).min_by(|a, b| a.1.0.total_cmp(&b.1.0)) {
+            Some((v, fit)) if fit.0 < best.0 => (u, best) = (v, fit),
+            _ => step *= 0.5,
+        }
+    }
+    let c = best.1;
+    let split = |p: &Vector3<f64>| {
+        let t = (p - c).dot(&u);
+        (t, (p - c - u * t).norm())
+    };
+    // A rounding margin: every point stays inside after the arithmetic below.
+    let radius = points.iter().map(|p| split(p).1).fold(0.0, f64::max) * (1.0 + 1e-9) + 1e-9;
+    let reach = |d: f64| (radius * radius - d * d).max(0.0).sqrt();
+    let hi = points
+        .iter()
+        .map(|p| {
+            let (t, d) = split(p);
+            t - reach(d)
+        })
+        .fold(f64::MIN, f64::max);
+    let lo = points
+        .iter()
+        .map(|p| {
+            let (t, d) = split(p);
+            t + reach(d)
+        })
+        .fold(f64::MAX, f64::min);
+    if lo <= hi {
+        return Some(BodyShape::Capsule { a: c + u * lo, b: c + u * hi, radius });
+    }
+    // Every point is within the radius of the axis and the caps overlap: one ball around the
+    // middle of the overlap holds them all.
+    let m = c + u * (0.5 * (lo + hi));
+    let r = points.iter().map(|p| (p - m).norm()).fold(0.0, f64::max) * (1.0 + 1e-9) + 1e-9;
+    Some(BodyShape::Sphere { center: m, radius: r })
+}
+
+/// The smallest circle containing `points` (centre, radius): Welzl's algorithm, iterative, over
+/// the points in a fixed pseudo-random order (expected linear time).
+fn smallest_circle(points: &[[f64; 2]]) -> ([f64; 2], f64) {
+    let mut p = points.to_vec();
+    let mut rng = crate::rng::SplitMix64(0x5EED);
+    for i in (1..p.len()).rev() {
+        let j = (rng.next_f64() * (i + 1) as f64) as usize;
+        p.swap(i, j.min(i));
+    }
+    let d = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
+    let inside = |c: ([f64; 2], f64), q: [f64; 2]| d(c.0, q) <= c.1 * (1.0 + 1e-12) + 1e-15;
+    let two = |a: [f64; 2], b: [f64; 2]| ([(a[0] + b[0]) * 0.5, (a[1] + b[1]) * 0.5], d(a, b) * 0.5);
+    let three = |a: [f64; 2], b: [f64; 2], q: [f64; 2]| {
+        let (bx, by, cx, cy) = (b[0] - a[0], b[1] - a[1], q[0] - a[0], q[1] - a[1]);
+        let den = 2.0 * (bx * cy - by * cx);
+        if den.abs() < 1e-300 {
+            // Collinear: the circle on the two farthest apart.
+            let (ab, aq, bq) = (two(a, b), two(a, q), two(b, q));
+            return [ab, aq, bq].into_iter().fold(ab, |m, x| if x.1 > m.1 { x } else { m });
+        }
+        let (b2, c2) = (bx * bx + by * by, cx * cx + cy * cy);
+        let o = [(cy * b2 - by * c2) / den, (bx * c2 - cx * b2) / den];
+        ([a[0] + o[0], a[1] + o[1]], o[0].hypot(o[1]))
+    };
+    let mut circle = (p[0], 0.0);
+    for i in 1..p.len() {
+        if inside(circle, p[i]) {
+            continue;
+        }
+        circle = (p[i], 0.0);
+        for j in 0..i {
+            if inside(circle, p[j]) {
+                continue;
+            }
+            circle = two(p[i], p[j]);
+            for k in 0..j {
+                if !inside(circle, p[k]) {
+                    circle = three(p[i], p[j], p[k]);
+                }
+            }
+        }
+    }
+    circle
+}
+
 /// Checks a robot's bodies and disabled pairs against its number of joints.
 ///
 /// # Errors
@@ -419,6 +536,29 @@ mod tests {
         assert!(far >= best - 1e-12 && far <= best + 1e-4, "{far} {best}");
         let bx = BodyShape::Box { pose, half_extents: Vector3::new(0.1, 0.2, 0.3) };
         assert!(bx.farthest_from(&p) >= (pose * Point3::new(0.1, 0.2, 0.3)).coords.metric_distance(&p));
+    }
+
+    #[test]
+    fn an_enclosing_capsule_holds_every_point_and_is_tight_on_a_tube() {
+        let mut rng = crate::rng::SplitMix64(3);
+        // Points on a tube of radius 0.05 along a tilted axis, 0.4 long, with hemispherical ends.
+        let axis = Vector3::new(1.0, 2.0, 0.5).normalize();
+        let side = axis.cross(&Vector3::z()).normalize();
+        let up = axis.cross(&side);
+        let mut pts = Vec::new();
+        for _ in 0..2000 {
+            let (t, a) = (rng.next_f64() * 0.4, rng.next_f64() * std::f64::consts::TAU);
+            pts.push(axis * t + (side * a.cos() + up * a.sin()) * 0.05 + Vector3::new(0.3, -0.1, 0.2));
+        }
+        let Some(BodyShape::Capsule { a, b, radius }) = enclosing_capsule(&pts) else { panic!() };
+        for p in &pts {
+            let ab = b - a;
+            let t = ((p - a).dot(&ab) / ab.norm_squared()).clamp(0.0, 1.0);
+            assert!((p - (a + ab * t)).norm() <= radius, "a point outside");
+        }
+        assert!(radius < 0.0505 && (b - a).norm() <= 0.4 && (b - a).norm() > 0.3, "{radius} {}", (b - a).norm());
+        assert!(enclosing_capsule(&[]).is_none());
+        assert!(matches!(enclosing_capsule(&[Vector3::zeros()]), Some(BodyShape::Sphere { .. })));
     }
 
     #[test]

@@ -21,7 +21,7 @@ pub(crate) mod fk_chain;
 pub mod planar_angles;
 pub mod presets;
 
-pub use body::{BodyShape, LinkBody, MAX_MESH_TRIANGLES, mesh_vertices, srdf_disabled_pairs};
+pub use body::{BodyShape, LinkBody, MAX_MESH_TRIANGLES, enclosing_capsule, mesh_vertices, srdf_disabled_pairs};
 pub use error::ModelError;
 pub use inertia::{LinkInertial, STANDARD_GRAVITY};
 pub use joint::{

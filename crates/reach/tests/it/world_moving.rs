@@ -326,7 +326,7 @@ fn the_check_and_move_workflows_check_moving_obstacles_in_time() {
     let hit = check(&robot, &request(Some(3.0))).unwrap().motion.unwrap();
     assert!(!hit.swept.clear);
     assert!((hit.swept.t_s.unwrap() - 2.0).abs() < 1e-5, "{hit:?}");
-    assert_eq!(hit.swept.pair_text.as_deref(), Some("link 3 and `ball`"));
+    assert_eq!(hit.swept.pair_text.as_deref(), Some("link 3 (`A`) and `ball`"));
 
     // A move of 5 s that folds link 3 by only 3°: the tool (within 0.003 m of x = 3 before
     // 2.1 s) meets the ball close to 2 s.
@@ -343,7 +343,7 @@ fn the_check_and_move_workflows_check_moving_obstacles_in_time() {
     let swept = moved.swept.as_ref().unwrap();
     let t = swept.swept.t_s.unwrap();
     assert!(t > 1.98 && t < 2.02, "{swept:?}");
-    assert!(moved.reasons.last().unwrap().contains("link 3 and `ball` at t = "), "{:?}", moved.reasons);
+    assert!(moved.reasons.last().unwrap().contains("link 3 (`A`) and `ball` at t = "), "{:?}", moved.reasons);
     let samples: Vec<MotionSample> =
         moved.samples.iter().map(|s| MotionSample { t_s: s.t_s, q_deg: s.q_deg.clone() }).collect();
     let again = check(&robot, &CheckRequest { to: None, samples: Some(samples), duration_s: None, ..request(None) })

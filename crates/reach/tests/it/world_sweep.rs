@@ -264,9 +264,9 @@ fn a_move_through_a_scene_is_checked_continuously() {
     assert!(!through.feasible);
     let swept = through.swept.as_ref().unwrap();
     assert!(!swept.swept.clear);
-    assert_eq!(swept.swept.pair_text.as_deref(), Some("link 3 and `post`"));
+    assert_eq!(swept.swept.pair_text.as_deref(), Some("link 3 (`A`) and `post`"));
     let reason = through.reasons.last().unwrap();
-    assert!(reason.starts_with("not proven clear of the scene: link 3 and `post` at t = "), "{reason}");
+    assert!(reason.starts_with("not proven clear of the scene: link 3 (`A`) and `post` at t = "), "{reason}");
     // The report is the swept check of the samples' joint path, recomputed independently.
     let scene = Scene::from_toml_str(&post_scene()).unwrap();
     let q: Vec<Vec<f64>> = through.samples.iter().map(|s| s.q_deg.iter().map(|d| d.to_radians()).collect()).collect();
