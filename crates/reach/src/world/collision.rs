@@ -125,7 +125,8 @@ pub struct Report {
     pub tool_zone: Vec<Contact>,
     /// Smallest link–obstacle clearance (`None` without obstacles), metres.
     pub min_obstacle_clearance_m: Option<f64>,
-    /// Smallest link–link clearance (`None` without non-adjacent pairs), metres.
+    /// Smallest link–link clearance of the checked pairs (exempt pairs, reported in
+    /// `self_pairs`, left out; `None` without a checked pair), metres.
     pub min_self_clearance_m: Option<f64>,
 }
 
@@ -664,7 +665,7 @@ impl<'a> CollisionChecker<'a> {
             }
         }
         let min_obstacle_clearance_m = links.iter().map(|l| l.clearance_m).reduce(f64::min);
-        let min_self_clearance_m = self_pairs.iter().map(|l| l.clearance_m).reduce(f64::min);
+        let min_self_clearance_m = self_pairs.iter().filter(|p| !p.exempt).map(|l| l.clearance_m).reduce(f64::min);
         Ok(Report { verdict, links, self_pairs, tool_zone, min_obstacle_clearance_m, min_self_clearance_m })
     }
 }

@@ -3,10 +3,12 @@
 use reach::model::{LinkGeometry, Robot, RobotSpec, presets};
 use reach::world::{CollisionChecker, PairSurvey, Scene, Verdict};
 
-/// UR5 with 5 cm capsules on every link (a realistic arm radius).
+/// The UR5's stick figure with capsules of one radius on every link, instead of the preset's
+/// body.
 fn ur5(radius: f64) -> Robot {
     let ur5 = presets::get("ur5").unwrap();
-    let spec = RobotSpec { links: vec![LinkGeometry { radius }; 6], ..ur5.spec().clone() };
+    let links = vec![LinkGeometry { radius }; 6];
+    let spec = RobotSpec { links, bodies: Vec::new(), disabled_collisions: Vec::new(), ..ur5.spec().clone() };
     Robot::new(spec).unwrap()
 }
 

@@ -160,7 +160,7 @@ pub struct CheckReport {
     pub tool_zone: Vec<Contact>,
     /// Smallest link–obstacle clearance (`null` without obstacles), metres.
     pub min_obstacle_clearance_m: Option<f64>,
-    /// Smallest link–link clearance (`null` without non-adjacent pairs), metres.
+    /// Smallest link–link clearance of the checked pairs (`null` without one; exempt pairs left out), metres.
     pub min_self_clearance_m: Option<f64>,
     /// With a target: the swept check of the motion.
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -286,9 +286,11 @@ pub fn weld_pose(s: f64) -> Isometry3<f64> {
     Isometry3::from_parts(Translation3::from(p + (m - p).normalize() * s), weld_rotation())
 }
 
-/// The UR5 preset with 3 cm capsules on every link (the planner and swept-check tests' arm).
+/// The UR5 preset's stick figure with 3 cm capsules on every link, instead of the preset's
+/// body (the planner and swept-check tests' arm, whose scenes are laid out for it).
 #[allow(dead_code, reason = "not every test module plans")]
 pub fn ur5_with_capsules() -> Robot {
     let ur5 = presets::get("ur5").unwrap();
-    Robot::new(RobotSpec { links: vec![reach::model::LinkGeometry { radius: 0.03 }; 6], ..ur5.spec().clone() }).unwrap()
+    let links = vec![reach::model::LinkGeometry { radius: 0.03 }; 6];
+    Robot::new(RobotSpec { links, bodies: Vec::new(), disabled_collisions: Vec::new(), ..ur5.spec().clone() }).unwrap()
 }
