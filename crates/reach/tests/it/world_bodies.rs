@@ -282,6 +282,55 @@ fn segment_distance(p: &Vector3<f64>, a: &Vector3<f64>, b: &Vector3<f64>) -> f64
     (p - (a + ab * t)).norm()
 }
 
+/// Checks that `preset`'s capsules enclose every collision-mesh vertex of `urdf` (placed by
+/// the URDF's own kinematics, `turn` · its base = the preset's base) at random joint values,
+/// each vertex also moved by every offset `moves(link)` gives in its link frame (a finger's
+/// travel). Returns the vertices looked at and the smallest slack, metres.
+fn assert_capsules_enclose_meshes(
+    preset: &Robot,
+    urdf: &Robot,
+    turn: nalgebra::IsometryMatrix3<f64>,
+    moves: &dyn Fn(&str) -> Vec<Vector3<f64>>,
+) -> (usize, f64) {
+    use nalgebra::IsometryMatrix3;
+    let arm: Vec<_> = urdf.bodies().iter().filter(|b| preset.bodies().iter().any(|p| p.name == b.name)).collect();
+    let names: Vec<&str> = arm.iter().map(|b| b.name.as_str()).collect();
+    let preset_names: Vec<&str> = preset.bodies().iter().map(|b| b.name.as_str()).collect();
+    assert_eq!(names, preset_names, "every preset link has its URDF link");
+    let place = |frames: &[IsometryMatrix3<f64>], base: &nalgebra::Isometry3<f64>, k: usize| {
+        if k == 0 { IsometryMatrix3::from_parts(base.translation, base.rotation.to_rotation_matrix()) } else { frames[k - 1] }
+    };
+    let mut rng = Rng::new(31);
+    let (mut vertices, mut slack) = (0usize, f64::INFINITY);
+    for _ in 0..12 {
+        let q = rng.joints(preset);
+        let (fu, fp) = (urdf.frames(&q).unwrap(), preset.frames(&q).unwrap());
+        for body in &arm {
+            let own = preset.bodies().iter().find(|p| p.name == body.name).unwrap();
+            let to_preset = place(&fp, preset.base(), own.frame).inverse() * turn * place(&fu, urdf.base(), body.frame);
+            let offsets: Vec<Vector3<f64>> = std::iter::once(Vector3::zeros()).chain(moves(&body.name)).collect();
+            for shape in &body.shapes {
+                let BodyShape::ConvexMesh { vertices: mesh, .. } = shape else { continue };
+                for v in mesh.iter().flat_map(|v| offsets.iter().map(move |o| v + o)) {
+                    let p = (to_preset * nalgebra::Point3::from(v)).coords;
+                    let inside = own
+                        .shapes
+                        .iter()
+                        .map(|s| match s {
+                            BodyShape::Capsule { a, b, radius } => radius - segment_distance(&p, a, b),
+                            other => panic!("the preset's bodies are capsules, got a {}", other.kind()),
+                        })
+                        .fold(f64::NEG_INFINITY, f64::max);
+                    assert!(inside >= 0.0, "{}: vertex {v:?} is {} m outside at q = {q:?}", body.name, -inside);
+                    slack = slack.min(inside);
+                    vertices += 1;
+                }
+            }
+        }
+    }
+    (vertices, slack)
+}
+
 /// The `ur5` preset's body encloses the real arm: at random joint values, every vertex of
 /// every collision mesh of `ur_description`, placed by the URDF's own kinematics (its
 /// `base_link` is the DH base turned by π about z), is inside a capsule of the preset's link
@@ -294,46 +343,36 @@ fn the_ur5_presets_capsules_enclose_every_vertex_of_its_collision_meshes() {
         nalgebra::Translation3::identity(),
         nalgebra::Rotation3::from_axis_angle(&Vector3::z_axis(), std::f64::consts::PI),
     );
-    let arm: Vec<_> = urdf.bodies().iter().filter(|b| preset.bodies().iter().any(|p| p.name == b.name)).collect();
-    let names: Vec<&str> = arm.iter().map(|b| b.name.as_str()).collect();
-    let preset_names: Vec<&str> = preset.bodies().iter().map(|b| b.name.as_str()).collect();
-    assert_eq!(names, preset_names, "every preset link has its URDF link");
-    let mut rng = Rng::new(31);
-    let (mut vertices, mut slack) = (0usize, f64::INFINITY);
+    // The same joint values are the same arm: the flange points agree (the URDF's
+    // 1.570796325 rad origins are π/2 to 3e-10).
+    let mut rng = Rng::new(3);
     for _ in 0..12 {
         let q = rng.joints(&preset);
-        // The same joint values are the same arm: the flange points agree (the URDF's
-        // 1.570796325 rad origins are π/2 to 3e-10).
         let (tu, tp) = (urdf.fk(&q).unwrap(), preset.fk(&q).unwrap());
         assert!((turn * tu.translation.vector - tp.translation.vector).norm() < 1e-8, "q = {q:?}");
-        let (fu, fp) = (urdf.frames(&q).unwrap(), preset.frames(&q).unwrap());
-        let place = |frames: &[nalgebra::IsometryMatrix3<f64>], base: &nalgebra::Isometry3<f64>, k: usize| {
-            if k == 0 { nalgebra::IsometryMatrix3::from_parts(base.translation, base.rotation.to_rotation_matrix()) } else { frames[k - 1] }
-        };
-        for body in &arm {
-            let own = preset.bodies().iter().find(|p| p.name == body.name).unwrap();
-            let to_preset = place(&fp, preset.base(), own.frame).inverse() * turn * place(&fu, urdf.base(), body.frame);
-            for shape in &body.shapes {
-                let BodyShape::ConvexMesh { vertices: mesh, .. } = shape else { continue };
-                for v in mesh {
-                    let p = (to_preset * nalgebra::Point3::from(*v)).coords;
-                    let inside = own
-                        .shapes
-                        .iter()
-                        .map(|s| match s {
-                            BodyShape::Capsule { a, b, radius } => radius - segment_distance(&p, a, b),
-                            other => panic!("the ur5 preset's bodies are capsules, got a {}", other.kind()),
-                        })
-                        .fold(f64::NEG_INFINITY, f64::max);
-                    assert!(inside >= 0.0, "{}: vertex {v:?} is {} m outside at q = {q:?}", body.name, -inside);
-                    slack = slack.min(inside);
-                    vertices += 1;
-                }
-            }
-        }
     }
+    let (vertices, slack) = assert_capsules_enclose_meshes(&preset, &urdf, turn, &|_| Vec::new());
     assert!(vertices > 12 * 2000, "only {vertices} vertices looked at");
     assert!(slack < 0.003, "the capsules should be tight to a few millimetres, the closest vertex is {slack} m inside");
+}
+
+/// The `panda` preset's body encloses the Panda's collision meshes (MotionBenchMaker's
+/// `panda.urdf`, whose frames are the preset's MDH frames, the flange being frame 7), the
+/// fingers at the file's opening (65 mm each) and closed.
+#[test]
+fn the_panda_presets_capsules_enclose_every_vertex_of_its_collision_meshes() {
+    let preset = reach::model::presets::get("panda").unwrap();
+    let urdf = meshed();
+    // The hand's y axis in the flange frame (the hand is turned by −45° about z).
+    let y = Vector3::new(1.0, 1.0, 0.0).normalize() * 0.065;
+    let moves = |link: &str| match link {
+        "panda_leftfinger" => vec![-y],
+        "panda_rightfinger" => vec![y],
+        _ => Vec::new(),
+    };
+    let (vertices, slack) = assert_capsules_enclose_meshes(&preset, &urdf, nalgebra::IsometryMatrix3::identity(), &moves);
+    assert!(vertices > 12 * 1500, "only {vertices} vertices looked at");
+    assert!(slack < 0.003, "the closest vertex is {slack} m inside");
 }
 
 /// The issue that gave the UR5 its body: upright, a 2 cm ball 13.6 cm beside the DH segment
