@@ -195,9 +195,11 @@ pub enum Command {
     /// Collisions and clearances of one configuration in a scene.
     #[command(
         allow_negative_numbers = true,
-        long_about = "Collisions and clearances of one configuration: every link (segment with the \
-            robot file's capsule radius) against every obstacle of SCENE, every pair of \
-            non-adjacent links, and the tool point against the scene's tool zone. Obstacles are \
+        long_about = "Collisions and clearances of one configuration: every link of the robot's \
+            collision body (its solids: URDF <collision>, a TOML file's [[bodies]], the presets' \
+            capsules; without a body, the segment between joint frames with the file's radius) \
+            against every obstacle of SCENE, every pair of non-adjacent links not exempt (SRDF, \
+            disabled_collisions, the scene's allowed list), and the tool point against the scene's tool zone. Obstacles are \
             closed sets unless the scene says touching = \"open\" (tolerance 1 nm).\n\n\
             --json prints {\"verdict\", \"links\": [{\"link\", \"obstacle\", \"clearance_m\", \
             \"colliding\"}], \"self_pairs\", \"tool_zone\", \"min_obstacle_clearance_m\", \
@@ -279,7 +281,7 @@ pub enum Command {
             turns it about one fixed axis, tracked through IK with branch continuity (intervals \
             between singular positions, events K1–K14). J1 = Σ wᵢ|Δqᵢ|, J2 = Σ wᵢ·(total \
             variation of qᵢ), joint weights --joint-weights. energy_j = ∫ Σ|τᵢ·q̇ᵢ| dt in joules \
-            (Newton–Euler torques) when the robot file gives link masses (puma560), else null with \
+            (Newton–Euler torques) when the robot file gives link masses (puma560, ur5), else null with \
             the reason in energy_note.\n\n\
             --choose METHOD --criteria C1,.. [--weights w1,..] (tool space): the configuration \
             of each interval is ranked by motion criteria, as a task file's [choose] \

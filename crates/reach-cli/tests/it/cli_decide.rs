@@ -602,8 +602,8 @@ fn energy_collection_sums_both_moves_of_each_trip_and_bad_energy_input_exits_2()
     assert_eq!(r["plan"]["legs"].as_array().unwrap().len(), 3);
     assert!(r["plan"]["method"].as_str().unwrap().contains("increasing energy"));
     // No masses: names the robot and the key; no speed limits: asks for max_velocity.
-    let ur5 = temp_file("energy_ur5.toml", "cost = \"energy\"\ntargets = [[0.4, -0.2, 0.1]]\n");
-    fails(&["tasks", "ur5", "visiting", ur5.to_str().unwrap()], 2, &["`ur5`", "cost = \"energy\"", "masses"]);
+    let spbu6 = temp_file("energy_spbu6.toml", "cost = \"energy\"\ntargets = [[0.4, -0.2, 0.1]]\n");
+    fails(&["tasks", "spbu6", "visiting", spbu6.to_str().unwrap()], 2, &["`spbu6`", "cost = \"energy\"", "masses"]);
     let slow = temp_file("energy_no_limits.toml", "cost = \"energy\"\ntargets = [[0.57, 0.0, 1.01]]\n");
     fails(&["tasks", "puma560", "visiting", slow.to_str().unwrap()], 2, &["`puma560`", "max_velocity"]);
     let unknown = temp_file("energy_unknown.toml", "cost = \"joules\"\ntargets = [[0.57, 0.0, 1.01]]\n");

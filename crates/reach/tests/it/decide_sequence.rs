@@ -319,11 +319,11 @@ fn leg_energy_agrees_with_finely_sampled_finite_differences() {
 
 #[test]
 fn energy_costs_need_link_masses_and_matching_shapes() {
-    let ur5 = presets::get("ur5").unwrap();
-    assert!(!ur5.has_dynamics(), "this test needs a preset without masses");
+    let spbu6 = presets::get("spbu6").unwrap();
+    assert!(!spbu6.has_dynamics(), "this test needs a preset without masses");
     let q = vec![0.0; 6];
-    let e = leg_energy(&ur5, &q, &[0.1; 6], 1.0, Profile::Cycloidal, EnergyKind::PositiveWork).unwrap_err();
-    assert!(e.to_string().contains("ur5") && e.to_string().contains("inertial"), "{e}");
+    let e = leg_energy(&spbu6, &q, &[0.1; 6], 1.0, Profile::Cycloidal, EnergyKind::PositiveWork).unwrap_err();
+    assert!(e.to_string().contains("spbu6") && e.to_string().contains("inertial"), "{e}");
     let (puma, high, low) = puma_high_low();
     let configs = vec![Some(low), Some(high)];
     let wrong = vec![vec![0.0; 3]; 3];

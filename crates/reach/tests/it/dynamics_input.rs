@@ -97,11 +97,11 @@ fn spec_with_wrong_number_of_inertials_is_rejected() {
 
 #[test]
 fn robot_without_masses_is_a_typed_error() {
-    let ur5 = presets::get("ur5").unwrap();
-    let err = inverse_dynamics(&ur5, &[0.0; 6], &[0.0; 6], &[0.0; 6]).unwrap_err();
-    assert_eq!(err, DynamicsError::NoInertialData { robot: "ur5".into() });
-    assert!(err.to_string().contains("ur5"));
-    assert!(trajectory_energy(&ur5, &[0.0, 1.0], &[[0.0; 6], [0.1; 6]]).is_err());
+    let spbu6 = presets::get("spbu6").unwrap();
+    let err = inverse_dynamics(&spbu6, &[0.0; 6], &[0.0; 6], &[0.0; 6]).unwrap_err();
+    assert_eq!(err, DynamicsError::NoInertialData { robot: "spbu6".into() });
+    assert!(err.to_string().contains("spbu6"));
+    assert!(trajectory_energy(&spbu6, &[0.0, 1.0], &[[0.0; 6], [0.1; 6]]).is_err());
 }
 
 #[test]

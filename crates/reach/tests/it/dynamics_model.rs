@@ -330,3 +330,39 @@ fn puma_home_shoulder_holds_the_arm() {
     assert!(g[1] > 30.0, "{g:?}");
     assert_eq!(puma.inertials().iter().map(|b| b.mass).collect::<Vec<_>>(), vec![0.0, 17.4, 4.8, 0.82, 0.34, 0.09]);
 }
+
+/// The `ur5` preset carries the published point masses: at random joint values each joint's
+/// gravity torque is the moment about its axis of the weights of the links beyond it, their
+/// centres placed by the preset's frames (`com` in DH frame i).
+#[test]
+fn ur5_gravity_torques_are_the_moments_of_its_published_point_masses() {
+    let ur5 = presets::get("ur5").unwrap();
+    assert!(ur5.has_dynamics());
+    let masses: Vec<f64> = ur5.inertials().iter().map(|l| l.mass).collect();
+    assert_eq!(masses, [3.7, 8.393, 2.33, 1.219, 1.219, 0.1897]);
+    let coms = [
+        [0.0, -0.02561, 0.00193],
+        [0.2125, 0.0, 0.11336],
+        [0.15, 0.0, 0.0265],
+        [0.0, -0.0018, 0.01634],
+        [0.0, -0.0018, 0.01634],
+        [0.0, 0.0, -0.001159],
+    ];
+    for q in [[0.0, 0.0, 0.0, 0.0, 0.0, 0.0], [0.3, -1.1, 0.7, -2.0, 0.4, 1.3], [-2.0, -0.4, 2.2, 0.5, -1.0, 0.2]] {
+        let frames = ur5.frames(&q).unwrap();
+        let tau = gravity_torques(&ur5, &q).unwrap();
+        for j in 0..6 {
+            // Joint j turns about z of the frame before it (standard DH).
+            let before = if j == 0 { nalgebra::IsometryMatrix3::identity() } else { frames[j - 1] };
+            let (axis, origin) = (before.rotation * Vector3::z(), before.translation.vector);
+            let moment: f64 = (j..6)
+                .map(|i| {
+                    let c = frames[i] * nalgebra::Point3::from(Vector3::from(coms[i]));
+                    (c.coords - origin).cross(&Vector3::new(0.0, 0.0, -G * masses[i])).dot(&axis)
+                })
+                .sum();
+            // τ holds the weight up: it is minus the weight's moment.
+            assert!((tau[j] + moment).abs() < 1e-9, "q = {q:?}, joint {}: τ = {}, moment {moment}", j + 1, tau[j]);
+        }
+    }
+}
