@@ -15,7 +15,13 @@ use reach::world::{CollisionChecker, Scene};
 
 fn ur5_with_capsules() -> Robot {
     let ur5 = presets::get("ur5").unwrap();
-    Robot::new(RobotSpec { links: vec![LinkGeometry { radius: 0.03 }; 6], ..ur5.spec().clone() }).unwrap()
+    Robot::new(RobotSpec {
+        links: vec![LinkGeometry { radius: 0.03 }; 6],
+        bodies: Vec::new(),
+        disabled_collisions: Vec::new(),
+        ..ur5.spec().clone()
+    })
+    .unwrap()
 }
 
 fn scene() -> Scene {

@@ -3,6 +3,11 @@
 //! 004's R-function membership test (the region fitted to the scene's 15° grid) against the
 //! direct link–zone intersection, on the same 1000 configurations.
 //!
+//! The real bodies on MotionBenchMaker's first bookshelf problem (`tests/data/mbm`): one
+//! check and one certified swept edge (start → goal, stopped at the first contact or proven
+//! clear) of the Panda as VAMP's 59 spheres, as the `panda` preset's 11 capsules and as its
+//! collision meshes (convex hulls), with the SRDF's exempt pairs.
+//!
 //! Run with `cargo bench -p reach --bench world` (add `--no-default-features` for the
 //! single-threaded grid).
 
@@ -20,7 +25,12 @@ const Q: [f64; 6] = [0.3, -1.2, 1.5, -0.9, 0.7, 0.4];
 
 fn ur5_with_capsules() -> Robot {
     let ur5 = presets::get("ur5").unwrap();
-    let spec = RobotSpec { links: vec![LinkGeometry { radius: 0.03 }; 6], ..ur5.spec().clone() };
+    let spec = RobotSpec {
+        links: vec![LinkGeometry { radius: 0.03 }; 6],
+        bodies: Vec::new(),
+        disabled_collisions: Vec::new(),
+        ..ur5.spec().clone()
+    };
     Robot::new(spec).unwrap()
 }
 
@@ -237,5 +247,41 @@ fn first_test(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, collision, cspace, membership, first_test);
+fn mbm_bodies(c: &mut Criterion) {
+    use reach::model::{UrdfBodyOptions, UrdfChain, srdf_disabled_pairs};
+    use reach::world::PlanRequest;
+    use reach::world::sweep::SweepOptions;
+    const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/mbm");
+    let read = |name: &str| std::fs::read_to_string(format!("{DATA}/{name}")).unwrap();
+    let chain = UrdfChain { base: Some("panda_link0".into()), tip: Some("panda_hand".into()) };
+    let srdf = srdf_disabled_pairs(&read("panda.srdf")).unwrap();
+    let spheres =
+        Robot::from_urdf_str(&read("panda_spherized.urdf"), &chain).unwrap().with_disabled_collisions(&srdf).unwrap();
+    let reader = |f: &str| -> Option<Result<Vec<u8>, String>> {
+        let rest = f.strip_prefix("package://")?;
+        Some(std::fs::read(format!("{DATA}/{rest}")).map_err(|e| e.to_string()))
+    };
+    let options = UrdfBodyOptions { meshes: Some(&reader), ..Default::default() };
+    let meshes = Robot::from_urdf_str_with(&read("panda.urdf"), &chain, &options)
+        .unwrap()
+        .with_disabled_collisions(&srdf)
+        .unwrap();
+    let capsules = presets::get("panda").unwrap();
+    let scene = Scene::from_moveit_yaml(&read("problems/bookshelf_small_scene0001.yaml")).unwrap();
+    let request = PlanRequest::from_moveit_yaml(&read("problems/bookshelf_small_request0001.yaml")).unwrap();
+    let names: Vec<&str> = spheres.joints().iter().map(|j| j.name.as_str()).collect();
+    let (start, goal) = request.joint_vectors(&names).unwrap();
+    let mut group = c.benchmark_group("mbm_bookshelf_small_0001");
+    for (name, robot) in [("spheres59", &spheres), ("preset_capsules", &capsules), ("meshes", &meshes)] {
+        let mut checker = CollisionChecker::try_new(robot, &scene).unwrap();
+        group.bench_function(format!("check/{name}"), |b| b.iter(|| checker.check(black_box(&start)).unwrap()));
+        let sweep = SweepOptions { closest: false, ..SweepOptions::default() };
+        group.bench_function(format!("swept_start_goal/{name}"), |b| {
+            b.iter(|| checker.swept(black_box(&start), black_box(&goal), &sweep).unwrap().0.clear)
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, collision, cspace, membership, first_test, mbm_bodies);
 criterion_main!(benches);

@@ -120,7 +120,11 @@ fn a_missing_or_oversized_mesh_is_one_line_naming_the_file() {
     std::fs::create_dir_all(&apart).unwrap();
     let alone = apart.join("kr16_2.urdf");
     std::fs::write(&alone, &text).unwrap();
-    fails(&["view", alone.to_str().unwrap(), "--tip", "tool0", "-o", out], 2, &["no directory `kuka_kr16_support` above or beside"]);
+    fails(
+        &["view", alone.to_str().unwrap(), "--tip", "tool0", "-o", out],
+        2,
+        &["no directory `kuka_kr16_support` above or beside"],
+    );
 
     // A relative mesh address over the cap (a sparse file: nothing is written to disk).
     let big = dir.join("big.urdf");

@@ -388,3 +388,25 @@ fn moving_obstacles_are_checked_in_time_or_refused() {
     let v = json(&["check", "planar3", path, "0", "0", "0", "--json"]);
     assert!((v["min_obstacle_clearance_m"].as_f64().unwrap() - 0.4).abs() < 1e-9, "{v}");
 }
+
+/// The UR5 preset is checked as its body: upright, the ball of `examples/ur5_ball.toml`
+/// (2 cm, 13.6 cm beside the upper arm's DH segment) is inside the real upper arm and named;
+/// the exempt housing pairs are listed as exempt, not as collisions.
+#[test]
+fn check_ur5_uses_the_presets_body() {
+    let v = json(&["check", "ur5", "examples/ur5_ball.toml", "0", "-90", "0", "-90", "0", "0", "--json"]);
+    assert_eq!(v["verdict"]["verdict"], "obstacle", "{v}");
+    assert!(v["verdict_text"].as_str().unwrap().contains("link 3 (`upper_arm_link`) with `ball`"), "{v}");
+    assert!(v["min_obstacle_clearance_m"].as_f64().unwrap() < -0.09);
+    let pairs = v["self_pairs"].as_array().unwrap();
+    let exempt: Vec<(&str, &str)> = pairs
+        .iter()
+        .filter(|p| p["exempt"] == true)
+        .map(|p| (p["name_a"].as_str().unwrap(), p["name_b"].as_str().unwrap()))
+        .collect();
+    assert_eq!(
+        exempt,
+        [("base_link", "upper_arm_link"), ("forearm_link", "wrist_2_link"), ("wrist_1_link", "wrist_3_link")]
+    );
+    assert!(v["min_self_clearance_m"].as_f64().unwrap() > 0.0);
+}

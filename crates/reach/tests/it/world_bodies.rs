@@ -298,7 +298,11 @@ fn assert_capsules_enclose_meshes(
     let preset_names: Vec<&str> = preset.bodies().iter().map(|b| b.name.as_str()).collect();
     assert_eq!(names, preset_names, "every preset link has its URDF link");
     let place = |frames: &[IsometryMatrix3<f64>], base: &nalgebra::Isometry3<f64>, k: usize| {
-        if k == 0 { IsometryMatrix3::from_parts(base.translation, base.rotation.to_rotation_matrix()) } else { frames[k - 1] }
+        if k == 0 {
+            IsometryMatrix3::from_parts(base.translation, base.rotation.to_rotation_matrix())
+        } else {
+            frames[k - 1]
+        }
     };
     let mut rng = Rng::new(31);
     let (mut vertices, mut slack) = (0usize, f64::INFINITY);
@@ -370,7 +374,8 @@ fn the_panda_presets_capsules_enclose_every_vertex_of_its_collision_meshes() {
         "panda_rightfinger" => vec![y],
         _ => Vec::new(),
     };
-    let (vertices, slack) = assert_capsules_enclose_meshes(&preset, &urdf, nalgebra::IsometryMatrix3::identity(), &moves);
+    let (vertices, slack) =
+        assert_capsules_enclose_meshes(&preset, &urdf, nalgebra::IsometryMatrix3::identity(), &moves);
     assert!(vertices > 12 * 1500, "only {vertices} vertices looked at");
     assert!(slack < 0.003, "the closest vertex is {slack} m inside");
 }
@@ -407,7 +412,8 @@ fn the_ur5_upright_meets_a_ball_on_its_real_upper_arm() {
 fn the_ur5_presets_exempt_pairs_are_its_always_overlapping_housings() {
     let preset = reach::model::presets::get("ur5").unwrap();
     let exempt = preset.disabled_collisions().to_vec();
-    let bare = Robot::new(reach::model::RobotSpec { disabled_collisions: Vec::new(), ..preset.spec().clone() }).unwrap();
+    let bare =
+        Robot::new(reach::model::RobotSpec { disabled_collisions: Vec::new(), ..preset.spec().clone() }).unwrap();
     let survey = CollisionChecker::new(&bare, &Scene::new()).survey_self_collisions(2000, 7).unwrap();
     for p in &survey {
         let listed = exempt.iter().any(|[a, b]| (a, b) == (&p.name_a, &p.name_b) || (b, a) == (&p.name_a, &p.name_b));
