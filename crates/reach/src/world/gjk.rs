@@ -196,10 +196,14 @@ fn triangle(s: &mut [Vector3<f64>; 4], idx: [usize; 3]) -> (Vector3<f64>, usize)
     (a + ab * v + ac * w, 3)
 }
 
+/// A candidate face of [`tetrahedron`]: squared distance, closest point, the simplex kept and
+/// its size.
+type FaceCandidate = (f64, Vector3<f64>, [Vector3<f64>; 4], usize);
+
 /// Closest point of the tetrahedron `s` to the origin: the origin inside gives 4 points kept.
 fn tetrahedron(s: &mut [Vector3<f64>; 4]) -> (Vector3<f64>, usize) {
     let faces = [[0, 1, 2, 3], [0, 2, 3, 1], [0, 3, 1, 2], [1, 3, 2, 0]];
-    let mut best: Option<(f64, Vector3<f64>, [Vector3<f64>; 4], usize)> = None;
+    let mut best: Option<FaceCandidate> = None;
     for [i, j, k, opposite] in faces {
         let (a, b, c, d) = (s[i], s[j], s[k], s[opposite]);
         let normal = (b - a).cross(&(c - a));
