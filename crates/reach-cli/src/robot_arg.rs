@@ -42,6 +42,11 @@ pub struct RobotArgs {
     /// against each other (TOML robots list them as `disabled_collisions`).
     #[arg(long, value_name = "FILE")]
     pub srdf: Option<PathBuf>,
+
+    /// URDF only: a MoveIt `joint_limits.yaml` whose velocity, acceleration and jerk limits
+    /// override the URDF's (TOML robots give `max_acceleration` and `max_jerk` per joint).
+    #[arg(long, value_name = "FILE")]
+    pub joint_limits: Option<PathBuf>,
 }
 
 /// Which description format a robot file is written in.
@@ -102,21 +107,31 @@ impl RobotArgs {
     /// [`CliError::BadInput`] for an unknown preset, an unreadable or malformed file, or
     /// `--base`/`--tip` given for a TOML robot.
     pub fn load(&self) -> Result<LoadedRobot, CliError> {
-        let srdf = match &self.srdf {
-            None => None,
-            Some(p) => Some(std::fs::read_to_string(p).map_err(|e| {
-                CliError::bad_input(format!("cannot read SRDF file `{}`: {}", p.display(), one_line(&e.to_string())))
-            })?),
+        let read = |path: &Option<PathBuf>, what: &str| -> Result<Option<String>, CliError> {
+            path.as_ref()
+                .map(|p| {
+                    std::fs::read_to_string(p).map_err(|e| {
+                        CliError::bad_input(format!(
+                            "cannot read {what} `{}`: {}",
+                            p.display(),
+                            one_line(&e.to_string())
+                        ))
+                    })
+                })
+                .transpose()
         };
-        let loaded = load_robot_with(&self.robot, &self.urdf_chain(), srdf)?;
-        if loaded.units.is_some() && (self.base.is_some() || self.tip.is_some() || self.srdf.is_some()) {
-            let flag = if self.base.is_some() {
-                "--base"
-            } else if self.tip.is_some() {
-                "--tip"
-            } else {
-                "--srdf"
-            };
+        let extras = UrdfExtras {
+            srdf: read(&self.srdf, "SRDF file")?,
+            joint_limits: read(&self.joint_limits, "joint limits file")?,
+        };
+        let loaded = load_robot_with(&self.robot, &self.urdf_chain(), extras)?;
+        let urdf_only = [
+            ("--base", self.base.is_some()),
+            ("--tip", self.tip.is_some()),
+            ("--srdf", self.srdf.is_some()),
+            ("--joint-limits", self.joint_limits.is_some()),
+        ];
+        if let (Some(_), Some((flag, _))) = (&loaded.units, urdf_only.iter().find(|(_, given)| *given)) {
             return Err(CliError::bad_input(format!(
                 "{flag} applies to URDF robots only, but `{}` is a {}",
                 self.robot,
@@ -171,17 +186,27 @@ pub fn read_mesh(urdf: &Path, filename: &str) -> Option<Result<Vec<u8>, String>>
 /// # Errors
 /// [`CliError::BadInput`] for an unknown preset or an unreadable or malformed file.
 pub fn load_robot(arg: &str, chain: &UrdfChain) -> Result<LoadedRobot, CliError> {
-    load_robot_with(arg, chain, None)
+    load_robot_with(arg, chain, UrdfExtras::default())
 }
 
-/// [`load_robot`] with the text of an SRDF for a URDF robot.
+/// The MoveIt files that complete a URDF robot: their texts.
+#[derive(Debug, Clone, Default)]
+pub struct UrdfExtras {
+    /// An SRDF (`disable_collisions`).
+    pub srdf: Option<String>,
+    /// A `joint_limits.yaml` (velocity, acceleration, jerk limits).
+    pub joint_limits: Option<String>,
+}
+
+/// [`load_robot`] with the MoveIt files of a URDF robot (ignored for other robots).
 ///
 /// # Errors
 /// As [`load_robot`].
-pub fn load_robot_with(arg: &str, chain: &UrdfChain, srdf: Option<String>) -> Result<LoadedRobot, CliError> {
+pub fn load_robot_with(arg: &str, chain: &UrdfChain, extras: UrdfExtras) -> Result<LoadedRobot, CliError> {
     let (mut input, source) = robot_input(arg, chain)?;
-    if let RobotInput::Urdf { srdf: s, .. } = &mut input {
-        *s = srdf;
+    if let RobotInput::Urdf { srdf, joint_limits, .. } = &mut input {
+        *srdf = extras.srdf;
+        *joint_limits = extras.joint_limits;
     }
     let loaded = input.load().map_err(|e| match (&source, &e) {
         (RobotSource::Preset(_), reach::Error::Model(reach::ModelError::UnknownPreset { name, known })) => {

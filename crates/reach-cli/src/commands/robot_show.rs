@@ -24,7 +24,7 @@ pub enum RobotCommand {
             (docs/schemas/model.report.schema.json), every number SI (metres, radians, rad/s \
             or m/s): {\"name\", \"description\", \"convention\", \"joints\": [{\"name\", \
             \"kind\", \"a_m\", \"alpha_rad\", \"d_m\", \"theta_offset_rad\", \"limits\": [lo, hi] \
-            or null, \"max_velocity\", \"home\", \"flip\"}], \"base\": 4x4, \"tool\": 4x4} (URDF \
+            or null, \"max_velocity\", \"max_acceleration\", \"max_jerk\", \"home\", \"flip\"}], \"base\": 4x4, \"tool\": 4x4} (URDF \
             joints carry \"origin\": 4x4 and \"axis\": [x, y, z] instead of a/alpha/d/theta). \
             Matrices are row-major.",
         after_help = "Examples:\n  \
@@ -238,6 +238,28 @@ fn write_human(loaded: &LoadedRobot, out: &mut dyn Write) -> Result<(), CliError
                 row.push(u.length_text(link.radius));
             }
             table.row(row);
+        }
+        table.write(out, "")?;
+    }
+    if robot.joints().iter().any(|j| j.max_acceleration.is_some() || j.max_jerk.is_some()) {
+        writeln!(out)?;
+        let mut table = Table::new(&[
+            ("#", Align::Right),
+            ("name", Align::Left),
+            ("max acceleration", Align::Left),
+            ("max jerk", Align::Left),
+        ]);
+        for (i, j) in robot.joints().iter().enumerate() {
+            let (scale, unit) = u.var(j.kind);
+            let shown = |v: Option<f64>, power: &str| {
+                v.map_or_else(|| "-".into(), |v| format!("{} {unit}/s{power}", num(v / scale)))
+            };
+            table.row(vec![
+                (i + 1).to_string(),
+                j.name.clone(),
+                shown(j.max_acceleration, "²"),
+                shown(j.max_jerk, "³"),
+            ]);
         }
         table.write(out, "")?;
     }

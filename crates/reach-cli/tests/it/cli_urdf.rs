@@ -75,3 +75,25 @@ fn undeclared_parent_link_is_named() {
     let path = temp_file("panda_broken.urdf", &broken);
     fails(&["fk", path.to_str().unwrap(), "0", "0"], 2, &["joint `panda_joint3`", "`panda_link3` is not declared"]);
 }
+
+/// `--joint-limits` reads MoveIt's `joint_limits.yaml` into a URDF robot; a bad value names
+/// the joint and the field, and a preset refuses the flag.
+#[test]
+fn moveit_joint_limits_file_sets_acceleration_and_jerk() {
+    let yaml = "joint_limits:\n  panda_joint1:\n    has_acceleration_limits: true\n    max_acceleration: 3.75\n  \
+                panda_joint2:\n    has_jerk_limits: true\n    max_jerk: 100\n";
+    let file = temp_file("joint_limits.yaml", yaml);
+    let path = file.to_str().unwrap();
+    let v = json(&["robot", "show", PANDA, "--tip", "panda_hand", "--joint-limits", path, "--json"]);
+    assert_eq!(v["joints"][0]["max_acceleration"], 3.75);
+    assert_eq!(v["joints"][1]["max_jerk"], 100.0);
+    assert!(v["joints"][2]["max_acceleration"].is_null());
+
+    let bad = temp_file("joint_limits.yaml", &yaml.replace("100", "-1"));
+    fails(
+        &["robot", "show", PANDA, "--tip", "panda_hand", "--joint-limits", bad.to_str().unwrap()],
+        2,
+        &["panda_joint2", "max_jerk"],
+    );
+    fails(&["robot", "show", "panda", "--joint-limits", path], 2, &["--joint-limits", "URDF robots only"]);
+}

@@ -52,6 +52,10 @@ pub enum RobotInput {
         /// The text of a MoveIt SRDF whose `disable_collisions` pairs are never checked.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         srdf: Option<String>,
+        /// The text of a MoveIt `joint_limits.yaml` whose velocity, acceleration and jerk
+        /// limits override the URDF's ([`Robot::with_moveit_joint_limits`]).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        joint_limits: Option<String>,
         /// Positions of movable joints off the chain (a gripper's fingers), radians or metres.
         #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
         locked: BTreeMap<String, f64>,
@@ -95,6 +99,7 @@ impl RobotInput {
             tip: chain.tip.clone(),
             meshes,
             srdf: None,
+            joint_limits: None,
             locked: BTreeMap::new(),
         })
     }
@@ -117,7 +122,7 @@ impl RobotInput {
                 let (robot, units) = Robot::from_toml_str_with_units(text)?;
                 Ok(LoadedRobot { robot, units: Some(units) })
             }
-            RobotInput::Urdf { text, base, tip, meshes, srdf, locked } => {
+            RobotInput::Urdf { text, base, tip, meshes, srdf, joint_limits, locked } => {
                 use base64::Engine as _;
                 let chain = UrdfChain { base: base.clone(), tip: tip.clone() };
                 let read = |file: &str| -> Option<std::result::Result<Vec<u8>, String>> {
@@ -130,6 +135,9 @@ impl RobotInput {
                 let mut robot = Robot::from_urdf_str_with(text, &chain, &options)?;
                 if let Some(srdf) = srdf {
                     robot = robot.with_disabled_collisions(&crate::model::srdf_disabled_pairs(srdf)?)?;
+                }
+                if let Some(limits) = joint_limits {
+                    robot = robot.with_moveit_joint_limits(limits)?;
                 }
                 Ok(LoadedRobot { robot, units: None })
             }

@@ -48,6 +48,10 @@ pub struct ModelJoint {
     pub limits: Option<[Option<f64>; 2]>,
     /// Speed limit, rad/s or m/s, or `null`.
     pub max_velocity: Option<f64>,
+    /// Acceleration limit, rad/s² or m/s², or `null`.
+    pub max_acceleration: Option<f64>,
+    /// Jerk limit, rad/s³ or m/s³, or `null`.
+    pub max_jerk: Option<f64>,
     /// Home position, rad or m.
     pub home: f64,
     /// Whether the joint direction is reversed.
@@ -121,6 +125,8 @@ impl ModelJoint {
             geometry,
             limits: limits_json(&joint.limits),
             max_velocity: joint.max_velocity,
+            max_acceleration: joint.max_acceleration,
+            max_jerk: joint.max_jerk,
             home: joint.home,
             flip: joint.flip,
         }

@@ -98,6 +98,9 @@ pub enum ModelError {
     /// A URDF file could not be read or does not describe a usable serial chain.
     #[error("URDF: {0}")]
     Urdf(String),
+    /// A MoveIt `joint_limits.yaml` could not be read or gives a limit it does not hold.
+    #[error("joint limits file: {0}")]
+    JointLimits(String),
     /// The chain has no standard-DH equivalent ([`Robot::dh_equivalent`](super::Robot::dh_equivalent)).
     #[error("robot `{robot}` has no standard-DH equivalent: {reason}")]
     NoDhEquivalent {

@@ -184,6 +184,10 @@ pub struct Joint {
     pub limits: Limits,
     /// Optional speed limit, rad/s or m/s (symmetric: `|q̇| ≤ max_velocity`).
     pub max_velocity: Option<f64>,
+    /// Optional acceleration limit, rad/s² or m/s² (symmetric: `|q̈| ≤ max_acceleration`).
+    pub max_acceleration: Option<f64>,
+    /// Optional jerk limit, rad/s³ or m/s³ (symmetric).
+    pub max_jerk: Option<f64>,
     /// Home (rest) position, radians or metres; inside the limits.
     pub home: f64,
     /// Stepper drive (motor, gear, step limits), when the description gives one.
@@ -238,6 +242,8 @@ impl Joint {
             geometry: JointGeometry::Dh(DhParams { a, alpha, d, theta_offset }),
             limits: Limits::UNLIMITED,
             max_velocity: None,
+            max_acceleration: None,
+            max_jerk: None,
             home: 0.0,
             drive: None,
             flip: false,

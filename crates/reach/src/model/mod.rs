@@ -12,6 +12,7 @@ mod dh_equivalent;
 mod error;
 mod inertia;
 mod joint;
+mod joint_limits;
 mod robot;
 mod toml_format;
 mod urdf;

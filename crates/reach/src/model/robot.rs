@@ -400,6 +400,14 @@ fn validate_joint(number: usize, joint: &Joint, convention: Convention) -> Resul
     {
         return Err(ModelError::VelocityLimit { joint: number, name: joint.name.clone(), value: v });
     }
+    for (field, value) in [("max_acceleration", joint.max_acceleration), ("max_jerk", joint.max_jerk)] {
+        if let Some(v) = value
+            && !(v.is_finite() && v > 0.0)
+        {
+            let message = format!("`{field}` must be a finite number > 0, got {v}");
+            return Err(ModelError::Joint { joint: number, name: joint.name.clone(), message });
+        }
+    }
     if let Some(drive) = &joint.drive {
         validate_drive(number, joint, drive)?;
     }

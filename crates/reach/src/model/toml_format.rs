@@ -145,6 +145,8 @@ struct JointField {
     limits: Option<[f64; 2]>,
     max_velocity: Option<f64>,
     max_velocity_rpm: Option<f64>,
+    max_acceleration: Option<f64>,
+    max_jerk: Option<f64>,
     home: Option<f64>,
     #[serde(default)]
     flip: bool,
@@ -411,6 +413,8 @@ impl Robot {
                 }),
                 limits,
                 max_velocity,
+                max_acceleration: j.max_acceleration.map(|v| v * var_scale),
+                max_jerk: j.max_jerk.map(|v| v * var_scale),
                 drive,
                 flip: j.flip,
             });

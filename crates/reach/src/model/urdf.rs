@@ -204,6 +204,8 @@ impl Robot {
                 geometry: JointGeometry::Axis { origin, axis },
                 limits,
                 max_velocity,
+                max_acceleration: None,
+                max_jerk: None,
                 drive: None,
                 home: limits.default_home(),
                 flip: false,

@@ -47,6 +47,8 @@ fn random_urdf_robot(rng: &mut Rng, dof: usize, prismatic: &[usize]) -> Robot {
                 geometry: JointGeometry::Axis { origin, axis },
                 limits,
                 max_velocity: None,
+                max_acceleration: None,
+                max_jerk: None,
                 home: 0.0,
                 drive: None,
                 flip: false,

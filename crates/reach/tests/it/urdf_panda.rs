@@ -236,6 +236,8 @@ fn urdf_joint(name: &str, x: f64) -> Joint {
         geometry: JointGeometry::Axis { origin, axis },
         limits: Limits::new(-1.0, 1.0),
         max_velocity: None,
+        max_acceleration: None,
+        max_jerk: None,
         home: 0.0,
         drive: None,
         flip: false,
