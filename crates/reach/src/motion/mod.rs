@@ -7,6 +7,9 @@
 //!   cycloidal (seed 001), quintic, trapezoidal velocity (with the triangular case).
 //! * [`timing`] — synchronised timing: the duration is set by the joint that needs longest
 //!   and every joint starts and stops together (seed 000's intent, corrected: notes 000 D8).
+//! * [`optimal`] — time-optimal motion along a joint path (TOPP-RA) under velocity and
+//!   acceleration limits, proven within them between the grid points; the path a not-a-knot
+//!   cubic spline or a polyline through waypoints ([`PiecewiseCubic`]).
 //! * [`joint_space`] — `q(t) = q0 + λ(τ)·Δq` between two joint vectors or two poses (IK at
 //!   both ends), and through several waypoints (stopping at each, [`JointPath`], or smoothly,
 //!   [`SmoothJointPath`]).
@@ -25,6 +28,7 @@
 //! interval are clamped: the motion rests at its end points.
 
 pub mod joint_space;
+pub mod optimal;
 pub mod profile;
 pub mod sample;
 pub mod timing;
@@ -37,6 +41,7 @@ use crate::ik::{IkError, IkFailure};
 use crate::kinematics::KinematicsError;
 
 pub use joint_space::{JointMotion, JointPath, SmoothJointPath};
+pub use optimal::{LimitRatios, MotionSample, OptimalMotion, PathLimits, PiecewiseCubic, time_optimal};
 pub use profile::{Profile, ProfileValue};
 pub use sample::{JointSample, JointTrajectory, PathSample, ToolPath};
 pub use timing::{JointRates, Timing};

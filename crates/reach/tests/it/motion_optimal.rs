@@ -1,0 +1,150 @@
+//! Time-optimal motion (TOPP-RA): the not-a-knot spline, the bang-bang optimum on a straight
+//! line, limits held everywhere (checked against an independent dense sampling), and bad
+//! input named.
+
+use reach::model::presets;
+use reach::motion::{MotionError, PathLimits, PiecewiseCubic, time_optimal};
+
+fn lcg(seed: &mut u64) -> f64 {
+    *seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+    (*seed >> 11) as f64 / (1u64 << 53) as f64
+}
+
+fn random_waypoints(seed: &mut u64, n: usize, dof: usize) -> Vec<Vec<f64>> {
+    (0..n).map(|_| (0..dof).map(|_| 4.0 * lcg(seed) - 2.0).collect()).collect()
+}
+
+/// Passes through the waypoints, C² everywhere, and the third derivative is continuous at
+/// the second and the last-but-one knot (not-a-knot); 3 points give one parabola.
+#[test]
+fn spline_is_not_a_knot() {
+    let mut seed = 7;
+    for n in [2, 3, 4, 5, 6, 10] {
+        let w = random_waypoints(&mut seed, n, 3);
+        let spline = PiecewiseCubic::spline(&w).unwrap();
+        let h = 1.0 / (n - 1) as f64;
+        for (i, wi) in w.iter().enumerate() {
+            let [q, ..] = spline.eval(i as f64 * h);
+            for (a, b) in q.iter().zip(wi) {
+                assert!((a - b).abs() < 1e-12, "n {n} knot {i}: {a} vs {b}");
+            }
+        }
+        let e = 1e-10;
+        for i in 1..n - 1 {
+            let s = i as f64 * h;
+            let ([ql, dl, ddl], [qr, dr, ddr]) = (spline.eval(s - e), spline.eval(s + e));
+            for j in 0..3 {
+                let gaps = [(ql[j] - qr[j]).abs(), (dl[j] - dr[j]).abs(), (ddl[j] - ddr[j]).abs()];
+                assert!(gaps[0] < 1e-8 && gaps[1] < 1e-6 && gaps[2] < 1e-4, "n {n} knot {i}: {gaps:?}");
+            }
+        }
+        // Third derivative: the change of q″ across a piece over h, compared on both sides of
+        // knots 1 and n − 2.
+        if n >= 4 {
+            let third = |k: usize| {
+                let [_, _, a] = spline.eval(k as f64 * h + 1e-12);
+                let [_, _, b] = spline.eval((k + 1) as f64 * h - 1e-12);
+                (b[0] - a[0]) / h
+            };
+            assert!((third(0) - third(1)).abs() < 1e-6 * third(0).abs().max(1.0), "n {n}");
+            assert!((third(n - 3) - third(n - 2)).abs() < 1e-6 * third(n - 2).abs().max(1.0), "n {n}");
+        }
+    }
+    // Three points: one parabola through them.
+    let spline = PiecewiseCubic::spline(&[vec![0.0], vec![1.0], vec![0.0]]).unwrap();
+    let [q, ..] = spline.eval(0.25);
+    assert!((q[0] - 0.75).abs() < 1e-12);
+}
+
+/// One joint on a straight line from rest to rest: the optimum is bang-bang (trapezoid or
+/// triangle). A motion within the limits everywhere cannot beat it, and the grid comes within
+/// a fraction of a percent.
+#[test]
+fn straight_line_meets_the_bang_bang_optimum() {
+    for (d, v, a) in [(2.0, 1.0, 2.0), (0.1, 1.0, 2.0), (3.0, 0.5, 10.0)] {
+        let path = PiecewiseCubic::polyline(&[vec![0.0], vec![d]]).unwrap();
+        let limits = PathLimits::new(vec![v], vec![a]).unwrap();
+        let motion = time_optimal(&path, &limits, 400).unwrap();
+        let optimum: f64 = if d >= v * v / a { d / v + v / a } else { 2.0 * (d / a).sqrt() };
+        let t = motion.duration();
+        assert!(t >= optimum * (1.0 - 1e-9) && t <= optimum * 1.005, "d {d}: {t} vs {optimum}");
+        let end = motion.sample(t);
+        assert!((end.q[0] - d).abs() < 1e-9 && end.qd[0].abs() < 1e-9);
+    }
+}
+
+/// Random 7-joint splines with the Panda's limits: the reported worst ratios are ≤ 1, and an
+/// independent dense sampling (10 000 samples, the speeds and accelerations the trajectory
+/// gives) never exceeds them.
+#[test]
+fn limits_hold_between_grid_points() {
+    let panda = presets::get("panda").unwrap();
+    let limits = PathLimits::from_robot(&panda, 1.0, 1.0).unwrap();
+    let mut seed = 3;
+    for per in [4, 32] {
+        let w = random_waypoints(&mut seed, 10, 7);
+        let path = PiecewiseCubic::spline(&w).unwrap();
+        let motion = time_optimal(&path, &limits, per).unwrap();
+        let ratios = motion.worst_ratios();
+        for j in 0..7 {
+            assert!(ratios.velocity[j] <= 1.0 && ratios.acceleration[j] <= 1.0, "{ratios:?}");
+        }
+        // Some joint is at a limit somewhere (time-optimal: no slack everywhere).
+        let top = ratios.velocity.iter().chain(&ratios.acceleration).copied().fold(0.0, f64::max);
+        assert!(top > 0.999, "{top}");
+        let samples = motion.samples(motion.duration() / 10_000.0).unwrap();
+        for sample in &samples {
+            for j in 0..7 {
+                assert!(sample.qd[j].abs() <= limits.velocity[j] * ratios.velocity[j] * (1.0 + 1e-9));
+                assert!(sample.qdd[j].abs() <= limits.acceleration[j] * ratios.acceleration[j] * (1.0 + 1e-9));
+            }
+        }
+        // Ends at rest on the last waypoint; speeds are the derivative of positions.
+        let last = samples.last().unwrap();
+        assert!(last.qd.iter().all(|v| v.abs() < 1e-9));
+        for (a, b) in last.q.iter().zip(&w[9]) {
+            assert!((a - b).abs() < 1e-9);
+        }
+        let (t, e) = (motion.duration() * 0.37, 1e-6);
+        let (p, m, c) = (motion.sample(t + e), motion.sample(t - e), motion.sample(t));
+        for j in 0..7 {
+            assert!(((p.q[j] - m.q[j]) / (2.0 * e) - c.qd[j]).abs() < 1e-5 * (1.0 + c.qd[j].abs()));
+        }
+    }
+}
+
+/// A polyline rests at each corner: each leg is its own bang-bang motion.
+#[test]
+fn polyline_stops_at_corners() {
+    let path = PiecewiseCubic::polyline(&[vec![0.0, 0.0], vec![1.0, 0.0], vec![1.0, 1.0]]).unwrap();
+    let limits = PathLimits::new(vec![1.0, 1.0], vec![1.0, 1.0]).unwrap();
+    let motion = time_optimal(&path, &limits, 200).unwrap();
+    // Each leg: d = 1 = v²/a, the triangle 2 s.
+    assert!((motion.duration() - 4.0).abs() < 0.02, "{}", motion.duration());
+    let corner = motion.samples(0.001).unwrap().into_iter().find(|s| (s.q[0] - 1.0).abs() < 1e-12).unwrap();
+    assert!(corner.qd.iter().all(|v| v.abs() < 1e-6), "{corner:?}");
+}
+
+#[test]
+fn bad_input_is_named() {
+    let err = PiecewiseCubic::spline(&[vec![0.0, 1.0], vec![f64::NAN, 0.0]]).unwrap_err();
+    assert!(err.to_string().contains("waypoint 2"), "{err}");
+    assert!(PiecewiseCubic::spline(&[vec![0.0]]).is_err());
+    assert!(PiecewiseCubic::polyline(&[vec![0.0, 1.0], vec![0.0]]).is_err());
+    for bad in [0.0, -1.0, f64::NAN] {
+        let err = PathLimits::new(vec![1.0, bad], vec![1.0, 1.0]).unwrap_err();
+        assert!(err.to_string().contains("velocity[2]"), "{err}");
+    }
+    let ur5 = presets::get("ur5").unwrap();
+    let err = PathLimits::from_robot(&ur5, 1.0, 1.0).unwrap_err();
+    assert!(matches!(err, MotionError::InvalidInput { .. }) && err.to_string().contains("joint 1"), "{err}");
+    let panda = presets::get("panda").unwrap();
+    assert!(PathLimits::from_robot(&panda, 1.5, 1.0).unwrap_err().to_string().contains("max_velocity_scale"));
+    let path = PiecewiseCubic::spline(&[vec![0.0; 7], vec![1.0; 7]]).unwrap();
+    let limits = PathLimits::from_robot(&panda, 1.0, 1.0).unwrap();
+    assert!(time_optimal(&path, &limits, 2_000_000).unwrap_err().to_string().contains("cap"));
+    let motion = time_optimal(&path, &limits, 0).unwrap();
+    assert!(motion.samples(0.0).is_err() && motion.samples(1e-12).is_err());
+    let short = PathLimits::new(vec![1.0], vec![1.0]).unwrap();
+    assert!(time_optimal(&path, &short, 0).is_err());
+}
