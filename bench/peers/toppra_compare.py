@@ -18,7 +18,7 @@ What is timed per path:
 
 Prints per-path and summary duration ratios (reach / toppra) and the time ratio.
 
-    python3 -m venv /tmp/toppra-venv && /tmp/toppra-venv/bin/pip install toppra==0.6.3
+    python3 -m venv /tmp/toppra-venv && /tmp/toppra-venv/bin/pip install toppra==0.6.10
     /tmp/toppra-venv/bin/python bench/peers/toppra_compare.py [--paths 50] [--rounds 21]
 """
 
