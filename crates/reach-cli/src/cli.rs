@@ -366,6 +366,37 @@ pub enum Command {
     )]
     Approach(Box<crate::commands::approach::ApproachArgs>),
 
+    /// The time-optimal motion through a path's waypoints under the joints' velocity and
+    /// acceleration limits, proven within them between samples.
+    #[command(
+        long_about = "Times a joint path as fast as the joints' velocity and acceleration limits \
+            allow (TOPP-RA, the reachability method of Pham & Pham 2018), starting and ending at \
+            rest. The limits are the robot's max_velocity and max_acceleration (TOML fields, or a \
+            MoveIt joint_limits.yaml with --joint-limits for a URDF), times \
+            --max-velocity-scale / --max-acceleration-scale. The waypoints are joined by a cubic \
+            spline (not-a-knot at uniform parameter, the path toppra builds; no stop at the \
+            waypoints) or by straight segments (--interpolation linear: rests at every \
+            waypoint). A spline that leaves a joint's position limits between waypoints is \
+            refused, naming the joint and the segment.\n\n\
+            Within limits everywhere, not only at samples: the largest speed and acceleration \
+            of every joint between the parameterisation's grid points are computed exactly, \
+            the motion is slowed uniformly by the factor that brings them within the limits, \
+            and the report gives each joint's exact worst ratio to its limits.\n\n\
+            PATH is a CSV (one joint vector per row: degrees, or radians with --rad; prismatic \
+            joints in metres), or the JSON of `reach path --json` (waypoints_deg), \
+            `reach approach --json` (motion_deg) or `reach move --json` (samples); `-` reads \
+            standard input.\n\n\
+            --json prints the report (docs/schemas/retime.report.schema.json, SI units): \
+            {\"robot\", \"interpolation\", \"waypoints\", \"duration_s\", \"grid_points\", \
+            \"slowdown\", \"velocity_limits\", \"acceleration_limits\", \"worst_velocity_ratio\", \
+            \"worst_acceleration_ratio\", \"samples\": [{\"t_s\", \"q\", \"qd\", \"qdd\"}]}.",
+        after_help = "Examples:\n  \
+            reach retime panda examples/panda_waypoints.csv\n  \
+            reach retime panda examples/panda_waypoints.csv --max-velocity-scale 0.5 --csv timed.csv\n  \
+            reach path ur5 examples/ur5_ball.toml --from 90,-90,90,-90,-90,0 --to -90,-60,60,-90,-90,0 --json | reach retime ur5 - --json"
+    )]
+    Retime(crate::commands::retime::RetimeArgs),
+
     /// The control service: an HTTP + WebSocket API that queues jobs, plays them on simulated
     /// stepper drives and keeps the arm's state in a database (see the README's "The control
     /// service").

@@ -73,6 +73,7 @@ fn run(command: &Command, out: &mut dyn Write) -> Result<(), CliError> {
         Command::Tasks(args) => commands::tasks::run(args, out),
         Command::Path(args) => commands::path::run(args, out),
         Command::Approach(args) => commands::approach::run(args, out),
+        Command::Retime(args) => commands::retime::run(args, out),
         Command::Serve(args) => commands::serve::run(args, out),
         Command::Job(args) => commands::job::run(args, out),
         Command::View(args) => commands::view::run(args, out),

@@ -18,6 +18,7 @@ pub mod move_cmd;
 pub mod move_render;
 pub mod path;
 pub mod plan;
+pub mod retime;
 pub mod robot_show;
 pub mod robots;
 pub mod sense;

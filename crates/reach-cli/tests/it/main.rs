@@ -12,6 +12,7 @@ mod cli_fuzz;
 mod cli_ik;
 mod cli_move;
 mod cli_plot;
+mod cli_retime;
 mod cli_sense;
 mod cli_serve;
 mod cli_urdf;

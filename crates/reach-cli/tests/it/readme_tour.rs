@@ -75,11 +75,32 @@ fn every_tour_command_succeeds() {
             serve_starts(&args);
             continue;
         }
-        let refs: Vec<&str> = args.iter().map(String::as_str).collect();
-        let run = reach(&refs);
-        assert_eq!(run.code, 0, "`reach {}` failed: {}", args.join(" "), run.stderr);
-        assert!(!run.stdout.is_empty() || args.iter().any(|a| a == "-o"), "`reach {}` printed nothing", args.join(" "));
+        // `a | reach b`: each stage reads the previous one's output on its standard input.
+        let mut input: Option<String> = None;
+        for stage in args.split(|a| a == "|") {
+            let stage = if input.is_some() { &stage[1..] } else { stage };
+            let run = run_stage(stage, input.take());
+            assert_eq!(run.code, 0, "`reach {}` failed: {}", stage.join(" "), run.stderr);
+            let writes_file = stage.iter().any(|a| a == "-o");
+            assert!(!run.stdout.is_empty() || writes_file, "`reach {}` printed nothing", stage.join(" "));
+            input = Some(run.stdout);
+        }
     }
+}
+
+/// One stage of a tour line, fed `input` on its standard input when a pipe precedes it.
+fn run_stage(args: &[String], input: Option<String>) -> crate::common::Run {
+    use std::io::Write;
+    let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+    let Some(input) = input else { return reach(&refs) };
+    let mut child = crate::common::reach_command(&refs)
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("start a piped tour stage");
+    child.stdin.take().expect("stdin").write_all(input.as_bytes()).expect("feed the pipe");
+    crate::common::Run::from_output(child.wait_with_output().expect("a piped tour stage"))
 }
 
 #[test]

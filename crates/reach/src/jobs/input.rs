@@ -687,3 +687,91 @@ pub fn samples_si(robot: &Robot, samples: &[MotionSample], field: &str) -> Resul
         })
         .collect()
 }
+
+/// The joint waypoints of a path file, in the unit of its revolute values: a CSV (one joint
+/// vector per row, separated by commas and/or blanks; an optional header row of names,
+/// blank lines and `#` comments skipped; revolute values in `csv_unit`, prismatic in metres)
+/// or the JSON of `reach path` (`waypoints_deg`), `reach approach` (`motion_deg`) or
+/// `reach move` (`samples[].q_deg`), always in degrees.
+///
+/// # Errors
+/// [`Error::File`] naming the row (1-based line) and the column of a value that is not a
+/// finite number, a row of another length than the first, JSON with none of those fields,
+/// or a file with no waypoint.
+pub fn parse_path_file(text: &str, csv_unit: AngleUnit) -> Result<Vec<Joints>> {
+    let file_error = |message: String| Error::File { what: "path file", message };
+    if text.trim_start().starts_with('{') {
+        #[derive(Deserialize)]
+        struct Sample {
+            q_deg: Vec<f64>,
+        }
+        #[derive(Deserialize)]
+        struct PathFile {
+            waypoints_deg: Option<Vec<Vec<f64>>>,
+            motion_deg: Option<Vec<Vec<f64>>>,
+            samples: Option<Vec<Sample>>,
+        }
+        let file: PathFile = serde_json::from_str(text).map_err(|e| file_error(one_line(&e.to_string())))?;
+        let rows = file
+            .waypoints_deg
+            .or(file.motion_deg)
+            .or_else(|| file.samples.map(|s| s.into_iter().map(|s| s.q_deg).collect()))
+            .ok_or_else(|| {
+                file_error(
+                    "JSON without `waypoints_deg` (reach path), `motion_deg` (reach approach) or `samples` \
+                     (reach move)"
+                        .into(),
+                )
+            })?;
+        if rows.is_empty() {
+            return Err(file_error("the path has no waypoint (was a path found?)".into()));
+        }
+        return Ok(rows.into_iter().map(Joints::Deg).collect());
+    }
+    let mut rows: Vec<Vec<f64>> = Vec::new();
+    for (line_index, line) in text.lines().enumerate() {
+        let line = line.split('#').next().unwrap_or("").trim();
+        if line.is_empty() {
+            continue;
+        }
+        let cells: Vec<&str> = line.split([',', ' ', '\t', ';']).filter(|c| !c.trim().is_empty()).collect();
+        let parsed: Vec<Option<f64>> = cells.iter().map(|c| c.trim().parse::<f64>().ok()).collect();
+        if rows.is_empty() && parsed.iter().all(Option::is_none) {
+            continue; // a header row of names
+        }
+        let mut row = Vec::with_capacity(cells.len());
+        for (column, (cell, value)) in cells.iter().zip(&parsed).enumerate() {
+            match value {
+                Some(v) if v.is_finite() => row.push(*v),
+                _ => {
+                    return Err(file_error(format!(
+                        "line {}, column {}: expected a finite number, got {cell:?}",
+                        line_index + 1,
+                        column + 1
+                    )));
+                }
+            }
+        }
+        if let Some(first) = rows.first()
+            && first.len() != row.len()
+        {
+            return Err(file_error(format!(
+                "line {}: {} values, but the first row has {}",
+                line_index + 1,
+                row.len(),
+                first.len()
+            )));
+        }
+        rows.push(row);
+    }
+    if rows.is_empty() {
+        return Err(file_error("no waypoint: expected one row of joint values per line".into()));
+    }
+    Ok(rows
+        .into_iter()
+        .map(|r| match csv_unit {
+            AngleUnit::Deg => Joints::Deg(r),
+            AngleUnit::Rad => Joints::Rad(r),
+        })
+        .collect())
+}

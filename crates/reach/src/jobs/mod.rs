@@ -24,6 +24,7 @@ pub mod kinematics;
 pub mod model;
 pub mod motion;
 pub mod planar_scan;
+pub mod retime;
 pub mod tasks;
 pub mod view;
 pub mod world;
@@ -38,6 +39,7 @@ pub use kinematics::{FkReport, FkRequest, JacobianReport, JacobianRequest};
 pub use model::{ModelReport, ModelRequest, PresetEntry};
 pub use motion::{MoveReport, MoveRequest, PlanReport, PlanRequest};
 pub use planar_scan::{PlanarScanReport, PlanarScanRequest};
+pub use retime::{RetimeReport, RetimeRequest};
 pub use tasks::{TasksReport, TasksRequest};
 pub use view::{ViewReport, ViewRequest};
 pub use world::{
@@ -90,6 +92,8 @@ pub enum Request {
     Drive(DriveRequest),
     /// Everything the 3-D viewer draws: states with frames and axes, scene, events, IK ghosts.
     View(ViewRequest),
+    /// The time-optimal motion through joint waypoints under velocity and acceleration limits.
+    Retime(RetimeRequest),
 }
 
 /// A workflow's report, tagged by `"kind"` like its request.
@@ -130,6 +134,8 @@ pub enum Report {
     Drive(DriveReport),
     /// Everything the 3-D viewer draws.
     View(ViewReport),
+    /// The timed motion.
+    Retime(RetimeReport),
 }
 
 /// A request together with its robot.
@@ -176,6 +182,7 @@ pub fn run(robot: &Robot, request: &Request) -> Result<Report> {
         Request::Tasks(r) => Report::Tasks(tasks::tasks(robot, r)?),
         Request::Drive(r) => Report::Drive(drive::drive(robot, r)?),
         Request::View(r) => Report::View(view::view(robot, r)?),
+        Request::Retime(r) => Report::Retime(retime::retime(robot, r)?),
     })
 }
 
@@ -223,6 +230,8 @@ pub fn schemas() -> Vec<(&'static str, serde_json::Value)> {
         ("drive.report", of::<DriveReport>()),
         ("view.request", of::<ViewRequest>()),
         ("view.report", of::<ViewReport>()),
+        ("retime.request", of::<RetimeRequest>()),
+        ("retime.report", of::<RetimeReport>()),
     ]
 }
 

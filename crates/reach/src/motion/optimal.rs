@@ -37,8 +37,17 @@ use super::{MotionError, check_number, check_vector};
 /// Most grid points a parameterisation may use (`pieces × points_per_piece + 1`).
 pub const MAX_GRID_POINTS: usize = 1_000_000;
 
-/// Grid intervals per cubic piece when the caller does not choose.
+/// Grid intervals per cubic piece when the caller does not choose, for paths of up to
+/// [`DEFAULT_GRID_INTERVALS`]` / 64` pieces.
 pub const DEFAULT_POINTS_PER_PIECE: usize = 64;
+
+/// Grid size the default aims at on long (densely sampled) paths: their pieces get
+/// `DEFAULT_GRID_INTERVALS / pieces` intervals each, but never fewer than
+/// [`MIN_DEFAULT_POINTS_PER_PIECE`].
+pub const DEFAULT_GRID_INTERVALS: usize = 4096;
+
+/// Fewest grid intervals per piece the default gives.
+pub const MIN_DEFAULT_POINTS_PER_PIECE: usize = 8;
 
 /// Largest `ṡ²` the method considers: bounds the linear programs where no limit binds (a
 /// point of the path where every joint rests).
@@ -146,6 +155,29 @@ impl PiecewiseCubic {
     #[must_use]
     pub fn length(&self) -> f64 {
         self.h * self.coeffs.len() as f64
+    }
+
+    /// The smallest and the largest value joint `j` takes along the whole path (exact: the
+    /// cubics' ends and the roots of their derivatives), each with the 0-based piece where it
+    /// is reached.
+    #[must_use]
+    pub fn joint_range(&self, j: usize) -> ((f64, usize), (f64, usize)) {
+        let (mut low, mut high) = ((f64::INFINITY, 0), (f64::NEG_INFINITY, 0));
+        let mut roots = Vec::new();
+        for (k, piece) in self.coeffs.iter().enumerate() {
+            let [c0, c1, c2, c3] = piece[j];
+            roots_in([c1, 2.0 * c2, 3.0 * c3], self.h, &mut roots);
+            for t in [0.0, self.h].iter().chain(&roots) {
+                let q = c0 + t * (c1 + t * (c2 + t * c3));
+                if q < low.0 {
+                    low = (q, k);
+                }
+                if q > high.0 {
+                    high = (q, k);
+                }
+            }
+        }
+        (low, high)
     }
 
     /// `(piece, local parameter)` of `s` (clamped to the path).
@@ -274,7 +306,9 @@ impl PathLimits {
         for (i, joint) in robot.joints().iter().enumerate() {
             let missing = |field: &str| MotionError::InvalidInput {
                 field: format!("joint {} ({}) {field}", i + 1, joint.name),
-                reason: "is not given in the robot description; pass explicit limits".into(),
+                reason: "is not given in the robot description: add it to the joint in the TOML file, \
+                         or give a URDF a MoveIt joint_limits.yaml (--joint-limits)"
+                    .into(),
             };
             velocity.push(joint.max_velocity.ok_or_else(|| missing("max_velocity"))? * velocity_scale);
             acceleration.push(joint.max_acceleration.ok_or_else(|| missing("max_acceleration"))? * acceleration_scale);
@@ -449,7 +483,9 @@ fn x_range(rows: &[Row]) -> Option<(f64, f64)> {
 }
 
 /// Times `path` under `limits`, starting and ending at rest, with `points_per_piece` grid
-/// intervals per cubic piece (0 = [`DEFAULT_POINTS_PER_PIECE`]).
+/// intervals per cubic piece (0: [`DEFAULT_POINTS_PER_PIECE`], fewer on long paths — see
+/// [`DEFAULT_GRID_INTERVALS`]). The grid's size changes how close to time-optimal the result
+/// is, never whether it is within the limits.
 ///
 /// # Errors
 /// [`MotionError`] when the limits do not have one value per joint or the grid would exceed
@@ -463,10 +499,14 @@ pub fn time_optimal(
     if limits.velocity.len() != dof {
         return Err(MotionError::Length { field: "limits".into(), expected: dof, found: limits.velocity.len() });
     }
-    let per = if points_per_piece == 0 { DEFAULT_POINTS_PER_PIECE } else { points_per_piece };
+    let per = if points_per_piece == 0 {
+        (DEFAULT_GRID_INTERVALS / path.pieces().max(1)).clamp(MIN_DEFAULT_POINTS_PER_PIECE, DEFAULT_POINTS_PER_PIECE)
+    } else {
+        points_per_piece
+    };
     let n_int =
         path.pieces().checked_mul(per).filter(|n| *n < MAX_GRID_POINTS).ok_or_else(|| MotionError::InvalidInput {
-            field: "grid".into(),
+            field: "points_per_piece".into(),
             reason: format!(
                 "{} pieces × {per} points per piece exceed the cap of {MAX_GRID_POINTS} grid points",
                 path.pieces()

@@ -1,0 +1,192 @@
+//! `reach retime` — the time-optimal motion through a path's waypoints under the joints'
+//! velocity and acceleration limits (`reach::jobs::retime`; `--json` prints its report,
+//! `--csv FILE` writes its samples).
+
+use std::io::{Read, Write};
+use std::path::{Path, PathBuf};
+
+use clap::{Args, ValueEnum};
+use reach::Robot;
+use reach::jobs::input::{AngleUnit, from_si, parse_path_file, unit_name};
+use reach::jobs::retime::{Interpolation, RetimeReport, RetimeRequest};
+
+use crate::error::{CliError, flagged};
+use crate::numbers::parse_finite;
+use crate::output::{Align, Table, fixed, read_file, write_file, write_json};
+use crate::robot_arg::RobotArgs;
+
+/// How the waypoints are joined.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum InterpolationArg {
+    /// The not-a-knot cubic spline at uniform parameter (toppra's): no stop at the waypoints.
+    Spline,
+    /// Straight segments, resting at every waypoint.
+    Linear,
+}
+
+/// Arguments of `reach retime`.
+#[derive(Debug, Clone, Args)]
+pub struct RetimeArgs {
+    /// The robot (its joints' `max_velocity` and `max_acceleration` are the limits).
+    #[command(flatten)]
+    pub robot: RobotArgs,
+
+    /// The path: a CSV with one joint vector per row (degrees, or radians with --rad;
+    /// prismatic joints in metres; a header row and `#` comments are skipped), or the JSON of
+    /// `reach path`, `reach approach` or `reach move`; `-` reads standard input.
+    #[arg(value_name = "PATH")]
+    pub path: PathBuf,
+
+    /// How the waypoints are joined.
+    #[arg(long, value_enum, default_value_t = InterpolationArg::Spline)]
+    pub interpolation: InterpolationArg,
+
+    /// Sample step of the output, seconds.
+    #[arg(long, value_name = "S", default_value = "0.01")]
+    pub dt: String,
+
+    /// Multiplies every joint's velocity limit, in (0, 1].
+    #[arg(long, value_name = "F", default_value = "1")]
+    pub max_velocity_scale: String,
+
+    /// Multiplies every joint's acceleration limit, in (0, 1].
+    #[arg(long, value_name = "F", default_value = "1")]
+    pub max_acceleration_scale: String,
+
+    /// Grid intervals per path piece (default 64, fewer on long paths).
+    #[arg(long, value_name = "N")]
+    pub points_per_piece: Option<usize>,
+
+    /// The CSV's revolute values, and the output's, are in radians.
+    #[arg(long)]
+    pub rad: bool,
+
+    /// Print the report as JSON (docs/schemas/retime.report.schema.json; SI units).
+    #[arg(long)]
+    pub json: bool,
+
+    /// Write the samples to FILE: t_s, then per joint q, qd, qdd in the unit of the CSV
+    /// (degrees, or radians with --rad; prismatic metres), named in the header.
+    #[arg(long, value_name = "FILE")]
+    pub csv: Option<PathBuf>,
+}
+
+/// Times the path and prints the report.
+///
+/// # Errors
+/// [`CliError::BadInput`] for a bad robot, path file, number or limit (the message names the
+/// flag, the file's line or the joint).
+pub fn run(args: &RetimeArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let loaded = args.robot.load()?;
+    let robot = &loaded.robot;
+    let unit = if args.rad { AngleUnit::Rad } else { AngleUnit::Deg };
+    let text = if args.path == Path::new("-") {
+        let mut text = String::new();
+        std::io::stdin()
+            .read_to_string(&mut text)
+            .map_err(|e| CliError::bad_input(format!("cannot read standard input: {e}")))?;
+        text
+    } else {
+        read_file(&args.path)?
+    };
+    let source =
+        if args.path == Path::new("-") { "standard input".to_string() } else { args.path.display().to_string() };
+    let waypoints = parse_path_file(&text, unit)
+        .map_err(|e| CliError::bad_input(format!("{source}: {}", reach::one_line(&e.to_string()))))?;
+    let request = RetimeRequest {
+        waypoints,
+        interpolation: match args.interpolation {
+            InterpolationArg::Spline => Interpolation::Spline,
+            InterpolationArg::Linear => Interpolation::Linear,
+        },
+        dt: Some(parse_finite("--dt", &args.dt)?),
+        max_velocity_scale: parse_finite("--max-velocity-scale", &args.max_velocity_scale)?,
+        max_acceleration_scale: parse_finite("--max-acceleration-scale", &args.max_acceleration_scale)?,
+        points_per_piece: args.points_per_piece,
+    };
+    let report = reach::jobs::retime::retime(robot, &request).map_err(|e| {
+        flagged(
+            e,
+            &[
+                ("waypoint", format!("{source} waypoint")),
+                ("dt", "--dt".into()),
+                ("max_velocity_scale", "--max-velocity-scale".into()),
+                ("max_acceleration_scale", "--max-acceleration-scale".into()),
+                ("points_per_piece", "--points-per-piece".into()),
+            ],
+        )
+    })?;
+    if let Some(path) = &args.csv {
+        write_file("--csv", path, csv_text(robot, &report, unit))?;
+    }
+    if args.json {
+        return write_json(out, &report);
+    }
+    write_text(robot, &report, unit, out)
+}
+
+/// The samples as CSV in the display unit `unit`.
+fn csv_text(robot: &Robot, r: &RetimeReport, unit: AngleUnit) -> String {
+    let joints = robot.joints();
+    let mut text = String::from("t_s");
+    for (prefix, per) in [("q", ""), ("qd", "_s"), ("qdd", "_s2")] {
+        for (i, j) in joints.iter().enumerate() {
+            text.push_str(&format!(",{prefix}{}_{}{per}", i + 1, unit_name(j.kind, unit)));
+        }
+    }
+    text.push('\n');
+    for s in &r.samples {
+        let mut cells = vec![format!("{}", s.t_s)];
+        for values in [&s.q, &s.qd, &s.qdd] {
+            cells.extend(values.iter().zip(joints).map(|(&v, j)| format!("{}", from_si(j.kind, v, unit))));
+        }
+        text.push_str(&cells.join(","));
+        text.push('\n');
+    }
+    text
+}
+
+fn write_text(robot: &Robot, r: &RetimeReport, unit: AngleUnit, out: &mut dyn Write) -> Result<(), CliError> {
+    let mut head = Table::key_value();
+    head.pair("robot", format!("{} ({} joints)", robot.name(), robot.dof()));
+    let how = match r.interpolation {
+        Interpolation::Spline => "cubic spline (not-a-knot, uniform parameter)",
+        Interpolation::Linear => "straight segments, resting at each waypoint",
+    };
+    head.pair("path", format!("{} waypoints, {how}", r.waypoints));
+    head.pair("duration", format!("{} s (time-optimal, rest to rest)", fixed(r.duration_s, 6)));
+    head.pair(
+        "grid",
+        format!("{} points; slow-down {} so the limits hold between them", r.grid_points, fixed(r.slowdown, 6)),
+    );
+    head.write(out, "")?;
+    let mut table = Table::new(&[
+        ("joint", Align::Right),
+        ("name", Align::Left),
+        ("max speed", Align::Right),
+        ("worst speed ratio", Align::Right),
+        ("max acceleration", Align::Right),
+        ("worst acceleration ratio", Align::Right),
+    ]);
+    for (i, j) in robot.joints().iter().enumerate() {
+        let u = unit_name(j.kind, unit);
+        table.row(vec![
+            (i + 1).to_string(),
+            j.name.clone(),
+            format!("{} {u}/s", fixed(from_si(j.kind, r.velocity_limits[i], unit), 3)),
+            fixed(r.worst_velocity_ratio[i], 6),
+            format!("{} {u}/s²", fixed(from_si(j.kind, r.acceleration_limits[i], unit), 3)),
+            fixed(r.worst_acceleration_ratio[i], 6),
+        ]);
+    }
+    writeln!(out, "limits (worst ratio: exact largest |value| / limit over the whole motion, not only at samples):")?;
+    table.write(out, "  ")?;
+    let step = r.samples.get(1).map_or(0.0, |s| s.t_s);
+    writeln!(
+        out,
+        "{} samples every {} s (--json prints them, --csv FILE writes them)",
+        r.samples.len(),
+        fixed(step, 6)
+    )?;
+    Ok(())
+}

@@ -1,0 +1,145 @@
+//! End-to-end tests of `reach retime`: the report equals the library's and its schema, the
+//! samples respect the limits and pass the waypoints, the CSV carries units, the output of
+//! `reach path --json` chains in through standard input, and bad input is one line.
+
+use std::io::Write;
+use std::process::Stdio;
+
+use reach::jobs::retime::{Interpolation, RetimeRequest};
+use reach::jobs::{Job, Joints, Request, RobotInput};
+
+use crate::common::{Run, assert_report, fails, nums, ok, reach_command, stdout_json, temp_file};
+
+const PANDA: &str = "../../examples/panda_waypoints.csv";
+
+fn example(name: &str) -> String {
+    format!("{}/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+#[test]
+fn panda_spline_report_is_the_library_one_and_within_limits() {
+    let path = example(PANDA);
+    let waypoints = vec![
+        Joints::Deg(vec![0.0, -17.0, 0.0, -126.0, 0.0, 115.0, 45.0]),
+        Joints::Deg(vec![30.0, 0.0, 20.0, -100.0, 10.0, 90.0, 0.0]),
+        Joints::Deg(vec![60.0, 20.0, -20.0, -80.0, -10.0, 120.0, -30.0]),
+        Joints::Deg(vec![10.0, -30.0, 0.0, -140.0, 0.0, 100.0, 45.0]),
+    ];
+    let request = RetimeRequest {
+        waypoints: waypoints.clone(),
+        interpolation: Interpolation::Spline,
+        dt: Some(0.005),
+        max_velocity_scale: 1.0,
+        max_acceleration_scale: 0.5,
+        points_per_piece: None,
+    };
+    let job = Job { robot: RobotInput::Preset("panda".into()), request: Request::Retime(request) };
+    let v = assert_report(
+        &["retime", "panda", &path, "--dt", "0.005", "--max-acceleration-scale", "0.5", "--json"],
+        &job,
+        "retime.report",
+    );
+    assert_eq!(v["waypoints"], 4);
+    let duration = v["duration_s"].as_f64().unwrap();
+    let vmax = nums(&v["velocity_limits"]);
+    let amax = nums(&v["acceleration_limits"]);
+    // Franka's joint-1 limits, the acceleration halved.
+    assert!((vmax[0] - 2.175).abs() < 1e-12 && (amax[0] - 7.5).abs() < 1e-12, "{vmax:?} {amax:?}");
+    // The exact worst ratios are within the limits and some limit binds (time-optimal).
+    let worst: Vec<f64> =
+        nums(&v["worst_velocity_ratio"]).into_iter().chain(nums(&v["worst_acceleration_ratio"])).collect();
+    assert!(worst.iter().all(|&r| r <= 1.0 + 1e-9), "{worst:?}");
+    assert!(worst.iter().any(|&r| r > 0.99), "no limit binds: {worst:?}");
+    // Every sample is within the limits, rests at both ends, and the path starts and ends at
+    // the first and last waypoint.
+    let samples = v["samples"].as_array().unwrap();
+    let whole = (duration / 0.005).floor() as usize;
+    assert!(samples.len() == whole + 1 || samples.len() == whole + 2, "{} samples over {duration} s", samples.len());
+    for s in samples {
+        for (j, (qd, qdd)) in nums(&s["qd"]).into_iter().zip(nums(&s["qdd"])).enumerate() {
+            assert!(qd.abs() <= vmax[j] * (1.0 + 1e-9) && qdd.abs() <= amax[j] * (1.0 + 1e-9), "{s}");
+        }
+    }
+    let deg = |s: &serde_json::Value| nums(&s["q"]).into_iter().map(f64::to_degrees).collect::<Vec<_>>();
+    let (first, last) = (samples.first().unwrap(), samples.last().unwrap());
+    let Joints::Deg(start) = &waypoints[0] else { unreachable!() };
+    let Joints::Deg(goal) = &waypoints[3] else { unreachable!() };
+    for (got, want) in deg(first).iter().zip(start).chain(deg(last).iter().zip(goal)) {
+        assert!((got - want).abs() < 1e-9, "{got} vs {want}");
+    }
+    assert_eq!(last["t_s"].as_f64().unwrap(), duration);
+    assert!(nums(&first["qd"]).iter().chain(&nums(&last["qd"])).all(|v| v.abs() < 1e-9));
+    // Halving the acceleration limit makes the motion slower, not faster.
+    let full = crate::common::json(&["retime", "panda", &path, "--json"]);
+    assert!(full["duration_s"].as_f64().unwrap() < duration);
+}
+
+#[test]
+fn text_summary_and_csv_with_units() {
+    let path = example(PANDA);
+    let csv = temp_file("timed.csv", "");
+    let text = ok(&["retime", "panda", &path, "--interpolation", "linear", "--csv", csv.to_str().unwrap()]);
+    assert!(text.contains("straight segments, resting at each waypoint"), "{text}");
+    assert!(text.contains("panda_joint7") && text.contains("deg/s²"), "{text}");
+    let table = std::fs::read_to_string(&*csv).unwrap();
+    let header = table.lines().next().unwrap();
+    assert!(header.starts_with("t_s,q1_deg,q2_deg"), "{header}");
+    assert!(header.contains(",qd7_deg_s,qdd1_deg_s2,") && header.ends_with("qdd7_deg_s2"), "{header}");
+    // Linear interpolation rests at every waypoint: some inner sample is near the second
+    // waypoint with nearly zero speed, and the rows hold 1 + 3 × 7 values.
+    let rows: Vec<Vec<f64>> =
+        table.lines().skip(1).map(|l| l.split(',').map(|c| c.parse().unwrap()).collect()).collect();
+    assert!(rows.iter().all(|r| r.len() == 22));
+    let second = [30.0, 0.0, 20.0, -100.0, 10.0, 90.0, 0.0];
+    let distance = |r: &Vec<f64>| r[1..8].iter().zip(&second).map(|(a, b)| (a - b).powi(2)).sum::<f64>().sqrt();
+    let speed = |r: &Vec<f64>| r[8..15].iter().map(|v| v * v).sum::<f64>().sqrt();
+    let nearest = rows.iter().min_by(|a, b| distance(a).total_cmp(&distance(b))).unwrap();
+    let top_speed = rows.iter().map(speed).fold(0.0, f64::max);
+    assert!(distance(nearest) < 1.0, "{nearest:?}");
+    assert!(speed(nearest) < 0.1 * top_speed, "{nearest:?} against top speed {top_speed}");
+}
+
+#[test]
+fn a_planned_path_chains_in_through_standard_input() {
+    let scene = example("../../examples/ur5_ball.toml");
+    let path = ok(&["path", "ur5", &scene, "--from", "90,-90,90,-90,-90,0", "--to", "-90,-60,60,-90,-90,0", "--json"]);
+    let mut child = reach_command(&["retime", "ur5", "-", "--json"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    child.stdin.take().unwrap().write_all(path.as_bytes()).unwrap();
+    let run = Run::from_output(child.wait_with_output().unwrap());
+    let v = stdout_json(&run);
+    let planned: serde_json::Value = serde_json::from_str(&path).unwrap();
+    assert_eq!(v["waypoints"].as_u64().unwrap() as usize, planned["waypoints_deg"].as_array().unwrap().len());
+    // UR's MoveIt configuration: 5 rad/s² on every joint.
+    assert!(nums(&v["acceleration_limits"]).iter().all(|&a| (a - 5.0).abs() < 1e-6));
+    assert!(nums(&v["worst_acceleration_ratio"]).iter().all(|&r| r <= 1.0 + 1e-9));
+}
+
+#[test]
+fn bad_input_is_one_line_naming_the_place() {
+    let bad = temp_file("bad.csv", "0,-90,0,-90,0,0\n30,nan,20,-90,10,0\n");
+    fails(&["retime", "ur5", bad.to_str().unwrap()], 2, &["line 2, column 2", "\"nan\""]);
+    let ragged = temp_file("ragged.csv", "0,-90,0,-90,0,0\n30,-60,20\n");
+    fails(&["retime", "ur5", ragged.to_str().unwrap()], 2, &["line 2", "3 values", "first row has 6"]);
+    let one = temp_file("one.csv", "# a single waypoint\n0,-90,0,-90,0,0\n");
+    fails(&["retime", "ur5", one.to_str().unwrap()], 2, &["at least 2"]);
+    let outside = temp_file("outside.csv", "0,0,0,0,0,0\n350,0,0,0,0,0\n-350,0,0,0,0,0\n");
+    fails(
+        &["retime", "ur5", outside.to_str().unwrap()],
+        2,
+        &["spline", "joint 1 (shoulder_pan)", "360 deg", "between waypoints 1 and 2", "364.58"],
+    );
+    let two = temp_file("two.csv", "0,-90,0,-90,0,0\n30,-60,20,-90,10,0\n");
+    let two = two.to_str().unwrap();
+    fails(&["retime", "ur5", two, "--dt", "0"], 2, &["--dt", "> 0"]);
+    fails(&["retime", "ur5", two, "--max-velocity-scale", "1.5"], 2, &["--max-velocity-scale", "≤ 1"]);
+    fails(&["retime", "ur5", two, "--points-per-piece", "2000000"], 2, &["--points-per-piece", "cap"]);
+    fails(&["retime", "ur5", two, "--dt", "1e-9"], 2, &["--dt", "samples"]);
+    // A preset without acceleration limits names the joint and says where the limit goes.
+    let puma = temp_file("puma.csv", "0,0,0,0,0,0\n10,10,10,0,0,0\n");
+    fails(&["retime", "puma560", puma.to_str().unwrap()], 2, &["joint 1", "max_velocity", "--joint-limits"]);
+}
