@@ -706,6 +706,54 @@ impl Robot {
         self.workflow(py, "path", request, kwargs, &[])
     }
 
+    /// The time-optimal motion through joint waypoints `(N, dof)` (SI, or degrees with
+    /// `degrees=True`) under the robot's velocity and acceleration limits, proven within them
+    /// between samples (`reach retime --json`, TOPP-RA): a dict with `duration_s`, the limits,
+    /// `worst_velocity_ratio` / `worst_acceleration_ratio` per joint, and the samples as
+    /// arrays `t` `(M,)`, `q`, `qd`, `qdd` `(M, dof)` in SI. Keywords as the request:
+    /// `interpolation` (`"spline"`, default, or `"linear"`), `dt`, `max_velocity_scale`,
+    /// `max_acceleration_scale`, `points_per_piece`.
+    #[pyo3(signature = (waypoints, degrees=false, **kwargs))]
+    fn time_parameterize<'py>(
+        &self,
+        py: Python<'py>,
+        waypoints: &Bound<'py, PyAny>,
+        degrees: bool,
+        kwargs: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let (n, q) = self.joint_rows(py, waypoints, "waypoints", degrees)?;
+        if n.is_none() {
+            return Err(value_err("waypoints: expected shape (N, dof) with N ≥ 2, got one joint vector"));
+        }
+        let options: serde_json::Value = match kwargs {
+            Some(k) => serde_json::from_str(
+                &py.import("reach._convert")?.call_method1("request_json", (k,))?.extract::<String>()?,
+            )
+            .map_err(|e| value_err(e.to_string()))?,
+            None => serde_json::json!({}),
+        };
+        let mut request = options;
+        let rows: Vec<Joints> = q.chunks(self.robot.dof()).map(|r| Joints::Rad(r.to_vec())).collect();
+        request["waypoints"] = serde_json::to_value(rows).map_err(|e| value_err(e.to_string()))?;
+        let request: reach::jobs::retime::RetimeRequest = serde_json::from_value(request)
+            .map_err(|e| value_err(format!("time_parameterize: {}", reach::one_line(&e.to_string()))))?;
+        let robot = &self.robot;
+        let mut report = py.detach(|| reach::jobs::retime::retime(robot, &request)).map_err(|e| lib_err(&e))?;
+        let samples = std::mem::take(&mut report.samples);
+        let (m, dof) = (samples.len(), robot.dof());
+        let column = |f: &dyn Fn(&reach::jobs::retime::RetimeSample) -> &[f64]| {
+            samples.iter().flat_map(|s| f(s).iter().copied()).collect::<Vec<f64>>()
+        };
+        let out = to_python(py, &report)?;
+        let dict = out.cast::<PyDict>()?;
+        dict.del_item("samples")?;
+        dict.set_item("t", to_numpy(py, samples.iter().map(|s| s.t_s).collect(), vec![m])?)?;
+        dict.set_item("q", to_numpy(py, column(&|s| &s.q), vec![m, dof])?)?;
+        dict.set_item("qd", to_numpy(py, column(&|s| &s.qd), vec![m, dof])?)?;
+        dict.set_item("qdd", to_numpy(py, column(&|s| &s.qdd), vec![m, dof])?)?;
+        Ok(out)
+    }
+
     /// Collisions and clearances of one configuration in a scene (`reach check --json`).
     #[pyo3(signature = (request=None, **kwargs))]
     fn check<'py>(

@@ -3,6 +3,7 @@
 import json
 
 import numpy as np
+import pytest
 
 import reach
 from conftest import ROOT
@@ -64,3 +65,19 @@ def test_run_takes_any_request(cli):
     _same(ours, cli("fk", "puma560", 10, 20, 30, 40, 50, 60))
     again = puma.run('{"kind": "jacobian", "q": {"rad": [0.1, 0.2, 0.3, 0.4, 0.5, 0.6]}}')
     np.testing.assert_allclose(again["jacobian"], puma.jacobian([0.1, 0.2, 0.3, 0.4, 0.5, 0.6]), atol=0)
+
+
+def test_time_parameterize_equals_retime_and_speaks_si(cli, tmp_path):
+    panda = reach.Robot.preset("panda")
+    deg = np.array([[0, -17, 0, -126, 0, 115, 45], [30, 0, 20, -100, 10, 90, 0], [10, -30, 0, -140, 0, 100, 45]])
+    ours = panda.time_parameterize(np.radians(deg), max_acceleration_scale=0.5)
+    csv = tmp_path / "w.csv"
+    csv.write_text("\n".join(",".join(str(v) for v in row) for row in deg))
+    theirs = cli("retime", "panda", csv, "--max-acceleration-scale", "0.5")
+    assert abs(ours["duration_s"] - theirs["duration_s"]) < 1e-9
+    assert ours["q"].shape == (len(theirs["samples"]), 7) and ours["t"].shape == (len(theirs["samples"]),)
+    np.testing.assert_allclose(ours["qd"], [s["qd"] for s in theirs["samples"]], atol=1e-9)
+    np.testing.assert_allclose(ours["q"][-1], np.radians(deg[-1]), atol=1e-12)
+    assert max(ours["worst_acceleration_ratio"]) <= 1 + 1e-9
+    with pytest.raises(ValueError, match="waypoints"):
+        panda.time_parameterize(np.radians(deg[0]))

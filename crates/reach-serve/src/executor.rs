@@ -283,6 +283,9 @@ fn replan(
             time_budget_s: DETOUR_BUDGET_S,
             // At the job's pace; slowed when a motor would be too fast.
             duration_s: Some(timeline.duration_s),
+            timing: None,
+            max_velocity_scale: 1.0,
+            max_acceleration_scale: 1.0,
         })
     });
     let detour = request.and_then(|request| {

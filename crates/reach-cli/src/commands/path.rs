@@ -1,12 +1,13 @@
 //! `reach path` — a collision-free joint-space path through a scene, timed and re-checked
-//! (`reach::jobs::world::path`: RRT-Connect with shortcutting, cycloidal segments that stop
-//! at every waypoint; `--json` prints its report).
+//! (`reach::jobs::world::path`: RRT-Connect with shortcutting, timed along the straight edges
+//! time-optimally or by cycloidal segments, resting at every waypoint; `--json` prints its
+//! report).
 
 use std::io::Write;
 
 use clap::Args;
 use reach::Robot;
-use reach::jobs::world::{PathReport, PathRequest, PathRun, TimedPath, path_run_with_cancel};
+use reach::jobs::world::{PathReport, PathRequest, PathRun, PathTiming, TimedPath, path_run_with_cancel};
 use reach::jobs::{Joints, Pose};
 
 use crate::commands::check::{read_scene, scene_error};
@@ -91,6 +92,15 @@ impl SceneMotionArgs {
     }
 }
 
+/// How `reach path` times its path.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum TimingArg {
+    /// Time-optimal under the velocity and acceleration limits.
+    Optimal,
+    /// One cycloidal segment per edge.
+    Cycloidal,
+}
+
 /// Arguments of `reach path`.
 #[derive(Debug, Clone, Args)]
 pub struct PathArgs {
@@ -108,10 +118,21 @@ pub struct PathArgs {
     #[arg(long, default_value = "1", value_name = "S", allow_hyphen_values = true)]
     pub time_budget: String,
 
-    /// Total duration of the timed motion, seconds (default: the fastest synchronised
-    /// motion within the joints' speed limits, segment by segment).
+    /// Total duration of the timed motion, seconds (cycloidal timing; default: the fastest
+    /// synchronised motion within the joints' speed limits, segment by segment).
     #[arg(long, value_name = "S", allow_hyphen_values = true)]
     pub duration: Option<String>,
+
+    /// How the path is timed along its straight edges, resting at every waypoint: `optimal`
+    /// (TOPP-RA under the joints' velocity and acceleration limits, proven between samples)
+    /// or `cycloidal` (one synchronised cycloidal segment per edge). Default: optimal when no
+    /// --duration is given and every joint has both limits, else cycloidal.
+    #[arg(long, value_enum, value_name = "LAW")]
+    pub timing: Option<TimingArg>,
+
+    /// --max-velocity-scale, --max-acceleration-scale (optimal timing).
+    #[command(flatten)]
+    pub scales: crate::commands::retime::LimitScaleArgs,
 
     /// Print the report as JSON (docs/schemas/path.report.schema.json); lengths are
     /// joint-space (rad / m).
@@ -132,6 +153,7 @@ impl PathArgs {
     /// `--to` and `--to-pose`.
     pub fn request(&self) -> Result<PathRequest, CliError> {
         let Ends { scene, from, to, to_pose } = self.motion.ends()?;
+        let (max_velocity_scale, max_acceleration_scale) = self.scales.parse()?;
         Ok(PathRequest {
             scene,
             from,
@@ -140,6 +162,12 @@ impl PathArgs {
             seed: self.seed,
             time_budget_s: parse_finite("--time-budget", &self.time_budget)?,
             duration_s: self.duration.as_deref().map(|d| parse_finite("--duration", d)).transpose()?,
+            timing: self.timing.map(|t| match t {
+                TimingArg::Optimal => PathTiming::Optimal,
+                TimingArg::Cycloidal => PathTiming::Cycloidal,
+            }),
+            max_velocity_scale,
+            max_acceleration_scale,
         })
     }
 }
@@ -154,8 +182,11 @@ pub fn run(args: &PathArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let robot = args.motion.robot.load()?.robot;
     let request = args.request()?;
     args.draw.check_files()?;
-    let run = path_run_with_cancel(&robot, &request, crate::interrupt::cancel())
-        .map_err(|e| args.motion.error(e, &[("duration_s", "--duration"), ("time_budget_s", "--time-budget")]))?;
+    let run = path_run_with_cancel(&robot, &request, crate::interrupt::cancel()).map_err(|e| {
+        let [velocity, acceleration] = crate::commands::retime::LimitScaleArgs::FLAGS;
+        args.motion
+            .error(e, &[("duration_s", "--duration"), ("time_budget_s", "--time-budget"), velocity, acceleration])
+    })?;
     if let (true, Some(timed)) = (args.draw.any(), &run.timed) {
         args.draw.write(&drawing(&robot, &run, timed))?;
     }
@@ -201,7 +232,21 @@ fn write_report(out: &mut dyn Write, scene: &str, j: &PathReport) -> Result<(), 
                 j.waypoints_deg.len()
             ),
         );
-        head.pair("duration", format!("{} s (cycloidal, stops at waypoints)", fixed(j.duration_s.unwrap_or(0.0), 3)));
+        let law = match j.timing {
+            PathTiming::Optimal => {
+                let worst = |r: &Option<Vec<f64>>| r.iter().flatten().copied().fold(0.0, f64::max);
+                format!(
+                    "time-optimal under the velocity and acceleration limits ×{} / ×{}, rests at waypoints; \
+                     worst ratio to a limit: velocity {}, acceleration {}",
+                    j.max_velocity_scale,
+                    j.max_acceleration_scale,
+                    fixed(worst(&j.worst_velocity_ratio), 4),
+                    fixed(worst(&j.worst_acceleration_ratio), 4)
+                )
+            }
+            PathTiming::Cycloidal => "cycloidal, stops at waypoints".to_string(),
+        };
+        head.pair("duration", format!("{} s ({law})", fixed(j.duration_s.unwrap_or(0.0), 3)));
         if let Some(p) = &j.swept {
             head.pair("swept check", crate::commands::check::swept_text(&p.swept, Some(p.segment)));
         }
@@ -222,9 +267,13 @@ fn drawing(robot: &Robot, run: &PathRun, timed: &TimedPath) -> crate::plot::Svg 
         title: title(
             robot,
             &format!(
-                "planned path, {} waypoints, {} s, cycloidal segments",
+                "planned path, {} waypoints, {} s, {}",
                 run.waypoints.len(),
-                fixed(timed.times.last().copied().unwrap_or(0.0), 3)
+                fixed(timed.times.last().copied().unwrap_or(0.0), 3),
+                match run.report.timing {
+                    PathTiming::Optimal => "time-optimal",
+                    PathTiming::Cycloidal => "cycloidal segments",
+                }
             ),
         ),
         times: timed.times.clone(),

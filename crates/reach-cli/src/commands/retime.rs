@@ -24,6 +24,36 @@ pub enum InterpolationArg {
     Linear,
 }
 
+/// The limits' scales of a time-optimal motion (MoveIt's scaling factors): what `reach retime`
+/// and `reach path --timing optimal` both read.
+#[derive(Debug, Clone, Args)]
+pub struct LimitScaleArgs {
+    /// Multiplies every joint's velocity limit, in (0, 1].
+    #[arg(long, value_name = "F", default_value = "1")]
+    pub max_velocity_scale: String,
+
+    /// Multiplies every joint's acceleration limit, in (0, 1].
+    #[arg(long, value_name = "F", default_value = "1")]
+    pub max_acceleration_scale: String,
+}
+
+impl LimitScaleArgs {
+    /// The library's field names and their flags, for [`flagged`].
+    pub const FLAGS: [(&'static str, &'static str); 2] =
+        [("max_velocity_scale", "--max-velocity-scale"), ("max_acceleration_scale", "--max-acceleration-scale")];
+
+    /// The velocity and the acceleration scale.
+    ///
+    /// # Errors
+    /// [`CliError::BadInput`] for a value that is not a finite number.
+    pub fn parse(&self) -> Result<(f64, f64), CliError> {
+        Ok((
+            parse_finite("--max-velocity-scale", &self.max_velocity_scale)?,
+            parse_finite("--max-acceleration-scale", &self.max_acceleration_scale)?,
+        ))
+    }
+}
+
 /// Arguments of `reach retime`.
 #[derive(Debug, Clone, Args)]
 pub struct RetimeArgs {
@@ -45,13 +75,9 @@ pub struct RetimeArgs {
     #[arg(long, value_name = "S", default_value = "0.01")]
     pub dt: String,
 
-    /// Multiplies every joint's velocity limit, in (0, 1].
-    #[arg(long, value_name = "F", default_value = "1")]
-    pub max_velocity_scale: String,
-
-    /// Multiplies every joint's acceleration limit, in (0, 1].
-    #[arg(long, value_name = "F", default_value = "1")]
-    pub max_acceleration_scale: String,
+    /// --max-velocity-scale, --max-acceleration-scale.
+    #[command(flatten)]
+    pub scales: LimitScaleArgs,
 
     /// Grid intervals per path piece (default 64, fewer on long paths).
     #[arg(long, value_name = "N")]
@@ -93,6 +119,7 @@ pub fn run(args: &RetimeArgs, out: &mut dyn Write) -> Result<(), CliError> {
         if args.path == Path::new("-") { "standard input".to_string() } else { args.path.display().to_string() };
     let waypoints = parse_path_file(&text, unit)
         .map_err(|e| CliError::bad_input(format!("{source}: {}", reach::one_line(&e.to_string()))))?;
+    let (max_velocity_scale, max_acceleration_scale) = args.scales.parse()?;
     let request = RetimeRequest {
         waypoints,
         interpolation: match args.interpolation {
@@ -100,8 +127,8 @@ pub fn run(args: &RetimeArgs, out: &mut dyn Write) -> Result<(), CliError> {
             InterpolationArg::Linear => Interpolation::Linear,
         },
         dt: Some(parse_finite("--dt", &args.dt)?),
-        max_velocity_scale: parse_finite("--max-velocity-scale", &args.max_velocity_scale)?,
-        max_acceleration_scale: parse_finite("--max-acceleration-scale", &args.max_acceleration_scale)?,
+        max_velocity_scale,
+        max_acceleration_scale,
         points_per_piece: args.points_per_piece,
     };
     let report = reach::jobs::retime::retime(robot, &request).map_err(|e| {
@@ -110,8 +137,8 @@ pub fn run(args: &RetimeArgs, out: &mut dyn Write) -> Result<(), CliError> {
             &[
                 ("waypoint", format!("{source} waypoint")),
                 ("dt", "--dt".into()),
-                ("max_velocity_scale", "--max-velocity-scale".into()),
-                ("max_acceleration_scale", "--max-acceleration-scale".into()),
+                (LimitScaleArgs::FLAGS[0].0, LimitScaleArgs::FLAGS[0].1.into()),
+                (LimitScaleArgs::FLAGS[1].0, LimitScaleArgs::FLAGS[1].1.into()),
                 ("points_per_piece", "--points-per-piece".into()),
             ],
         )

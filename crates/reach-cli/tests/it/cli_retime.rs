@@ -143,3 +143,58 @@ fn bad_input_is_one_line_naming_the_place() {
     let puma = temp_file("puma.csv", "0,0,0,0,0,0\n10,10,10,0,0,0\n");
     fails(&["retime", "puma560", puma.to_str().unwrap()], 2, &["joint 1", "max_velocity", "--joint-limits"]);
 }
+
+/// `reach path` times a planned path time-optimally by default when the robot has velocity and
+/// acceleration limits, along the straight edges the swept check proved clear.
+#[test]
+fn a_planned_path_is_timed_optimally_by_default() {
+    let scene = example("../../examples/ur5_ball.toml");
+    let base = ["path", "ur5", &scene, "--from", "90,-90,90,-90,-90,0", "--to", "-90,-60,60,-90,-90,0", "--json"];
+    let optimal = crate::common::json(&base);
+    assert_eq!(optimal["timing"], "optimal");
+    assert_eq!(optimal["collision_free"], true);
+    let duration = optimal["duration_s"].as_f64().unwrap();
+    let segments = nums(&optimal["segment_durations_s"]);
+    assert_eq!(segments.len() + 1, optimal["waypoints_deg"].as_array().unwrap().len());
+    assert!((segments.iter().sum::<f64>() - duration).abs() < 1e-9, "{segments:?} against {duration}");
+    // Time-optimal: within every limit, and some limit is reached.
+    let worst: Vec<f64> =
+        nums(&optimal["worst_velocity_ratio"]).into_iter().chain(nums(&optimal["worst_acceleration_ratio"])).collect();
+    assert!(worst.iter().all(|&r| r <= 1.0 + 1e-9), "{worst:?}");
+    assert!(worst.iter().any(|&r| r > 0.99), "{worst:?}");
+    // Half the acceleration: slower, still within the scaled limits.
+    let slower = crate::common::json(&[&base[..], &["--max-acceleration-scale", "0.5"]].concat());
+    assert!(slower["duration_s"].as_f64().unwrap() > duration);
+    assert!(nums(&slower["worst_acceleration_ratio"]).iter().all(|&r| r <= 1.0 + 1e-9));
+    // A fixed duration means cycloidal timing; optimal timing cannot take one.
+    let fixed = crate::common::json(&[&base[..], &["--duration", "6"]].concat());
+    assert_eq!(fixed["timing"], "cycloidal");
+    assert!((fixed["duration_s"].as_f64().unwrap() - 6.0).abs() < 1e-9);
+    assert!(fixed["worst_velocity_ratio"].is_null());
+    fails(&[&base[..], &["--timing", "optimal", "--duration", "6"]].concat(), 2, &["--duration", "optimal timing"]);
+    fails(
+        &[&base[..], &["--duration", "6", "--max-velocity-scale", "0.5"]].concat(),
+        2,
+        &["--max-velocity-scale", "a duration is given"],
+    );
+    // A robot without acceleration limits is timed cycloidal unless optimal is asked for.
+    let post = example("../../examples/path_planar3_post.toml");
+    let planar = crate::common::json(&[
+        "path",
+        "planar3",
+        &post,
+        "--from",
+        "60,-40,-30",
+        "--to",
+        "0,-30,-30",
+        "--duration",
+        "5",
+        "--json",
+    ]);
+    assert_eq!(planar["timing"], "cycloidal");
+    fails(
+        &["path", "planar3", &post, "--from", "60,-40,-30", "--to", "0,-30,-30", "--timing", "optimal"],
+        2,
+        &["joint 1", "--joint-limits"],
+    );
+}

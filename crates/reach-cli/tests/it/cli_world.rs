@@ -189,6 +189,9 @@ fn path_json_is_the_library_report_and_matches_its_schema() {
             seed: 1,
             time_budget_s: 1.0,
             duration_s: Some(10.0),
+            timing: None,
+            max_velocity_scale: 1.0,
+            max_acceleration_scale: 1.0,
         }),
     };
     let args = [

@@ -775,3 +775,9 @@ pub fn parse_path_file(text: &str, csv_unit: AngleUnit) -> Result<Vec<Joints>> {
         })
         .collect())
 }
+
+/// The default of a limit's scale (`max_velocity_scale`, `max_acceleration_scale`): 1, the
+/// limits as given.
+pub(crate) fn full_scale() -> f64 {
+    1.0
+}

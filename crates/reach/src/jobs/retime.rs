@@ -4,7 +4,7 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use super::input::{Joints, from_si, number_text, unit_name};
+use super::input::{Joints, from_si, full_scale, number_text, unit_name};
 use crate::Robot;
 use crate::error::{Error, Result};
 use crate::motion::{MotionError, PathLimits, PiecewiseCubic, time_optimal};
@@ -21,10 +21,6 @@ pub enum Interpolation {
     Linear,
 }
 
-fn one() -> f64 {
-    1.0
-}
-
 /// Time a path of joint waypoints.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -38,10 +34,10 @@ pub struct RetimeRequest {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dt: Option<f64>,
     /// Multiplies every joint's `max_velocity`, in (0, 1] (MoveIt's scaling factor; default 1).
-    #[serde(default = "one")]
+    #[serde(default = "full_scale")]
     pub max_velocity_scale: f64,
     /// Multiplies every joint's `max_acceleration`, in (0, 1] (default 1).
-    #[serde(default = "one")]
+    #[serde(default = "full_scale")]
     pub max_acceleration_scale: f64,
     /// Grid intervals per path piece (default 64, fewer on long paths: about 4096 grid
     /// intervals in all, at least 8 per piece). More brings the duration closer to the
@@ -92,7 +88,7 @@ pub struct RetimeReport {
 
 /// A bad number of the request (a scale, `dt`, `points_per_piece`, a missing limit) as the
 /// request error naming its field.
-fn request_error(e: MotionError) -> Error {
+pub(crate) fn request_error(e: MotionError) -> Error {
     match e {
         MotionError::InvalidInput { field, reason } => Error::request(field, reason),
         other => other.into(),

@@ -686,6 +686,16 @@ impl OptimalMotion {
         self.slowdown
     }
 
+    /// The time at which the motion passes each waypoint (the path's knots), from 0 to
+    /// [`OptimalMotion::duration`]: one more than the path's pieces.
+    #[must_use]
+    pub fn knot_times(&self) -> Vec<f64> {
+        let mut times = vec![0.0];
+        times.extend((1..self.piece.len()).filter(|&i| self.piece[i] != self.piece[i - 1]).map(|i| self.t[i]));
+        times.push(self.duration());
+        times
+    }
+
     /// Number of grid points.
     #[must_use]
     pub fn grid_points(&self) -> usize {

@@ -123,6 +123,12 @@ fn polyline_stops_at_corners() {
     assert!((motion.duration() - 4.0).abs() < 0.02, "{}", motion.duration());
     let corner = motion.samples(0.001).unwrap().into_iter().find(|s| (s.q[0] - 1.0).abs() < 1e-12).unwrap();
     assert!(corner.qd.iter().all(|v| v.abs() < 1e-6), "{corner:?}");
+    // The knot times: each leg takes half the motion, and the motion is at rest on the corner.
+    let knots = motion.knot_times();
+    assert_eq!(knots.len(), 3);
+    assert!((knots[1] - motion.duration() / 2.0).abs() < 1e-12 && knots[2] == motion.duration(), "{knots:?}");
+    let at = motion.sample(knots[1]);
+    assert!((at.q[0] - 1.0).abs() < 1e-12 && at.q[1].abs() < 1e-12 && at.qd.iter().all(|v| v.abs() < 1e-9), "{at:?}");
 }
 
 #[test]

@@ -24,7 +24,9 @@ pub use cspace::{
     CspaceReport, CspaceRequest, CspaceSection, FitPrimitive, FitReport, cspace, cspace_axes, cspace_with_cancel,
     cspace_with_grid,
 };
-pub use path::{PathReport, PathRequest, PathRun, PathStatsReport, TimedPath, path, path_run, path_run_with_cancel};
+pub use path::{
+    PathReport, PathRequest, PathRun, PathStatsReport, PathTiming, TimedPath, path, path_run, path_run_with_cancel,
+};
 pub use sense::{SenseReport, SenseRequest, SensorReading, sense};
 
 use crate::error::{Error, Result};

@@ -1,13 +1,14 @@
 //! The `path` workflow: a collision-free joint-space path through a scene (RRT-Connect with
 //! shortcutting, [`crate::world::planner`]), timed waypoint to waypoint and re-checked.
 //!
-//! The path is timed with [`JointPath`]: one cycloidal segment per edge, stopping at every
-//! waypoint, so the timed motion stays on the planner's straight joint-space edges. Each
-//! segment takes the fastest synchronised time within the joints' speed limits, or a share
-//! of `duration_s` proportional to its joint-space length. Because the timed motion stays on
-//! the straight edges, the swept check of the edges ([`SweptPathReport`]) proves the timed
-//! motion clear: the report gives its certified clearance, where the path comes closest and
-//! on which link.
+//! The path is timed along the planner's straight joint-space edges, resting at every
+//! waypoint, in one of two ways ([`PathTiming`]): time-optimal under the joints' velocity and
+//! acceleration limits ([`crate::motion::optimal`], TOPP-RA on the polyline, with the exact
+//! worst ratio to each limit), or one cycloidal segment per edge ([`JointPath`]) taking the
+//! fastest synchronised time within the speed limits or a share of `duration_s` proportional
+//! to its joint-space length. Either way the timed motion stays on the straight edges, so the
+//! swept check of the edges ([`SweptPathReport`]) proves the timed motion clear: the report
+//! gives its certified clearance, where the path comes closest and on which link.
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -16,8 +17,11 @@ use super::check::SweptPathReport;
 use super::parse_scene;
 use crate::error::{Error, Result};
 use crate::ik::IkOptions;
-use crate::jobs::input::{Joints, MotionSample, Pose, positive, q_display, time_budget};
-use crate::motion::{JointMotion, JointPath, JointRates, Profile};
+use crate::jobs::input::{Joints, MotionSample, Pose, full_scale, positive, q_display, time_budget};
+use crate::jobs::retime::request_error;
+use crate::motion::{
+    JointMotion, JointPath, JointRates, OptimalMotion, PathLimits, PiecewiseCubic, Profile, time_optimal,
+};
 use crate::world::Scene;
 use crate::world::planner::{Goal, PlanError, PlanOptions, PlanStats, path_length, plan};
 use crate::{Cancel, Robot};
@@ -33,6 +37,65 @@ fn default_time_budget_s() -> f64 {
 /// Joint-space distance (`path_length` units: rad and m mixed, Euclidean) at or below which
 /// the start and the goal are one configuration and there is nothing to plan.
 const SAME_CONFIGURATION: f64 = 1e-12;
+
+/// How a planned path is timed. Both stay on the straight edges and rest at every waypoint.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum PathTiming {
+    /// Time-optimal (TOPP-RA) under every joint's `max_velocity` and `max_acceleration`
+    /// (times their scales), proven within them between samples.
+    Optimal,
+    /// One cycloidal segment per edge: the synchronised minimum time within the speed limits,
+    /// or `duration_s` shared by joint-space length.
+    Cycloidal,
+}
+
+impl PathTiming {
+    /// The timing a request gets: the one it names, else `optimal` when no `duration_s` is
+    /// given and every joint has a velocity and an acceleration limit, else `cycloidal`.
+    ///
+    /// # Errors
+    /// [`Error::Request`] for `optimal` with a `duration_s` (the limits set the duration), or
+    /// a scale other than 1 with `cycloidal` timing.
+    pub fn resolve(robot: &Robot, request: &PathRequest) -> Result<PathTiming> {
+        let limited = robot.joints().iter().all(|j| j.max_velocity.is_some() && j.max_acceleration.is_some());
+        let timing = request.timing.unwrap_or(if request.duration_s.is_none() && limited {
+            PathTiming::Optimal
+        } else {
+            PathTiming::Cycloidal
+        });
+        match timing {
+            PathTiming::Optimal if request.duration_s.is_some() => Err(Error::request(
+                "duration_s",
+                "cannot be given with optimal timing (the limits set the duration): leave it out, or use cycloidal timing",
+            )),
+            PathTiming::Cycloidal => {
+                for (field, scale) in [
+                    ("max_velocity_scale", request.max_velocity_scale),
+                    ("max_acceleration_scale", request.max_acceleration_scale),
+                ] {
+                    if scale != 1.0 {
+                        return Err(Error::request(
+                            field,
+                            format!(
+                                "{scale} applies to optimal timing only, and the path is timed cycloidal ({})",
+                                if request.timing.is_some() {
+                                    "as asked"
+                                } else if request.duration_s.is_some() {
+                                    "a duration is given"
+                                } else {
+                                    "the robot lacks velocity or acceleration limits"
+                                }
+                            ),
+                        ));
+                    }
+                }
+                Ok(timing)
+            }
+            PathTiming::Optimal => Ok(timing),
+        }
+    }
+}
 
 /// A collision-free path from a configuration to a configuration or a tool pose. Give exactly
 /// one of `to` and `to_pose`.
@@ -60,6 +123,17 @@ pub struct PathRequest {
     /// within the joints' speed limits, segment by segment).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub duration_s: Option<f64>,
+    /// How the path is timed (default: `optimal` when no `duration_s` is given and every
+    /// joint has velocity and acceleration limits, else `cycloidal`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub timing: Option<PathTiming>,
+    /// Optimal timing: multiplies every joint's `max_velocity`, in (0, 1] (MoveIt's scaling
+    /// factor; default 1).
+    #[serde(default = "full_scale")]
+    pub max_velocity_scale: f64,
+    /// Optimal timing: multiplies every joint's `max_acceleration`, in (0, 1] (default 1).
+    #[serde(default = "full_scale")]
+    pub max_acceleration_scale: f64,
 }
 
 /// Planning statistics.
@@ -102,6 +176,17 @@ pub struct PathReport {
     pub duration_s: Option<f64>,
     /// Duration of each segment, s.
     pub segment_durations_s: Vec<f64>,
+    /// How the path is timed.
+    pub timing: PathTiming,
+    /// The velocity limits' scale (optimal timing; 1 otherwise).
+    pub max_velocity_scale: f64,
+    /// The acceleration limits' scale (optimal timing; 1 otherwise).
+    pub max_acceleration_scale: f64,
+    /// Optimal timing: per joint, the exact largest `|q̇| / limit` over the whole motion
+    /// (≤ 1; the limit after scaling); `null` for cycloidal timing or without a path.
+    pub worst_velocity_ratio: Option<Vec<f64>>,
+    /// Optimal timing: per joint, the exact largest `|q̈| / limit` (≤ 1); `null` otherwise.
+    pub worst_acceleration_ratio: Option<Vec<f64>>,
     /// Whether the timed motion is proven clear by the swept check (`null` without a path).
     pub collision_free: Option<bool>,
     /// The swept (continuous) check of every segment between waypoints: where the path comes
@@ -168,6 +253,12 @@ pub fn path_run_with_cancel(robot: &Robot, request: &PathRequest, cancel: &Cance
     let scene = parse_scene(&request.scene)?;
     let (start, goal) = super::start_and_goal(robot, &request.from, request.to.as_ref(), request.to_pose.as_ref())?;
     let total = positive("duration_s", request.duration_s)?;
+    let timing = PathTiming::resolve(robot, request)?;
+    // Bad limits or scales are refused before planning.
+    if timing == PathTiming::Optimal {
+        PathLimits::from_robot(robot, request.max_velocity_scale, request.max_acceleration_scale)
+            .map_err(request_error)?;
+    }
     let budget = time_budget("time_budget_s", Some(request.time_budget_s))?;
     let same = || Error::request("to", "the same configuration as `from`: nothing to plan");
     // A joint goal is compared before planning; a pose goal only once IK has chosen its
@@ -197,6 +288,11 @@ pub fn path_run_with_cancel(robot: &Robot, request: &PathRequest, cancel: &Cance
         },
         duration_s: None,
         segment_durations_s: Vec::new(),
+        timing,
+        max_velocity_scale: request.max_velocity_scale,
+        max_acceleration_scale: request.max_acceleration_scale,
+        worst_velocity_ratio: None,
+        worst_acceleration_ratio: None,
         collision_free: None,
         swept: None,
     };
@@ -216,9 +312,14 @@ pub fn path_run_with_cancel(robot: &Robot, request: &PathRequest, cancel: &Cance
             if let (Some(last), Some(to)) = (report.waypoints_deg.last_mut(), &request.to) {
                 *last = to.display(robot);
             }
-            let (durations, timed) = timed_path(robot, &p.waypoints, total)?;
+            let law = TimingLaw::new(robot, &p.waypoints, &report, total)?;
+            let timed = law.timed_path(robot)?;
             report.duration_s = timed.times.last().copied();
-            report.segment_durations_s = durations;
+            report.segment_durations_s = law.segment_durations();
+            if let TimingLaw::Optimal(m) = &law {
+                report.worst_velocity_ratio = Some(m.worst_ratios().velocity.clone());
+                report.worst_acceleration_ratio = Some(m.worst_ratios().acceleration.clone());
+            }
             report.swept = SweptPathReport::check(robot, &scene, &p.waypoints, None)?;
             report.collision_free = Some(report.swept.as_ref().is_none_or(|s| s.swept.clear));
             let waypoints_tool_xyz_m = tool_points(robot, &p.waypoints)?;
@@ -261,29 +362,69 @@ fn durations(robot: &Robot, waypoints: &[Vec<f64>], total: Option<f64>) -> Resul
     }
 }
 
-/// The timed motion along `waypoints`, sampled for drawings and callers (200 to 2000
-/// samples).
-fn timed_path(robot: &Robot, waypoints: &[Vec<f64>], total: Option<f64>) -> Result<(Vec<f64>, TimedPath)> {
-    let durations = durations(robot, waypoints, total)?;
-    let path = timing(robot, waypoints, &durations)?;
-    let steps = (20 * durations.len()).clamp(200, 2000);
-    let traj = path.sample(path.duration() / steps as f64)?;
-    let times = traj.times();
-    let q: Vec<Vec<f64>> = traj.samples.into_iter().map(|s| s.q).collect();
-    let qd: Vec<Vec<f64>> = times.iter().map(|t| path.velocity(*t)).collect();
-    let tool_xyz_m = tool_points(robot, &q)?;
-    Ok((durations, TimedPath { times, q, qd, tool_xyz_m }))
+/// The timed motion along the straight edges between waypoints ([`PathTiming`]).
+enum TimingLaw {
+    Optimal(OptimalMotion),
+    Cycloidal(JointPath),
 }
 
-/// The path's timing: one cycloidal segment per edge, stopping at every waypoint (so the
-/// motion stays on the straight edges the planner proved clear).
-fn timing(robot: &Robot, waypoints: &[Vec<f64>], durations: &[f64]) -> Result<JointPath> {
-    Ok(JointPath::through(robot, waypoints, durations, 0.0, Profile::Cycloidal)?)
+impl TimingLaw {
+    /// The law of `report.timing` (with its scales) along `waypoints`; `total` is the
+    /// cycloidal timing's `duration_s`.
+    fn new(robot: &Robot, waypoints: &[Vec<f64>], report: &PathReport, total: Option<f64>) -> Result<TimingLaw> {
+        match report.timing {
+            PathTiming::Optimal => {
+                let limits = PathLimits::from_robot(robot, report.max_velocity_scale, report.max_acceleration_scale)
+                    .map_err(request_error)?;
+                let path = PiecewiseCubic::polyline(waypoints)?;
+                Ok(TimingLaw::Optimal(time_optimal(&path, &limits, 0).map_err(request_error)?))
+            }
+            PathTiming::Cycloidal => {
+                let durations = durations(robot, waypoints, total)?;
+                Ok(TimingLaw::Cycloidal(JointPath::through(robot, waypoints, &durations, 0.0, Profile::Cycloidal)?))
+            }
+        }
+    }
+
+    /// Duration of each segment, s.
+    fn segment_durations(&self) -> Vec<f64> {
+        match self {
+            TimingLaw::Optimal(m) => m.knot_times().windows(2).map(|w| w[1] - w[0]).collect(),
+            TimingLaw::Cycloidal(p) => p.segments().iter().map(JointMotion::duration).collect(),
+        }
+    }
+
+    /// Time, positions and speeds every `dt` seconds from 0, and at the end.
+    fn samples(&self, dt: f64) -> Result<Vec<(f64, Vec<f64>, Vec<f64>)>> {
+        Ok(match self {
+            TimingLaw::Optimal(m) => {
+                m.samples(dt).map_err(request_error)?.into_iter().map(|s| (s.t, s.q, s.qd)).collect()
+            }
+            TimingLaw::Cycloidal(p) => p.sample(dt)?.samples.into_iter().map(|s| (s.t, s.q, p.velocity(s.t))).collect(),
+        })
+    }
+
+    /// The motion sampled for drawings and callers (200 to 2000 samples).
+    fn timed_path(&self, robot: &Robot) -> Result<TimedPath> {
+        let (segments, duration) = match self {
+            TimingLaw::Optimal(m) => (m.knot_times().len() - 1, m.duration()),
+            TimingLaw::Cycloidal(p) => (p.segments().len(), p.duration()),
+        };
+        let steps = (20 * segments).clamp(200, 2000);
+        let (mut times, mut q, mut qd) = (Vec::new(), Vec::new(), Vec::new());
+        for (t, qk, qdk) in self.samples(duration / steps as f64)? {
+            times.push(t);
+            q.push(qk);
+            qd.push(qdk);
+        }
+        let tool_xyz_m = tool_points(robot, &q)?;
+        Ok(TimedPath { times, q, qd, tool_xyz_m })
+    }
 }
 
 impl PathReport {
-    /// The timed motion of a found path ([`PathReport::waypoints_deg`],
-    /// [`PathReport::segment_durations_s`], the workflow's timing) sampled every `dt_s`
+    /// The timed motion of a found path ([`PathReport::waypoints_deg`] with the report's
+    /// timing: its scales, or its [`PathReport::segment_durations_s`]) sampled every `dt_s`
     /// seconds (and at the end), as a drive follows it; empty when no path was found.
     ///
     /// # Errors
@@ -298,9 +439,21 @@ impl PathReport {
             .iter()
             .map(|w| Joints::Deg(w.clone()).si(robot, "waypoints_deg"))
             .collect::<Result<Vec<_>>>()?;
-        let path = timing(robot, &waypoints, &self.segment_durations_s)?;
-        let trajectory = path.sample(dt_s)?;
-        Ok(trajectory.samples.iter().map(|s| MotionSample { t_s: s.t, q_deg: q_display(robot, &s.q) }).collect())
+        let law = match self.timing {
+            PathTiming::Optimal => TimingLaw::new(robot, &waypoints, self, None)?,
+            PathTiming::Cycloidal => TimingLaw::Cycloidal(JointPath::through(
+                robot,
+                &waypoints,
+                &self.segment_durations_s,
+                0.0,
+                Profile::Cycloidal,
+            )?),
+        };
+        Ok(law
+            .samples(dt_s)?
+            .into_iter()
+            .map(|(t_s, q, _)| MotionSample { t_s, q_deg: q_display(robot, &q) })
+            .collect())
     }
 }
 
