@@ -192,9 +192,11 @@ impl Db {
     /// Opens (or creates) `dir/state.sqlite3` for the robot `robot_json` (its `RobotInput`
     /// JSON) with joints `names`, starting at `initial_steps` when new.
     ///
-    /// On an existing database the robot must be the same, else [`ServeError::RobotMismatch`]; a
-    /// job left `executing` becomes `interrupted` (its committed segment kept) and the queue is
-    /// paused until `POST /resume`; a job left `planning` (nothing moved yet) is queued again.
+    /// On an existing database the robot must be the same, else [`ServeError::RobotMismatch`].
+    /// Whenever a job was past `queued` and not ended when the service stopped, the queue is
+    /// paused until `POST /resume`, and the job's message says why: a job left `executing`
+    /// becomes `interrupted` (its committed segment kept), one left `planning` (nothing moved
+    /// yet) is queued again, one left `waiting_operator` keeps waiting.
     ///
     /// # Errors
     /// [`ServeError`] for a database that cannot be opened, has a newer schema, or holds
@@ -265,27 +267,57 @@ impl Db {
             tx.execute("INSERT OR REPLACE INTO meta (key, value) VALUES ('scene', ?1)", params![text])?;
         }
         let now = now_ms();
-        let interrupted: Option<i64> = tx
-            .query_row("SELECT id FROM jobs WHERE status = ?1", [JobStatus::Executing.as_str()], |r| r.get(0))
-            .optional()?;
-        if let Some(id) = interrupted {
-            let segment: i64 = tx.query_row("SELECT segment FROM jobs WHERE id = ?1", params![id], |r| r.get(0))?;
-            let message =
-                format!("interrupted: the service stopped during the job; segment {segment} was the last committed");
-            tx.execute(
-                "UPDATE jobs SET status = ?4, message = ?2, updated_ms = ?3 WHERE id = ?1",
-                params![id, message, now, JobStatus::Interrupted.as_str()],
+        // One rule: a job past `queued` and not ended (planning, waiting for its operator,
+        // executing) when the service stopped pauses the queue until `POST /resume`; its status
+        // and message say why. Only an executing job may have moved: it ends `interrupted`.
+        let caught: Vec<(i64, String, i64)> = {
+            let mut stmt =
+                tx.prepare("SELECT id, status, segment FROM jobs WHERE status IN (?1, ?2, ?3) ORDER BY id")?;
+            let rows = stmt.query_map(
+                params![
+                    JobStatus::Planning.as_str(),
+                    JobStatus::WaitingOperator.as_str(),
+                    JobStatus::Executing.as_str()
+                ],
+                |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?)),
             )?;
-            tx.execute("UPDATE meta SET value = '1' WHERE key = 'paused'", [])?;
+            rows.collect::<Result<_, _>>()?
+        };
+        let mut interrupted = None;
+        for (id, status, segment) in &caught {
+            let (next, message) = match JobStatus::parse(status) {
+                Some(JobStatus::Executing) => {
+                    interrupted = Some(*id);
+                    (
+                        JobStatus::Interrupted,
+                        format!(
+                            "interrupted: the service stopped during the job; segment {segment} was the last committed; the queue is paused until POST /resume"
+                        ),
+                    )
+                }
+                Some(JobStatus::WaitingOperator) => (
+                    JobStatus::WaitingOperator,
+                    "the service stopped while the job waited for the operator; the queue is paused until POST /resume"
+                        .to_string(),
+                ),
+                _ => (
+                    JobStatus::Queued,
+                    "the service stopped while the job was planned (nothing moved); queued again, the queue is paused until POST /resume"
+                        .to_string(),
+                ),
+            };
             tx.execute(
-                "INSERT INTO events (at_ms, job, type, message) VALUES (?1, ?2, 'interrupted', ?3)",
-                params![now, id, message],
+                "UPDATE jobs SET status = ?2, message = ?3, updated_ms = ?4 WHERE id = ?1",
+                params![id, next.as_str(), message, now],
+            )?;
+            tx.execute(
+                "INSERT INTO events (at_ms, job, type, message) VALUES (?1, ?2, ?3, ?4)",
+                params![now, id, next.as_str(), message],
             )?;
         }
-        tx.execute(
-            "UPDATE jobs SET status = ?2, updated_ms = ?1 WHERE status = ?3",
-            params![now, JobStatus::Queued.as_str(), JobStatus::Planning.as_str()],
-        )?;
+        if !caught.is_empty() {
+            tx.execute("UPDATE meta SET value = '1' WHERE key = 'paused'", [])?;
+        }
         tx.commit()?;
         recovery.interrupted = interrupted;
         Ok((Db { conn, _lock: lock }, recovery))

@@ -7,5 +7,6 @@ mod common;
 mod api;
 mod durability;
 mod operator;
+mod recovery;
 mod socket;
 mod world;
