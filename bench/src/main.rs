@@ -16,6 +16,12 @@
 //! is built from the same robot as reach and checked against reach's forward kinematics to
 //! 1e-9 before anything is timed, so both solve the same chain.
 //!
+//! Building: besides Rust, the peers need **CMake** and a C compiler — `ik-geo` depends on
+//! the `nlopt` crate (0.7), whose build script compiles the NLopt C library with CMake (the
+//! `cmake` crate), e.g. `apt-get install cmake build-essential`. `k` and `rs-opw-kinematics`
+//! are plain Rust. (The Python and C++ peers of `bench/peers/` have their own requirements,
+//! listed in its README.)
+//!
 //! Timing: for every comparison, rounds alternate between reach and the peer (each round one
 //! pass over all poses), after a warm-up pass each; the reported time per call is the median
 //! over the rounds, the ratio is reach / peer of those medians. Absolute times drift with the

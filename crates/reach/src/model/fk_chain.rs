@@ -16,7 +16,10 @@
 //! next axis. `Rz(θi)` joins the joint's motion as an offset on its angle, the rest is a
 //! [`DhStep`]: 18 products instead of a general constant's 36. A step is taken in this form only
 //! when it equals the exact product to rounding ([`REFRAME_TOLERANCE`], checked when the chain
-//! is built); otherwise the link keeps the general constant and the next frame is not moved.
+//! is built) and the next frame slides along its axis by no more than the step's own length
+//! times `REFRAME_TOLERANCE / ε` (a longer slide rounds the product by more than the tolerance:
+//! nearly parallel skew axes meet their common normal far away); otherwise the link keeps the
+//! general constant and the next frame is not moved.
 //! Standard-DH robots are in this form already (their steps are taken as they are, bit for
 //! bit); modified DH and URDF chains are rewritten. The last constant (the tool included)
 //! has no next motion frame to move: it becomes `Rz(θ)·`step when it is of that form as it
@@ -40,7 +43,9 @@ use crate::kinematics::lanes::FrameLanes;
 use crate::simd::{self, Level};
 
 /// Largest gap (rotation entries; translation entries relative to `1 + |translation|`) between
-/// a rewritten DH step and the exact product it replaces: a few units of rounding.
+/// a rewritten DH step and the exact product it replaces: a few units of rounding. A slide of
+/// the next frame along its axis by `δ` is allowed while `ε·|δ|` stays within this tolerance
+/// relative to the step's length ([`dh_reframe`]).
 pub(crate) const REFRAME_TOLERANCE: f64 = 8.0 * f64::EPSILON;
 
 /// The constant `Tz(d)·Tx(a)·Rx(α)` after a joint's motion (12 + 6 products).
@@ -351,6 +356,14 @@ fn dh_reframe(g: &IsometryMatrix3<f64>) -> Option<(IsometryMatrix3<f64>, f64, Dh
     } else {
         0.0
     };
+    // The slide rounds the product by about ε·|δ| (the next constant, the link frames and the
+    // running frame go out along the axis and back), which the step's check below does not
+    // see: it is taken only when that is within the tolerance relative to the step's own
+    // length. Nearly parallel skew axes, whose common normal lies far along them (the AL5D's
+    // axes 5.9e-10 rad off antiparallel: δ ≈ 2.5e8 m), keep the general constant.
+    if delta.abs() * f64::EPSILON > REFRAME_TOLERANCE * p.norm() {
+        return None;
+    }
     #[rustfmt::skip]
     let rz = Matrix3::new(
         c,   -s,  0.0,

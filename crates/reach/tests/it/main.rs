@@ -58,6 +58,7 @@ mod seed_004_cspace;
 mod seed_004_fit;
 mod seed_004_ik_varan4;
 mod urdf_import;
+mod urdf_literal;
 mod urdf_panda;
 mod world_allowed_collisions;
 mod world_bodies;
