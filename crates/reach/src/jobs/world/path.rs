@@ -362,9 +362,12 @@ fn durations(robot: &Robot, waypoints: &[Vec<f64>], total: Option<f64>) -> Resul
     }
 }
 
+/// Time, joint positions and joint speeds (SI).
+type TimedSample = (f64, Vec<f64>, Vec<f64>);
+
 /// The timed motion along the straight edges between waypoints ([`PathTiming`]).
 enum TimingLaw {
-    Optimal(OptimalMotion),
+    Optimal(Box<OptimalMotion>),
     Cycloidal(JointPath),
 }
 
@@ -377,7 +380,7 @@ impl TimingLaw {
                 let limits = PathLimits::from_robot(robot, report.max_velocity_scale, report.max_acceleration_scale)
                     .map_err(request_error)?;
                 let path = PiecewiseCubic::polyline(waypoints)?;
-                Ok(TimingLaw::Optimal(time_optimal(&path, &limits, 0).map_err(request_error)?))
+                Ok(TimingLaw::Optimal(Box::new(time_optimal(&path, &limits, 0).map_err(request_error)?)))
             }
             PathTiming::Cycloidal => {
                 let durations = durations(robot, waypoints, total)?;
@@ -395,7 +398,7 @@ impl TimingLaw {
     }
 
     /// Time, positions and speeds every `dt` seconds from 0, and at the end.
-    fn samples(&self, dt: f64) -> Result<Vec<(f64, Vec<f64>, Vec<f64>)>> {
+    fn samples(&self, dt: f64) -> Result<Vec<TimedSample>> {
         Ok(match self {
             TimingLaw::Optimal(m) => {
                 m.samples(dt).map_err(request_error)?.into_iter().map(|s| (s.t, s.q, s.qd)).collect()
