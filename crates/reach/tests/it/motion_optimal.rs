@@ -141,8 +141,9 @@ fn bad_input_is_named() {
         let err = PathLimits::new(vec![1.0, bad], vec![1.0, 1.0]).unwrap_err();
         assert!(err.to_string().contains("velocity[2]"), "{err}");
     }
-    let ur5 = presets::get("ur5").unwrap();
-    let err = PathLimits::from_robot(&ur5, 1.0, 1.0).unwrap_err();
+    // The Puma 560 preset carries no speed or acceleration limits.
+    let puma = presets::get("puma560").unwrap();
+    let err = PathLimits::from_robot(&puma, 1.0, 1.0).unwrap_err();
     assert!(matches!(err, MotionError::InvalidInput { .. }) && err.to_string().contains("joint 1"), "{err}");
     let panda = presets::get("panda").unwrap();
     assert!(PathLimits::from_robot(&panda, 1.5, 1.0).unwrap_err().to_string().contains("max_velocity_scale"));
