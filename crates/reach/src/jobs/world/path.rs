@@ -312,7 +312,11 @@ pub fn path_run_with_cancel(robot: &Robot, request: &PathRequest, cancel: &Cance
             if let (Some(last), Some(to)) = (report.waypoints_deg.last_mut(), &request.to) {
                 *last = to.display(robot);
             }
-            let law = TimingLaw::new(robot, &p.waypoints, &report, total)?;
+            let cycloidal = match report.timing {
+                PathTiming::Cycloidal => durations(robot, &p.waypoints, total)?,
+                PathTiming::Optimal => Vec::new(),
+            };
+            let law = TimingLaw::new(robot, &p.waypoints, &report, &cycloidal)?;
             let timed = law.timed_path(robot)?;
             report.duration_s = timed.times.last().copied();
             report.segment_durations_s = law.segment_durations();
@@ -372,9 +376,9 @@ enum TimingLaw {
 }
 
 impl TimingLaw {
-    /// The law of `report.timing` (with its scales) along `waypoints`; `total` is the
-    /// cycloidal timing's `duration_s`.
-    fn new(robot: &Robot, waypoints: &[Vec<f64>], report: &PathReport, total: Option<f64>) -> Result<TimingLaw> {
+    /// The law of `report.timing` along `waypoints`: optimal with the report's scales, or
+    /// cycloidal with `durations` per segment.
+    fn new(robot: &Robot, waypoints: &[Vec<f64>], report: &PathReport, durations: &[f64]) -> Result<TimingLaw> {
         match report.timing {
             PathTiming::Optimal => {
                 let limits = PathLimits::from_robot(robot, report.max_velocity_scale, report.max_acceleration_scale)
@@ -383,8 +387,7 @@ impl TimingLaw {
                 Ok(TimingLaw::Optimal(Box::new(time_optimal(&path, &limits, 0).map_err(request_error)?)))
             }
             PathTiming::Cycloidal => {
-                let durations = durations(robot, waypoints, total)?;
-                Ok(TimingLaw::Cycloidal(JointPath::through(robot, waypoints, &durations, 0.0, Profile::Cycloidal)?))
+                Ok(TimingLaw::Cycloidal(JointPath::through(robot, waypoints, durations, 0.0, Profile::Cycloidal)?))
             }
         }
     }
@@ -442,16 +445,7 @@ impl PathReport {
             .iter()
             .map(|w| Joints::Deg(w.clone()).si(robot, "waypoints_deg"))
             .collect::<Result<Vec<_>>>()?;
-        let law = match self.timing {
-            PathTiming::Optimal => TimingLaw::new(robot, &waypoints, self, None)?,
-            PathTiming::Cycloidal => TimingLaw::Cycloidal(JointPath::through(
-                robot,
-                &waypoints,
-                &self.segment_durations_s,
-                0.0,
-                Profile::Cycloidal,
-            )?),
-        };
+        let law = TimingLaw::new(robot, &waypoints, self, &self.segment_durations_s)?;
         Ok(law
             .samples(dt_s)?
             .into_iter()
