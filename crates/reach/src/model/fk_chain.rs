@@ -38,8 +38,8 @@
 use nalgebra::{IsometryMatrix3, Matrix3, Rotation3, Translation3, Vector3};
 
 use super::chain::{ChainLink, MimicStep};
+use super::frame_lanes::FrameLanes;
 use crate::angle::sin_cos_lanes;
-use crate::kinematics::lanes::FrameLanes;
 use crate::simd::{self, Level};
 
 /// Largest gap (rotation entries; translation entries relative to `1 + |translation|`) between

@@ -19,6 +19,7 @@ mod urdf;
 
 pub(crate) mod chain;
 pub(crate) mod fk_chain;
+pub(crate) mod frame_lanes;
 pub mod planar_angles;
 pub mod presets;
 
