@@ -14,11 +14,15 @@ use crate::error::CliError;
 
 /// Joint-value arguments (flatten into a command): `Q…` and `--rad`.
 ///
-/// Values may be negative without `--`: `reach fk ur5 -90 -45.5 0 0 0 0`.
+/// Values may be negative without `--`: `reach fk ur5 -90 -45.5 0 0 0 0`. Like every joint
+/// vector of the command line they take commas and/or blanks, so one argument may hold
+/// several values: `reach fk ur5 10,-80,100,-110,10,0` and `reach fk ur5 "10 -80 100 -110 10 0"`
+/// mean the same as six separate arguments.
 #[derive(Debug, Clone, Args)]
 pub struct JointArgs {
     /// Joint values, base to tip: degrees for revolute joints (radians with --rad), metres
-    /// for prismatic joints. Negative values need no `--`.
+    /// for prismatic joints; separate arguments or one list with commas/blanks
+    /// (`0,-90,90,0,0,0`). Negative values need no `--`.
     #[arg(value_name = "Q")]
     pub q: Vec<String>,
 
@@ -29,19 +33,38 @@ pub struct JointArgs {
 
 impl JointArgs {
     /// The values as typed, in the unit of `--rad`, each checked to be a finite number (the
-    /// count is checked against the robot by the library).
+    /// count is checked against the robot by the library). Each argument is split at commas
+    /// and blanks ([`split_joint_args`]).
     ///
     /// # Errors
     /// [`CliError::BadInput`] naming the 1-based joint: `joint 3: expected a number, got "abc"`.
     pub fn joints(&self) -> Result<reach::jobs::Joints, CliError> {
-        let values = self
-            .q
-            .iter()
-            .enumerate()
-            .map(|(i, t)| parse_finite(&format!("joint {}", i + 1), t))
-            .collect::<Result<Vec<_>, _>>()?;
+        let values = split_joint_args(&self.q)?;
         Ok(if self.rad { reach::jobs::Joints::Rad(values) } else { reach::jobs::Joints::Deg(values) })
     }
+}
+
+/// The one rule for joint values given as positional arguments: each argument holds one or
+/// more values separated by commas and/or blanks, numbered base to tip across arguments. An
+/// argument with no value at all (`""`, `","`) is an error naming the joint it would have
+/// been.
+///
+/// # Errors
+/// [`CliError::BadInput`]: `joint 3: expected a number, got "abc"`.
+pub fn split_joint_args(args: &[String]) -> Result<Vec<f64>, CliError> {
+    let mut values = Vec::new();
+    for arg in args {
+        let label = |values: &Vec<f64>| format!("joint {}", values.len() + 1);
+        let items = list_items(arg);
+        if items.is_empty() {
+            return Err(CliError::bad_input(format!("{}: expected a number, got {arg:?}", label(&values))));
+        }
+        for item in items {
+            let value = parse_finite(&label(&values), item)?;
+            values.push(value);
+        }
+    }
+    Ok(values)
 }
 
 /// Parses one number; `label` names it in the error (`joint 3`, `--speed`).
@@ -80,10 +103,14 @@ pub fn parse_joint_list(option: &str, text: &str) -> Result<Vec<f64>, CliError> 
     parse_items(option, text, "joint")
 }
 
+/// The items of a number list: the non-empty pieces between commas and blanks.
+fn list_items(text: &str) -> Vec<&str> {
+    text.split([',', ' ', '\t', '\n']).filter(|s| !s.trim().is_empty()).collect()
+}
+
 fn parse_items(option: &str, text: &str, noun: &str) -> Result<Vec<f64>, CliError> {
-    let values: Vec<f64> = text
-        .split([',', ' ', '\t'])
-        .filter(|s| !s.trim().is_empty())
+    let values: Vec<f64> = list_items(text)
+        .into_iter()
         .enumerate()
         .map(|(i, s)| parse_finite(&format!("{option} {noun} {}", i + 1), s))
         .collect::<Result<_, _>>()?;

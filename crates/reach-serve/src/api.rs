@@ -84,6 +84,10 @@ async fn guard(State(shared): AppState, request: Request, next: Next) -> Respons
         }
         .into_response();
     }
+    if request.headers().get_all(header::HOST).iter().nth(1).is_some() {
+        // Two Host headers: which one a proxy or the router reads is not defined.
+        return ApiError::bad_request("the request has more than one Host header").into_response();
+    }
     if shared.token.is_none()
         && let Some(host) = request.headers().get(header::HOST)
         && !loopback_host(host.to_str().unwrap_or(""))
@@ -128,15 +132,23 @@ fn same_origin(origin: &[u8], host: Option<&[u8]>) -> bool {
     host.is_some_and(|h| origin.strip_prefix(b"http://") == Some(h))
 }
 
-/// Whether a `Host` header names the loopback interface (`localhost`, `127.x.x.x`, `[::1]`,
-/// with or without a port).
+/// Whether a `Host` header is exactly a loopback name or address: `localhost` (any case), an
+/// IPv4 loopback address (`127.x.x.x`, written in full) or `[::1]`, optionally followed by `:`
+/// and a port of 1 to 5 digits; nothing else (`[::1].evil.com`, `localhost.evil.com` and
+/// `127.0.0.1:80x` are not loopback).
 fn loopback_host(host: &str) -> bool {
-    let name = if let Some(rest) = host.strip_prefix('[') {
-        rest.split(']').next().unwrap_or("")
+    let (name_ok, port) = if let Some(rest) = host.strip_prefix('[') {
+        let Some((inner, tail)) = rest.split_once(']') else { return false };
+        (inner.parse::<std::net::Ipv6Addr>().is_ok_and(|ip| ip.is_loopback()), tail)
     } else {
-        host.rsplit_once(':').map_or(host, |(name, _)| name)
+        let (name, tail) = host.find(':').map_or((host, ""), |i| host.split_at(i));
+        let ok = name.eq_ignore_ascii_case("localhost")
+            || name.parse::<std::net::Ipv4Addr>().is_ok_and(|ip| ip.is_loopback());
+        (ok, tail)
     };
-    name.eq_ignore_ascii_case("localhost") || name.parse::<std::net::IpAddr>().is_ok_and(|ip| ip.is_loopback())
+    let port_ok = port.is_empty()
+        || port.strip_prefix(':').is_some_and(|p| (1..=5).contains(&p.len()) && p.bytes().all(|b| b.is_ascii_digit()));
+    name_ok && port_ok
 }
 
 /// 413.

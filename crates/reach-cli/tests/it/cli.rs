@@ -586,7 +586,9 @@ fn non_numeric_values_are_bad_input_naming_the_joint() {
     assert_eq!(line, r#"error: joint 3: expected a number, got "abc""#);
     fails(&["fk", "puma560", "0", "-abc", "0", "0", "0", "0"], 2, &["joint 2", "\"-abc\""]);
     fails(&["fk", "planar3", "1", "2", "3deg"], 2, &["joint 3", "\"3deg\""]);
-    fails(&["fk", "planar3", "1,5", "2", "3"], 2, &["joint 1", "\"1,5\""]);
+    fails(&["fk", "planar3", "1,5", "2", "3"], 2, &["3 joints", "got 4"]);
+    fails(&["fk", "planar3", "1,x", "2"], 2, &["joint 2", "\"x\""]);
+    fails(&["fk", "planar3", "1", ",", "3"], 2, &["joint 2", "expected a number"]);
     fails(&["jacobian", "planar3", "1", "", "3"], 2, &["joint 2", "expected a number"]);
     fails(&["jacobian", "planar3", "0x10", "0", "0", "--json"], 2, &["joint 1", "\"0x10\""]);
 }

@@ -10,6 +10,7 @@ mod cli_decide;
 mod cli_drive;
 mod cli_fuzz;
 mod cli_ik;
+mod cli_issue35;
 mod cli_move;
 mod cli_plot;
 mod cli_retime;

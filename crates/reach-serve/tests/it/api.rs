@@ -209,3 +209,43 @@ async fn a_loopback_service_answers_only_to_loopback_names() {
         assert_eq!(response.status(), expected, "{host}");
     }
 }
+
+/// Issue 36 point 4: the Host check reads the whole header, not up to `]` or the first colon,
+/// and a second Host header is refused.
+#[tokio::test]
+async fn host_is_parsed_strictly_and_only_one_host_header_is_accepted() {
+    use axum::body::Body;
+    use tower::ServiceExt;
+    let dir = scratch("host-strict");
+    let service = open(&config("ur5", &dir, 50.0));
+    let router = service.router();
+    let refused = [
+        "[::1].evil.com",
+        "[::1]evil.com:80",
+        "localhost.evil.com",
+        "127.0.0.1.evil.com:80",
+        "127.0.0.1:80x",
+        "localhost:",
+        "[::1]:",
+        "evil.com:127.0.0.1",
+        "127.1",
+        "localhost:123456",
+    ];
+    for host in refused {
+        let request = axum::http::Request::get("/state").header("host", host).body(Body::empty()).unwrap();
+        let response = router.clone().oneshot(request).await.unwrap();
+        assert_eq!(response.status(), StatusCode::FORBIDDEN, "{host}");
+    }
+    for host in ["localhost", "LocalHost:7878", "127.0.0.1", "127.0.0.1:80", "127.0.0.2:7878", "[::1]", "[::1]:7878"] {
+        let request = axum::http::Request::get("/state").header("host", host).body(Body::empty()).unwrap();
+        let response = router.clone().oneshot(request).await.unwrap();
+        assert_eq!(response.status(), StatusCode::OK, "{host}");
+    }
+    let request = axum::http::Request::get("/state")
+        .header("host", "localhost:7878")
+        .header("host", "evil.example")
+        .body(Body::empty())
+        .unwrap();
+    let response = router.clone().oneshot(request).await.unwrap();
+    assert_eq!(response.status(), StatusCode::BAD_REQUEST, "two Host headers");
+}
