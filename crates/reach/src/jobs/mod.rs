@@ -18,6 +18,7 @@
 //!   current).
 
 pub mod drive;
+pub mod dynamics;
 pub mod ik;
 pub mod input;
 pub mod kinematics;
@@ -228,6 +229,8 @@ pub fn schemas() -> Vec<(&'static str, serde_json::Value)> {
         ("tasks.report", of::<TasksReport>()),
         ("drive.request", of::<DriveRequest>()),
         ("drive.report", of::<DriveReport>()),
+        ("dynamics.request", of::<dynamics::DynamicsRequest>()),
+        ("dynamics.report", of::<dynamics::DynamicsReport>()),
         ("view.request", of::<ViewRequest>()),
         ("view.report", of::<ViewReport>()),
         ("retime.request", of::<RetimeRequest>()),
