@@ -15,7 +15,7 @@ fn point3_joint_values_take_commas_or_blanks_in_one_argument() {
     assert_eq!(nums(&negative["q_deg"]), [-10.0, -80.0, 100.0, -110.0, 10.0, 0.0]);
     // Every command with positional joint values shares the rule.
     json(&["jacobian", "ur5", "10,-80,100,-110,10,0", "--json"]);
-    json(&["check", "ur5", "10 -80 100 -110 10 0", "--json"]);
+    json(&["check", "ur5", "examples/ur5_ball.toml", "10 -80 100 -110 10 0", "--json"]);
     // Errors still name the joint, counted across arguments.
     fails(&["fk", "ur5", "10,-80", "100,abc,10,0"], 2, &["joint 4", "\"abc\""]);
     fails(&["fk", "ur5", "10,-80,100,-110,10"], 2, &["6 joints", "got 5"]);
