@@ -11,7 +11,7 @@ use nalgebra::DMatrix;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use super::input::{Joints, joints_outside_limits};
+use super::input::{Joints, dense_rows, joints_outside_limits};
 use crate::Robot;
 use crate::effort::dynamics::Dynamics;
 use crate::error::Result;
@@ -93,7 +93,7 @@ pub fn dynamics(robot: &Robot, request: &DynamicsRequest) -> Result<DynamicsRepo
         gravity_m_s2: [g.x, g.y, g.z],
         tau_si: tau,
         gravity_tau_si: gravity_tau,
-        mass_matrix_si: (0..n).map(|r| (0..n).map(|c| m[(r, c)]).collect()).collect(),
+        mass_matrix_si: dense_rows(&m),
     })
 }
 

@@ -485,6 +485,14 @@ pub fn matrix_rows(pose: &Isometry3<f64>) -> [[f64; 4]; 4] {
     std::array::from_fn(|r| std::array::from_fn(|c| m[(r, c)]))
 }
 
+/// Any matrix as its rows (`rows[row][column]`), the layout of every matrix in a JSON report.
+#[must_use]
+pub fn dense_rows<R: nalgebra::Dim, C: nalgebra::Dim, S: nalgebra::RawStorage<f64, R, C>>(
+    m: &nalgebra::Matrix<f64, R, C, S>,
+) -> Vec<Vec<f64>> {
+    m.row_iter().map(|row| row.iter().copied().collect()).collect()
+}
+
 /// A pose in a report: `{"matrix", "xyz_m", "rpy_deg", "quat_wxyz"}`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct PoseReport {

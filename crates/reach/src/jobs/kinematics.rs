@@ -4,7 +4,7 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use super::input::{Joints, PoseReport, joints_outside_limits, matrix_rows};
+use super::input::{Joints, PoseReport, dense_rows, joints_outside_limits, matrix_rows};
 use crate::Robot;
 use crate::error::Result;
 use crate::kinematics::{JacobianAxes, Manipulability};
@@ -108,7 +108,7 @@ pub fn jacobian(robot: &Robot, request: &JacobianRequest) -> Result<JacobianRepo
         outside_limits: joints_outside_limits(robot, &q),
         q_si: q,
         rows: JACOBIAN_ROWS.iter().map(|s| (*s).to_string()).collect(),
-        jacobian: (0..jac.nrows()).map(|r| (0..jac.ncols()).map(|c| jac[(r, c)]).collect()).collect(),
+        jacobian: dense_rows(&jac),
         manipulability: m.yoshikawa,
         sigma_min: m.sigma_min,
         sigma_max: m.sigma_max,
