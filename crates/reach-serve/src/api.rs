@@ -10,7 +10,7 @@ use axum::extract::{DefaultBodyLimit, Path, Query, Request, State};
 use axum::http::{HeaderValue, Method, StatusCode, header};
 use axum::middleware::{self, Next};
 use axum::response::{IntoResponse, Response};
-use axum::routing::{get, post};
+use axum::routing::{delete, get, post};
 use axum::{Json, Router};
 use serde_json::{Value, json};
 use tokio::sync::broadcast::error::RecvError;
@@ -18,7 +18,7 @@ use tokio::sync::broadcast::error::RecvError;
 use crate::db::JobStatus;
 use crate::error::ApiError;
 use crate::intake;
-use crate::service::{Control, MAX_BODY_BYTES, MAX_QUEUED_JOBS, Shared, lock};
+use crate::service::{Control, MAX_BODY_BYTES, MAX_OBSTACLES, MAX_QUEUED_JOBS, Shared, lock};
 
 /// The OpenAPI description of this API.
 pub const OPENAPI: &str = include_str!("../../../docs/openapi.json");
@@ -44,6 +44,7 @@ pub fn router(shared: Arc<Shared>) -> Router {
         .route("/estop", post(estop))
         .route("/resume", post(resume))
         .route("/scene/obstacles", post(add_obstacle))
+        .route("/scene/obstacles/{name}", delete(remove_obstacle))
         .route("/sense", post(sense))
         .route("/ws", get(ws))
         .route("/openapi.json", get(openapi))
@@ -55,7 +56,7 @@ pub fn router(shared: Arc<Shared>) -> Router {
         router = router.layer(
             tower_http::cors::CorsLayer::new()
                 .allow_origin(origin)
-                .allow_methods([Method::GET, Method::POST])
+                .allow_methods([Method::GET, Method::POST, Method::DELETE])
                 .allow_headers([header::AUTHORIZATION, header::CONTENT_TYPE]),
         );
     }
@@ -105,7 +106,7 @@ async fn guard(State(shared): AppState, request: Request, next: Next) -> Respons
     }
     if let Some(token) = &shared.token {
         let path = request.uri().path();
-        let open = request.method() == Method::GET && (path == "/openapi.json" || path.starts_with("/schemas/"));
+        let open = is_open(request.method(), path);
         let bearer = request
             .headers()
             .get(header::AUTHORIZATION)
@@ -114,7 +115,8 @@ async fn guard(State(shared): AppState, request: Request, next: Next) -> Respons
             .map(str::trim);
         // A browser cannot set headers when it opens a page or a WebSocket: there (only) the
         // token may be a query.
-        let query = (path == "/ws" || path == "/")
+        let query = QUERY_TOKEN_PATHS
+            .contains(&path)
             .then(|| request.uri().query().and_then(|q| q.split('&').find_map(|kv| kv.strip_prefix("token="))))
             .flatten();
         let given = bearer.or(query);
@@ -124,6 +126,18 @@ async fn guard(State(shared): AppState, request: Request, next: Next) -> Respons
     }
     next.run(request).await
 }
+
+/// Whether a request needs no token: the API's descriptions, which hold no state
+/// (`GET /openapi.json`, `GET /schemas/{name}`). `docs/openapi.json` marks exactly these
+/// `security: []` (a test holds the two together).
+fn is_open(method: &Method, path: &str) -> bool {
+    method == Method::GET && (path == "/openapi.json" || path.starts_with("/schemas/"))
+}
+
+/// The routes that may carry the token as the query `?token=` (a browser cannot set headers
+/// when it opens a page or a WebSocket); `docs/openapi.json` gives exactly these a `token`
+/// query parameter.
+const QUERY_TOKEN_PATHS: [&str; 2] = ["/", "/ws"];
 
 /// Whether a browser's `Origin` is the service itself (`http://` + the request's `Host`): the
 /// live page at `/` calls the API it was served by. (On loopback the `Host` is checked to be
@@ -321,6 +335,7 @@ async fn plan(
     let _permit = shared.planning.acquire().await.map_err(|e| ApiError::internal(e.to_string()))?;
     blocking(shared, move |s| {
         let report = intake::plan(&s.robot, &request)?;
+        intake::require_storable(&report)?;
         Ok((request, report))
     })
     .await
@@ -447,6 +462,20 @@ fn append_obstacle(shared: &Shared, value: &Value, metres: Option<&[&str]>) -> R
     let text = format!("{old}\n[[obstacles]]\n{table}");
     let scene = reach::jobs::world::parse_scene(&text).map_err(|e| ApiError::bad_request(e.to_string()))?;
     scene.require_fixed(FIXED_SCENE).map_err(|e| ApiError::bad_request(e.to_string()))?;
+    reach::jobs::world::require_workcell(&shared.robot, &scene).map_err(|e| ApiError::bad_request(e.to_string()))?;
+    if let Some((last, before)) = scene.obstacles.split_last()
+        && before.iter().any(|o| o.name == last.name)
+    {
+        return Err(ApiError::conflict(format!(
+            "the scene already has an obstacle named `{}`; give another name, or remove it first (DELETE /scene/obstacles/{{name}})",
+            last.name
+        )));
+    }
+    if scene.obstacles.len() > MAX_OBSTACLES {
+        return Err(ApiError::bad_request(format!(
+            "the scene holds {MAX_OBSTACLES} obstacles, the most the service keeps; remove one first (DELETE /scene/obstacles/{{name}})"
+        )));
+    }
     db.set_scene(&text)?;
     let obstacles = scene.obstacles.len();
     // Replaced while the database lock is held: concurrent additions keep their order.
@@ -464,6 +493,54 @@ fn append_obstacle(shared: &Shared, value: &Value, metres: Option<&[&str]>) -> R
     let _ = lock(&shared.db).add_event(None, "obstacle", &name);
     shared.publish(&json!({"type": "obstacle", "name": name, "obstacles": obstacles}));
     Ok(obstacles)
+}
+
+/// `DELETE /scene/obstacles/{name}`: removes the obstacle of that name from the stored scene
+/// (404 when there is none; every obstacle of that name in a scene stored before names were
+/// unique). Journalled and announced like an addition; the obstacles left keep their names.
+/// Fewer obstacles only make a proven-clear motion clearer, so the job executing goes on.
+async fn remove_obstacle(State(shared): AppState, Path(name): Path<String>) -> Result<Json<Value>, ApiError> {
+    blocking(&shared, move |s| {
+        let db = lock(&s.db);
+        let missing = |names: &[&str]| {
+            ApiError::not_found(format!(
+                "no obstacle `{name}` in the scene (its obstacles: {})",
+                if names.is_empty() { "none".to_string() } else { names.join(", ") }
+            ))
+        };
+        let Some(old) = db.scene()? else { return Err(missing(&[])) };
+        if reach::jobs::world::is_moveit_scene(&old) {
+            return Err(ApiError::bad_request(
+                "the service's scene is a MoveIt planning scene (given with --scene): edit that file and restart",
+            ));
+        }
+        let scene = reach::jobs::world::parse_scene(&old).map_err(|e| ApiError::internal(e.to_string()))?;
+        let mut table: toml::Table =
+            toml::from_str(&old).map_err(|e| ApiError::internal(format!("stored scene: {e}")))?;
+        let Some(toml::Value::Array(entries)) = table.get_mut("obstacles") else { return Err(missing(&[])) };
+        // Unnamed entries are named by their place: they keep the name they had.
+        for (entry, obstacle) in entries.iter_mut().zip(&scene.obstacles) {
+            if let Some(t) = entry.as_table_mut() {
+                t.entry("name").or_insert_with(|| obstacle.name.clone().into());
+            }
+        }
+        let before = entries.len();
+        entries.retain(|e| e.get("name").and_then(toml::Value::as_str) != Some(name.as_str()));
+        if entries.len() == before {
+            let names: Vec<&str> = scene.obstacles.iter().map(|o| o.name.as_str()).collect();
+            return Err(missing(&names));
+        }
+        let text = toml::to_string(&table).map_err(|e| ApiError::internal(e.to_string()))?;
+        let scene = reach::jobs::world::parse_scene(&text).map_err(|e| ApiError::internal(e.to_string()))?;
+        db.set_scene(&text)?;
+        let obstacles = scene.obstacles.len();
+        *s.scene.write().unwrap_or_else(std::sync::PoisonError::into_inner) = Some(scene);
+        let _ = db.add_event(None, "obstacle_removed", &name);
+        drop(db);
+        s.publish(&json!({"type": "obstacle_removed", "name": name, "obstacles": obstacles}));
+        Ok(Json(json!({"removed": name, "obstacles": obstacles})))
+    })
+    .await
 }
 
 /// What the service's scene is, for the refusal of moving obstacles: the service keeps no
@@ -558,7 +635,25 @@ async fn stream(shared: Arc<Shared>, mut socket: WebSocket) {
 
 #[cfg(test)]
 mod tests {
-    use super::loopback_host;
+    use super::{Method, OPENAPI, QUERY_TOKEN_PATHS, Value, is_open, loopback_host};
+
+    #[test]
+    fn the_token_rule_is_the_one_the_openapi_description_states() {
+        let api: Value = serde_json::from_str(OPENAPI).unwrap();
+        let paths = api["paths"].as_object().unwrap();
+        for (path, item) in paths {
+            let concrete = path.replace("{name}", "move.request.schema.json").replace("{id}", "1");
+            for (method, op) in item.as_object().unwrap() {
+                let m = Method::from_bytes(method.to_uppercase().as_bytes()).unwrap();
+                let open = op.get("security").and_then(Value::as_array).is_some_and(Vec::is_empty);
+                assert_eq!(open, is_open(&m, &concrete), "{method} {path}: `security: []` iff open");
+                let query = op["parameters"]
+                    .as_array()
+                    .is_some_and(|ps| ps.iter().any(|p| p["name"] == "token" && p["in"] == "query"));
+                assert_eq!(query, QUERY_TOKEN_PATHS.contains(&concrete.as_str()), "{method} {path}: ?token=");
+            }
+        }
+    }
 
     #[test]
     fn only_loopback_names_are_loopback_hosts() {

@@ -44,14 +44,19 @@ pub fn token(dir: &Path) -> Result<String, ServeError> {
     Ok(token)
 }
 
-/// Makes the token file readable by its owner only (mode 0600) if it is not already.
-fn make_private(path: &Path) -> Result<(), ServeError> {
+/// Makes a file (mode 0600) or the state directory (0700) its owner's only, if it is not
+/// already: no group or other permission bit is left.
+///
+/// # Errors
+/// [`ServeError::Io`] when the mode cannot be read or set.
+pub fn make_private(path: &Path) -> Result<(), ServeError> {
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;
         let meta = std::fs::metadata(path).map_err(|e| ServeError::io(path, &e))?;
-        if meta.permissions().mode() & 0o077 != 0 {
-            std::fs::set_permissions(path, std::fs::Permissions::from_mode(0o600))
+        let mode = if meta.is_dir() { 0o700 } else { 0o600 };
+        if meta.permissions().mode() & 0o777 != mode {
+            std::fs::set_permissions(path, std::fs::Permissions::from_mode(mode))
                 .map_err(|e| ServeError::io(path, &e))?;
         }
     }

@@ -193,10 +193,12 @@ impl Db {
     /// JSON) with joints `names`, starting at `initial_steps` when new.
     ///
     /// On an existing database the robot must be the same, else [`ServeError::RobotMismatch`].
-    /// Whenever a job was past `queued` and not ended when the service stopped, the queue is
-    /// paused until `POST /resume`, and the job's message says why: a job left `executing`
-    /// becomes `interrupted` (its committed segment kept), one left `planning` (nothing moved
-    /// yet) is queued again, one left `waiting_operator` keeps waiting.
+    /// A start never moves the arm by itself: whenever a job was left in the queue and not
+    /// ended (queued, planning, waiting for its operator, executing) when the service stopped,
+    /// the queue is paused until `POST /resume`, and each such job's message says why: a job
+    /// left `executing` becomes `interrupted` (its committed segment kept), one left
+    /// `planning` (nothing moved yet) is queued again, one left `waiting_operator` keeps
+    /// waiting, a queued one stays queued.
     ///
     /// # Errors
     /// [`ServeError`] for a database that cannot be opened, has a newer schema, or holds
@@ -208,7 +210,12 @@ impl Db {
         initial_steps: &[i64],
         scene: Option<&str>,
     ) -> Result<(Db, Recovery), ServeError> {
-        std::fs::create_dir_all(dir).map_err(|e| ServeError::io(dir, &e))?;
+        if !dir.exists() {
+            // A directory made here is the owner's only (0700); one the user gave is left as it
+            // is (`--state .` must not change a working directory's mode): its files are 0600.
+            std::fs::create_dir_all(dir).map_err(|e| ServeError::io(dir, &e))?;
+            crate::auth::make_private(dir)?;
+        }
         let lock_path = dir.join("lock");
         let lock = std::fs::OpenOptions::new()
             .create(true)
@@ -227,9 +234,25 @@ impl Db {
             Err(std::fs::TryLockError::Error(e)) => return Err(ServeError::io(&lock_path, &e)),
         }
         let path = dir.join("state.sqlite3");
+        // The database is made (empty) with the owner's permissions only: SQLite gives its
+        // `-wal` and `-shm` files the database's.
+        std::fs::OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(&path)
+            .map_err(|e| ServeError::io(&path, &e))?;
+        crate::auth::make_private(&lock_path)?;
+        crate::auth::make_private(&path)?;
         let mut conn = Connection::open(&path)?;
         conn.busy_timeout(std::time::Duration::from_secs(5))?;
         conn.pragma_update(None, "journal_mode", "WAL")?;
+        for suffix in ["-wal", "-shm"] {
+            let file = dir.join(format!("state.sqlite3{suffix}"));
+            if file.exists() {
+                crate::auth::make_private(&file)?;
+            }
+        }
         conn.pragma_update(None, "synchronous", "FULL")?;
         let version: i64 = conn.pragma_query_value(None, "user_version", |r| r.get(0))?;
         let mut recovery = Recovery::default();
@@ -267,14 +290,16 @@ impl Db {
             tx.execute("INSERT OR REPLACE INTO meta (key, value) VALUES ('scene', ?1)", params![text])?;
         }
         let now = now_ms();
-        // One rule: a job past `queued` and not ended (planning, waiting for its operator,
-        // executing) when the service stopped pauses the queue until `POST /resume`; its status
-        // and message say why. Only an executing job may have moved: it ends `interrupted`.
+        // One rule: a job not ended (queued, planning, waiting for its operator, executing)
+        // when the service stopped pauses the queue until `POST /resume` (a kill between two
+        // jobs must not let the next one start by itself); its status and message say why.
+        // Only an executing job may have moved: it ends `interrupted`.
         let caught: Vec<(i64, String, i64)> = {
             let mut stmt =
-                tx.prepare("SELECT id, status, segment FROM jobs WHERE status IN (?1, ?2, ?3) ORDER BY id")?;
+                tx.prepare("SELECT id, status, segment FROM jobs WHERE status IN (?1, ?2, ?3, ?4) ORDER BY id")?;
             let rows = stmt.query_map(
                 params![
+                    JobStatus::Queued.as_str(),
                     JobStatus::Planning.as_str(),
                     JobStatus::WaitingOperator.as_str(),
                     JobStatus::Executing.as_str()
@@ -300,9 +325,14 @@ impl Db {
                     "the service stopped while the job waited for the operator; the queue is paused until POST /resume"
                         .to_string(),
                 ),
-                _ => (
+                Some(JobStatus::Planning) => (
                     JobStatus::Queued,
                     "the service stopped while the job was planned (nothing moved); queued again, the queue is paused until POST /resume"
+                        .to_string(),
+                ),
+                _ => (
+                    JobStatus::Queued,
+                    "the service stopped before the job ran (nothing moved); it stays queued, the queue is paused until POST /resume"
                         .to_string(),
                 ),
             };

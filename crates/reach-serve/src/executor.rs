@@ -533,10 +533,16 @@ fn play_segments(
     Ok(Played::Done)
 }
 
+/// Ticks between two joint-state messages while the arm is idle (1 s).
+const IDLE_TICKS: u32 = 50;
+
 /// The publisher thread: every [`TICK`] while a schedule plays, sets the motors' counters
-/// from it and sends the joint state to WebSocket clients (≥ 50 Hz, whatever the disk does).
+/// from it and sends the joint state to WebSocket clients (≥ 50 Hz, whatever the disk does);
+/// while the arm is idle, the joint state every [`IDLE_TICKS`] ticks (1 Hz), as a robot's
+/// joint-state topic keeps publishing (a client counting states is never left waiting).
 pub fn publish(shared: &Arc<Shared>) {
     let mut next = Instant::now();
+    let mut idle = 0;
     loop {
         next += TICK;
         let now = Instant::now();
@@ -550,6 +556,13 @@ pub fn publish(shared: &Arc<Shared>) {
         if let Some(motion) = live.motion.clone() {
             live.steps = motion.steps_now(shared.speed, motion.timeline.duration_s);
             shared.publish_state(&live);
+            idle = 0;
+        } else {
+            idle += 1;
+            if idle >= IDLE_TICKS {
+                shared.publish_state(&live);
+                idle = 0;
+            }
         }
     }
 }

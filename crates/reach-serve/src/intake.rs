@@ -112,6 +112,37 @@ pub fn plan(robot: &Robot, request: &Request) -> Result<Report, ApiError> {
     reach::jobs::run(robot, request).map_err(|e| ApiError::bad_request(e.to_string()))
 }
 
+/// Refuses a report too large to store ([`crate::service::MAX_REPORT_BYTES`] of JSON), counted
+/// as it is written, without building the text.
+///
+/// # Errors
+/// 400 saying how to make it smaller.
+pub fn require_storable(report: &Report) -> Result<(), ApiError> {
+    /// Counts bytes; fails once past the limit (so a huge report is not written out).
+    struct Counter(usize);
+    impl std::io::Write for Counter {
+        fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+            self.0 += buf.len();
+            if self.0 > crate::service::MAX_REPORT_BYTES {
+                return Err(std::io::Error::other("too large"));
+            }
+            Ok(buf.len())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+    let mut counter = Counter(0);
+    if serde_json::to_writer(&mut counter, report).is_err() {
+        let limit = crate::service::MAX_REPORT_BYTES;
+        return Err(ApiError::bad_request(format!(
+            "the job's report is larger than the {} MiB the service stores per job; sample the motion more coarsely (a larger `dt_s`) or split it",
+            limit >> 20
+        )));
+    }
+    Ok(())
+}
+
 /// Why a planned job may not move the arm (`None`: it may), from the report alone.
 #[must_use]
 pub fn refusal(report: &Report) -> Option<String> {

@@ -19,6 +19,14 @@ use crate::error::ServeError;
 /// Largest request body, bytes (larger ones get 413).
 pub const MAX_BODY_BYTES: usize = 1 << 20;
 
+/// Largest report a job may store, bytes of JSON (a longer one is refused with 400 before it
+/// is stored: a move's samples are its bulk; a larger `dt_s` makes fewer).
+pub const MAX_REPORT_BYTES: usize = 16 << 20;
+
+/// Most obstacles the service's scene holds (`POST /scene/obstacles` beyond it gets 400;
+/// `DELETE /scene/obstacles/{name}` makes room).
+pub const MAX_OBSTACLES: usize = 1000;
+
 /// Most plans computed at once; further submissions wait their turn.
 pub const MAX_PLANNING: usize = 2;
 
@@ -194,9 +202,16 @@ impl Shared {
         let home: Vec<i64> = axes.iter().zip(robot.home()).map(|(a, q)| a.quantise(q)).collect();
         let robot_json = serde_json::to_string(&config.robot).map_err(|e| ServeError::Config(e.to_string()))?;
         if let Some(text) = &config.scene {
-            reach::jobs::world::parse_scene(text)?
-                .require_fixed(crate::api::FIXED_SCENE)
+            let scene = reach::jobs::world::parse_scene(text)?;
+            scene.require_fixed(crate::api::FIXED_SCENE).map_err(|e| ServeError::Config(format!("--scene: {e}")))?;
+            reach::jobs::world::require_workcell(&robot, &scene)
                 .map_err(|e| ServeError::Config(format!("--scene: {e}")))?;
+            if scene.obstacles.len() > MAX_OBSTACLES {
+                return Err(ServeError::Config(format!(
+                    "--scene: {} obstacles, the service keeps at most {MAX_OBSTACLES}",
+                    scene.obstacles.len()
+                )));
+            }
         }
         let (db, recovery) = Db::open(&config.state_dir, &robot_json, &names, &home, config.scene.as_deref())?;
         let scene = db.scene()?.map(|t| reach::jobs::world::parse_scene(&t)).transpose()?;

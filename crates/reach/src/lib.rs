@@ -62,6 +62,7 @@
 //! | --- | --- | --- |
 //! | configuration-space grid nodes | [`world::cspace::DEFAULT_MAX_NODES`] (20 million) | `max_nodes` (CLI `--max-nodes`), up to [`world::cspace::MAX_NODES`] (200 million) |
 //! | numeric IK `restarts × max_iterations` without a time budget | [`ik::numeric::MAX_UNTIMED_ITERATIONS`] (1 million) | a time budget (`numeric.time_budget_s`, CLI `--time-budget`) |
+//! | motion duration (a move's `duration_s`, a drive's motion) | [`motion::sample::MAX_DURATION_S`] (one day) | — |
 //! | motion samples (`duration / dt`, tool-path arc-length grids) | [`motion::sample::MAX_SAMPLES`] (10 million) | — |
 //! | seed-000 IK scan rows (`scan`, `step_deg`) | [`ik::planar::MAX_SCAN_ROWS`] (1 million) | — |
 //! | self-motion samples per turn | [`ik::planar::MAX_SELF_MOTION_SAMPLES`] (3600) | — |

@@ -1,4 +1,5 @@
-//! `reach job submit|status|watch|stop|resume` — a client of a running `reach serve`.
+//! `reach job submit|status|watch|stop|resume|choose|add-obstacle|remove-obstacle` — a client of a
+//! running `reach serve`.
 
 use std::io::{Read, Write};
 use std::time::{Duration, Instant};
@@ -65,6 +66,19 @@ pub enum JobCommand {
     },
     /// Let the queued jobs run again after a stop or an interrupted job.
     Resume,
+    /// Add an obstacle to the service's scene (`POST /scene/obstacles`): JSON in the scene
+    /// file's format (`{"name": "post", "shape": "sphere", ...}`), inline, from a file, or `-`.
+    AddObstacle {
+        /// The obstacle.
+        #[arg(value_name = "OBSTACLE")]
+        obstacle: String,
+    },
+    /// Remove an obstacle from the service's scene by name (`DELETE /scene/obstacles/NAME`).
+    RemoveObstacle {
+        /// The obstacle's name.
+        #[arg(value_name = "NAME")]
+        name: String,
+    },
     /// Answer a job waiting for the operator (its `questions`): the configuration per interval.
     Choose {
         /// The job number.
@@ -90,7 +104,7 @@ pub fn run(args: &JobArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let client = Client::new(&args.service);
     match &args.command {
         JobCommand::Submit { job, wait } => {
-            let body = job_text(job)?;
+            let body = json_text(job, "job")?;
             let reply = client.call("POST", "/jobs", Some(&body))?;
             if !wait {
                 return write_json(out, &reply);
@@ -131,21 +145,42 @@ pub fn run(args: &JobArgs, out: &mut dyn Write) -> Result<(), CliError> {
             write_json(out, &client.call("POST", &format!("/jobs/{id}/choose"), Some(&body))?)
         }
         JobCommand::Watch { count } => client.watch(*count, out),
+        JobCommand::AddObstacle { obstacle } => {
+            let body = json_text(obstacle, "obstacle")?;
+            write_json(out, &client.call("POST", "/scene/obstacles", Some(&body))?)
+        }
+        JobCommand::RemoveObstacle { name } => {
+            write_json(out, &client.call("DELETE", &format!("/scene/obstacles/{}", path_segment(name)), None)?)
+        }
     }
 }
 
-/// The job's JSON: inline, `-` (stdin) or a file.
-fn job_text(job: &str) -> Result<String, CliError> {
-    if job.trim_start().starts_with('{') {
-        return Ok(job.to_string());
+/// A JSON argument (a job, an obstacle; `what` names it): inline, `-` (stdin) or a file.
+fn json_text(arg: &str, what: &str) -> Result<String, CliError> {
+    if arg.trim_start().starts_with('{') {
+        return Ok(arg.to_string());
     }
-    if job == "-" {
+    if arg == "-" {
         let mut text = String::new();
         std::io::stdin().read_to_string(&mut text)?;
         return Ok(text);
     }
-    std::fs::read_to_string(job)
-        .map_err(|e| CliError::bad_input(format!("cannot read job file `{job}`: {}", one_line(&e.to_string()))))
+    std::fs::read_to_string(arg)
+        .map_err(|e| CliError::bad_input(format!("cannot read {what} file `{arg}`: {}", one_line(&e.to_string()))))
+}
+
+/// `text` as one URL path segment: unreserved characters as they are, every other byte
+/// percent-encoded (a sensed obstacle's name holds a blank).
+fn path_segment(text: &str) -> String {
+    text.bytes()
+        .map(|b| {
+            if b.is_ascii_alphanumeric() || b"-._~".contains(&b) {
+                (b as char).to_string()
+            } else {
+                format!("%{b:02X}")
+            }
+        })
+        .collect()
 }
 
 /// An HTTP client of the service.
@@ -170,8 +205,8 @@ impl Client {
     fn call(&self, method: &str, path: &str, body: Option<&str>) -> Result<Value, CliError> {
         let url = format!("{}{path}", self.base);
         let auth = self.token.as_ref().map(|t| format!("Bearer {t}"));
-        let result = if method == "GET" {
-            let mut r = self.agent.get(&url);
+        let result = if method == "GET" || method == "DELETE" {
+            let mut r = if method == "GET" { self.agent.get(&url) } else { self.agent.delete(&url) };
             if let Some(a) = &auth {
                 r = r.header("authorization", a);
             }

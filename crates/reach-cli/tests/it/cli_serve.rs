@@ -46,8 +46,8 @@ impl Server {
         let agent: ureq::Agent = ureq::Agent::config_builder().http_status_as_error(false).build().into();
         let url = self.url(path);
         let auth = token.map(|t| format!("Bearer {t}"));
-        let response = if method == "GET" {
-            let mut r = agent.get(&url);
+        let response = if method == "GET" || method == "DELETE" {
+            let mut r = if method == "GET" { agent.get(&url) } else { agent.delete(&url) };
             if let Some(a) = &auth {
                 r = r.header("authorization", a);
             }
@@ -336,6 +336,23 @@ fn reach_job_submits_waits_shows_watches_stops_and_resumes() {
     assert_eq!(run.code, 0, "{}", run.stderr);
     let first: Value = serde_json::from_str(run.stdout.trim()).expect("one JSON line");
     assert_eq!(first["type"], "state");
+    // Issue 35, point 6: on an idle arm `--count 3` ends too (the idle state comes at 1 Hz).
+    let run = crate::common::reach(&["job", "watch", "--count", "3", "--url", &url]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let lines: Vec<Value> = run.stdout.lines().map(|l| serde_json::from_str(l).expect("a JSON line")).collect();
+    assert_eq!(lines.len(), 3, "{}", run.stdout);
+    assert!(lines.iter().all(|l| l["type"] == "state" && l["status"] == "idle"), "{}", run.stdout);
+    // Obstacles: added and removed by name (a blank in the name is sent encoded).
+    let ball = r#"{"name": "wrong ball", "shape": "sphere", "center": [0.5, 0.5, 0.5], "radius": 0.05}"#;
+    let run = crate::common::reach(&["job", "add-obstacle", ball, "--url", &url]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(serde_json::from_str::<Value>(&run.stdout).unwrap()["obstacles"], 1, "{}", run.stdout);
+    let run = crate::common::reach(&["job", "remove-obstacle", "wrong ball", "--url", &url]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(serde_json::from_str::<Value>(&run.stdout).unwrap()["obstacles"], 0, "{}", run.stdout);
+    let run = crate::common::reach(&["job", "remove-obstacle", "wrong ball", "--url", &url]);
+    assert_eq!(run.code, 2);
+    assert!(run.stderr.contains("404") && run.stderr.contains("no obstacle `wrong ball`"), "{}", run.stderr);
     let run = crate::common::reach(&["job", "stop", "--url", &url]);
     assert_eq!(
         serde_json::from_str::<Value>(&run.stdout).map(|s| s["status"].clone()).ok(),
@@ -346,4 +363,83 @@ fn reach_job_submits_waits_shows_watches_stops_and_resumes() {
     let run = crate::common::reach(&["job", "status", "--url", "http://127.0.0.1:1"]);
     assert_eq!(run.code, 2);
     assert!(run.stderr.contains("cannot reach the service"), "{}", run.stderr);
+}
+
+/// The status of job `id` in the database itself (what a restart finds).
+fn stored_status(state: &std::path::Path, id: i64) -> Option<String> {
+    let db = rusqlite::Connection::open(state.join("state.sqlite3")).ok()?;
+    db.query_row("SELECT status FROM jobs WHERE id = ?1", [id], |r| r.get(0)).ok()
+}
+
+/// Issue 36: a kill -9 with the next job at each status it passes through — queued behind a
+/// running job, queued between two jobs (the first `done`), `planning`, `executing`, and
+/// `waiting_operator` — and a restart: the queue is paused, nothing moves until
+/// `POST /resume`, and the job says why; after the resume the queue goes on. (The issue's
+/// reproduction: two moves, a kill the moment the first is done and the second `planning`,
+/// which used to run by itself after the restart.) The database is polled directly, and a
+/// trial counts only when the database holds the wanted status after the kill.
+#[test]
+fn a_kill_at_every_status_of_a_job_leaves_the_arm_still_until_resume() {
+    // (what the second job is at the kill, what the first is then)
+    let cases = [("queued", "executing"), ("queued", "done"), ("planning", "done"), ("executing", "done")];
+    for (second_at, first_at) in cases {
+        let mut caught = false;
+        for trial in 0..8 {
+            let state = scratch(&format!("serve-kill-{second_at}-{first_at}-{trial}"));
+            let server = Server::start("ur5", &state, "127.0.0.1:0", "4");
+            let first = server.submit(r#"{"kind": "move", "to_deg": [20, 20, 20, 20, 20, 20], "duration_s": 1}"#);
+            let second =
+                server.submit(r#"{"kind": "move", "to_deg": [-20, -20, -20, -20, -20, -20], "duration_s": 1}"#);
+            let deadline = Instant::now() + Duration::from_secs(60);
+            let at = |id| stored_status(&state, id).unwrap_or_default();
+            while !(at(second) == second_at && at(first) == first_at) && Instant::now() < deadline {
+                if at(second) == "done" {
+                    break;
+                }
+            }
+            drop(server); // SIGKILL
+            if !(at(second) == second_at && at(first) == first_at) {
+                continue; // the moment passed before the kill: try again
+            }
+            caught = true;
+            let (steps, _) = committed(&state, second);
+            let server = Server::start("ur5", &state, "127.0.0.1:0", "4");
+            let s = server.get("/state");
+            assert_eq!(s["status"], "stopped", "{second_at}/{first_at}: paused after the restart: {s}");
+            let job = server.get(&format!("/jobs/{second}"));
+            let message = job["message"].as_str().unwrap_or_default();
+            assert!(message.contains("POST /resume"), "{second_at}/{first_at}: {job}");
+            // A 1 s move at 4× takes 0.25 s: in 1 s nothing moves, nothing starts.
+            std::thread::sleep(Duration::from_secs(1));
+            let s = server.get("/state");
+            assert_eq!(integers(&s["steps"]), steps, "{second_at}/{first_at}: moved without /resume: {s}");
+            let job = server.get(&format!("/jobs/{second}"));
+            let want = if second_at == "executing" { "interrupted" } else { "queued" };
+            assert_eq!(job["status"], want, "{second_at}/{first_at}: {job}");
+            let (status, reply) = server.call("POST", "/resume", None, None);
+            assert_eq!(status, 200, "{reply}");
+            if want == "queued" {
+                server.wait(second, "done", |j| j["status"] == "done");
+            }
+            break;
+        }
+        assert!(caught, "the service was never killed with the second job {second_at} and the first {first_at}");
+    }
+    // Waiting for the operator (seed 003's weld on the welder: two feasible configurations).
+    let state = scratch("serve-kill-waiting");
+    let server = Server::start("welder6r", &state, "127.0.0.1:0", "4");
+    let weld = serde_json::json!({
+        "kind": "move", "space": "tool", "duration_s": 30.0,
+        "from": {"pose": {"xyz_m": [0.05, 0.74, 0.07], "rpy_deg": [0.0, -41.86854343693031, -50.19442890773481]}},
+        "to": {"pose": {"xyz_m": [0.2, 0.56, 0.27], "rpy_deg": [0.0, -41.86854343693031, -50.19442890773481]}},
+    });
+    let (status, reply) = server.call("POST", "/jobs", Some(&weld.to_string()), None);
+    assert_eq!((status, reply["status"].as_str()), (201, Some("waiting_operator")), "{reply}");
+    let id = reply["id"].as_i64().unwrap();
+    drop(server); // SIGKILL
+    let server = Server::start("welder6r", &state, "127.0.0.1:0", "4");
+    assert_eq!(server.get("/state")["status"], "stopped");
+    let job = server.get(&format!("/jobs/{id}"));
+    assert_eq!(job["status"], "waiting_operator", "{job}");
+    assert!(job["message"].as_str().unwrap_or_default().contains("POST /resume"), "{job}");
 }

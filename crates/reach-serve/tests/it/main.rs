@@ -6,6 +6,7 @@ mod common;
 
 mod api;
 mod durability;
+mod limits;
 mod operator;
 mod recovery;
 mod socket;

@@ -146,7 +146,8 @@ const JOIN_TOLERANCE: f64 = 1e-6;
 ///
 /// # Errors
 /// [`Error::Request`] for a joint value outside its limits (field `motion`, `from`, `to`), a
-/// wrong joint count or a task whose motions do not join; [`Error::Drive`] for missing drive
+/// wrong joint count or a task whose motions do not join; [`Error::Motion`] for a motion
+/// longer than [`crate::motion::sample::MAX_DURATION_S`] (one day); [`Error::Drive`] for missing drive
 /// data, an infeasible task motion, or a motion beyond the motors' rate, acceleration or
 /// step-count limits; [`Error::File`] for a bad task file.
 pub fn drive(robot: &Robot, request: &DriveRequest) -> Result<DriveReport> {
@@ -177,6 +178,8 @@ pub fn drive(robot: &Robot, request: &DriveRequest) -> Result<DriveReport> {
             (DriveMotionKind::PointToPoint, p2p.schedule, samples, Some(grid))
         }
     };
+    let field = if kind == DriveMotionKind::PointToPoint { "duration_s" } else { "motion" };
+    crate::motion::sample::check_duration(field, schedule.end_time - schedule.start_time)?;
     require_within_speed(robot, &plan_samples, unit)?;
     let check = verify(robot, &schedule, &plan_samples)?;
     let program = match request.program {

@@ -203,6 +203,25 @@ fn closest_any<'a>(solutions: &'a [IkSolution], from: &[f64], weights: &[f64]) -
 /// vector, its rates and a tool pose, and is printed).
 pub const MAX_SAMPLES: f64 = 1e7;
 
+/// The longest motion a request may describe, seconds (one day): a typo such as `1e308`
+/// is refused before anything is planned or driven (a drive holds its queue for the motion's
+/// whole duration).
+pub const MAX_DURATION_S: f64 = 86_400.0;
+
+/// Refuses a motion duration above [`MAX_DURATION_S`] (`field` names it in the message).
+///
+/// # Errors
+/// [`MotionError::InvalidInput`] naming `field`.
+pub fn check_duration(field: &str, duration: f64) -> Result<(), MotionError> {
+    if duration > MAX_DURATION_S {
+        return Err(MotionError::InvalidInput {
+            field: field.into(),
+            reason: format!("at most {MAX_DURATION_S} s (one day), got {duration:?} s"),
+        });
+    }
+    Ok(())
+}
+
 /// Sample times `t0, t0 + dt, …, t0 + duration` (see the module docs).
 ///
 /// The end is always included exactly; a grid point within [`SAMPLE_GRID`]·`dt` of the end
@@ -210,7 +229,8 @@ pub const MAX_SAMPLES: f64 = 1e7;
 ///
 /// # Errors
 /// [`MotionError::InvalidInput`] when a number is not finite, `duration` is negative, `dt` is
-/// not positive, or the grid would exceed [`MAX_SAMPLES`] (10 million) samples.
+/// not positive, `duration` exceeds [`MAX_DURATION_S`] (one day), or the grid would exceed
+/// [`MAX_SAMPLES`] (10 million) samples.
 ///
 /// # Example
 /// ```
@@ -221,6 +241,7 @@ pub const MAX_SAMPLES: f64 = 1e7;
 /// assert_eq!(t.len(), 5); // 0, 0.3, 0.6, 0.9, 1.0
 /// ```
 pub fn sample_times(t0: f64, duration: f64, dt: f64) -> Result<Vec<f64>, MotionError> {
+    check_duration("duration", duration)?;
     grid(t0, duration, dt, "duration", "dt")
 }
 
@@ -268,6 +289,15 @@ pub(crate) fn grid(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_motion_longer_than_a_day_is_refused() {
+        assert_eq!(sample_times(0.0, MAX_DURATION_S, 864.0).unwrap().len(), 101);
+        for duration in [MAX_DURATION_S * (1.0 + 1e-12), 1e308] {
+            let e = sample_times(0.0, duration, duration / 100.0).unwrap_err().to_string();
+            assert!(e.contains("duration") && e.contains("86400"), "{e}");
+        }
+    }
 
     #[test]
     fn grids_include_both_ends() {

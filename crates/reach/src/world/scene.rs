@@ -299,6 +299,36 @@ impl Scene {
         }
     }
 
+    /// Refuses a scene with an obstacle or tool-zone entry that reaches beyond `radius` metres
+    /// of `centre` (a solid's bounding sphere must lie within that ball; a half-space's
+    /// boundary plane must pass within it). `what` says whose bound it is, for the message.
+    /// A solid far outside any motion is harmless to a check but is almost always a typo (a
+    /// radius of `1e308`, a centre in millimetres in a scene in metres), and huge numbers are
+    /// where distances lose their digits.
+    ///
+    /// # Errors
+    /// [`WorldError::Input`] naming the first entry beyond the bound and how far it reaches.
+    pub fn require_within(&self, centre: &Vector3<f64>, radius: f64, what: &str) -> Result<(), WorldError> {
+        let entries =
+            self.obstacles.iter().map(|o| ("obstacle", o)).chain(self.tool_zone.iter().map(|o| ("tool zone", o)));
+        for (kind, o) in entries {
+            let reach = match (&o.shape, o.shape.bounding_sphere()) {
+                (_, Some((c, r))) => (c - centre).norm() + r,
+                (Shape::HalfSpace { normal, offset }, None) => (normal.dot(centre) - offset).abs(),
+                (_, None) => continue,
+            };
+            if reach.is_nan() || reach > radius {
+                return Err(WorldError::Input(format!(
+                    "{kind} `{}` ({}) reaches {reach:.6e} m from the robot's base, beyond {what} ({radius:.3} m); \
+                     check its numbers and the scene's length unit",
+                    o.name,
+                    o.shape.kind()
+                )));
+            }
+        }
+        Ok(())
+    }
+
     /// Exempts the link pair `(a, b)` from the self-collision check (builder style); names as
     /// in [`Scene::allowed_self_collisions`], checked when a collision checker is built.
     #[must_use]

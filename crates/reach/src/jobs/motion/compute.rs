@@ -45,7 +45,9 @@ pub fn move_motion_with_progress(
     progress: &mut dyn FnMut(usize, usize),
     cancel: &Cancel,
 ) -> Result<MoveReport> {
-    positive("duration_s", request.duration_s)?;
+    if let Some(d) = positive("duration_s", request.duration_s)? {
+        crate::motion::sample::check_duration("duration_s", d)?;
+    }
     positive("speed_m_s", request.speed_m_s)?;
     positive("dt_s", request.dt_s)?;
     let scene = request.scene.as_deref().map(parse_scene).transpose()?;

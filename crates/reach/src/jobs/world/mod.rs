@@ -29,6 +29,7 @@ pub use path::{
 };
 pub use sense::{SenseReport, SenseRequest, SensorReading, sense};
 
+use crate::Robot;
 use crate::error::{Error, Result};
 use crate::world::Scene;
 
@@ -85,6 +86,32 @@ pub fn parse_scene(text: &str) -> Result<Scene> {
     if is_moveit_scene(text) { Ok(Scene::from_moveit_yaml(text)?) } else { Ok(Scene::from_toml_str(text)?) }
 }
 
+/// How far from a robot's base a workcell may reach: this many times the robot's reach
+/// bound ([`workcell_radius_m`]).
+pub const WORKCELL_REACH_FACTOR: f64 = 10.0;
+
+/// The radius, metres, of the ball about the robot's first joint within which a scene kept
+/// for it must lie ([`require_workcell`]): [`WORKCELL_REACH_FACTOR`] times its reach bound
+/// (the numeric IK's, [`crate::ik::numeric::Numeric::reach_bound`]), at least 1 m and at most
+/// 1 km (a robot with an unbounded prismatic joint).
+#[must_use]
+pub fn workcell_radius_m(robot: &Robot) -> f64 {
+    let reach = crate::ik::numeric::Numeric::from_robot(robot).map_or(f64::INFINITY, |n| n.reach_bound());
+    (WORKCELL_REACH_FACTOR * reach).clamp(1.0, 1000.0)
+}
+
+/// Refuses a scene with an obstacle or tool-zone entry beyond the robot's workcell
+/// ([`workcell_radius_m`] about its first joint): what a service that keeps a scene for a
+/// robot checks before storing one.
+///
+/// # Errors
+/// [`crate::Error::World`] naming the entry and how far it reaches.
+pub fn require_workcell(robot: &Robot, scene: &Scene) -> Result<()> {
+    let radius = workcell_radius_m(robot);
+    let what = format!("{WORKCELL_REACH_FACTOR} × the reach of {}", robot.name());
+    Ok(scene.require_within(&robot.chain.first.translation.vector, radius, &what)?)
+}
+
 /// Whether `text` is written as a MoveIt planning scene (see [`parse_scene`]).
 #[must_use]
 pub fn is_moveit_scene(text: &str) -> bool {
@@ -109,6 +136,29 @@ mod tests {
     use super::*;
     use crate::jobs::{Job, Report};
     use crate::world::WorldError;
+
+    #[test]
+    fn a_workcell_is_ten_reaches_about_the_first_joint() {
+        let ur5 = crate::model::presets::get("ur5").unwrap();
+        let radius = workcell_radius_m(&ur5);
+        let reach = crate::ik::numeric::Numeric::from_robot(&ur5).unwrap().reach_bound();
+        assert!((radius - 10.0 * reach).abs() < 1e-12 && (5.0..20.0).contains(&radius), "{radius}");
+        let scene =
+            |body: &str| parse_scene(&format!("length_unit = \"m\"\n[[obstacles]]\nname = \"o\"\n{body}")).unwrap();
+        let inside = scene("shape = \"sphere\"\ncenter = [1, 0, 0]\nradius = 0.5\n");
+        require_workcell(&ur5, &inside).unwrap();
+        let floor = scene("shape = \"halfspace\"\npoint = [0, 0, -0.01]\noutward_normal = [0, 0, 1]\n");
+        require_workcell(&ur5, &floor).unwrap();
+        for body in [
+            format!("shape = \"sphere\"\ncenter = [0, 0, 0]\nradius = {}\n", radius * 1.001),
+            "shape = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1e308\n".to_string(),
+            "shape = \"sphere\"\ncenter = [1e308, 0, 0]\nradius = 1\n".to_string(),
+            "shape = \"halfspace\"\npoint = [0, 0, -1e4]\noutward_normal = [0, 0, 1]\n".to_string(),
+        ] {
+            let e = require_workcell(&ur5, &scene(&body)).unwrap_err().to_string();
+            assert!(e.contains("obstacle `o`") && e.contains("10 × the reach of ur5"), "{body}: {e}");
+        }
+    }
 
     #[test]
     fn moveit_scenes_and_toml_scenes_are_told_apart() {
