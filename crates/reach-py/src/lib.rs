@@ -411,6 +411,55 @@ impl Robot {
         to_numpy(py, j, n.map_or(vec![6, dof], |n| vec![n, 6, dof]))
     }
 
+    /// Inverse dynamics (recursive Newton–Euler, the robot's gravity): joint torques/forces
+    /// `τ = M(q)·q̈ + C(q, q̇)·q̇ + g(q)` (N·m revolute, N prismatic) for `q`, `qd`, `qdd`
+    /// (SI: rad or m, per second, per second squared), each `(dof,)` → `(dof,)` or
+    /// `(N, dof)` → `(N, dof)`, all of one shape; `qd` / `qdd` default to zeros.
+    #[pyo3(signature = (q, qd=None, qdd=None))]
+    fn rne<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        qd: Option<&Bound<'py, PyAny>>,
+        qdd: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let (n, q) = self.joint_rows(py, q, "q", false)?;
+        let rates = |name: &str, v: Option<&Bound<'py, PyAny>>| -> PyResult<Option<Vec<f64>>> {
+            let Some(v) = v else { return Ok(None) };
+            let (m, v) = self.joint_rows(py, v, name, false)?;
+            if m != n {
+                return Err(value_err(format!(
+                    "{name}: expected the shape of q ({}), got {}",
+                    tuple(&n.map_or(vec![self.robot.dof()], |n| vec![n, self.robot.dof()])),
+                    tuple(&m.map_or(vec![self.robot.dof()], |m| vec![m, self.robot.dof()]))
+                )));
+            }
+            Ok(Some(v))
+        };
+        let (qd, qdd) = (rates("qd", qd)?, rates("qdd", qdd)?);
+        let robot = &self.robot;
+        let tau = py
+            .detach(|| reach::batch::inverse_dynamics_many(robot, &q, qd.as_deref(), qdd.as_deref()))
+            .map_err(|e| lib_err(&e))?;
+        to_numpy(py, tau, n.map_or(vec![robot.dof()], |n| vec![n, robot.dof()]))
+    }
+
+    /// Gravity load `g(q)`: the joint torques/forces (N·m, N) that hold the arm still at `q`
+    /// (SI), `(dof,)` → `(dof,)` or `(N, dof)` → `(N, dof)`.
+    fn gravload<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        self.rne(py, q, None, None)
+    }
+
+    /// Joint-space mass (inertia) matrix `M(q)` (kg·m², kg·m, kg by joint kinds) at `q` (SI):
+    /// `(dof,)` → `(dof, dof)`, `(N, dof)` → `(N, dof, dof)`; symmetric.
+    fn inertia<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        let (n, q) = self.joint_rows(py, q, "q", false)?;
+        let robot = &self.robot;
+        let dof = robot.dof();
+        let m = py.detach(|| reach::batch::mass_matrix_many(robot, &q)).map_err(|e| lib_err(&e))?;
+        to_numpy(py, m, n.map_or(vec![dof, dof], |n| vec![n, dof, dof]))
+    }
+
     /// Inverse kinematics of one pose `T` (4×4): the `reach ik --json` report as a dict, plus
     /// `q` `(k, dof)` (SI, or degrees with `degrees=True`) of its `solutions`, `branch`,
     /// `position_error`, `orientation_error` and `within_limits` per solution.

@@ -8,8 +8,9 @@
 //! flat row-major buffers again, in input order.
 //!
 //! Nothing here is a new numeric rule: each row is exactly [`Robot::fk_matrix`],
-//! [`Robot::jacobian`], or an [`IkSolver::solve`](crate::ik::IkSolver::solve) of the target
-//! that [`Pose::target`] reads from the matrix (same validation, same messages).
+//! [`Robot::jacobian`], an [`IkSolver::solve`](crate::ik::IkSolver::solve) of the target
+//! that [`Pose::target`] reads from the matrix (same validation, same messages), or the
+//! Newton–Euler pass of [`crate::effort::dynamics::Dynamics`].
 //!
 //! Errors name the offending row as `field[i]`, `i` 0-based as in the caller's array (joint
 //! numbers inside a message stay 1-based, as everywhere in the crate). The number of rows is
@@ -145,6 +146,70 @@ fn gather<const L: usize>(q: &[f64], dof: usize, lanes: &mut [Lanes<L>]) {
     for (j, lane) in lanes.iter_mut().enumerate() {
         *lane = std::array::from_fn(|l| q[l * dof + j]);
     }
+}
+
+/// Inverse dynamics of every row: the joint torques/forces `τ = M(q)·q̈ + C(q, q̇)·q̇ + g(q)`
+/// (N·m revolute, N prismatic; `N × dof`) of the rows of `q`, `qd`, `qdd` (`N × dof` each, SI:
+/// rad or m, per second, per second squared), exactly
+/// [`Dynamics::inverse_dynamics_into`](crate::effort::dynamics::Dynamics::inverse_dynamics_into)
+/// of each row. `qd` / `qdd` `None` are zeros: with both `None`, the gravity load `g(q)`.
+///
+/// # Errors
+/// [`Error::Request`] with field `q`, `qd` or `qdd` (shape, cap, a length unlike `q`'s) or
+/// `q[i]` (a bad row); [`Error::Dynamics`] when the robot has no inertial data.
+pub fn inverse_dynamics_many(robot: &Robot, q: &[f64], qd: Option<&[f64]>, qdd: Option<&[f64]>) -> Result<Vec<f64>> {
+    let dof = robot.dof();
+    let n = rows("q", q.len(), dof)?;
+    for (field, rates) in [("qd", qd), ("qdd", qdd)] {
+        if let Some(r) = rates
+            && r.len() != q.len()
+        {
+            return Err(Error::request(
+                field,
+                format!("expected {n} rows of {dof} numbers like `q`, got {} numbers", r.len()),
+            ));
+        }
+    }
+    crate::effort::dynamics::Dynamics::new(robot)?;
+    let mut out = vec![0.0; n * dof];
+    let zeros = vec![0.0; dof];
+    fill_rows(q, dof, &mut out, dof, |first, q, out| {
+        let mut work = crate::effort::dynamics::Dynamics::new(robot)?;
+        for (r, (q, tau)) in q.chunks_exact(dof).zip(out.chunks_exact_mut(dof)).enumerate() {
+            let row = first + r;
+            let (qd, qdd) = [qd, qdd].map(|m| m.map_or(zeros.as_slice(), |m| &m[row * dof..(row + 1) * dof])).into();
+            work.inverse_dynamics_into(q, qd, qdd, tau)
+                .map_err(|e| Error::request(format!("q[{row}]"), e.to_string()))?;
+        }
+        Ok(())
+    })?;
+    Ok(out)
+}
+
+/// The joint-space mass matrix of every row of `q` (`N × dof`, SI): `N × dof × dof`,
+/// row-major, exactly [`Dynamics::mass_matrix_into`](crate::effort::dynamics::Dynamics::mass_matrix_into)
+/// of each row.
+///
+/// # Errors
+/// As [`inverse_dynamics_many`].
+pub fn mass_matrix_many(robot: &Robot, q: &[f64]) -> Result<Vec<f64>> {
+    let dof = robot.dof();
+    let n = rows("q", q.len(), dof)?;
+    crate::effort::dynamics::Dynamics::new(robot)?;
+    let mut out = vec![0.0; n * dof * dof];
+    fill_rows(q, dof, &mut out, dof * dof, |first, q, out| {
+        let mut work = crate::effort::dynamics::Dynamics::new(robot)?;
+        let mut m = nalgebra::DMatrix::zeros(dof, dof);
+        for (r, (q, row_out)) in q.chunks_exact(dof).zip(out.chunks_exact_mut(dof * dof)).enumerate() {
+            work.mass_matrix_into(q, &mut m).map_err(|e| Error::request(format!("q[{}]", first + r), e.to_string()))?;
+            // Row-major, as every batch output.
+            for (i, row) in row_out.chunks_exact_mut(dof).enumerate() {
+                row.iter_mut().enumerate().for_each(|(j, x)| *x = m[(i, j)]);
+            }
+        }
+        Ok(())
+    })?;
+    Ok(out)
 }
 
 /// The tool pose of every row of `q` (`N × dof`, SI): `N × 4 × 4` homogeneous matrices,
