@@ -34,6 +34,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 pub use drive::{DriveReport, DriveRequest};
+pub use dynamics::{DynamicsReport, DynamicsRequest};
 pub use ik::{IkReport, IkRequest, IkScanReport, IkScanRequest};
 pub use input::{AngleUnit, Joints, LoadedRobot, Pose, PoseReport, RobotInput};
 pub use kinematics::{FkReport, FkRequest, JacobianReport, JacobianRequest};
@@ -65,6 +66,8 @@ pub enum Request {
     Fk(FkRequest),
     /// The Jacobian and its measures.
     Jacobian(JacobianRequest),
+    /// Rigid-body dynamics at one state: inverse-dynamics and gravity torques, mass matrix.
+    Dynamics(DynamicsRequest),
     /// One motion in joint or tool space.
     Move(MoveRequest),
     /// Every motion of a task file.
@@ -107,6 +110,8 @@ pub enum Report {
     Fk(FkReport),
     /// The Jacobian and its measures.
     Jacobian(JacobianReport),
+    /// Torques and the mass matrix at one state.
+    Dynamics(DynamicsReport),
     /// One motion in joint or tool space.
     Move(MoveReport),
     /// Every motion of a task file.
@@ -169,6 +174,7 @@ pub fn run(robot: &Robot, request: &Request) -> Result<Report> {
         Request::Model(r) => Report::Model(model::model(robot, r)?),
         Request::Fk(r) => Report::Fk(kinematics::fk(robot, r)?),
         Request::Jacobian(r) => Report::Jacobian(kinematics::jacobian(robot, r)?),
+        Request::Dynamics(r) => Report::Dynamics(dynamics::dynamics(robot, r)?),
         Request::Move(r) => Report::Move(motion::move_motion(robot, r)?),
         Request::Plan(r) => Report::Plan(motion::plan(robot, r)?),
         Request::Ik(r) => Report::Ik(ik::ik(robot, r)?),
