@@ -3,6 +3,7 @@
 use clap::{Parser, Subcommand};
 
 use crate::commands::demo::DemoArgs;
+use crate::commands::dynamics::DynamicsArgs;
 use crate::commands::fk::FkArgs;
 use crate::commands::ik::IkArgs;
 use crate::commands::jacobian::JacobianArgs;
@@ -34,6 +35,8 @@ Examples:
   reach fk panda 0 -0.3 0 -2.2 0 2 0.785 --rad
   reach fk arm.urdf --tip tool0 0 30 -60    a URDF chain
   reach jacobian puma560 0 45 -90 0 30 0    6xn Jacobian, manipulability, rank
+  reach dynamics puma560 0 45 -90 0 30 0 --qd 10,0,0,0,0,0
+                                            joint torques, gravity load, mass matrix
   reach ik puma560 --xyz 0.5,-0.2,0.3 --rpy 180,0,0 --all
                                             every IK solution with its branch label
   reach ik spbu6 --matrix 1,0,0,0,0,0,1,3,0,-1,0,5,0,0,0,1
@@ -121,6 +124,25 @@ pub enum Command {
             reach jacobian planar3 0.5 -1 -1 --rad"
     )]
     Jacobian(JacobianArgs),
+
+    /// Joint torques (inverse dynamics), the gravity load and the mass matrix at one state.
+    #[command(
+        allow_negative_numbers = true,
+        long_about = "Rigid-body dynamics at one state (recursive Newton–Euler; ideal joints, no \
+            friction or rotor inertia; the robot's gravity): the joint torques \
+            tau = M(q)·qdd + C(q, qd)·qd + g(q), the gravity load g(q) that holds the arm still, \
+            and the joint-space mass matrix M(q). The robot needs mass properties (the puma560 \
+            preset, a URDF with <inertial>, a TOML with [joints.inertial]). Rates and \
+            accelerations are in the unit of the joint values per second (squared).\n\n\
+            --json prints {\"robot\", \"q_deg\", \"q_si\", \"qd_si\", \"qdd_si\", \
+            \"outside_limits\", \"gravity_m_s2\", \"tau_si\", \"gravity_tau_si\", \
+            \"mass_matrix_si\"} (docs/schemas/dynamics.report.schema.json).",
+        after_help = "Examples:\n  \
+            reach dynamics puma560 0 45 -90 0 30 0\n  \
+            reach dynamics puma560 0,45,-90,0,30,0 --qd 10,0,0,0,0,0 --qdd 0,50,0,0,0,0 --json\n  \
+            reach dynamics examples/urdf/kuka_kr16_support/urdf/kr16_2.urdf --tip tool0 0 -90 90 0 0 0"
+    )]
+    Dynamics(DynamicsArgs),
 
     /// Inverse kinematics: every solution for a tool pose, or the one closest to --from.
     #[command(

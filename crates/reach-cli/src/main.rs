@@ -61,6 +61,7 @@ fn run(command: &Command, out: &mut dyn Write) -> Result<(), CliError> {
         Command::Robot(sub) => commands::robot_show::run(sub, out),
         Command::Fk(args) => commands::fk::run(args, out),
         Command::Jacobian(args) => commands::jacobian::run(args, out),
+        Command::Dynamics(args) => commands::dynamics::run(args, out),
         Command::Ik(args) => commands::ik::run(args, out),
         Command::Demo(args) => commands::demo::run(args, out),
         Command::Drive(args) => commands::drive::run(args, out),

@@ -9,6 +9,7 @@ pub mod cspace;
 pub mod cspace_render;
 pub mod demo;
 pub mod drive;
+pub mod dynamics;
 pub mod fk;
 pub mod ik;
 mod ik_render;
