@@ -51,7 +51,8 @@ Examples:
   reach demo                                a tour of every preset
 
 Exit status: 0 success, 1 internal error, 2 bad input (arguments, numbers, robot files),
-3 no solution / infeasible (ik: the report is still printed on stdout). Errors are one line
+3 no solution / infeasible / not clear (ik, move, plan, path, check: the report is still printed
+on stdout). Errors are one line
 on stderr.";
 
 /// `reach`: the command line of the reach toolkit.
@@ -203,7 +204,12 @@ pub enum Command {
             closed sets unless the scene says touching = \"open\" (tolerance 1 nm).\n\n\
             --json prints {\"verdict\", \"links\": [{\"link\", \"obstacle\", \"clearance_m\", \
             \"colliding\"}], \"self_pairs\", \"tool_zone\", \"min_obstacle_clearance_m\", \
-            \"min_self_clearance_m\"}.",
+            \"min_self_clearance_m\"}.\n\n\
+            The first line is the verdict of the whole check: with --to or --motion, `clear` or \
+            `NOT clear` with the start's verdict and the swept check's. Exit status 0 when the \
+            configuration is free and its motion (--to, --motion) proven clear; 3 (after the \
+            report, the verdict as one line on stderr) for a collision, a tool outside its zone or \
+            a motion not proven clear; 2 for bad input.",
         after_help = "Examples:\n  \
             reach check varan4 examples/seed004_ceiling.toml 0 0 90 0\n  \
             reach check varan4 examples/seed004_two_planes.toml 0 30 -45 10 --json"

@@ -18,6 +18,24 @@ use crate::error::CliError;
 pub use reach::jobs::PoseReport;
 pub use reach::jobs::input::{rpy_deg, rpy_rad};
 
+/// The outcome of a command whose report is on `out` already: the one mapping of a verdict to
+/// the exit status. `None` (the verdict holds: feasible, reached, clear) is success; a
+/// `failure` (infeasible, no solution, not proven clear) flushes the report (`main` discards
+/// unflushed output on an error) and fails with [`CliError::NoSolution`] (exit status 3, the
+/// failure as the one line on stderr).
+///
+/// # Errors
+/// [`CliError::NoSolution`] with `failure`; [`CliError::Output`] when the flush fails.
+pub fn verdict_exit(out: &mut dyn Write, failure: Option<String>) -> Result<(), CliError> {
+    match failure {
+        None => Ok(()),
+        Some(failure) => {
+            out.flush()?;
+            Err(CliError::NoSolution(failure))
+        }
+    }
+}
+
 /// Writes `contents` to the file `path` given with `option` (`--csv`, `-o`, `--svg`).
 ///
 /// # Errors

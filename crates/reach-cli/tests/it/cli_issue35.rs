@@ -1,6 +1,6 @@
 //! Regression tests for issue 35 ("a newcomer's first day"), one test per point, named after it.
 
-use crate::common::{fails, json, nums};
+use crate::common::{fails, json, nums, ok, reach, stdout_json};
 
 /// Point 3: joint values take commas or blanks everywhere, also as one positional argument.
 #[test]
@@ -15,8 +15,51 @@ fn point3_joint_values_take_commas_or_blanks_in_one_argument() {
     assert_eq!(nums(&negative["q_deg"]), [-10.0, -80.0, 100.0, -110.0, 10.0, 0.0]);
     // Every command with positional joint values shares the rule.
     json(&["jacobian", "ur5", "10,-80,100,-110,10,0", "--json"]);
-    json(&["check", "ur5", "examples/ur5_ball.toml", "10 -80 100 -110 10 0", "--json"]);
+    crate::common::reported(&["check", "ur5", "examples/ur5_ball.toml", "10 -80 100 -110 10 0", "--json"], 3);
     // Errors still name the joint, counted across arguments.
     fails(&["fk", "ur5", "10,-80", "100,abc,10,0"], 2, &["joint 4", "\"abc\""]);
     fails(&["fk", "ur5", "10,-80,100,-110,10"], 2, &["6 joints", "got 5"]);
+}
+
+/// Point 2: `check` exits as it reports: status 3 (after the report) for a collision or a
+/// swept check not proven clear, 0 only when the whole check holds; with `--to` the first
+/// line gives the verdict of the whole check (start and sweep), not of the start only.
+#[test]
+fn point2_check_exits_non_zero_unless_the_whole_check_is_clear() {
+    // The issue's command: the start collides, the sweep is not proven clear.
+    let run = reach(&["check", "ur5", "examples/ur5_ball.toml", "0,-90,90,-90,-90,0", "--to", "20,-80,90,-90,-90,0"]);
+    assert_eq!(run.code, 3, "{}", run.stderr);
+    let first = run.stdout.lines().next().unwrap_or_default();
+    assert!(first.starts_with("verdict") && first.contains("NOT clear") && first.contains("collision"), "{first}");
+    let line = one_error_line_after_report(&run);
+    assert!(line.contains("collision") && line.contains("NOT proven clear"), "{line}");
+    // A free start whose motion is not proven clear: the first line says so, exit 3.
+    let run = reach(&["check", "planar3", "examples/path_planar3_post.toml", "60 -40 -30", "--to", "0,-30,-30"]);
+    assert_eq!(run.code, 3, "{}", run.stderr);
+    let first = run.stdout.lines().next().unwrap_or_default();
+    assert!(first.contains("NOT clear: start free, motion NOT proven clear"), "{first}");
+    assert!(one_error_line_after_report(&run).contains("`post`"), "{}", run.stderr);
+    // The JSON report is printed whatever the verdict, with the same exit status.
+    let run =
+        reach(&["check", "planar3", "examples/path_planar3_post.toml", "60 -40 -30", "--to", "0,-30,-30", "--json"]);
+    assert_eq!(run.code, 3, "{}", run.stderr);
+    assert_eq!(stdout_json(&run)["motion"]["clear"], false);
+    // A collision without a motion.
+    let run = reach(&["check", "ur5", "examples/ur5_ball.toml", "0 -90 0 -90 0 0", "--json"]);
+    assert_eq!(run.code, 3, "{}", run.stderr);
+    assert_eq!(stdout_json(&run)["verdict"]["verdict"], "obstacle");
+    // A clear check, with and without a motion, exits 0.
+    let text = ok(&["check", "planar3", "examples/path_planar3_post.toml", "60 -40 -30", "--to", "61,-40,-30"]);
+    assert!(text.lines().next().unwrap_or_default().contains("clear: start free, motion proven clear"), "{text}");
+    let text = ok(&["check", "varan4", "examples/seed004_two_planes.toml", "0 60 -30 -30"]);
+    assert!(text.starts_with("verdict") && text.lines().next().unwrap_or_default().ends_with("free"), "{text}");
+}
+
+/// The one line on stderr of a command that printed its report on stdout first.
+fn one_error_line_after_report(run: &crate::common::Run) -> String {
+    assert!(!run.stdout.is_empty(), "no report on stdout");
+    assert_eq!(run.stderr.lines().count(), 1, "stderr is not one line:\n{}", run.stderr);
+    let line = run.stderr.trim_end().to_string();
+    assert!(line.starts_with("error: ") && !line.contains("panicked"), "stderr: {line}");
+    line
 }

@@ -6,8 +6,9 @@
 use crate::common::{REPO_ROOT, json, num, reach, scratch};
 
 /// The tour's command lines: continuation lines joined, comments and the leading `reach`
-/// removed, a `> file` redirection dropped.
-fn tour_commands() -> Vec<Vec<String>> {
+/// removed, a `> file` redirection dropped; with the exit status each must end with, 0 unless
+/// its comment (on its line or the comment lines below it) says `exit status N`.
+fn tour_commands() -> Vec<(Vec<String>, i32)> {
     let readme = std::fs::read_to_string(format!("{REPO_ROOT}/README.md")).expect("README.md");
     let tour = readme.split("\n## Tour").nth(1).expect("a `## Tour` section");
     let block = tour.split("```sh").nth(1).and_then(|b| b.split("```").next()).expect("an sh block in the tour");
@@ -24,7 +25,12 @@ fn tour_commands() -> Vec<Vec<String>> {
         let full = std::mem::take(&mut pending);
         let full = full.split(" > ").next().unwrap_or("").trim().to_string();
         if let Some(rest) = full.strip_prefix("reach ") {
-            commands.push(rest.split_whitespace().map(str::to_string).collect());
+            commands.push((rest.split_whitespace().map(str::to_string).collect(), 0));
+        }
+        let comment = line.split_once(" #").map_or("", |(_, c)| c);
+        if let (Some(n), Some((_, status))) = (comment.split("exit status ").nth(1), commands.last_mut()) {
+            let digits: String = n.chars().take_while(char::is_ascii_digit).collect();
+            *status = digits.parse().expect("a number after `exit status` in a tour comment");
         }
     }
     commands
@@ -64,7 +70,7 @@ fn every_tour_command_succeeds() {
     let commands = tour_commands();
     assert!(commands.len() >= 25, "the tour has {} commands", commands.len());
     let dir = scratch("tour");
-    for (k, args) in commands.iter().enumerate() {
+    for (k, (args, status)) in commands.iter().enumerate() {
         let mut args = args.clone();
         for i in 1..args.len() {
             if OUTPUT_OPTIONS.contains(&args[i - 1].as_str()) {
@@ -80,7 +86,7 @@ fn every_tour_command_succeeds() {
         for stage in args.split(|a| a == "|") {
             let stage = if input.is_some() { &stage[1..] } else { stage };
             let run = run_stage(stage, input.take());
-            assert_eq!(run.code, 0, "`reach {}` failed: {}", stage.join(" "), run.stderr);
+            assert_eq!(run.code, *status, "`reach {}` exit status: {}", stage.join(" "), run.stderr);
             let writes_file = stage.iter().any(|a| a == "-o");
             assert!(!run.stdout.is_empty() || writes_file, "`reach {}` printed nothing", stage.join(" "));
             input = Some(run.stdout);
