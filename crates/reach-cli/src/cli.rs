@@ -176,9 +176,10 @@ pub enum Command {
     /// Stepper step schedules from a motion file or a point-to-point move: summary, CSV, JSON,
     /// G-code, coil tables or step/direction events.
     #[command(
-        long_about = "Stepper step schedules. Every joint needs drive data ([joints.drive] in the \
+        long_about = "Stepper step schedules. Each joint's drive data ([joints.drive] in the \
             robot file: steps per revolution, microstepping, gear ratio, direction, maximum step \
-            rate and acceleration, wiring). The input is a motion file (JSON {\"samples\": [{\"t_s\", \
+            rate and acceleration, wiring); a joint without it gets the default simulated motor \
+            that `reach serve` uses (listed under `simulated drives` in the summary). The input is a motion file (JSON {\"samples\": [{\"t_s\", \
             \"q_deg\"}]}) or a point-to-point move (--from/--to, optional --duration), which is \
             synchronised so that all joints start and stop together (seed 000). The schedule is \
             integrated back into joint angles and compared with the plan.\n\n\

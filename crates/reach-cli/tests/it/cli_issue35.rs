@@ -63,3 +63,21 @@ fn one_error_line_after_report(run: &crate::common::Run) -> String {
     assert!(line.starts_with("error: ") && !line.contains("panicked"), "stderr: {line}");
     line
 }
+
+/// Point 5: `reach drive` on an arm without drive data uses the default simulated motors of
+/// `reach serve` (`reach::drive::with_simulated_drives`), says so, and drives the motion.
+#[test]
+fn point5_drive_uses_the_default_simulated_motors_like_serve() {
+    let args = ["drive", "ur5", "--from", "0,-90,90,-90,-90,0", "--to", "20,-80,90,-90,-90,0", "--duration", "2"];
+    let text = ok(&args);
+    assert!(text.contains("simulated drives     joints 1, 2, 3, 4, 5, 6"), "{text}");
+    let v = json(&[&args[..], &["--format", "json"]].concat());
+    // The schedule integrates back onto the plan (the default motors' resolution).
+    assert_eq!(v["check"]["within_one_step"], true, "{:.400}", v["check"]);
+    // The same motors as the service's: the library's defaults, joint by joint.
+    let (robot, simulated) = reach::drive::with_simulated_drives(&reach::model::presets::get("ur5").unwrap()).unwrap();
+    assert_eq!(simulated, [0, 1, 2, 3, 4, 5]);
+    assert!(reach::drive::axes(&robot).is_ok());
+    // An arm with its own drive data keeps it (no simulated line).
+    assert!(!ok(&["drive", "planar3", "--from", "0,0,0", "--to", "3.6,-14.4,-7.2"]).contains("simulated drives"));
+}
