@@ -48,7 +48,8 @@ pub struct CheckArgs {
 
     /// Instead of --to: check a sampled motion continuously, the piecewise-linear joint path
     /// from the joint values through its samples (the path `reach drive` steps along). FILE is
-    /// `reach move --json`'s output or any JSON {"samples": [{"t_s", "q_deg"}, ...]}.
+    /// `reach move --json`'s output or any JSON {"samples": [{"t_s", "q_deg"}, ...]}; `-`
+    /// reads standard input.
     #[arg(long, value_name = "FILE", conflicts_with = "to")]
     pub motion: Option<std::path::PathBuf>,
 

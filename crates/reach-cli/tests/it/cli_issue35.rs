@@ -81,3 +81,56 @@ fn point5_drive_uses_the_default_simulated_motors_like_serve() {
     // An arm with its own drive data keeps it (no simulated line).
     assert!(!ok(&["drive", "planar3", "--from", "0,0,0", "--to", "3.6,-14.4,-7.2"]).contains("simulated drives"));
 }
+
+/// `reach args` fed `input` on its standard input.
+fn piped(args: &[&str], input: &str) -> crate::common::Run {
+    use std::io::Write;
+    let mut child = crate::common::reach_command(args)
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("start reach");
+    child.stdin.take().expect("stdin").write_all(input.as_bytes()).expect("feed stdin");
+    crate::common::Run::from_output(child.wait_with_output().expect("reach"))
+}
+
+/// Point 4 (the `-` part): `-` is standard input for every file argument read through the
+/// shared reader (`--motion` of `view`, `check` and `drive`'s motion file, `retime`'s path),
+/// also when the command reads it twice (`view` takes samples and events from one report).
+#[test]
+fn point4_dash_is_standard_input_for_motion_files() {
+    let motion = ok(&["move", "planar3", "--from", "0,-10,-10", "--to", "10,-20,-20", "--duration", "1", "--json"]);
+    let dir = crate::common::scratch("point4");
+    let html = dir.join("view.html");
+    let run = piped(&["view", "planar3", "--motion", "-", "-o", html.to_str().unwrap()], &motion);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stdout.contains("101 states of 101 samples"), "{}", run.stdout);
+    let run = piped(
+        &["check", "planar3", "examples/path_planar3_post.toml", "0 -10 -10", "--motion", "-", "--json"],
+        &motion,
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(stdout_json(&run)["samples"]["clear"], true);
+    // The same file from disk gives the same report.
+    let file = dir.join("motion.json");
+    std::fs::write(&file, &motion).unwrap();
+    let from_file = json(&[
+        "check",
+        "planar3",
+        "examples/path_planar3_post.toml",
+        "0 -10 -10",
+        "--motion",
+        file.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(stdout_json(&run), from_file);
+    // Nothing on standard input is a readable error, not a hang or a panic.
+    fails_piped(&["check", "planar3", "examples/path_planar3_post.toml", "0 -10 -10", "--motion", "-"]);
+}
+
+fn fails_piped(args: &[&str]) {
+    let run = piped(args, "");
+    assert_eq!(run.code, 2, "{}", run.stderr);
+    assert!(crate::common::one_error_line(&run).contains("standard input: "), "{}", run.stderr);
+}
