@@ -129,6 +129,36 @@ fn point4_dash_is_standard_input_for_motion_files() {
     fails_piped(&["check", "planar3", "examples/path_planar3_post.toml", "0 -10 -10", "--motion", "-"]);
 }
 
+/// Point 4 (the chain part): `reach path --json` is a motion `reach view --motion` and `reach
+/// check --motion` read: its waypoints at the cumulative segment times.
+#[test]
+fn point4_path_json_is_accepted_by_view_motion() {
+    let path = ok(&[
+        "path",
+        "planar3",
+        "examples/path_planar3_post.toml",
+        "--from",
+        "60,-40,-30",
+        "--to",
+        "0,-30,-30",
+        "--duration",
+        "10",
+        "--json",
+    ]);
+    let report: serde_json::Value = serde_json::from_str(&path).unwrap();
+    let n = report["waypoints_deg"].as_array().map(Vec::len).unwrap();
+    let dir = crate::common::scratch("point4-path");
+    let html = dir.join("view.html");
+    let run = piped(&["view", "planar3", "--motion", "-", "-o", html.to_str().unwrap()], &path);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stdout.contains(&format!("{n} states of {n} samples")), "{}", run.stdout);
+    // The path's edges, checked again from its report: proven clear, as the planner proved them.
+    let run =
+        piped(&["check", "planar3", "examples/path_planar3_post.toml", "60 -40 -30", "--motion", "-", "--json"], &path);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(stdout_json(&run)["samples"]["clear"], true);
+}
+
 fn fails_piped(args: &[&str]) {
     let run = piped(args, "");
     assert_eq!(run.code, 2, "{}", run.stderr);
