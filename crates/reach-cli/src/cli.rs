@@ -54,7 +54,8 @@ Examples:
   reach demo                                a tour of every preset
 
 Exit status: 0 success, 1 internal error, 2 bad input (arguments, numbers, robot files),
-3 no solution / infeasible (ik: the report is still printed on stdout). Errors are one line
+3 no solution / infeasible / not clear (ik, move, plan, path, check: the report is still printed
+on stdout). Errors are one line
 on stderr.";
 
 /// `reach`: the command line of the reach toolkit.
@@ -197,9 +198,10 @@ pub enum Command {
     /// Stepper step schedules from a motion file or a point-to-point move: summary, CSV, JSON,
     /// G-code, coil tables or step/direction events.
     #[command(
-        long_about = "Stepper step schedules. Every joint needs drive data ([joints.drive] in the \
+        long_about = "Stepper step schedules. Each joint's drive data ([joints.drive] in the \
             robot file: steps per revolution, microstepping, gear ratio, direction, maximum step \
-            rate and acceleration, wiring). The input is a motion file (JSON {\"samples\": [{\"t_s\", \
+            rate and acceleration, wiring); a joint without it gets the default simulated motor \
+            that `reach serve` uses (listed under `simulated drives` in the summary). The input is a motion file (JSON {\"samples\": [{\"t_s\", \
             \"q_deg\"}]}) or a point-to-point move (--from/--to, optional --duration), which is \
             synchronised so that all joints start and stop together (seed 000). The schedule is \
             integrated back into joint angles and compared with the plan.\n\n\
@@ -225,7 +227,12 @@ pub enum Command {
             closed sets unless the scene says touching = \"open\" (tolerance 1 nm).\n\n\
             --json prints {\"verdict\", \"links\": [{\"link\", \"obstacle\", \"clearance_m\", \
             \"colliding\"}], \"self_pairs\", \"tool_zone\", \"min_obstacle_clearance_m\", \
-            \"min_self_clearance_m\"}.",
+            \"min_self_clearance_m\"}.\n\n\
+            The first line is the verdict of the whole check: with --to or --motion, `clear` or \
+            `NOT clear` with the start's verdict and the swept check's. Exit status 0 when the \
+            configuration is free and its motion (--to, --motion) proven clear; 3 (after the \
+            report, the verdict as one line on stderr) for a collision, a tool outside its zone or \
+            a motion not proven clear; 2 for bad input.",
         after_help = "Examples:\n  \
             reach check varan4 examples/seed004_ceiling.toml 0 0 90 0\n  \
             reach check varan4 examples/seed004_two_planes.toml 0 30 -45 10 --json"

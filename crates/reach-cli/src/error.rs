@@ -5,7 +5,7 @@
 //! | 0 | success (also when the reader of stdout went away: `reach robots \| head -1`) |
 //! | 1 | internal error (a bug, or stdout could not be written) |
 //! | 2 | bad input: arguments, numbers, robot names, robot files (also clap's usage errors) |
-//! | 3 | no solution / infeasible (reserved for `ik`, `motion`, …) |
+//! | 3 | no solution / infeasible / not clear: the report is printed, then one line on stderr (`crate::output::verdict_exit`) |
 //! | 130 | interrupted by Ctrl-C (`error: interrupted`) |
 //!
 //! Every error is reported as **one line** on stderr, `error: <message>`, and nothing is
@@ -20,7 +20,7 @@ pub const EXIT_OK: i32 = 0;
 pub const EXIT_INTERNAL: i32 = 1;
 /// Exit status: bad input (arguments, numbers, robot names or files). Clap uses it too.
 pub const EXIT_BAD_INPUT: i32 = 2;
-/// Exit status: the input is valid but has no solution / is infeasible (reserved).
+/// Exit status: the input is valid but has no solution / is infeasible / is not clear.
 pub const EXIT_NO_SOLUTION: i32 = 3;
 /// Exit status: interrupted by Ctrl-C (128 + SIGINT, the shells' convention).
 pub const EXIT_INTERRUPTED: i32 = 130;
@@ -31,7 +31,6 @@ pub enum CliError {
     /// The user's input is wrong (exit status 2). The message names the argument or field.
     BadInput(String),
     /// The input is valid but the task has no solution (exit status 3).
-    #[allow(dead_code, reason = "reserved for the ik, motion and drive commands")]
     NoSolution(String),
     /// Something that should not happen (exit status 1).
     Internal(String),

@@ -18,6 +18,24 @@ use crate::error::CliError;
 pub use reach::jobs::PoseReport;
 pub use reach::jobs::input::{rpy_deg, rpy_rad};
 
+/// The outcome of a command whose report is on `out` already: the one mapping of a verdict to
+/// the exit status. `None` (the verdict holds: feasible, reached, clear) is success; a
+/// `failure` (infeasible, no solution, not proven clear) flushes the report (`main` discards
+/// unflushed output on an error) and fails with [`CliError::NoSolution`] (exit status 3, the
+/// failure as the one line on stderr).
+///
+/// # Errors
+/// [`CliError::NoSolution`] with `failure`; [`CliError::Output`] when the flush fails.
+pub fn verdict_exit(out: &mut dyn Write, failure: Option<String>) -> Result<(), CliError> {
+    match failure {
+        None => Ok(()),
+        Some(failure) => {
+            out.flush()?;
+            Err(CliError::NoSolution(failure))
+        }
+    }
+}
+
 /// Writes `contents` to the file `path` given with `option` (`--csv`, `-o`, `--svg`).
 ///
 /// # Errors
@@ -26,12 +44,29 @@ pub fn write_file(option: &str, path: &std::path::Path, contents: impl AsRef<[u8
     std::fs::write(path, contents).map_err(|e| CliError::bad_input(format!("{option} {}: {e}", path.display())))
 }
 
-/// Reads the text of the input file `path`.
+/// Reads the text of the input file `path`; `-` is standard input (read once, the same text
+/// for every reader of `-` in the command).
 ///
 /// # Errors
-/// [`CliError::BadInput`] naming the path when the file cannot be read.
+/// [`CliError::BadInput`] naming the path (or standard input) when it cannot be read.
 pub fn read_file(path: &std::path::Path) -> Result<String, CliError> {
+    if path == std::path::Path::new("-") {
+        return read_stdin();
+    }
     std::fs::read_to_string(path).map_err(|e| CliError::bad_input(format!("cannot read `{}`: {e}", path.display())))
+}
+
+/// The whole standard input as text, read on the first call and kept for the next.
+fn read_stdin() -> Result<String, CliError> {
+    use std::io::Read;
+    static STDIN: std::sync::OnceLock<Result<String, String>> = std::sync::OnceLock::new();
+    STDIN
+        .get_or_init(|| {
+            let mut text = String::new();
+            std::io::stdin().read_to_string(&mut text).map(|_| text).map_err(|e| e.to_string())
+        })
+        .clone()
+        .map_err(|e| CliError::bad_input(format!("cannot read standard input: {e}")))
 }
 
 /// Reads a motion file (`reach move --json`'s output, or any JSON `{"samples": [{"t_s",
@@ -40,8 +75,9 @@ pub fn read_file(path: &std::path::Path) -> Result<String, CliError> {
 /// # Errors
 /// [`CliError::BadInput`] naming the path when it cannot be read or is not such JSON.
 pub fn read_motion_file(path: &std::path::Path) -> Result<Vec<reach::jobs::input::MotionSample>, CliError> {
+    let name = if path == std::path::Path::new("-") { "standard input".into() } else { path.display().to_string() };
     reach::jobs::input::parse_motion_json(&read_file(path)?)
-        .map_err(|e| CliError::bad_input(format!("{}: {}", path.display(), reach::one_line(&e.to_string()))))
+        .map_err(|e| CliError::bad_input(format!("{name}: {}", reach::one_line(&e.to_string()))))
 }
 
 /// Writes `value` as indented JSON followed by a newline.

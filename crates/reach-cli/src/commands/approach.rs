@@ -10,7 +10,7 @@ use reach::jobs::world::{ApproachReport, ApproachRequest, FastRegionRequest, app
 use crate::commands::path::{Ends, SceneMotionArgs};
 use crate::error::CliError;
 use crate::numbers::parse_finite;
-use crate::output::{Table, fixed, fixeds, write_json};
+use crate::output::{Table, fixed, fixeds, verdict_exit, write_json};
 
 /// Arguments of `reach approach`.
 #[derive(Debug, Clone, Args)]
@@ -85,12 +85,9 @@ pub fn run(args: &ApproachArgs, out: &mut dyn Write) -> Result<(), CliError> {
     } else {
         write_report(out, &args.motion.scene, &report)?;
     }
-    if report.failed() {
-        out.flush()?;
-        let reason = report.reason.clone().unwrap_or_default();
-        return Err(CliError::NoSolution(format!("goal not reached ({:?}): {reason}", report.outcome)));
-    }
-    Ok(())
+    let reason =
+        || format!("goal not reached ({:?}): {}", report.outcome, report.reason.as_deref().unwrap_or_default());
+    verdict_exit(out, report.failed().then(reason))
 }
 
 fn write_report(out: &mut dyn Write, scene: &str, r: &ApproachReport) -> Result<(), CliError> {

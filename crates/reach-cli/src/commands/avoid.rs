@@ -10,7 +10,7 @@ use reach::world::detour::DetourOutcome;
 
 use crate::error::CliError;
 use crate::numbers::{parse_exact, parse_finite, parse_list};
-use crate::output::{Table, fixed, write_json};
+use crate::output::{Table, fixed, verdict_exit, write_json};
 use crate::pose_arg::joints_arg;
 use crate::robot_arg::RobotArgs;
 
@@ -189,11 +189,7 @@ pub fn run(args: &AvoidArgs, out: &mut dyn Write) -> Result<(), CliError> {
     } else {
         write_text(report, out)?;
     }
-    if report.failed() {
-        out.flush()?;
-        return Err(CliError::NoSolution(outcome_text(&report.outcome)));
-    }
-    Ok(())
+    verdict_exit(out, report.failed().then(|| outcome_text(&report.outcome)))
 }
 
 fn write_text(report: &AvoidReport, out: &mut dyn Write) -> Result<(), CliError> {

@@ -2,6 +2,10 @@
 //! (continuous) check of a motion from it: with `--to` the straight joint motion to a second
 //! configuration, with `--motion FILE` a sampled motion (`reach::jobs::world::check`;
 //! `--json` prints its report).
+//!
+//! Exit status: 0 when the configuration is free and its motion, if any, proven clear; 3
+//! otherwise (a collision, a tool outside its zone, a motion not proven clear), after
+//! printing the report, with the verdict as one line on stderr; 2 for bad input.
 
 use std::io::Write;
 
@@ -12,7 +16,7 @@ use reach::world::sweep::SWEEP_FLOOR;
 
 use crate::error::{CliError, one_line};
 use crate::numbers::{JointArgs, q_text};
-use crate::output::{Align, Table, fixed, read_motion_file, write_json};
+use crate::output::{Align, Table, fixed, read_motion_file, verdict_exit, write_json};
 use crate::pose_arg::joints_arg;
 use crate::robot_arg::RobotArgs;
 
@@ -44,7 +48,8 @@ pub struct CheckArgs {
 
     /// Instead of --to: check a sampled motion continuously, the piecewise-linear joint path
     /// from the joint values through its samples (the path `reach drive` steps along). FILE is
-    /// `reach move --json`'s output or any JSON {"samples": [{"t_s", "q_deg"}, ...]}.
+    /// `reach move --json`'s output or any JSON {"samples": [{"t_s", "q_deg"}, ...]}; `-`
+    /// reads standard input.
     #[arg(long, value_name = "FILE", conflicts_with = "to")]
     pub motion: Option<std::path::PathBuf>,
 
@@ -85,11 +90,14 @@ pub fn scene_error(path: &str, e: reach::Error) -> CliError {
     }
 }
 
-/// Checks the configuration and prints the report (exit status 0 whatever the verdict;
-/// the verdict is in the output).
+/// Checks the configuration and prints the report; the exit status is the verdict of the
+/// whole check ([`CheckReport::is_clear`]): 0 when the configuration is free and its motion
+/// (`--to`, `--motion`) proven clear, 3 otherwise (after the report, with the verdict as the
+/// one line on stderr).
 ///
 /// # Errors
-/// [`CliError::BadInput`] for a bad robot, scene or joint values; [`CliError::Output`].
+/// [`CliError::BadInput`] for a bad robot, scene or joint values; [`CliError::NoSolution`]
+/// when the check does not hold; [`CliError::Output`].
 pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let loaded = args.robot.load()?;
     let robot = &loaded.robot;
@@ -108,9 +116,41 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<(), CliError> {
         e => scene_error(&args.scene, e),
     })?;
     if args.json {
-        return write_json(out, &report);
+        write_json(out, &report)?;
+    } else {
+        write_text(robot, &report, out)?;
     }
-    write_text(robot, &report, out)
+    verdict_exit(out, (!report.is_clear()).then(|| failure_line(&report)))
+}
+
+/// The one line on stderr of a check that does not hold: its verdict, and where a motion is
+/// not proven clear.
+fn failure_line(report: &CheckReport) -> String {
+    let swept = match (&report.motion, &report.samples) {
+        (Some(m), _) if !m.swept.clear => Some(swept_text(&m.swept, None)),
+        (_, Some(p)) if !p.swept.clear => Some(swept_text(&p.swept, Some(p.segment))),
+        _ => None,
+    };
+    match swept {
+        Some(s) => format!("check {}; swept check {s}", verdict_line(report)),
+        None => format!("check {}", verdict_line(report)),
+    }
+}
+
+/// The verdict of the whole check in words: the configuration's alone, or with a motion
+/// `clear` / `NOT clear` followed by the start's verdict and the swept check's.
+#[must_use]
+pub fn verdict_line(report: &CheckReport) -> String {
+    let swept = report.motion.as_ref().map(|m| &m.swept).or(report.samples.as_ref().map(|p| &p.swept));
+    match swept {
+        None => report.verdict_text.clone(),
+        Some(w) => format!(
+            "{}: start {}, motion {}",
+            if report.is_clear() { "clear" } else { "NOT clear" },
+            report.verdict_text,
+            if w.clear { "proven clear" } else { "NOT proven clear" }
+        ),
+    }
 }
 
 /// A swept check in words: proven clear with its certified bound and closest approach, or
@@ -145,9 +185,9 @@ pub fn swept_text(w: &SweptReport, segment: Option<usize>) -> String {
 
 fn write_text(robot: &reach::Robot, report: &CheckReport, out: &mut dyn Write) -> Result<(), CliError> {
     let mut head = Table::key_value();
+    head.pair("verdict", verdict_line(report));
     head.pair("robot", robot.name().to_string());
     head.pair("q", q_text(robot, &report.q_deg));
-    head.pair("verdict", report.verdict_text.clone());
     let mm = |v: Option<f64>| v.map_or("-".to_string(), |c| format!("{} m", fixed(c, 6)));
     head.pair("min obstacle clearance", mm(report.min_obstacle_clearance_m));
     head.pair("min self clearance", mm(report.min_self_clearance_m));

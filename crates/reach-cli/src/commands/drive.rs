@@ -47,7 +47,8 @@ pub enum Dialect {
 /// Arguments of `reach drive`.
 #[derive(Debug, Clone, Args)]
 pub struct DriveArgs {
-    /// The robot (every joint needs `[joints.drive]` data).
+    /// The robot (its `[joints.drive]` data; a joint without gets the default simulated motor
+    /// of `reach serve`, `reach::drive::simulated`).
     #[command(flatten)]
     pub robot: RobotArgs,
 
@@ -159,7 +160,9 @@ fn drive_error(e: reach::Error) -> CliError {
 /// motor's limits.
 pub fn run(args: &DriveArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let loaded = args.robot.load()?;
-    let robot = &loaded.robot;
+    // Joints without `[joints.drive]` data get the default simulated motors, as in `reach serve`.
+    let (robot, simulated) = reach::drive::with_simulated_drives(&loaded.robot).map_err(reach::Error::from)?;
+    let robot = &robot;
     let request = request(args, robot)?;
     let report = reach::jobs::drive::drive(robot, &request).map_err(drive_error)?;
     let text = match (args.format, &report.program) {
@@ -168,7 +171,7 @@ pub fn run(args: &DriveArgs, out: &mut dyn Write) -> Result<(), CliError> {
             write_json(&mut buffer, &report)?;
             String::from_utf8(buffer).map_err(|e| CliError::internal(e.to_string()))?
         }
-        (DriveFormat::Summary, _) => summary(robot, &report)?,
+        (DriveFormat::Summary, _) => summary(robot, &report, &simulated)?,
         (_, Some(program)) => program.clone(),
         (_, None) => return Err(CliError::internal("the drive report has no program text")),
     };
@@ -182,12 +185,17 @@ pub fn run(args: &DriveArgs, out: &mut dyn Write) -> Result<(), CliError> {
     Ok(())
 }
 
-fn summary(robot: &Robot, report: &DriveReport) -> Result<String, CliError> {
+/// The summary text; `simulated`: the 0-based joints driven by default simulated motors.
+fn summary(robot: &Robot, report: &DriveReport, simulated: &[usize]) -> Result<String, CliError> {
     let mut buffer: Vec<u8> = Vec::new();
     let out: &mut dyn Write = &mut buffer;
     let check = &report.check;
     let mut head = Table::key_value();
     head.pair("robot", format!("{} ({} joints)", robot.name(), robot.dof()));
+    if !simulated.is_empty() {
+        let joints: Vec<String> = simulated.iter().map(|j| (j + 1).to_string()).collect();
+        head.pair("simulated drives", format!("joints {} (no [joints.drive] data: default motors)", joints.join(", ")));
+    }
     let motion = match report.motion {
         DriveMotionKind::Samples => "trajectory",
         DriveMotionKind::Task => "task",

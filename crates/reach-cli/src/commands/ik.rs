@@ -22,7 +22,7 @@ pub use super::ik_render::demo;
 use super::ik_render::{write_report, write_scan, write_scan_csv};
 use crate::error::CliError;
 use crate::numbers::{parse_exact, parse_finite, parse_list};
-use crate::output::write_json;
+use crate::output::{verdict_exit, write_json};
 use crate::pose_arg::{PoseFlags, joints_arg};
 use crate::robot_arg::RobotArgs;
 
@@ -181,7 +181,7 @@ pub fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
         } else {
             super::ik_render::write_planar_scan(out, &report)?;
         }
-        return finish(out, report.reason);
+        return verdict_exit(out, report.reason);
     }
     if let Some(step) = &args.scan {
         let xyz = parse_exact("--xyz", args.xyz.as_deref().unwrap_or_default(), 3, "x,y,z in metres")?;
@@ -198,7 +198,7 @@ pub fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
         } else {
             write_scan(out, robot, &report, args.from.is_some())?;
         }
-        return finish(out, report.reason);
+        return verdict_exit(out, report.reason);
     }
     let request = request_of(args, from)?;
     let report = reach::jobs::ik::ik_with_cancel(robot, &request, crate::interrupt::cancel())
@@ -208,19 +208,7 @@ pub fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
     } else {
         write_report(out, robot, &report, args)?;
     }
-    finish(out, report.reason)
-}
-
-/// A report with a failure reason is on stdout already: flush it (the caller discards
-/// unflushed output on an error), then fail with exit status 3 and the reason.
-fn finish(out: &mut dyn Write, reason: Option<String>) -> Result<(), CliError> {
-    match reason {
-        None => Ok(()),
-        Some(reason) => {
-            out.flush()?;
-            Err(CliError::NoSolution(reason))
-        }
-    }
+    verdict_exit(out, report.reason)
 }
 
 /// The target from `--xyz` (+ `--rpy`/`--rad` or `--quat`) or `--matrix`.

@@ -26,7 +26,7 @@ use crate::commands::check::read_valid_scene;
 use crate::commands::move_render::{infeasible, move_drawing, write_csv, write_report};
 use crate::error::CliError;
 use crate::numbers::{parse_finite, parse_list};
-use crate::output::write_json;
+use crate::output::{verdict_exit, write_json};
 use crate::plot::progress::Progress;
 use crate::pose_arg::{FromPoseArgs, PoseFlags, ToPoseArgs, flag_table, joints_arg};
 use crate::robot_arg::RobotArgs;
@@ -308,10 +308,5 @@ pub fn run(args: &MoveArgs, out: &mut dyn Write) -> Result<(), CliError> {
     } else {
         write_report(out, &m, m.samples.len().div_ceil(20))?;
     }
-    if m.feasible {
-        Ok(())
-    } else {
-        out.flush()?;
-        Err(infeasible(&m))
-    }
+    verdict_exit(out, (!m.feasible).then(|| infeasible(&m)))
 }

@@ -81,14 +81,14 @@ pub fn write_report(out: &mut dyn Write, m: &MoveReport, every: usize) -> Result
     Ok(())
 }
 
-/// The exit-3 error of an infeasible motion: its first reason.
+/// Why a motion is infeasible, for its exit-3 line (`crate::output::verdict_exit`): its first reason.
 #[must_use]
-pub fn infeasible(m: &MoveReport) -> CliError {
-    CliError::NoSolution(format!(
+pub fn infeasible(m: &MoveReport) -> String {
+    format!(
         "motion{} infeasible: {}",
         if m.name.is_empty() { String::new() } else { format!(" `{}`", m.name) },
         m.reasons.first().cloned().unwrap_or_else(|| "no feasible samples".into())
-    ))
+    )
 }
 
 /// A one-line-per-motion comparison table (J1, J2, feasibility).

@@ -13,7 +13,7 @@ use reach::jobs::{Joints, Pose};
 use crate::commands::check::{read_scene, scene_error};
 use crate::error::CliError;
 use crate::numbers::parse_finite;
-use crate::output::{Table, fixed, fixeds, write_json};
+use crate::output::{Table, fixed, fixeds, verdict_exit, write_json};
 use crate::pose_arg::{ToPoseArgs, flag_table, joints_arg};
 use crate::robot_arg::RobotArgs;
 
@@ -197,10 +197,7 @@ pub fn run(args: &PathArgs, out: &mut dyn Write) -> Result<(), CliError> {
         write_report(out, &args.motion.scene, report)?;
     }
     match (&report.reason, report.collision_free) {
-        (Some(r), _) => {
-            out.flush()?;
-            Err(CliError::NoSolution(format!("no path: {r}")))
-        }
+        (Some(r), _) => verdict_exit(out, Some(format!("no path: {r}"))),
         (None, Some(false)) => {
             Err(CliError::internal("the path is not proven clear although the planner proved its edges clear"))
         }

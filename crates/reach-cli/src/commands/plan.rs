@@ -18,7 +18,7 @@ use crate::commands::check::read_valid_scene;
 use crate::commands::move_cmd::Bars;
 use crate::commands::move_render::{infeasible, write_comparison, write_plan, write_report};
 use crate::error::CliError;
-use crate::output::{read_file, write_json};
+use crate::output::{read_file, verdict_exit, write_json};
 use crate::robot_arg::load_robot;
 
 /// Arguments of `reach plan`.
@@ -90,11 +90,5 @@ pub fn run_plan(args: &PlanArgs, out: &mut dyn Write) -> Result<(), CliError> {
         }
         write_comparison(out, &report.motions)?;
     }
-    match report.motions.iter().find(|m| !m.feasible) {
-        Some(m) => {
-            out.flush()?;
-            Err(infeasible(m))
-        }
-        None => Ok(()),
-    }
+    verdict_exit(out, report.motions.iter().find(|m| !m.feasible).map(infeasible))
 }

@@ -2,7 +2,7 @@
 //! velocity and acceleration limits (`reach::jobs::retime`; `--json` prints its report,
 //! `--csv FILE` writes its samples).
 
-use std::io::{Read, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
@@ -106,15 +106,7 @@ pub fn run(args: &RetimeArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let loaded = args.robot.load()?;
     let robot = &loaded.robot;
     let unit = if args.rad { AngleUnit::Rad } else { AngleUnit::Deg };
-    let text = if args.path == Path::new("-") {
-        let mut text = String::new();
-        std::io::stdin()
-            .read_to_string(&mut text)
-            .map_err(|e| CliError::bad_input(format!("cannot read standard input: {e}")))?;
-        text
-    } else {
-        read_file(&args.path)?
-    };
+    let text = read_file(&args.path)?;
     let source =
         if args.path == Path::new("-") { "standard input".to_string() } else { args.path.display().to_string() };
     let waypoints = parse_path_file(&text, unit)

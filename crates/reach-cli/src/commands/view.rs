@@ -29,7 +29,7 @@ pub struct ViewArgs {
     pub joints: JointArgs,
 
     /// A motion file (`reach move --json`'s output): its samples are played on the timeline,
-    /// its events and infeasible intervals marked.
+    /// its events and infeasible intervals marked; `-` reads standard input.
     #[arg(long, value_name = "REPORT.json", conflicts_with = "plan")]
     pub motion: Option<PathBuf>,
 

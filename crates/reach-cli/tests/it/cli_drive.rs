@@ -147,7 +147,6 @@ fn task_files() {
 
 #[test]
 fn bad_input() {
-    fails(&["drive", "puma560", "--from", "0,0,0,0,0,0", "--to", "1,0,0,0,0,0"], 2, &["joint 1", "no drive data"]);
     fails(&["drive", "planar3", "--from", "0,0", "--to", "1,0,0"], 2, &["--from", "3 joints"]);
     fails(&["drive", "planar3", "--from", "0,0,0", "--to", "1,x,0"], 2, &["--to joint 2"]);
     fails(&["drive", "planar3", "--from", "0,0,0", "--to", "90,0,0", "--duration", "1"], 3, &["too short", "joint 1"]);

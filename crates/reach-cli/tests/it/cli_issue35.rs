@@ -1,6 +1,6 @@
 //! Regression tests for issue 35 ("a newcomer's first day"), one test per point, named after it.
 
-use crate::common::{fails, json, nums};
+use crate::common::{fails, json, nums, ok, reach, stdout_json};
 
 /// Point 3: joint values take commas or blanks everywhere, also as one positional argument.
 #[test]
@@ -15,8 +15,152 @@ fn point3_joint_values_take_commas_or_blanks_in_one_argument() {
     assert_eq!(nums(&negative["q_deg"]), [-10.0, -80.0, 100.0, -110.0, 10.0, 0.0]);
     // Every command with positional joint values shares the rule.
     json(&["jacobian", "ur5", "10,-80,100,-110,10,0", "--json"]);
-    json(&["check", "ur5", "examples/ur5_ball.toml", "10 -80 100 -110 10 0", "--json"]);
+    crate::common::reported(&["check", "ur5", "examples/ur5_ball.toml", "10 -80 100 -110 10 0", "--json"], 3);
     // Errors still name the joint, counted across arguments.
     fails(&["fk", "ur5", "10,-80", "100,abc,10,0"], 2, &["joint 4", "\"abc\""]);
     fails(&["fk", "ur5", "10,-80,100,-110,10"], 2, &["6 joints", "got 5"]);
+}
+
+/// Point 2: `check` exits as it reports: status 3 (after the report) for a collision or a
+/// swept check not proven clear, 0 only when the whole check holds; with `--to` the first
+/// line gives the verdict of the whole check (start and sweep), not of the start only.
+#[test]
+fn point2_check_exits_non_zero_unless_the_whole_check_is_clear() {
+    // The issue's command: the start collides, the sweep is not proven clear.
+    let run = reach(&["check", "ur5", "examples/ur5_ball.toml", "0,-90,90,-90,-90,0", "--to", "20,-80,90,-90,-90,0"]);
+    assert_eq!(run.code, 3, "{}", run.stderr);
+    let first = run.stdout.lines().next().unwrap_or_default();
+    assert!(first.starts_with("verdict") && first.contains("NOT clear") && first.contains("collision"), "{first}");
+    let line = one_error_line_after_report(&run);
+    assert!(line.contains("collision") && line.contains("NOT proven clear"), "{line}");
+    // A free start whose motion is not proven clear: the first line says so, exit 3.
+    let run = reach(&["check", "planar3", "examples/path_planar3_post.toml", "60 -40 -30", "--to", "0,-30,-30"]);
+    assert_eq!(run.code, 3, "{}", run.stderr);
+    let first = run.stdout.lines().next().unwrap_or_default();
+    assert!(first.contains("NOT clear: start free, motion NOT proven clear"), "{first}");
+    assert!(one_error_line_after_report(&run).contains("`post`"), "{}", run.stderr);
+    // The JSON report is printed whatever the verdict, with the same exit status.
+    let run =
+        reach(&["check", "planar3", "examples/path_planar3_post.toml", "60 -40 -30", "--to", "0,-30,-30", "--json"]);
+    assert_eq!(run.code, 3, "{}", run.stderr);
+    assert_eq!(stdout_json(&run)["motion"]["clear"], false);
+    // A collision without a motion.
+    let run = reach(&["check", "ur5", "examples/ur5_ball.toml", "0 -90 0 -90 0 0", "--json"]);
+    assert_eq!(run.code, 3, "{}", run.stderr);
+    assert_eq!(stdout_json(&run)["verdict"]["verdict"], "obstacle");
+    // A clear check, with and without a motion, exits 0.
+    let text = ok(&["check", "planar3", "examples/path_planar3_post.toml", "60 -40 -30", "--to", "61,-40,-30"]);
+    assert!(text.lines().next().unwrap_or_default().contains("clear: start free, motion proven clear"), "{text}");
+    let text = ok(&["check", "varan4", "examples/seed004_two_planes.toml", "0 60 -30 -30"]);
+    assert!(text.starts_with("verdict") && text.lines().next().unwrap_or_default().ends_with("free"), "{text}");
+}
+
+/// The one line on stderr of a command that printed its report on stdout first.
+fn one_error_line_after_report(run: &crate::common::Run) -> String {
+    assert!(!run.stdout.is_empty(), "no report on stdout");
+    assert_eq!(run.stderr.lines().count(), 1, "stderr is not one line:\n{}", run.stderr);
+    let line = run.stderr.trim_end().to_string();
+    assert!(line.starts_with("error: ") && !line.contains("panicked"), "stderr: {line}");
+    line
+}
+
+/// Point 5: `reach drive` on an arm without drive data uses the default simulated motors of
+/// `reach serve` (`reach::drive::with_simulated_drives`), says so, and drives the motion.
+#[test]
+fn point5_drive_uses_the_default_simulated_motors_like_serve() {
+    let args = ["drive", "ur5", "--from", "0,-90,90,-90,-90,0", "--to", "20,-80,90,-90,-90,0", "--duration", "2"];
+    let text = ok(&args);
+    assert!(text.contains("simulated drives     joints 1, 2, 3, 4, 5, 6"), "{text}");
+    let v = json(&[&args[..], &["--format", "json"]].concat());
+    // The schedule integrates back onto the plan (the default motors' resolution).
+    assert_eq!(v["check"]["within_one_step"], true, "{:.400}", v["check"]);
+    // The same motors as the service's: the library's defaults, joint by joint.
+    let (robot, simulated) = reach::drive::with_simulated_drives(&reach::model::presets::get("ur5").unwrap()).unwrap();
+    assert_eq!(simulated, [0, 1, 2, 3, 4, 5]);
+    assert!(reach::drive::axes(&robot).is_ok());
+    // An arm with its own drive data keeps it (no simulated line).
+    assert!(!ok(&["drive", "planar3", "--from", "0,0,0", "--to", "3.6,-14.4,-7.2"]).contains("simulated drives"));
+}
+
+/// `reach args` fed `input` on its standard input.
+fn piped(args: &[&str], input: &str) -> crate::common::Run {
+    use std::io::Write;
+    let mut child = crate::common::reach_command(args)
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("start reach");
+    child.stdin.take().expect("stdin").write_all(input.as_bytes()).expect("feed stdin");
+    crate::common::Run::from_output(child.wait_with_output().expect("reach"))
+}
+
+/// Point 4 (the `-` part): `-` is standard input for every file argument read through the
+/// shared reader (`--motion` of `view`, `check` and `drive`'s motion file, `retime`'s path),
+/// also when the command reads it twice (`view` takes samples and events from one report).
+#[test]
+fn point4_dash_is_standard_input_for_motion_files() {
+    let motion = ok(&["move", "planar3", "--from", "0,-10,-10", "--to", "10,-20,-20", "--duration", "1", "--json"]);
+    let dir = crate::common::scratch("point4");
+    let html = dir.join("view.html");
+    let run = piped(&["view", "planar3", "--motion", "-", "-o", html.to_str().unwrap()], &motion);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stdout.contains("101 states of 101 samples"), "{}", run.stdout);
+    let run = piped(
+        &["check", "planar3", "examples/path_planar3_post.toml", "0 -10 -10", "--motion", "-", "--json"],
+        &motion,
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(stdout_json(&run)["samples"]["clear"], true);
+    // The same file from disk gives the same report.
+    let file = dir.join("motion.json");
+    std::fs::write(&file, &motion).unwrap();
+    let from_file = json(&[
+        "check",
+        "planar3",
+        "examples/path_planar3_post.toml",
+        "0 -10 -10",
+        "--motion",
+        file.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(stdout_json(&run), from_file);
+    // Nothing on standard input is a readable error, not a hang or a panic.
+    fails_piped(&["check", "planar3", "examples/path_planar3_post.toml", "0 -10 -10", "--motion", "-"]);
+}
+
+/// Point 4 (the chain part): `reach path --json` is a motion `reach view --motion` and `reach
+/// check --motion` read: its waypoints at the cumulative segment times.
+#[test]
+fn point4_path_json_is_accepted_by_view_motion() {
+    let path = ok(&[
+        "path",
+        "planar3",
+        "examples/path_planar3_post.toml",
+        "--from",
+        "60,-40,-30",
+        "--to",
+        "0,-30,-30",
+        "--duration",
+        "10",
+        "--json",
+    ]);
+    let report: serde_json::Value = serde_json::from_str(&path).unwrap();
+    let n = report["waypoints_deg"].as_array().map(Vec::len).unwrap();
+    let dir = crate::common::scratch("point4-path");
+    let html = dir.join("view.html");
+    let run = piped(&["view", "planar3", "--motion", "-", "-o", html.to_str().unwrap()], &path);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stdout.contains(&format!("{n} states of {n} samples")), "{}", run.stdout);
+    // The path's edges, checked again from its report: proven clear, as the planner proved them.
+    let run =
+        piped(&["check", "planar3", "examples/path_planar3_post.toml", "60 -40 -30", "--motion", "-", "--json"], &path);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(stdout_json(&run)["samples"]["clear"], true);
+}
+
+fn fails_piped(args: &[&str]) {
+    let run = piped(args, "");
+    assert_eq!(run.code, 2, "{}", run.stderr);
+    assert!(crate::common::one_error_line(&run).contains("standard input: "), "{}", run.stderr);
 }

@@ -29,7 +29,7 @@ fn cspace_reference_counts() {
 #[test]
 fn check_touching_node() {
     // (q1, q2, q3, q4) = (0, 0, 90, 0): O4 = (900, 1200) mm touches the ceiling (closed set).
-    let v = json(&["check", "varan4", "examples/seed004_ceiling.toml", "0", "0", "90", "0", "--json"]);
+    let v = common::reported(&["check", "varan4", "examples/seed004_ceiling.toml", "0", "0", "90", "0", "--json"], 3);
     assert_eq!(v["verdict"]["verdict"], "obstacle");
     assert!(v["min_obstacle_clearance_m"].as_f64().unwrap().abs() < 1e-9);
     // (0, 30, 0, 0): O4 = (1818.653, 1050) mm, 150 mm below the ceiling.
@@ -259,7 +259,7 @@ fn avoid_blocks_a_link_that_sweeps_over_the_obstacle() {
 fn check_to_sweeps_the_joint_motion() {
     use reach::jobs::{CheckRequest, Job, Joints, Request, RobotInput};
     let scene = "examples/path_planar3_post.toml";
-    let v = json(&["check", "planar3", scene, "60", "-40", "-30", "--to", "0,-30,-30", "--json"]);
+    let v = common::reported(&["check", "planar3", scene, "60", "-40", "-30", "--to", "0,-30,-30", "--json"], 3);
     let m = &v["motion"];
     assert_eq!(m["clear"], false, "{m}");
     assert_eq!(m["pair"]["kind"], "obstacle");
@@ -323,7 +323,10 @@ fn moves_and_sampled_motions_are_checked_against_a_scene() {
     // The sampled motion without the scene, checked by `reach check --motion`.
     let motion = dir.join("through.json");
     std::fs::write(&motion, ok(&[&through[..], &["--json"]].concat())).unwrap();
-    let v = json(&["check", "planar3", scene, "60", "-40", "-30", "--motion", motion.to_str().unwrap(), "--json"]);
+    let v = common::reported(
+        &["check", "planar3", scene, "60", "-40", "-30", "--motion", motion.to_str().unwrap(), "--json"],
+        3,
+    );
     common::assert_valid("check.report", &v);
     let s = &v["samples"];
     assert_eq!(s["clear"], false, "{s}");
@@ -361,19 +364,22 @@ fn moving_obstacles_are_checked_in_time_or_refused() {
          center = [3500, 0, 0]\nradius = 100\nvelocity = [-200, 0, 0]\n",
     );
     let path = scene.to_str().unwrap();
-    let check = |duration: &str| {
-        let v = json(&["check", "planar3", path, "0", "0", "0", "--to", "0,0,0", "--duration", duration, "--json"]);
+    let check = |duration: &str, code: i32| {
+        let v = common::reported(
+            &["check", "planar3", path, "0", "0", "0", "--to", "0,0,0", "--duration", duration, "--json"],
+            code,
+        );
         common::assert_valid("check.report", &v);
         v["motion"].clone()
     };
-    let clear = check("1.9");
+    let clear = check("1.9", 0);
     assert_eq!(clear["clear"], true, "{clear}");
     assert!((clear["min_clearance_m"].as_f64().unwrap() - 0.02).abs() < 1e-9, "{clear}");
-    let hit = check("3");
+    let hit = check("3", 3);
     assert_eq!(hit["clear"], false, "{hit}");
     assert!((hit["t_s"].as_f64().unwrap() - 2.0).abs() < 1e-5, "{hit}");
     assert_eq!(hit["pair_text"], "link 3 (`A`) and `ball`");
-    let text = ok(&["check", "planar3", path, "0", "0", "0", "--to", "0,0,0", "--duration", "3"]);
+    let text = reach(&["check", "planar3", path, "0", "0", "0", "--to", "0,0,0", "--duration", "3"]).stdout;
     assert!(text.contains("NOT proven clear: link 3 (`A`) and `ball` at") && text.contains("t = 2.0000 s"), "{text}");
 
     fails(&["check", "planar3", path, "0", "0", "0", "--to", "0,0,0"], 2, &["--duration", "`ball` moves"]);
@@ -397,7 +403,8 @@ fn moving_obstacles_are_checked_in_time_or_refused() {
 /// the exempt housing pairs are listed as exempt, not as collisions.
 #[test]
 fn check_ur5_uses_the_presets_body() {
-    let v = json(&["check", "ur5", "examples/ur5_ball.toml", "0", "-90", "0", "-90", "0", "0", "--json"]);
+    let v =
+        common::reported(&["check", "ur5", "examples/ur5_ball.toml", "0", "-90", "0", "-90", "0", "0", "--json"], 3);
     assert_eq!(v["verdict"]["verdict"], "obstacle", "{v}");
     assert!(v["verdict_text"].as_str().unwrap().contains("link 3 (`upper_arm_link`) with `ball`"), "{v}");
     assert!(v["min_obstacle_clearance_m"].as_f64().unwrap() < -0.09);

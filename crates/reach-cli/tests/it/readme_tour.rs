@@ -6,8 +6,9 @@
 use crate::common::{REPO_ROOT, json, num, reach, scratch};
 
 /// The tour's command lines: continuation lines joined, comments and the leading `reach`
-/// removed, a `> file` redirection dropped.
-fn tour_commands() -> Vec<Vec<String>> {
+/// removed, a `> file` redirection dropped; with the exit status each must end with, 0 unless
+/// its comment (on its line or the comment lines below it) says `exit status N`.
+fn tour_commands() -> Vec<(Vec<String>, i32)> {
     let readme = std::fs::read_to_string(format!("{REPO_ROOT}/README.md")).expect("README.md");
     let tour = readme.split("\n## Tour").nth(1).expect("a `## Tour` section");
     let block = tour.split("```sh").nth(1).and_then(|b| b.split("```").next()).expect("an sh block in the tour");
@@ -24,7 +25,12 @@ fn tour_commands() -> Vec<Vec<String>> {
         let full = std::mem::take(&mut pending);
         let full = full.split(" > ").next().unwrap_or("").trim().to_string();
         if let Some(rest) = full.strip_prefix("reach ") {
-            commands.push(rest.split_whitespace().map(str::to_string).collect());
+            commands.push((rest.split_whitespace().map(str::to_string).collect(), 0));
+        }
+        let comment = line.split_once(" #").map_or("", |(_, c)| c);
+        if let (Some(n), Some((_, status))) = (comment.split("exit status ").nth(1), commands.last_mut()) {
+            let digits: String = n.chars().take_while(char::is_ascii_digit).collect();
+            *status = digits.parse().expect("a number after `exit status` in a tour comment");
         }
     }
     commands
@@ -64,7 +70,7 @@ fn every_tour_command_succeeds() {
     let commands = tour_commands();
     assert!(commands.len() >= 25, "the tour has {} commands", commands.len());
     let dir = scratch("tour");
-    for (k, args) in commands.iter().enumerate() {
+    for (k, (args, status)) in commands.iter().enumerate() {
         let mut args = args.clone();
         for i in 1..args.len() {
             if OUTPUT_OPTIONS.contains(&args[i - 1].as_str()) {
@@ -80,7 +86,7 @@ fn every_tour_command_succeeds() {
         for stage in args.split(|a| a == "|") {
             let stage = if input.is_some() { &stage[1..] } else { stage };
             let run = run_stage(stage, input.take());
-            assert_eq!(run.code, 0, "`reach {}` failed: {}", stage.join(" "), run.stderr);
+            assert_eq!(run.code, *status, "`reach {}` exit status: {}", stage.join(" "), run.stderr);
             let writes_file = stage.iter().any(|a| a == "-o");
             assert!(!run.stdout.is_empty() || writes_file, "`reach {}` printed nothing", stage.join(" "));
             input = Some(run.stdout);
@@ -127,4 +133,59 @@ fn tour_key_numbers_are_unchanged() {
         .map(|m| num(&m["effort"]["j1"]))
         .expect("a joint-space motion in the seed 001 task");
     assert!((j1 - 7.0 * std::f64::consts::PI / 36.0).abs() < 1e-9, "J1 = {j1}");
+}
+
+/// The ranking rows (`rank  #  branch…  value norm …  score  pareto`) of `reach ik … --choose
+/// METHOD` as printed: (rank, solution, the four criterion values, score, pareto).
+fn ranking_rows(args: &[&str]) -> Vec<Vec<String>> {
+    let text = crate::common::ok(args);
+    text.lines()
+        .map(|l| l.split_whitespace().map(str::to_string).collect::<Vec<_>>())
+        .filter(|t| t.len() == 15 && t[0].parse::<u32>().is_ok() && t[1].parse::<u32>().is_ok())
+        .map(|t| {
+            vec![
+                t[0].clone(),
+                t[1].clone(),
+                t[5].clone(),
+                t[7].clone(),
+                t[9].clone(),
+                t[11].clone(),
+                t[13].clone(),
+                t[14].clone(),
+            ]
+        })
+        .collect()
+}
+
+/// Issue 35 point 7: the README's TOPSIS table is what its command prints — every row's
+/// rank, solution, criterion values, closeness, Pareto status, and VIKOR's Q and rank.
+#[test]
+fn point7_readme_topsis_table_matches_the_binary() {
+    let readme = std::fs::read_to_string(format!("{REPO_ROOT}/README.md")).expect("README.md");
+    let section = readme.split("### Choosing among solutions").nth(1).expect("the choosing section");
+    let command = section.split("```sh").nth(1).and_then(|b| b.split("```").next()).expect("its command");
+    let command = command.replace("\\\n", " ");
+    let args: Vec<&str> = command.split_whitespace().skip(1).collect();
+    let table: Vec<Vec<String>> = section
+        .lines()
+        .filter(|l| l.starts_with("| ") && l.split('|').nth(1).is_some_and(|c| c.trim().parse::<u32>().is_ok()))
+        .map(|l| l.split('|').map(|c| c.trim().trim_matches('`').to_string()).filter(|c| !c.is_empty()).collect())
+        .collect();
+    let topsis = ranking_rows(&args);
+    assert_eq!(table.len(), topsis.len(), "README rows vs printed rows");
+    let mut vikor_args = args.clone();
+    let k = vikor_args.iter().position(|a| *a == "topsis").expect("--choose topsis in the README command");
+    vikor_args[k] = "vikor";
+    let vikor = ranking_rows(&vikor_args);
+    for (row, printed) in table.iter().zip(&topsis) {
+        // README: rank | # | branch | change | limits | manipulability | σmin | closeness | Q (rank) | Pareto
+        let readme_row = [&row[0], &row[1], &row[3], &row[4], &row[5], &row[6], &row[7], &row[9]];
+        assert_eq!(
+            readme_row.map(String::as_str),
+            printed.iter().map(String::as_str).collect::<Vec<_>>()[..],
+            "{row:?}"
+        );
+        let v = vikor.iter().find(|v| v[1] == row[1]).expect("the solution in the VIKOR ranking");
+        assert_eq!(row[8], format!("{} ({})", v[6], v[0]), "VIKOR of #{}", row[1]);
+    }
 }

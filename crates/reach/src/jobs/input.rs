@@ -664,18 +664,40 @@ pub struct MotionSample {
 }
 
 /// A motion file's samples: the JSON `reach move --json` prints (`{"samples": [{"t_s",
-/// "q_deg"}, ...]}`; other fields are ignored).
+/// "q_deg"}, ...]}`), or a `reach path --json` report (`{"waypoints_deg", "segment_durations_s"}`:
+/// its waypoints are the samples, at the cumulative times of its segments from 0 s; the
+/// timed path runs on the straight joint segments between them). Other fields are ignored.
 ///
 /// # Errors
-/// [`Error::File`] for text that is not such JSON.
+/// [`Error::File`] for text that is neither, or a path report whose segment durations do not
+/// match its waypoints.
 pub fn parse_motion_json(text: &str) -> Result<Vec<MotionSample>> {
     #[derive(Deserialize)]
     struct MotionFile {
-        samples: Vec<MotionSample>,
+        samples: Option<Vec<MotionSample>>,
+        waypoints_deg: Option<Vec<Vec<f64>>>,
+        segment_durations_s: Option<Vec<f64>>,
     }
-    serde_json::from_str::<MotionFile>(text)
-        .map(|f| f.samples)
-        .map_err(|e| Error::File { what: "motion file", message: one_line(&e.to_string()) })
+    let bad = |message: String| Error::File { what: "motion file", message };
+    let file = serde_json::from_str::<MotionFile>(text).map_err(|e| bad(one_line(&e.to_string())))?;
+    match (file.samples, file.waypoints_deg, file.segment_durations_s) {
+        (Some(samples), ..) => Ok(samples),
+        (None, Some(waypoints), Some(durations)) => {
+            if waypoints.is_empty() || durations.len() + 1 != waypoints.len() {
+                return Err(bad(format!(
+                    "a path report needs one segment duration fewer than waypoints, got {} waypoints and {} durations (a path that was not found has none)",
+                    waypoints.len(),
+                    durations.len()
+                )));
+            }
+            let times = std::iter::once(0.0).chain(durations.iter().scan(0.0, |t, d| {
+                *t += d;
+                Some(*t)
+            }));
+            Ok(times.zip(waypoints).map(|(t_s, q_deg)| MotionSample { t_s, q_deg }).collect())
+        }
+        _ => Err(bad("missing field `samples` (or a path report's `waypoints_deg` and `segment_durations_s`)".into())),
+    }
 }
 
 /// A sampled motion in SI, every sample within the joints' position limits.

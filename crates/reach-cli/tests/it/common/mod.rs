@@ -68,6 +68,16 @@ pub fn json(args: &[&str]) -> Value {
     serde_json::from_str(&text).unwrap_or_else(|e| panic!("reach {args:?}: bad JSON ({e}):\n{text}"))
 }
 
+/// Runs a command that prints its report and then exits with `code` (3: a verdict that does
+/// not hold, after the report, with one line on stderr); returns the report's JSON.
+#[track_caller]
+pub fn reported(args: &[&str], code: i32) -> Value {
+    let run = reach(args);
+    assert_eq!(run.code, code, "reach {args:?}: expected exit {code}; stderr: {}", run.stderr);
+    assert!(run.stderr.lines().count() == usize::from(code != 0), "reach {args:?}: stderr {}", run.stderr);
+    stdout_json(&run)
+}
+
 /// The JSON a run printed on stdout, whatever its exit status (checked by the caller).
 pub fn stdout_json(run: &Run) -> Value {
     serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("bad JSON on stdout ({e}):\n{}", run.stdout))

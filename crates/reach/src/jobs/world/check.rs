@@ -171,6 +171,18 @@ pub struct CheckReport {
     pub samples: Option<SweptPathReport>,
 }
 
+impl CheckReport {
+    /// Whether the whole check holds: the configuration is free and the swept check of its
+    /// motion (`motion` or `samples`), when there is one, is proven clear. The verdict a
+    /// front end reports as its outcome (`reach check` exits with status 3 when it is false).
+    #[must_use]
+    pub fn is_clear(&self) -> bool {
+        self.verdict.is_free()
+            && self.motion.as_ref().is_none_or(|m| m.swept.clear)
+            && self.samples.as_ref().is_none_or(|p| p.swept.clear)
+    }
+}
+
 /// The verdict of `checker` in words, naming the links (number and name), obstacle or zone.
 #[must_use]
 pub fn verdict_text(verdict: &Verdict, checker: &CollisionChecker) -> String {
