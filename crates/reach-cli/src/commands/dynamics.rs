@@ -24,12 +24,12 @@ pub struct DynamicsArgs {
     pub joints: JointArgs,
 
     /// Joint rates, one per joint (deg/s, rad/s with --rad; m/s prismatic); zero if absent.
-    #[arg(long, value_name = "QD")]
+    #[arg(long, value_name = "QD", allow_hyphen_values = true)]
     pub qd: Option<String>,
 
     /// Joint accelerations, one per joint (deg/s², rad/s² with --rad; m/s² prismatic); zero if
     /// absent.
-    #[arg(long, value_name = "QDD")]
+    #[arg(long, value_name = "QDD", allow_hyphen_values = true)]
     pub qdd: Option<String>,
 
     /// Print the report as JSON (docs/schemas/dynamics.report.schema.json).

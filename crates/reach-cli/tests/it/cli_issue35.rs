@@ -164,3 +164,43 @@ fn fails_piped(args: &[&str]) {
     assert_eq!(run.code, 2, "{}", run.stderr);
     assert!(crate::common::one_error_line(&run).contains("standard input: "), "{}", run.stderr);
 }
+
+/// Dynamics as a workflow: `reach dynamics` prints the library's report (torques, gravity
+/// load, mass matrix), equal to Pinocchio's `rnea`, `computeGeneralizedGravity` and `crba` of
+/// the same URDF (the fixture of bench/peers/pinocchio_dynamics.py) to 1e-9; rates are typed in
+/// the unit of the joint values; a robot without mass properties is one readable error.
+#[test]
+fn dynamics_reach_dynamics_equals_pinocchio_on_the_kr16_urdf() {
+    let text = std::fs::read_to_string(format!(
+        "{}/crates/reach/tests/data/reference/urdf_dynamics.json",
+        crate::common::REPO_ROOT
+    ))
+    .unwrap();
+    let doc: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let arm = &doc["arms"]["kr16_2"];
+    let state = &arm["states"][0];
+    let list = |key: &str| nums(&state[key]).iter().map(|x| format!("{x:.17e}")).collect::<Vec<_>>().join(",");
+    let (q, qd, qdd) = (list("q"), list("qd"), list("qdd"));
+    let urdf = arm["urdf"].as_str().unwrap();
+    let report = json(&["dynamics", urdf, "--tip", "tool0", &q, "--qd", &qd, "--qdd", &qdd, "--rad", "--json"]);
+    for (got, want) in [
+        (nums(&report["tau_si"]), nums(&state["tau"])),
+        (nums(&report["gravity_tau_si"]), nums(&state["gravity"])),
+        (
+            report["mass_matrix_si"].as_array().unwrap().iter().flat_map(nums).collect(),
+            state["mass_matrix"].as_array().unwrap().iter().flat_map(nums).collect(),
+        ),
+    ] {
+        let scale = want.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
+        for (g, w) in got.iter().zip(&want) {
+            assert!((g - w).abs() <= 1e-9 * scale, "reach {g} vs Pinocchio {w}");
+        }
+    }
+    // Degrees: the rates follow the joint values' unit.
+    let deg = json(&["dynamics", "puma560", "0,45,-90,0,30,0", "--qd", "10,0,0,0,0,0", "--json"]);
+    assert!((nums(&deg["qd_si"])[0] - 10f64.to_radians()).abs() < 1e-15, "{deg}");
+    let text = ok(&["dynamics", "puma560", "0", "45", "-90", "0", "30", "0"]);
+    assert!(text.contains("mass matrix M(q)") && text.contains("2 shoulder"), "{text}");
+    fails(&["dynamics", "planar3", "0", "0", "0"], 2, &["no inertial data"]);
+    fails(&["dynamics", "puma560", "0", "0", "0", "0", "0", "0", "--qd", "1,2"], 2, &["qd", "6 joints"]);
+}
