@@ -279,6 +279,21 @@ pub enum Align {
     Right,
 }
 
+/// A matrix with one column per joint (`q1 … qn`): each row its label, then its entries with
+/// six decimals (the Jacobian's rows, the mass matrix).
+pub fn joint_matrix_table<'a>(dof: usize, rows: impl IntoIterator<Item = (String, &'a [f64])>) -> Table {
+    let headers: Vec<String> = (1..=dof).map(|i| format!("q{i}")).collect();
+    let mut columns = vec![("", Align::Left)];
+    columns.extend(headers.iter().map(|h| (h.as_str(), Align::Right)));
+    let mut table = Table::new(&columns);
+    for (label, row) in rows {
+        let mut cells = vec![label];
+        cells.extend(row.iter().map(|&v| fixed(v, 6)));
+        table.row(cells);
+    }
+    table
+}
+
 /// A plain-text table with a header row and aligned columns.
 #[derive(Debug, Clone, Default)]
 pub struct Table {

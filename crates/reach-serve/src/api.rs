@@ -18,7 +18,7 @@ use tokio::sync::broadcast::error::RecvError;
 use crate::db::JobStatus;
 use crate::error::ApiError;
 use crate::intake;
-use crate::service::{Control, MAX_BODY_BYTES, MAX_OBSTACLES, MAX_QUEUED_JOBS, Shared, lock};
+use crate::service::{Control, MAX_BODY_BYTES, MAX_QUEUED_JOBS, Shared, lock};
 
 /// The OpenAPI description of this API.
 pub const OPENAPI: &str = include_str!("../../../docs/openapi.json");
@@ -461,8 +461,7 @@ fn append_obstacle(shared: &Shared, value: &Value, metres: Option<&[&str]>) -> R
     let table = toml::to_string(&value).map_err(|e| ApiError::bad_request(format!("obstacle: {e}")))?;
     let text = format!("{old}\n[[obstacles]]\n{table}");
     let scene = reach::jobs::world::parse_scene(&text).map_err(|e| ApiError::bad_request(e.to_string()))?;
-    scene.require_fixed(FIXED_SCENE).map_err(|e| ApiError::bad_request(e.to_string()))?;
-    reach::jobs::world::require_workcell(&shared.robot, &scene).map_err(|e| ApiError::bad_request(e.to_string()))?;
+    crate::service::require_keepable(&shared.robot, &scene).map_err(ApiError::bad_request)?;
     if let Some((last, before)) = scene.obstacles.split_last()
         && before.iter().any(|o| o.name == last.name)
     {
@@ -471,27 +470,35 @@ fn append_obstacle(shared: &Shared, value: &Value, metres: Option<&[&str]>) -> R
             last.name
         )));
     }
-    if scene.obstacles.len() > MAX_OBSTACLES {
-        return Err(ApiError::bad_request(format!(
-            "the scene holds {MAX_OBSTACLES} obstacles, the most the service keeps; remove one first (DELETE /scene/obstacles/{{name}})"
-        )));
-    }
-    db.set_scene(&text)?;
-    let obstacles = scene.obstacles.len();
-    // Replaced while the database lock is held: concurrent additions keep their order.
-    *shared.scene.write().unwrap_or_else(std::sync::PoisonError::into_inner) = Some(scene);
+    let name = value["name"].as_str().unwrap_or("");
+    let obstacles = store_scene(shared, &db, &text, scene, "obstacle", name)?;
     drop(db);
-    let name = value["name"].as_str().unwrap_or("").to_string();
-    {
-        // The job executing re-checks the rest of its motion against the new scene.
-        let mut live = lock(&shared.live);
-        if live.job.is_some() {
-            live.scene_changed = true;
-            shared.wake.notify_all();
-        }
+    // The job executing re-checks the rest of its motion against the new scene.
+    let mut live = lock(&shared.live);
+    if live.job.is_some() {
+        live.scene_changed = true;
+        shared.wake.notify_all();
     }
-    let _ = lock(&shared.db).add_event(None, "obstacle", &name);
-    shared.publish(&json!({"type": "obstacle", "name": name, "obstacles": obstacles}));
+    Ok(obstacles)
+}
+
+/// Stores a changed scene (its text in the database, the parsed scene for the executor), and
+/// journals and announces the change (`event`: `obstacle` or `obstacle_removed`, of obstacle
+/// `name`). The caller holds the database lock, so concurrent changes keep their order.
+/// Returns the number of obstacles in the scene now.
+fn store_scene(
+    shared: &Shared,
+    db: &crate::db::Db,
+    text: &str,
+    scene: reach::world::Scene,
+    event: &str,
+    name: &str,
+) -> Result<usize, ApiError> {
+    db.set_scene(text)?;
+    let obstacles = scene.obstacles.len();
+    *shared.scene.write().unwrap_or_else(std::sync::PoisonError::into_inner) = Some(scene);
+    let _ = db.add_event(None, event, name);
+    shared.publish(&json!({"type": event, "name": name, "obstacles": obstacles}));
     Ok(obstacles)
 }
 
@@ -532,12 +539,7 @@ async fn remove_obstacle(State(shared): AppState, Path(name): Path<String>) -> R
         }
         let text = toml::to_string(&table).map_err(|e| ApiError::internal(e.to_string()))?;
         let scene = reach::jobs::world::parse_scene(&text).map_err(|e| ApiError::internal(e.to_string()))?;
-        db.set_scene(&text)?;
-        let obstacles = scene.obstacles.len();
-        *s.scene.write().unwrap_or_else(std::sync::PoisonError::into_inner) = Some(scene);
-        let _ = db.add_event(None, "obstacle_removed", &name);
-        drop(db);
-        s.publish(&json!({"type": "obstacle_removed", "name": name, "obstacles": obstacles}));
+        let obstacles = store_scene(s, &db, &text, scene, "obstacle_removed", &name)?;
         Ok(Json(json!({"removed": name, "obstacles": obstacles})))
     })
     .await

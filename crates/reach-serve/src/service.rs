@@ -169,6 +169,24 @@ pub struct Shared {
     pub operator_criterion: Option<reach::jobs::motion::ChoiceSpec>,
 }
 
+/// What a scene must be for the service to keep it (at start with `--scene`, and after every
+/// obstacle added): fixed obstacles only ([`crate::api::FIXED_SCENE`]), every one within the
+/// robot's workcell ([`reach::jobs::world::require_workcell`]), at most [`MAX_OBSTACLES`].
+///
+/// # Errors
+/// The library's message, or the count against the cap.
+pub fn require_keepable(robot: &Robot, scene: &Scene) -> Result<(), String> {
+    scene.require_fixed(crate::api::FIXED_SCENE).map_err(|e| e.to_string())?;
+    reach::jobs::world::require_workcell(robot, scene).map_err(|e| e.to_string())?;
+    if scene.obstacles.len() > MAX_OBSTACLES {
+        return Err(format!(
+            "{} obstacles, the service keeps at most {MAX_OBSTACLES}; remove one first (DELETE /scene/obstacles/{{name}})",
+            scene.obstacles.len()
+        ));
+    }
+    Ok(())
+}
+
 /// The scene now (a copy).
 #[must_use]
 pub fn scene(shared: &Shared) -> Option<Scene> {
@@ -203,15 +221,7 @@ impl Shared {
         let robot_json = serde_json::to_string(&config.robot).map_err(|e| ServeError::Config(e.to_string()))?;
         if let Some(text) = &config.scene {
             let scene = reach::jobs::world::parse_scene(text)?;
-            scene.require_fixed(crate::api::FIXED_SCENE).map_err(|e| ServeError::Config(format!("--scene: {e}")))?;
-            reach::jobs::world::require_workcell(&robot, &scene)
-                .map_err(|e| ServeError::Config(format!("--scene: {e}")))?;
-            if scene.obstacles.len() > MAX_OBSTACLES {
-                return Err(ServeError::Config(format!(
-                    "--scene: {} obstacles, the service keeps at most {MAX_OBSTACLES}",
-                    scene.obstacles.len()
-                )));
-            }
+            require_keepable(&robot, &scene).map_err(|e| ServeError::Config(format!("--scene: {e}")))?;
         }
         let (db, recovery) = Db::open(&config.state_dir, &robot_json, &names, &home, config.scene.as_deref())?;
         let scene = db.scene()?.map(|t| reach::jobs::world::parse_scene(&t)).transpose()?;

@@ -8,7 +8,7 @@ use reach::jobs::{DynamicsReport, DynamicsRequest, Joints};
 
 use crate::error::CliError;
 use crate::numbers::{JointArgs, limits_text, parse_joint_list, q_text};
-use crate::output::{Align, Table, fixed, write_json};
+use crate::output::{Align, Table, fixed, joint_matrix_table, write_json};
 use crate::robot_arg::RobotArgs;
 
 /// Arguments of `reach dynamics`.
@@ -85,14 +85,6 @@ fn write_text(robot: &reach::Robot, r: &DynamicsReport, out: &mut dyn Write) -> 
     }
     table.write(out, "  ")?;
     writeln!(out, "mass matrix M(q) (kg·m² between revolute joints; symmetric):")?;
-    let headers: Vec<String> = (1..=robot.dof()).map(|i| format!("q{i}")).collect();
-    let mut columns = vec![("", Align::Left)];
-    columns.extend(headers.iter().map(|h| (h.as_str(), Align::Right)));
-    let mut matrix = Table::new(&columns);
-    for (i, row) in r.mass_matrix_si.iter().enumerate() {
-        let mut cells = vec![format!("q{}", i + 1)];
-        cells.extend(row.iter().map(|&v| fixed(v, 6)));
-        matrix.row(cells);
-    }
-    matrix.write(out, "  ")
+    let rows = r.mass_matrix_si.iter().enumerate().map(|(i, row)| (format!("q{}", i + 1), row.as_slice()));
+    joint_matrix_table(robot.dof(), rows).write(out, "  ")
 }

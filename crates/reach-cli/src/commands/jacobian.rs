@@ -8,7 +8,7 @@ use reach::jobs::{JacobianReport, JacobianRequest};
 
 use crate::error::CliError;
 use crate::numbers::{JointArgs, limits_text, q_text};
-use crate::output::{Align, Table, fixed, fixeds, write_json};
+use crate::output::{Table, fixed, fixeds, joint_matrix_table, write_json};
 use crate::robot_arg::RobotArgs;
 
 /// Arguments of `reach jacobian`.
@@ -52,16 +52,8 @@ fn write_text(robot: &reach::Robot, r: &JacobianReport, out: &mut dyn Write) -> 
         "Jacobian (geometric, world frame, tool point; rows vx vy vz in m/s and wx wy wz in rad/s \
          per unit speed of each joint, rad/s or m/s):"
     )?;
-    let headers: Vec<String> = (1..=robot.dof()).map(|i| format!("q{i}")).collect();
-    let mut columns = vec![("", Align::Left)];
-    columns.extend(headers.iter().map(|h| (h.as_str(), Align::Right)));
-    let mut table = Table::new(&columns);
-    for (label, row) in r.rows.iter().zip(&r.jacobian) {
-        let mut cells = vec![label.clone()];
-        cells.extend(row.iter().map(|&v| fixed(v, 6)));
-        table.row(cells);
-    }
-    table.write(out, "  ")?;
+    let rows = r.rows.iter().cloned().zip(r.jacobian.iter().map(Vec::as_slice));
+    joint_matrix_table(robot.dof(), rows).write(out, "  ")?;
     let mut measures = Table::key_value();
     measures
         .pair("manipulability", format!("{} (Yoshikawa, product of the singular values)", fixed(r.manipulability, 6)));
