@@ -60,6 +60,11 @@ pub struct IkArgs {
     #[arg(long)]
     pub all: bool,
 
+    /// With --all: list at most N solutions, evenly spaced in the solver's order (a redundant
+    /// arm's self-motion parameter), always with the chosen one.
+    #[arg(long, value_name = "N", requires = "all", conflicts_with = "choose")]
+    pub max: Option<String>,
+
     /// The current configuration q1,..,qn (degrees, radians with --rad; prismatic in metres);
     /// default: home.
     /// The chosen solution is the one closest to it.
@@ -132,7 +137,7 @@ pub struct IkArgs {
 }
 
 /// Where the request's fields come from on the command line, for messages.
-const FLAGS: [(&str, &str); 16] = [
+const FLAGS: [(&str, &str); 17] = [
     ("target.xyz_m", "--xyz"),
     ("target.rpy_deg", "--rpy"),
     ("target.rpy_rad", "--rpy"),
@@ -147,6 +152,7 @@ const FLAGS: [(&str, &str); 16] = [
     ("solver", "--solver"),
     ("free_angle_deg", "--free-angle"),
     ("step_deg", "--step"),
+    ("max_solutions", "--max"),
     ("numeric.restarts", "--restarts"),
     ("numeric.time_budget_s", "--time-budget"),
 ];
@@ -255,15 +261,13 @@ fn request_of(args: &IkArgs, from: Option<Joints>) -> Result<IkRequest, CliError
     }
     request.free_angle_deg = args.free_angle.as_deref().map(|t| parse_finite("--free-angle", t)).transpose()?;
     request.step_deg = args.step.as_deref().map(|t| parse_finite("--step", t)).transpose()?;
-    request.numeric.restarts = args
-        .restarts
-        .as_deref()
-        .map(|t| {
-            t.trim()
-                .parse::<usize>()
-                .map_err(|_| CliError::bad_input(format!("--restarts: expected a whole number ≥ 1, got {t:?}")))
-        })
-        .transpose()?;
+    let count = |flag: &str, t: &str| {
+        t.trim()
+            .parse::<usize>()
+            .map_err(|_| CliError::bad_input(format!("{flag}: expected a whole number ≥ 1, got {t:?}")))
+    };
+    request.max_solutions = args.max.as_deref().map(|t| count("--max", t)).transpose()?;
+    request.numeric.restarts = args.restarts.as_deref().map(|t| count("--restarts", t)).transpose()?;
     request.numeric.time_budget_s =
         args.time_budget.as_deref().map(|t| parse_finite("--time-budget", t)).transpose()?;
     Ok(request)

@@ -48,6 +48,9 @@ pub(super) fn write_report(out: &mut dyn Write, robot: &Robot, r: &IkReport, arg
         (Some(i), None) if !args.all => write_chosen(out, robot, &r.solutions[i], CLOSEST_RULE),
         _ if r.solutions.is_empty() => Ok(()),
         _ => {
+            if r.solutions.len() < r.found {
+                writeln!(out, "{} of the {} solutions, evenly spaced (--max):", r.solutions.len(), r.found)?;
+            }
             writeln!(out, "solutions (* = chosen: least Σ wᵢ·|qᵢ − fromᵢ| within limits):")?;
             write_solution_table(out, robot, &r.solutions, r.chosen, "  ", false)
         }

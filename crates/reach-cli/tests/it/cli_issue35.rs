@@ -204,3 +204,94 @@ fn dynamics_reach_dynamics_equals_pinocchio_on_the_kr16_urdf() {
     fails(&["dynamics", "planar3", "0", "0", "0"], 2, &["no inertial data"]);
     fails(&["dynamics", "puma560", "0", "0", "0", "0", "0", "0", "--qd", "1,2"], 2, &["qd", "6 joints"]);
 }
+
+/// Point 1: a tool-space move from joint values starts at exactly those joint values, on
+/// their branch (the start is on none of the UR5's two default configurations), and
+/// keeps that branch: every step is small (no jump to the same pose on another branch).
+#[test]
+fn point1_tool_space_move_starts_at_the_from_joint_values_on_their_branch() {
+    let from = [0.0, -90.0, 90.0, -90.0, -90.0, 0.0];
+    let report = json(&[
+        "move",
+        "ur5",
+        "--from",
+        "0,-90,90,-90,-90,0",
+        "--to",
+        "20,-80,90,-90,-90,0",
+        "--space",
+        "tool",
+        "--duration",
+        "2",
+        "--json",
+    ]);
+    let samples = report["samples"].as_array().unwrap();
+    let q: Vec<Vec<f64>> = samples.iter().map(|s| nums(&s["q_deg"])).collect();
+    for (a, b) in q[0].iter().zip(&from) {
+        assert!((a - b).abs() < 1e-9, "first sample {:?}, from {from:?}", q[0]);
+    }
+    // The straight tool line between two poses of one branch ends on that branch: at `to`.
+    let last = q.last().unwrap();
+    for (a, b) in last.iter().zip([20.0, -80.0, 90.0, -90.0, -90.0, 0.0]) {
+        assert!((a - b).abs() < 1e-6, "last sample {last:?}");
+    }
+    let worst_step = q.windows(2).flat_map(|w| w[0].iter().zip(&w[1]).map(|(a, b)| (a - b).abs())).fold(0.0, f64::max);
+    assert!(worst_step < 1.0, "a step of {worst_step}°");
+    let interval = &report["intervals"][0];
+    assert_eq!(interval["decision"], "start", "{interval}");
+    assert_eq!(interval["configuration"], "shoulder=−w config=+β wrist=−e5");
+    // A start from a pose (no joint state) is chosen as before: the default configuration.
+    let from_pose = json(&[
+        "move",
+        "ur5",
+        "--from-xyz",
+        "-0.4869,-0.10915,0.431859",
+        "--from-rpy",
+        "-180,0,90",
+        "--to",
+        "20,-80,90,-90,-90,0",
+        "--space",
+        "tool",
+        "--duration",
+        "2",
+        "--json",
+    ]);
+    assert_ne!(from_pose["intervals"][0]["decision"], "start", "{}", from_pose["intervals"][0]);
+}
+
+/// Point 8: a redundant arm's self-motion listing can be thinned (`ik --all --max N`, the
+/// chosen one always kept); "out of reach" says what is measured from where and whether the
+/// target is too far or too close; a blocked start names the link by its name too.
+#[test]
+fn point8_ik_max_thins_the_list_and_out_of_reach_says_from_where() {
+    let every = json(&["ik", "planar3", "--xyz", "1.5,1,0", "--all", "--json"]);
+    let few = json(&["ik", "planar3", "--xyz", "1.5,1,0", "--all", "--max", "7", "--json"]);
+    let found = every["found"].as_u64().unwrap();
+    assert!(found > 300, "{found}");
+    assert_eq!((few["found"].as_u64(), few["solutions"].as_array().unwrap().len()), (Some(found), 7));
+    let chosen = |r: &serde_json::Value| r["solutions"][r["chosen"].as_u64().unwrap() as usize].clone();
+    assert_eq!(chosen(&few), chosen(&every));
+    let text = ok(&["ik", "planar3", "--xyz", "1.5,1,0", "--all", "--max", "7"]);
+    assert!(text.contains(&format!("7 of the {found} solutions, evenly spaced (--max)")), "{text}");
+    fails(&["ik", "planar3", "--xyz", "1.5,1,0", "--all", "--max", "0"], 2, &["--max", "at least 1"]);
+    fails(&["ik", "planar3", "--xyz", "1.5,1,0", "--all", "--max", "many"], 2, &["--max", "whole number"]);
+    // The message: a target on the UR5's base axis is too close, not too far.
+    let run = reach(&["ik", "ur5", "--xyz", "0,0,0.3", "--rpy", "0,0,0"]);
+    assert_eq!(run.code, 3, "{}", run.stderr);
+    let line = one_error_line_after_report(&run);
+    assert!(
+        line.contains("(too close): the wrist point is 0.000000 m from joint 1's axis, inside the inner workspace bound 0.109150 m"),
+        "{line}"
+    );
+    let run = reach(&["ik", "puma560", "--xyz", "3,0,0.1", "--rpy", "0,0,0"]);
+    let line = one_error_line_after_report(&run);
+    assert!(
+        line.contains("(too far): the wrist centre is") && line.contains("m from joint 2, beyond the outer"),
+        "{line}"
+    );
+    // Links by name: a start in collision.
+    let run =
+        reach(&["path", "ur5", "examples/ur5_ball.toml", "--from", "0,-90,0,-90,0,0", "--to", "20,-80,90,-90,-90,0"]);
+    assert_eq!(run.code, 3, "{}", run.stderr);
+    let line = one_error_line_after_report(&run);
+    assert!(line.contains("link 3 (`upper_arm_link`) collides with obstacle `ball`"), "{line}");
+}

@@ -567,7 +567,12 @@ impl ParallelAxes {
         }
         let ratio = self.s_alpha1 * lateral / rho;
         if ratio.is_nan() || ratio.abs() > 1.0 + BOUNDARY {
-            return Err(IkFailure::Unreachable { distance: rho, reach: lateral.abs() });
+            return Err(IkFailure::Unreachable {
+                distance: rho,
+                reach: lateral.abs(),
+                point: "the wrist point",
+                from: "joint 1's axis",
+            });
         }
         let singular = ratio.abs() >= 1.0 - BOUNDARY;
         let gamma = ratio.clamp(-1.0, 1.0).asin();
@@ -648,7 +653,12 @@ impl ParallelAxes {
         let (link2, elbow_singular) = if arm.r2 <= IK_AXIS_DISTANCE {
             // r2 = 0: only possible for l2 = l3 (else |Δ| = ∞): the folded arm, θ2 free.
             if (l2 - l3).abs() > IK_AXIS_DISTANCE {
-                return Err(IkFailure::Unreachable { distance: arm.r2, reach: (l2 - l3).abs() });
+                return Err(IkFailure::Unreachable {
+                    distance: arm.r2,
+                    reach: (l2 - l3).abs(),
+                    point: "the wrist point",
+                    from: "joint 2",
+                });
             }
             let (s2, c2) = sin_cos(seed_theta2);
             let x2 = arm.x1 * c2 + z1.cross(&arm.x1) * s2;
@@ -661,7 +671,12 @@ impl ParallelAxes {
             let c3 = (arm.r2 * arm.r2 - l2 * l2 - l3 * l3) / (2.0 * self.a[1] * self.a[2]);
             if c3.is_nan() || c3.abs() > 1.0 + BOUNDARY {
                 let reach = if arm.r2 > l2 + l3 { l2 + l3 } else { (l2 - l3).abs() };
-                return Err(IkFailure::Unreachable { distance: arm.r2, reach });
+                return Err(IkFailure::Unreachable {
+                    distance: arm.r2,
+                    reach,
+                    point: "the wrist point",
+                    from: "joint 2",
+                });
             }
             let singular = c3.abs() >= 1.0 - BOUNDARY;
             // Δ = cos β (eq. 14); ±1 at the singularity (β = 0, or 180° when folded with l2 < l3).
@@ -734,7 +749,7 @@ impl ParallelAxes {
                     }
                     Err(f) => {
                         let excess = match &f {
-                            IkFailure::Unreachable { distance, reach } => (distance - reach).abs(),
+                            IkFailure::Unreachable { distance, reach, .. } => (distance - reach).abs(),
                             _ => f64::INFINITY,
                         };
                         if failure.as_ref().is_none_or(|(e, _)| excess < *e) {

@@ -823,9 +823,9 @@ impl PlanarRedundant {
         let r = p[0].hypot(p[1]);
         let (inner, outer) = self.workspace();
         if r > outer * (1.0 + BOUNDARY) {
-            Some(IkFailure::Unreachable { distance: r, reach: outer })
+            Some(IkFailure::Unreachable { distance: r, reach: outer, point: "the target", from: "joint 1" })
         } else if r < inner * (1.0 - BOUNDARY) {
-            Some(IkFailure::Unreachable { distance: r, reach: inner })
+            Some(IkFailure::Unreachable { distance: r, reach: inner, point: "the target", from: "joint 1" })
         } else {
             None
         }
@@ -1023,9 +1023,9 @@ impl PlanarRedundant {
         let (outer, inner) = (l1 + l2 + l3, (l1 + l2 - l3).abs());
         // Thesis §4.1 step 2: 3L > KO > L, strict.
         let failure = if r >= outer {
-            Some(IkFailure::Unreachable { distance: r, reach: outer })
+            Some(IkFailure::Unreachable { distance: r, reach: outer, point: "the target", from: "joint 1" })
         } else if r <= inner || l3 <= STRUCTURE_LENGTH {
-            Some(IkFailure::Unreachable { distance: r, reach: inner })
+            Some(IkFailure::Unreachable { distance: r, reach: inner, point: "the target", from: "joint 1" })
         } else {
             None
         };
@@ -1214,7 +1214,12 @@ impl IkSolver for PlanarRedundant {
         check_options(robot, options)?;
         let (x, y, offset) = self.plane_coordinates(&target.position());
         if offset.abs() > IK_POSITION {
-            let failure = IkFailure::Unreachable { distance: offset.abs(), reach: 0.0 };
+            let failure = IkFailure::Unreachable {
+                distance: offset.abs(),
+                reach: 0.0,
+                point: "the target",
+                from: "the arm's plane",
+            };
             return finish(robot, target, &mut [], NAME, failure);
         }
         let p = [x, y];

@@ -134,7 +134,8 @@ fn scan<const N: usize>(
     let offset = p.z - chain.height;
     let lengths = chain.lengths();
     if offset.abs() > IK_POSITION {
-        let failure = IkFailure::Unreachable { distance: offset.abs(), reach: 0.0 };
+        let failure =
+            IkFailure::Unreachable { distance: offset.abs(), reach: 0.0, point: "the target", from: "the arm's plane" };
         return Ok(ScanOutcome::NoSolution(failure));
     }
     let mut choice = ScanChoice { q: Vec::new(), s: f64::INFINITY, nodes: 0, configurations: 0, within_limits: 0 };
@@ -195,7 +196,7 @@ fn scan<const N: usize>(
         let distance = p.x.hypot(p.y);
         let failure = match first_violation {
             Some(i) => IkFailure::OutsideLimits { joint: i + 1, name: robot.joints()[i].name.clone() },
-            None => IkFailure::Unreachable { distance, reach },
+            None => IkFailure::Unreachable { distance, reach, point: "the target", from: "joint 1" },
         };
         return Ok(ScanOutcome::NoSolution(failure));
     }

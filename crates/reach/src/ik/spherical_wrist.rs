@@ -568,7 +568,12 @@ impl SphericalWrist {
         let mut h2 = rho2 - d * d;
         if h2 < 0.0 {
             if h2 < -BOUNDARY * d * d {
-                return Err(IkFailure::Unreachable { distance: rho2.sqrt(), reach: d.abs() });
+                return Err(IkFailure::Unreachable {
+                    distance: rho2.sqrt(),
+                    reach: d.abs(),
+                    point: "the wrist centre",
+                    from: "joint 1's axis",
+                });
             }
             h2 = 0.0;
         }
@@ -603,7 +608,12 @@ impl SphericalWrist {
             if cos_phi[i].abs() > 1.0 + BOUNDARY {
                 let outer = a2.abs() + l2;
                 let reach = if r[i] > outer { outer } else { (a2.abs() - l2).abs() };
-                failure.get_or_insert(IkFailure::Unreachable { distance: r[i], reach });
+                failure.get_or_insert(IkFailure::Unreachable {
+                    distance: r[i],
+                    reach,
+                    point: "the wrist centre",
+                    from: "joint 2",
+                });
                 continue;
             }
             reachable[i] = true;
@@ -662,7 +672,12 @@ impl SphericalWrist {
             }
         }
         if arms.is_empty() {
-            return Err(failure.unwrap_or(IkFailure::Unreachable { distance: 0.0, reach: 0.0 }));
+            return Err(failure.unwrap_or(IkFailure::Unreachable {
+                distance: 0.0,
+                reach: 0.0,
+                point: "the wrist centre",
+                from: "joint 2",
+            }));
         }
         Ok(arms)
     }

@@ -190,10 +190,20 @@ impl TwoLinkWrist {
         let r = p.norm();
         let (outer, inner) = (l1.abs() + l2.abs(), (l1.abs() - l2.abs()).abs());
         if r > outer * (1.0 + BOUNDARY) {
-            return Err(IkFailure::Unreachable { distance: r, reach: outer });
+            return Err(IkFailure::Unreachable {
+                distance: r,
+                reach: outer,
+                point: "the wrist centre",
+                from: "the shoulder",
+            });
         }
         if r < inner * (1.0 - BOUNDARY) {
-            return Err(IkFailure::Unreachable { distance: r, reach: inner });
+            return Err(IkFailure::Unreachable {
+                distance: r,
+                reach: inner,
+                point: "the wrist centre",
+                from: "the shoulder",
+            });
         }
         let rho = p.x.hypot(p.y);
         let shoulder_singular = rho < IK_AXIS_DISTANCE;

@@ -137,9 +137,9 @@ impl YawPlanar3 {
         let outer = l[0] + l[1] + l[2];
         let inner = (2.0 * l[0].max(l[1]).max(l[2]) - outer).max(0.0);
         if r > outer * (1.0 + BOUNDARY) {
-            Some(IkFailure::Unreachable { distance: r, reach: outer })
+            Some(IkFailure::Unreachable { distance: r, reach: outer, point: "the target", from: "joint 2" })
         } else if r < inner * (1.0 - BOUNDARY) {
-            Some(IkFailure::Unreachable { distance: r, reach: inner })
+            Some(IkFailure::Unreachable { distance: r, reach: inner, point: "the target", from: "joint 2" })
         } else {
             None
         }

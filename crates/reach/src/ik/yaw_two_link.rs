@@ -187,7 +187,12 @@ impl YawFrame {
         let rho = t.x.hypot(t.y);
         let lat = self.lateral;
         if rho < lat.abs() * (1.0 - BOUNDARY) - IK_AXIS_DISTANCE {
-            return Err(IkFailure::Unreachable { distance: rho, reach: lat.abs() });
+            return Err(IkFailure::Unreachable {
+                distance: rho,
+                reach: lat.abs(),
+                point: "the target",
+                from: "joint 1's axis",
+            });
         }
         let u0 = (rho * rho - lat * lat).max(0.0).sqrt();
         let direction = t.y.atan2(t.x) - self.nu;
@@ -326,7 +331,12 @@ impl IkSolver for YawTwoLink {
             });
             let sols = match two_link(la, lb, self.yaw.in_plane(&b, &t), seed_phi) {
                 TwoLink::Out { distance, reach } => {
-                    failure.get_or_insert(IkFailure::Unreachable { distance, reach });
+                    failure.get_or_insert(IkFailure::Unreachable {
+                        distance,
+                        reach,
+                        point: "the target",
+                        from: "joint 2",
+                    });
                     continue;
                 }
                 TwoLink::In(sols) => sols,

@@ -359,6 +359,11 @@ pub struct IkRequest {
     /// every solution and `ranking` explains the choice).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub choose: Option<IkChoice>,
+    /// With `all`: list at most this many solutions (≥ 1), evenly spaced in the solver's order
+    /// (a sampled self-motion's parameter) and always with the chosen one; `found` still counts
+    /// them all. Default: every one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_solutions: Option<usize>,
     /// Redundant arms: the free parameter, degrees (planar3: absolute angle of the last link).
     /// Default: sample the self-motion with `step_deg`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -382,6 +387,7 @@ impl IkRequest {
             from: None,
             joint_weights: None,
             choose: None,
+            max_solutions: None,
             free_angle_deg: None,
             step_deg: None,
             numeric: IkNumericRequest::default(),
@@ -694,6 +700,14 @@ pub fn ik_with_cancel(robot: &Robot, request: &IkRequest, cancel: &Cancel) -> Re
     if let Some(choice) = &request.choose {
         choice.check(CHOICE_FIELDS)?;
     }
+    match request.max_solutions {
+        Some(0) => return Err(Error::request("max_solutions", "must be at least 1")),
+        Some(_) if !request.all => return Err(Error::request("max_solutions", "thins the list of `all`; set `all`")),
+        Some(_) if request.choose.is_some() => {
+            return Err(Error::request("max_solutions", "with `choose` every ranked solution is listed"));
+        }
+        _ => {}
+    }
     let options = IkOptions { cancel: cancel.clone(), ..solver_options(request, &from)? };
     let kind = request.solver.unwrap_or_else(|| SolverKind::detect(robot));
     let mut all = kind.build(robot)?.solve(robot, &target, &options)?;
@@ -706,9 +720,10 @@ pub fn ik_with_cancel(robot: &Robot, request: &IkRequest, cancel: &Cancel) -> Re
         _ => None,
     };
     let chosen = ranking.as_ref().map_or(closest, |r| r.ranked.first().map(|e| e.solution));
-    let shown: Vec<usize> = match chosen {
-        Some(i) if !request.all && ranking.is_none() => vec![i],
-        _ => (0..all.solutions.len()).collect(),
+    let shown: Vec<usize> = match (chosen, request.max_solutions) {
+        (Some(i), _) if !request.all && ranking.is_none() => vec![i],
+        (_, Some(max)) => thinned(all.solutions.len(), max, chosen),
+        (_, None) => (0..all.solutions.len()).collect(),
     };
     let (status, reason) = status(all.failure.as_ref());
     let p = target.position();
@@ -732,6 +747,25 @@ pub fn ik_with_cancel(robot: &Robot, request: &IkRequest, cancel: &Cancel) -> Re
         chosen: chosen.and_then(|c| shown.iter().position(|&i| i == c)),
         ranking,
     })
+}
+
+/// At most `max` of the indices `0..n`, evenly spaced (the first and the last among them),
+/// with `keep` in place of the nearest when it is not one of them; ascending.
+fn thinned(n: usize, max: usize, keep: Option<usize>) -> Vec<usize> {
+    if n <= max {
+        return (0..n).collect();
+    }
+    let mut shown: Vec<usize> = if max == 1 {
+        vec![keep.unwrap_or(0)]
+    } else {
+        (0..max).map(|k| (k * (n - 1) + (max - 1) / 2) / (max - 1)).collect()
+    };
+    if let Some(keep) = keep.filter(|k| !shown.contains(k)) {
+        let nearest = (0..shown.len()).min_by_key(|&k| shown[k].abs_diff(keep)).expect("max ≥ 1");
+        shown[nearest] = keep;
+        shown.sort_unstable();
+    }
+    shown
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -853,7 +887,8 @@ pub fn ik_scan(robot: &Robot, request: &IkScanRequest) -> Result<IkScanReport> {
     let from = scan_input(robot, step, &request.xyz_m, request.from.as_ref())?;
     let (x, y, offset) = arm.plane_coordinates(&nalgebra::Point3::from(request.xyz_m));
     let scan = if offset.abs() > IK_POSITION {
-        let failure = IkFailure::Unreachable { distance: offset.abs(), reach: 0.0 };
+        let failure =
+            IkFailure::Unreachable { distance: offset.abs(), reach: 0.0, point: "the target", from: "the arm's plane" };
         PaperScan { alpha_min: None, rows: Vec::new(), failure: Some(failure) }
     } else {
         arm.paper_scan([x, y], step.to_radians())?
@@ -891,6 +926,33 @@ mod tests {
 
     fn puma_request() -> IkRequest {
         IkRequest::new(Pose::xyz_rpy_deg([0.5, -0.2, 0.3], [180.0, 0.0, 0.0]))
+    }
+
+    #[test]
+    fn max_solutions_thins_a_sampled_self_motion_and_keeps_the_chosen() {
+        assert_eq!(thinned(5, 9, None), [0, 1, 2, 3, 4]);
+        assert_eq!(thinned(11, 3, None), [0, 5, 10]);
+        assert_eq!(thinned(11, 3, Some(7)), [0, 7, 10]);
+        assert_eq!(thinned(11, 1, Some(7)), [7]);
+        assert_eq!(thinned(720, 4, Some(719)), [0, 240, 479, 719]);
+        // planar3's self-motion at 1°: hundreds of solutions (the feasible φ, both elbows).
+        let robot = presets::get("planar3").unwrap();
+        let mut request = IkRequest::new(Pose { xyz_m: Some([1.5, 1.0, 0.0]), ..Pose::default() });
+        request.all = true;
+        let every = ik(&robot, &request).unwrap();
+        assert!(every.found > 300 && every.solutions.len() == every.found, "{}", every.found);
+        request.max_solutions = Some(10);
+        let few = ik(&robot, &request).unwrap();
+        assert_eq!((few.found, few.solutions.len()), (every.found, 10));
+        let chosen = few.chosen.expect("a solution within limits");
+        assert_eq!(few.solutions[chosen], every.solutions[every.chosen.unwrap()]);
+        assert!(few.solutions.iter().all(|s| every.solutions.contains(s)));
+        for (max, all, message) in [(0, true, "at least 1"), (3, false, "set `all`")] {
+            let mut bad = request.clone();
+            (bad.max_solutions, bad.all) = (Some(max), all);
+            let e = ik(&robot, &bad).unwrap_err().to_string();
+            assert!(e.contains("max_solutions") && e.contains(message), "{e}");
+        }
     }
 
     #[test]

@@ -362,6 +362,12 @@ impl<'a> CollisionChecker<'a> {
         link.checked_sub(1).and_then(|k| self.elements.names.get(k)).map_or("?", String::as_str)
     }
 
+    /// Link `link` (1-based) as reports name it: ``link 5 (`wrist_2_link`)`` ([`link_label`]).
+    #[must_use]
+    pub fn link_label(&self, link: usize) -> String {
+        link_label(link, self.link_name(link))
+    }
+
     /// Whether the robot is checked by its collision body (`false`: its stick figure, see the
     /// type's docs).
     #[must_use]
@@ -943,4 +949,10 @@ impl Clearances for CollisionChecker<'_> {
         }
         Ok(())
     }
+}
+
+/// A link as every report names it, its number and its name: ``link 5 (`wrist_2_link`)``.
+#[must_use]
+pub fn link_label(link: usize, name: &str) -> String {
+    format!("link {link} (`{name}`)")
 }

@@ -46,6 +46,7 @@ pub mod sweep;
 
 pub use collision::{
     CollisionChecker, Contact, LinkClearance, PairSurvey, PathSweep, Report, SelfClearance, SweptPair, Verdict,
+    link_label,
 };
 pub use moveit::PlanRequest;
 pub use planner::{Blocked, Goal, Plan, PlanError, PlanOptions, PlanStats, plan};

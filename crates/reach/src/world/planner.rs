@@ -18,6 +18,7 @@ use std::time::{Duration, Instant};
 use serde::Serialize;
 use thiserror::Error;
 
+use super::collision::link_label;
 use super::sweep::SweepOptions;
 use super::{CollisionChecker, Scene, Verdict, WorldError};
 use crate::ik::{self, IkError, IkOptions, IkTarget};
@@ -109,6 +110,8 @@ pub enum Blocked {
     Obstacle {
         /// 1-based link number (`dof + 1` is the tool segment).
         link: usize,
+        /// The link's name ([`CollisionChecker::link_name`]).
+        link_name: String,
         /// Obstacle name.
         obstacle: String,
     },
@@ -118,6 +121,10 @@ pub enum Blocked {
         link_a: usize,
         /// 1-based link number.
         link_b: usize,
+        /// Name of `link_a`.
+        name_a: String,
+        /// Name of `link_b`.
+        name_b: String,
     },
     /// The tool point is outside a tool-zone entry.
     OutsideZone {
@@ -129,21 +136,31 @@ pub enum Blocked {
 impl std::fmt::Display for Blocked {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Blocked::Obstacle { link, obstacle } => write!(f, "link {link} collides with obstacle `{obstacle}`"),
-            Blocked::SelfCollision { link_a, link_b } => write!(f, "links {link_a} and {link_b} collide"),
+            Blocked::Obstacle { link, link_name, obstacle } => {
+                write!(f, "{} collides with obstacle `{obstacle}`", link_label(*link, link_name))
+            }
+            Blocked::SelfCollision { link_a, link_b, name_a, name_b } => {
+                write!(f, "{} and {} collide", link_label(*link_a, name_a), link_label(*link_b, name_b))
+            }
             Blocked::OutsideZone { zone } => write!(f, "tool point outside tool zone `{zone}`"),
         }
     }
 }
 
 impl Blocked {
-    fn from_verdict(v: Verdict, scene: &Scene) -> Option<Blocked> {
+    fn from_verdict(v: Verdict, checker: &CollisionChecker) -> Option<Blocked> {
+        let scene = checker.scene();
+        let name = |k: usize| checker.link_name(k).to_string();
         match v {
             Verdict::Free => None,
-            Verdict::Obstacle { link, obstacle } => {
-                Some(Blocked::Obstacle { link, obstacle: scene.obstacles[obstacle].name.clone() })
+            Verdict::Obstacle { link, obstacle } => Some(Blocked::Obstacle {
+                link,
+                link_name: name(link),
+                obstacle: scene.obstacles[obstacle].name.clone(),
+            }),
+            Verdict::SelfCollision { link_a, link_b } => {
+                Some(Blocked::SelfCollision { link_a, link_b, name_a: name(link_a), name_b: name(link_b) })
             }
-            Verdict::SelfCollision { link_a, link_b } => Some(Blocked::SelfCollision { link_a, link_b }),
             Verdict::OutsideZone { zone } => Some(Blocked::OutsideZone { zone: scene.tool_zone[zone].name.clone() }),
         }
     }
@@ -413,7 +430,7 @@ pub fn plan(
     let ranges = sampling_ranges(robot)?;
     let dof = robot.dof();
     let mut checker = CollisionChecker::new(robot, scene);
-    if let Some(b) = Blocked::from_verdict(checker.check(start)?, scene) {
+    if let Some(b) = Blocked::from_verdict(checker.check(start)?, &checker) {
         return Err(PlanError::StartInCollision(b));
     }
 
@@ -421,7 +438,7 @@ pub fn plan(
     let goals: Vec<Vec<f64>> = match goal {
         Goal::Joints(q) => {
             check_joints(robot, q, "goal")?;
-            if let Some(b) = Blocked::from_verdict(checker.check(q)?, scene) {
+            if let Some(b) = Blocked::from_verdict(checker.check(q)?, &checker) {
                 return Err(PlanError::GoalInCollision(b));
             }
             vec![q.clone()]
@@ -442,7 +459,7 @@ pub fn plan(
             let mut free = Vec::new();
             let mut first_block = None;
             for q in feasible {
-                match Blocked::from_verdict(checker.check(&q)?, scene) {
+                match Blocked::from_verdict(checker.check(&q)?, &checker) {
                     None => free.push(q),
                     Some(b) => {
                         first_block.get_or_insert(b);

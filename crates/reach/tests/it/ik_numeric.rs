@@ -302,7 +302,7 @@ fn target_beyond_the_sum_of_link_lengths_is_unreachable() {
     let all = solver.solve(&ur5, &target, &IkOptions::default()).unwrap();
     assert!(all.solutions.is_empty());
     match all.failure {
-        Some(IkFailure::Unreachable { distance, reach }) => {
+        Some(IkFailure::Unreachable { distance, reach, .. }) => {
             assert!((distance - 5.0).abs() < 1e-12);
             assert!((reach - expected).abs() < 1e-12);
         }

@@ -200,7 +200,7 @@ fn just_beyond_the_outer_reach_is_unreachable() {
     ] {
         let robot = presets::get(name).unwrap();
         match solve_empty(name, &robot, kind, &target) {
-            IkFailure::Unreachable { distance, reach: bound } => {
+            IkFailure::Unreachable { distance, reach: bound, .. } => {
                 assert!((distance - (reach + 1e-6)).abs() < 1e-9, "{name}: distance {distance}");
                 assert!((bound - reach).abs() < 1e-9, "{name}: reach {bound}");
             }
@@ -239,7 +239,7 @@ fn inside_the_inner_hole_is_unreachable() {
     .unwrap();
     // Links 2, 0.5, 0.5: the tip stays at least 2 − 1 = 1 m from the shoulder.
     match solve_empty("planar hole", &planar, SolverKind::Planar, &IkTarget::Position(Point3::new(0.3, 0.4, 0.0))) {
-        IkFailure::Unreachable { distance, reach } => {
+        IkFailure::Unreachable { distance, reach, .. } => {
             assert!((distance - 0.5).abs() < 1e-12 && (reach - 1.0).abs() < 1e-12, "{distance} {reach}");
         }
         other => panic!("expected Unreachable, got {other:?}"),
@@ -250,7 +250,7 @@ fn inside_the_inner_hole_is_unreachable() {
     .unwrap();
     // Links 1 and 0.4: the tip stays at least 0.6 m from the shoulder (the origin).
     match solve_empty("yaw hole", &yaw, SolverKind::YawTwoLink, &IkTarget::Position(Point3::new(0.2, 0.1, 0.2))) {
-        IkFailure::Unreachable { distance, reach } => {
+        IkFailure::Unreachable { distance, reach, .. } => {
             assert!((distance - 0.3).abs() < 1e-12 && (reach - 0.6).abs() < 1e-12, "{distance} {reach}");
         }
         other => panic!("expected Unreachable, got {other:?}"),

@@ -9,7 +9,7 @@
 //! the elbow-down one q2 = e − β, q3 = 2β. R = 2 is the stretched arm (|Δ| = 1).
 
 use std::cell::RefCell;
-use std::f64::consts::PI;
+use std::f64::consts::{FRAC_PI_2, PI};
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use reach::Robot;
@@ -482,4 +482,58 @@ fn the_operator_chooses_a_feasible_configuration_per_interval() {
     .unwrap_err()
     .to_string();
     assert!(e.contains("no configuration `elbow sideways`"), "{e}");
+}
+
+#[test]
+fn a_start_joint_vector_pins_the_first_interval_to_its_branch() {
+    // Where the arm is, at s = 0: elbow-down, which is not the default (elbow-up).
+    let (e, b) = (touch_e(0.0), beta(0.0));
+    let down = vec![YAW_DEG.to_radians(), e - b, 2.0 * b];
+    let samples = grid(touch_pose, 2.0, 149);
+    let eval = |s: f64| touch_pose(s);
+    let path = TrackedPath::with_evaluator(&samples, &eval).unwrap();
+    let with_start = |start: Vec<f64>| TrackingOptions { start: Some(start), ..options(SingularityDetection::Auto) };
+    // Joint 2 from −90° to 180°: both configurations feasible in interval 1; the start's is
+    // realised, from the start itself.
+    let mut spec = loader(180.0).spec().clone();
+    spec.joints[1].limits.lower = -FRAC_PI_2;
+    let robot = Robot::new(spec).unwrap();
+    let free = track(&robot, &path, &options(SingularityDetection::Auto), None).unwrap();
+    assert_eq!((free.intervals[0].chosen, free.intervals[0].decision), (Some(0), Decision::Default));
+    let r = track(&robot, &path, &with_start(down.clone()), None).unwrap();
+    assert_eq!((r.intervals[0].chosen, r.intervals[0].decision), (Some(1), Decision::Start));
+    assert_eq!(r.trajectory[0].q, down, "the trajectory starts where the arm is");
+    for p in r.trajectory.iter().filter(|p| p.s < 1.0 - 1e-6) {
+        let (e, b) = (touch_e(p.s), beta(p.s));
+        assert!((p.q[1] - (e - b)).abs() < 1e-6 && (p.q[2] - 2.0 * b).abs() < 1e-6, "elbow-down at s = {}", p.s);
+    }
+    // Joint 2 from 0° to 100°: elbow-down breaks q2 ≥ 0 in interval 1. From an elbow-down start the
+    // interval is not realisable — the arm does not jump to elbow-up, which is feasible there.
+    let robot = loader(100.0);
+    let r = track(&robot, &path, &with_start(down.clone()), None).unwrap();
+    assert_eq!((r.intervals[0].chosen, r.intervals[0].decision), (None, Decision::NotRealizable));
+    assert!(r.intervals[0].configurations[0].feasible && !r.intervals[0].configurations[1].feasible);
+    assert!(!r.feasible);
+    // Bad starts, the option named.
+    let invalid = |start: Vec<f64>, configurations: Vec<Branch>| {
+        let mut o = with_start(start);
+        if !configurations.is_empty() {
+            o.configurations = configurations;
+        }
+        match track(&robot, &path, &o, None) {
+            Err(TrackingError::InvalidOption { option: "start", reason }) => reason,
+            other => panic!("expected a `start` error, got {other:?}"),
+        }
+    };
+    assert!(invalid(vec![0.0; 2], Vec::new()).contains("2 joint values for a robot with 3 joints"));
+    assert!(invalid(vec![0.5, f64::NAN, 0.0], Vec::new()).contains("joint 2 must be finite"));
+    assert!(invalid(vec![0.5, 0.2, 0.1], Vec::new()).contains("from the path's first pose"));
+    let only_up = vec![configurations()[0].clone()];
+    let reason = invalid(down.clone(), only_up);
+    assert!(reason.contains("elbow=down") && reason.contains("not among the tracked ones"), "{reason}");
+    // The operator cannot name another configuration for interval 1.
+    let mut o = with_start(down);
+    o.choices.insert(1, "base=front elbow=up".into());
+    let robot = loader(180.0);
+    assert!(matches!(track(&robot, &path, &o, None), Err(TrackingError::InvalidOption { option: "choices", .. })));
 }

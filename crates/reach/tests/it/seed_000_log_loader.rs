@@ -173,7 +173,10 @@ fn singular_targets() {
 fn unreachable_and_orientation() {
     let sols = solve(IkTarget::Position(Point3::new(3.0, 0.0, 0.0)), &IkOptions::default());
     assert!(sols.solutions.is_empty());
-    assert_eq!(sols.failure, Some(IkFailure::Unreachable { distance: 3.0, reach: 2.0 }));
+    assert_eq!(
+        sols.failure,
+        Some(IkFailure::Unreachable { distance: 3.0, reach: 2.0, point: "the target", from: "joint 2" })
+    );
     // A pose target: only the branch with the target's orientation survives.
     let (robot, _) = loader();
     let q = [0.4, 1.0, -1.2];

@@ -118,7 +118,7 @@ fn unreachable_targets_and_bad_input() {
     let q = [d(60.0), d(-40.0), d(-30.0), d(-20.0)];
     let at = |x: f64, y: f64, z: f64| Point3::new(x, y, z);
     match scan_min_change(&robot, &at(4.5, 0.0, 0.0), &q, d(1.0)).unwrap() {
-        NoSolution(IkFailure::Unreachable { distance, reach }) => {
+        NoSolution(IkFailure::Unreachable { distance, reach, .. }) => {
             assert!((distance - 4.5).abs() < 1e-12 && (reach - 4.0).abs() < 1e-12, "{distance} {reach}");
         }
         other => panic!("{other:?}"),

@@ -225,7 +225,7 @@ fn workspace_test_is_strict() {
         let scan = arm.paper_scan(target, deg(0.01)).unwrap();
         assert!(scan.rows.is_empty() && scan.alpha_min.is_none());
         match scan.failure {
-            Some(IkFailure::Unreachable { distance, reach }) => {
+            Some(IkFailure::Unreachable { distance, reach, .. }) => {
                 assert_relative_eq!(distance, f64::hypot(target[0], target[1]), epsilon = 1e-15);
                 assert_eq!(reach, bound);
             }
@@ -384,9 +384,15 @@ fn unreachable_off_plane_and_singular_targets() {
     let solve = |p: Point3<f64>, opts: &IkOptions| arm.solve(&robot, &IkTarget::Position(p), opts).unwrap();
     let d = IkOptions::default();
     let s = solve(Point3::new(3.5, 0.0, 0.0), &d);
-    assert_eq!(s.failure, Some(IkFailure::Unreachable { distance: 3.5, reach: 3.0 }));
+    assert_eq!(
+        s.failure,
+        Some(IkFailure::Unreachable { distance: 3.5, reach: 3.0, point: "the target", from: "joint 1" })
+    );
     let s = solve(Point3::new(2.0, 1.0, 0.01), &d);
-    assert_eq!(s.failure, Some(IkFailure::Unreachable { distance: 0.01, reach: 0.0 }));
+    assert_eq!(
+        s.failure,
+        Some(IkFailure::Unreachable { distance: 0.01, reach: 0.0, point: "the target", from: "the arm's plane" })
+    );
     // φ = 180° for (2, 1): the wrist (3, 1) is beyond 2 links; the position is reachable.
     let s = solve(Point3::new(2.0, 1.0, 0.0), &IkOptions { free_parameter: Some(PI), ..d.clone() });
     assert_eq!(s.failure, Some(IkFailure::OrientationUnreachable));
@@ -422,7 +428,7 @@ fn unequal_links_workspace_and_intervals() {
     assert_relative_eq!(outer, 2.9, epsilon = 1e-12);
     let s = arm.solve(&robot, &IkTarget::Position(Point3::new(0.0, 1.0, 0.0)), &IkOptions::default()).unwrap();
     match s.failure {
-        Some(IkFailure::Unreachable { distance, reach }) => {
+        Some(IkFailure::Unreachable { distance, reach, .. }) => {
             assert_eq!(distance, 1.0);
             assert_relative_eq!(reach, 1.1, epsilon = 1e-12);
         }

@@ -218,7 +218,7 @@ fn targets_outside_the_shell_are_unreachable() {
         let all = solve(&robot, Isometry3::translation(x, 0.0, 0.0));
         assert!(all.solutions.is_empty());
         match all.failure {
-            Some(IkFailure::Unreachable { distance, reach }) => {
+            Some(IkFailure::Unreachable { distance, reach, .. }) => {
                 assert!((distance - x).abs() < 1e-12 && (reach - bound).abs() < 1e-12, "{distance} {reach}");
             }
             ref other => panic!("x = {x}: {other:?}"),

@@ -169,7 +169,7 @@ fn vector_5_unreachable() {
     let (u, v) = (1.4521_f64, 0.7318_f64 - 0.3);
     let reach = 0.4318 + 0.0203_f64.hypot(0.4318);
     match all.failure {
-        Some(IkFailure::Unreachable { distance, reach: bound }) => {
+        Some(IkFailure::Unreachable { distance, reach: bound, .. }) => {
             assert!((distance - u.hypot(v)).abs() < 1e-12 && (bound - reach).abs() < 1e-12, "{distance} {bound}");
         }
         other => panic!("{other:?}"),
@@ -276,7 +276,7 @@ fn puma560_shoulder_cylinder_is_singular() {
     // Inside the cylinder: unreachable, reported against the offset.
     let inside = Isometry3::translation(0.05, 0.0, 0.9);
     match solve(&robot, inside).failure {
-        Some(IkFailure::Unreachable { distance, reach }) => {
+        Some(IkFailure::Unreachable { distance, reach, .. }) => {
             assert!((distance - 0.05).abs() < 1e-12 && (reach - 0.15005).abs() < 1e-12);
         }
         other => panic!("{other:?}"),

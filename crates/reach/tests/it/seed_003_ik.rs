@@ -355,7 +355,7 @@ fn too_far_is_unreachable_with_the_nearest_branch_distance() {
     let all = solve(&robot, target, &IkOptions::default());
     assert!(all.solutions.is_empty());
     match all.failure {
-        Some(IkFailure::Unreachable { distance, reach }) => {
+        Some(IkFailure::Unreachable { distance, reach, .. }) => {
             assert!((distance - 0.73f64.sqrt()).abs() < 1e-12, "{distance}");
             assert!((reach - 0.7).abs() < 1e-12);
         }
@@ -371,7 +371,7 @@ fn too_close_to_the_column_is_unreachable_for_the_ur5() {
     let target = pose([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [0.05, 0.0, 0.3 + 0.0823]);
     let all = solve(&robot, target, &IkOptions::default());
     match all.failure {
-        Some(IkFailure::Unreachable { distance, reach }) => {
+        Some(IkFailure::Unreachable { distance, reach, .. }) => {
             assert!((distance - 0.05).abs() < 1e-12 && (reach - 0.10915).abs() < 1e-12, "{distance} {reach}");
         }
         other => panic!("{other:?}"),

@@ -140,7 +140,7 @@ fn failures() {
     let sols = s.solve(&robot, &IkTarget::Position(Point3::new(2.2, 0.0, 0.0)), &IkOptions::default()).unwrap();
     assert!(sols.solutions.is_empty());
     match sols.failure {
-        Some(IkFailure::Unreachable { distance, reach }) => {
+        Some(IkFailure::Unreachable { distance, reach, .. }) => {
             assert_relative_eq!(distance, 2.2, epsilon = 1e-12);
             assert_relative_eq!(reach, 2.1, epsilon = 1e-12);
         }

@@ -188,9 +188,15 @@ fn start_or_goal_in_collision_names_link_and_obstacle() {
     assert!(CollisionChecker::new(&robot, &scene).check(&free).unwrap().is_free());
 
     match plan(&robot, &scene, &q0, &Goal::Joints(free.to_vec()), &PlanOptions::default()) {
-        Err(PlanError::StartInCollision(Blocked::Obstacle { link, obstacle })) => {
+        Err(e @ PlanError::StartInCollision(Blocked::Obstacle { .. })) => {
+            let PlanError::StartInCollision(Blocked::Obstacle { link, link_name, obstacle }) = &e else {
+                unreachable!()
+            };
             assert_eq!(obstacle, "wrist_ball");
-            assert!((4..=7).contains(&link), "link {link}");
+            assert!((4..=7).contains(link), "link {link}");
+            // The message names the link by its number and its name (issue 35, point 8).
+            assert_eq!(link_name, CollisionChecker::new(&robot, &scene).link_name(*link));
+            assert!(e.to_string().contains(&format!("link {link} (`{link_name}`) collides")), "{e}");
         }
         other => panic!("expected start in collision, got {other:?}"),
     }

@@ -323,7 +323,12 @@ impl IkSolver for Numeric {
 
         let distance = (target.position().coords - self.anchor).norm();
         if distance > self.reach * (1.0 + BOUNDARY) + opts.position_tolerance {
-            let failure = IkFailure::Unreachable { distance, reach: self.reach };
+            let failure = IkFailure::Unreachable {
+                distance,
+                reach: self.reach,
+                point: "the tool point",
+                from: "joint 1's origin",
+            };
             return finish_within(robot, target, &mut [], self.name(), failure, criteria.acceptance());
         }
 

@@ -178,13 +178,19 @@ pub struct IkSolution {
 #[serde(tag = "reason", rename_all = "snake_case")]
 #[non_exhaustive]
 pub enum IkFailure {
-    /// The target position is outside the workspace: `distance` is the relevant distance of
-    /// the target (e.g. from the shoulder), `reach` the bound it violates (maximum or minimum reach).
+    /// The target position is outside the workspace: `distance` is the distance of `point`
+    /// (the target, the wrist centre it implies, …) from `from` (a joint, its axis, the arm's
+    /// plane), `reach` the bound it violates: the outer one when `distance > reach` (too far),
+    /// the inner one otherwise (too close).
     Unreachable {
-        /// Distance of the target (metres).
+        /// Distance of `point` from `from` (metres).
         distance: f64,
         /// The violated bound (metres).
         reach: f64,
+        /// What is measured: `the target`, `the wrist centre`, ….
+        point: &'static str,
+        /// From where: `joint 2`, `joint 1's axis`, `the arm's plane`, ….
+        from: &'static str,
     },
     /// The position is reachable but not with the requested orientation.
     OrientationUnreachable,
@@ -220,9 +226,14 @@ pub enum IkFailure {
 impl fmt::Display for IkFailure {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            IkFailure::Unreachable { distance, reach } => {
-                write!(f, "target out of reach: distance {distance:.6} m, workspace bound {reach:.6} m")
-            }
+            IkFailure::Unreachable { distance, reach, point, from } if distance > reach => write!(
+                f,
+                "target out of reach (too far): {point} is {distance:.6} m from {from}, beyond the outer workspace bound {reach:.6} m"
+            ),
+            IkFailure::Unreachable { distance, reach, point, from } => write!(
+                f,
+                "target out of reach (too close): {point} is {distance:.6} m from {from}, inside the inner workspace bound {reach:.6} m"
+            ),
             IkFailure::OrientationUnreachable => f.write_str("position reachable, orientation not"),
             IkFailure::Singular { kind } => write!(f, "target is a {} singularity", kind.as_str()),
             IkFailure::OutsideLimits { joint, name } => {

@@ -250,7 +250,13 @@ fn tool_space(
     let criterion = chooser.as_ref().map(|c| c as &dyn ConfigurationCriterion);
     let progress = RefCell::new(progress);
     let choices = request.choices.iter().map(|c| (c.interval, c.configuration.clone())).collect();
-    let options = TrackingOptions { cancel: cancel.clone(), choices, ..TrackingOptions::default() };
+    // A move from joint values starts there, on their branch (not the same pose on another).
+    let start = match &request.from {
+        End::Joints(q) => Some(q.si(robot, "from.joints")?),
+        End::Pose(_) => None,
+    };
+    let options =
+        TrackingOptions { cancel: cancel.clone(), choices, start: start.clone(), ..TrackingOptions::default() };
     let report = track_with_progress(robot, &tracked, &options, criterion, &|done, total| {
         (progress.borrow_mut())(done, total);
     })?;
@@ -260,7 +266,7 @@ fn tool_space(
     let fallback = if report.feasible {
         None
     } else {
-        path.to_joints(robot, &PerSampleIk { allow_outside_limits: true, ..PerSampleIk::default() }).ok()
+        path.to_joints(robot, &PerSampleIk { allow_outside_limits: true, start, ..PerSampleIk::default() }).ok()
     };
     let (times, q): (Vec<f64>, Vec<Vec<f64>>) = match fallback {
         Some(traj) => (traj.times(), traj.samples.into_iter().map(|s| s.q).collect()),

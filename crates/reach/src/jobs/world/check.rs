@@ -187,7 +187,7 @@ impl CheckReport {
 #[must_use]
 pub fn verdict_text(verdict: &Verdict, checker: &CollisionChecker) -> String {
     let scene = checker.scene();
-    let link = |k: &usize| format!("link {k} (`{}`)", checker.link_name(*k));
+    let link = |k: &usize| checker.link_label(*k);
     match verdict {
         Verdict::Free => "free".into(),
         Verdict::OutsideZone { zone } => format!("tool outside zone `{}`", scene.tool_zone[*zone].name),
@@ -202,7 +202,7 @@ pub fn verdict_text(verdict: &Verdict, checker: &CollisionChecker) -> String {
 #[must_use]
 pub fn swept_pair_text(pair: &SweptPair, checker: &CollisionChecker) -> String {
     let scene = checker.scene();
-    let link = |k: &usize| format!("link {k} (`{}`)", checker.link_name(*k));
+    let link = |k: &usize| checker.link_label(*k);
     match pair {
         SweptPair::ToolZone { zone } => {
             format!("tool point and the boundary of zone `{}`", scene.tool_zone[*zone].name)

@@ -11,6 +11,7 @@ use crate::angle::{nearest_equivalent, wrap};
 use crate::ik::{Branch, IkError, IkOptions, IkSolutions, IkSolver, IkTarget};
 use crate::model::{JointKind, Robot};
 use crate::motion::sample::PathSample;
+use crate::tolerance::{IK_ORIENTATION, IK_POSITION};
 
 /// Whether `label` carries every pair of `filter`.
 pub(super) fn matches(label: &Branch, filter: &Branch) -> bool {
@@ -99,6 +100,81 @@ impl Solving<'_> {
     ) -> Result<Option<Vec<f64>>, TrackingError> {
         let options = self.options(Some(reference));
         Ok(follow(self.robot, self.solver.as_ref(), &self.target(pose), lock, reference, &options)?)
+    }
+}
+
+/// Where the arm is at the path's first sample ([`super::TrackingOptions::start`]): the
+/// configuration it is in and the lock on its branch. The first interval is followed from it.
+#[derive(Debug, Clone)]
+pub(super) struct Start {
+    /// Index into the tracked configurations.
+    pub(super) configuration: usize,
+    /// The joint vector itself (SI), the first point of the trajectory.
+    pub(super) q: Vec<f64>,
+    /// Its branch: the label of the solution it is (a solver whose labels name branches), else
+    /// the configuration's filter.
+    pub(super) lock: Lock,
+}
+
+impl Solving<'_> {
+    /// The [`Start`] of joint vector `q` at `pose` (the path's first pose): `q` must have the
+    /// robot's joint count, be finite, and put the tool at `pose` within the IK tolerances
+    /// ([`IK_POSITION`], [`IK_ORIENTATION`]; the position only when tracking positions). Its
+    /// branch is that of the solution nearest to it (the solver seeded with it), and its
+    /// configuration the first of `configurations` whose filter that label carries; when none
+    /// does, that label is appended as a configuration if `extend` (the solver's default list,
+    /// e.g. seed 003's two of the UR5's eight), else it is an error (the caller's list).
+    pub(super) fn start(
+        &self,
+        q: &[f64],
+        pose: &Isometry3<f64>,
+        configurations: &mut Vec<Branch>,
+        extend: bool,
+    ) -> Result<Start, TrackingError> {
+        let invalid = |reason: String| TrackingError::InvalidOption { option: "start", reason };
+        let dof = self.robot.dof();
+        if q.len() != dof {
+            return Err(invalid(format!("{} joint values for a robot with {dof} joints", q.len())));
+        }
+        if let Some(j) = q.iter().position(|v| !v.is_finite()) {
+            return Err(invalid(format!("joint {} must be finite", j + 1)));
+        }
+        let at = self.robot.fk(q).map_err(|e| invalid(e.to_string()))?;
+        let off = (at.translation.vector - pose.translation.vector).norm();
+        let turned = at.rotation.angle_to(&pose.rotation);
+        if off > IK_POSITION || (!self.position_only && turned > IK_ORIENTATION) {
+            return Err(invalid(format!(
+                "the joint vector puts the tool {off:.3e} m and {turned:.3e} rad from the path's first pose"
+            )));
+        }
+        let sols = self.solve(pose, Some(q))?;
+        let nearest = sols
+            .solutions
+            .iter()
+            .min_by(|a, b| distance(self.robot, &a.q, q).total_cmp(&distance(self.robot, &b.q, q)))
+            .ok_or_else(|| invalid("the solver finds no solution at the path's first pose".into()))?;
+        let found = configurations.iter().position(|c| matches(&nearest.branch, c));
+        let configuration = match found {
+            Some(c) => c,
+            None if extend => {
+                configurations.push(nearest.branch.clone());
+                configurations.len() - 1
+            }
+            None => {
+                let listed: Vec<String> = configurations.iter().map(|c| format!("`{c}`")).collect();
+                return Err(invalid(format!(
+                    "the joint vector is in configuration `{}`, not among the tracked ones ({})",
+                    nearest.branch,
+                    listed.join(", ")
+                )));
+            }
+        };
+        let lock = if self.by_label() {
+            Lock::Label(nearest.branch.clone())
+        } else {
+            Lock::Filter(configurations[configuration].clone())
+        };
+        Ok(Start { configuration, q: q.to_vec(), lock })
     }
 }
 

@@ -84,6 +84,9 @@ pub enum Decision {
     NotRealizable,
     /// The operator chose among the feasible configurations ([`super::TrackingOptions::choices`]).
     Operator,
+    /// The first interval, from where the arm is ([`super::TrackingOptions::start`]): in the
+    /// start's configuration, feasible there.
+    Start,
 }
 
 /// One interval between consecutive split points.
@@ -187,12 +190,19 @@ impl Tracker<'_> {
     ) -> Result<ConfigurationTrack, TrackingError> {
         let robot = self.robot();
         let filter = &self.configurations[c];
-        let anchor = (0..points.len())
-            .filter_map(|k| anchor(&sols[k], filter, self.solving.by_label()).map(|a| (k, a)))
-            .min_by_key(|(k, (q, _))| {
-                let singular = sols[*k].solutions.iter().any(|x| x.q == *q && !x.singularities.is_empty());
-                (singular, *k)
-            });
+        // From where the arm is, in the first interval's start configuration; else from the
+        // first non-singular anchor.
+        let anchor = match &self.start {
+            Some(start) if start.configuration == c && points[0] <= self.path.start() + self.tolerance => {
+                Some((0, (start.q.clone(), start.lock.clone())))
+            }
+            _ => (0..points.len())
+                .filter_map(|k| anchor(&sols[k], filter, self.solving.by_label()).map(|a| (k, a)))
+                .min_by_key(|(k, (q, _))| {
+                    let singular = sols[*k].solutions.iter().any(|x| x.q == *q && !x.singularities.is_empty());
+                    (singular, *k)
+                }),
+        };
         let mut track = ConfigurationTrack {
             configuration: filter.clone(),
             branch: None,
@@ -333,6 +343,9 @@ impl Tracker<'_> {
             return Ok(report);
         }
         log.inside(index, a, b);
+        // The first interval starts where the arm is: its configuration is the start's.
+        let pinned = self.start.as_ref().filter(|_| index == 1).map(|s| s.configuration);
+        let default = pinned.unwrap_or(default);
         let boundary = |k: Option<SplitKind>| matches!(k, Some(SplitKind::Leaves | SplitKind::Enters));
         let order: Vec<usize> =
             std::iter::once(default).chain((0..self.configurations.len()).filter(|&c| c != default)).collect();
@@ -362,9 +375,20 @@ impl Tracker<'_> {
         let tracks: Vec<ConfigurationTrack> =
             tracks.into_iter().map(|t| t.expect("every configuration tracked")).collect();
         let feasible: Vec<usize> = order.iter().copied().filter(|&c| tracks[c].feasible).collect();
-        let (chosen, decision) = match self.choices.get(&index) {
-            Some(label) => (Some(self.operator_choice(index, label, &feasible)?), Decision::Operator),
-            None => choose(&tracks, &feasible, default, criterion),
+        let (chosen, decision) = match (self.choices.get(&index), pinned) {
+            (Some(label), Some(c)) if *label != self.configurations[c].to_string() => {
+                return Err(TrackingError::InvalidOption {
+                    option: "choices",
+                    reason: format!(
+                        "interval 1 starts where the arm is, in configuration `{}`; `{label}` cannot be chosen there",
+                        self.configurations[c]
+                    ),
+                });
+            }
+            (_, Some(c)) if feasible.contains(&c) => (Some(c), Decision::Start),
+            (_, Some(_)) => (None, Decision::NotRealizable),
+            (Some(label), None) => (Some(self.operator_choice(index, label, &feasible)?), Decision::Operator),
+            (None, None) => choose(&tracks, &feasible, default, criterion),
         };
         if feasible.len() > 1 {
             log.several_realizable(a, index, &feasible);

@@ -101,8 +101,8 @@ use crate::ik::{Branch, IkError, SingularityMeasures, SolverKind};
 use crate::model::Robot;
 use crate::tolerance::TRACKING_PARAMETER;
 
-use branch::Solving;
 pub use branch::{BranchTrack, step_rates, track_configuration};
+use branch::{Solving, Start};
 pub use checks::{Violation, ViolationKind, WrapCrossing};
 pub use events::{EventCode, EventDetail, TrackingEvent, describe};
 pub use intervals::{ConfigurationCriterion, ConfigurationTrack, Decision, IntervalReport, TrajectoryPoint};
@@ -223,6 +223,14 @@ pub struct TrackingOptions {
     /// configuration must be feasible in its interval ([`Decision::Operator`]); the
     /// criterion and the default decide the other intervals.
     pub choices: std::collections::BTreeMap<usize, String>,
+    /// Where the arm is at the path's first sample (joint vector, rad and m), e.g. a tool-space
+    /// move's `from` joints. The first interval is then realised from exactly this joint vector,
+    /// in its configuration and on its branch ([`Decision::Start`]; not realisable when that
+    /// configuration breaks a limit there, however the others fare), so the arm does not jump
+    /// to the same pose on another branch (MoveIt's `computeCartesianPath` starts from the
+    /// robot state likewise). Its pose must be the path's first pose within the IK tolerances.
+    /// `None`: the first interval is chosen as every other.
+    pub start: Option<Vec<f64>>,
 }
 
 /// Counts the work of [`track_with_progress`] and calls its hook once per chunk.
@@ -265,6 +273,8 @@ struct Tracker<'a> {
     tolerance: f64,
     check_velocity: bool,
     choices: std::collections::BTreeMap<usize, String>,
+    /// Where the arm is at the first sample ([`TrackingOptions::start`]).
+    start: Option<Start>,
 }
 
 /// Tracks `path` through IK in every configuration, finds its singular positions, splits it
@@ -368,6 +378,16 @@ pub fn track_with_progress(
             reason: format!("index {default} but only {} configurations", configurations.len()),
         });
     }
+    // Where the arm is: its configuration is tracked too (added when the solver's list lacks it).
+    let start = match &options.start {
+        Some(q) => Some(solving.start(
+            q,
+            &path.pose_at(path.start())?,
+            &mut configurations,
+            options.configurations.is_empty(),
+        )?),
+        None => None,
+    };
     // A solver's closed-form measures are of full poses.
     let measures = match options.detection {
         SingularityDetection::Auto if !options.position_only => {
@@ -375,7 +395,9 @@ pub fn track_with_progress(
         }
         _ => None,
     };
-    track_with(Tracker::new(solving, path, configurations, measures, options, progress), default, criterion)
+    let mut tracker = Tracker::new(solving, path, configurations, measures, options, progress);
+    tracker.start = start;
+    track_with(tracker, default, criterion)
 }
 
 /// The solver's configurations ([`IkSolver::configurations`], in its order) that have a
@@ -426,6 +448,7 @@ impl<'a> Tracker<'a> {
             tolerance,
             check_velocity: !options.ignore_velocity,
             choices: options.choices.clone(),
+            start: None,
         }
     }
 
