@@ -128,13 +128,21 @@ struct Robot {
     robot: reach::Robot,
     /// How to rebuild it (pickling, e.g. for Ray workers): JSON, see [`Robot::restore`].
     state: String,
+    /// The URDF file it was read from (canonical path), whose visual meshes its views draw.
+    urdf_file: Option<std::path::PathBuf>,
+}
+
+/// The file a URDF document at `document` (canonical path) names as `filename` (`package://`,
+/// relative or `file://`, [`reach::model::mesh_file_path`]).
+fn mesh_file(document: &std::path::Path, filename: &str) -> Result<std::path::PathBuf, String> {
+    reach::model::mesh_file_path(document, filename, &|d: &std::path::Path| d.is_dir())
 }
 
 impl Robot {
     fn from_input(input: RobotInput) -> PyResult<Self> {
         let robot = input.load().map_err(|e| lib_err(&e))?.robot;
         let state = serde_json::to_string(&State::Input(input)).map_err(|e| value_err(e.to_string()))?;
-        Ok(Robot { robot, state })
+        Ok(Robot { robot, state, urdf_file: None })
     }
 
     fn dh(rows: &[f64], width: usize, prismatic: &[usize], modified: bool, name: &str) -> PyResult<Self> {
@@ -160,7 +168,7 @@ impl Robot {
         let dh =
             DhTable { rows: rows.to_vec(), width, prismatic: prismatic.to_vec(), modified, name: name.to_string() };
         let state = serde_json::to_string(&State::Dh(dh)).map_err(|e| value_err(e.to_string()))?;
-        Ok(Robot { robot, state })
+        Ok(Robot { robot, state, urdf_file: None })
     }
 
     /// Joint values of `q` (the last axis has one value per joint) in SI.
@@ -242,6 +250,11 @@ impl Robot {
         if let Request::Path(r) = request {
             let run = py.detach(|| jobs::world::path::path_run(robot, r)).map_err(|e| lib_err(&e))?;
             let dict = to_python(py, &run.report)?.cast_into::<PyDict>()?;
+            let k = run.waypoints.len();
+            dict.set_item(
+                "waypoints",
+                to_numpy(py, this.display(run.waypoints.concat(), degrees), vec![k, robot.dof()])?,
+            )?;
             let Some(timed) = run.timed else { return Ok(dict.into_any()) };
             let samples = timed
                 .times
@@ -279,7 +292,7 @@ impl Robot {
                 let view = ViewRequest { task: Some(r.task.clone()), scene: r.scene.clone(), ..ViewRequest::default() };
                 return motion(dict, &view);
             }
-            (jobs::Report::Check(c), _) => return flat_check(py, c),
+            (jobs::Report::Check(c), _) => return this.flat_check(py, c, degrees),
             _ => {}
         }
         // The CLI prints the workflow's own report; `kind` only tags the enum.
@@ -346,16 +359,74 @@ impl Robot {
 
     /// The HTML of a view request (JSON text of a [`ViewRequest`]; `None`: the robot at home):
     /// `reach view`'s offline page, in an `<iframe srcdoc>` for a notebook when `frame`.
-    fn view_html(&self, request: Option<&str>, frame: bool) -> PyResult<String> {
-        let request: ViewRequest = match request {
+    fn view_html(&self, request: Option<&str>, frame: bool, meshes: bool) -> PyResult<String> {
+        let mut request: ViewRequest = match request {
             Some(text) => serde_json::from_str(text)
                 .map_err(|e| value_err(format!("view request: {}", reach::one_line(&e.to_string()))))?,
             None => ViewRequest::default(),
         };
+        if meshes && request.urdf.is_none() {
+            request.urdf = self.view_urdf()?;
+        }
         let report = jobs::view::view(&self.robot, &request).map_err(|e| lib_err(&e))?;
         let json = serde_json::to_string(&report).map_err(|e| value_err(e.to_string()))?;
         let page = jobs::view::page(&report.robot, &json, false);
         Ok(if frame { notebook_frame(&page) } else { page })
+    }
+}
+
+impl Robot {
+    /// A check report as a dict with a flat verdict: `verdict` is the outcome's name (`free`,
+    /// `outside_zone`, `self_collision`, `obstacle`), its fields beside it prefixed `verdict_`
+    /// (`verdict_link`, `verdict_obstacle` (0-based index), `verdict_zone`, `verdict_link_a`,
+    /// `verdict_link_b`), `clear` the verdict of the whole check
+    /// ([`reach::jobs::CheckReport::is_clear`]: the configuration free and its motion, when
+    /// given, proven clear), and the joint values `q` (and the motion's `to`) in SI (degrees
+    /// with `degrees`) beside the report's `q_deg` (`to_deg`).
+    fn flat_check<'py>(
+        &self,
+        py: Python<'py>,
+        report: &jobs::CheckReport,
+        degrees: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let mut value = serde_json::to_value(report).map_err(|e| value_err(e.to_string()))?;
+        let si = |q: &[f64], field: &str| -> PyResult<Vec<f64>> {
+            let q = Joints::Deg(q.to_vec()).si(&self.robot, field).map_err(|e| lib_err(&e))?;
+            Ok(self.display(q, degrees))
+        };
+        if let Some(map) = value.as_object_mut() {
+            if let Some(serde_json::Value::Object(verdict)) = map.remove("verdict") {
+                for (k, v) in verdict {
+                    map.insert(if k == "verdict" { k } else { format!("verdict_{k}") }, v);
+                }
+            }
+            map.insert("clear".into(), report.is_clear().into());
+            map.insert("q".into(), si(&report.q_deg, "q_deg")?.into());
+            if let (Some(motion), Some(serde_json::Value::Object(m))) = (&report.motion, map.get_mut("motion")) {
+                m.insert("to".into(), si(&motion.to_deg, "to_deg")?.into());
+            }
+        }
+        to_python(py, &value)
+    }
+
+    /// For a robot read from a URDF file: the document with every visual mesh it references,
+    /// read from disk (what `reach view` draws); `None` for other robots.
+    fn view_urdf(&self) -> PyResult<Option<jobs::view::ViewUrdf>> {
+        let (Some(document), Ok(State::Input(RobotInput::Urdf { text, base, tip, .. }))) =
+            (&self.urdf_file, serde_json::from_str::<State>(&self.state))
+        else {
+            return Ok(None);
+        };
+        let chain = reach::model::UrdfChain { base, tip };
+        let urdf = jobs::view::ViewUrdf::read(&text, &chain, |filename| {
+            let fail = |message: String| reach::Error::File { what: "mesh file", message };
+            let file = mesh_file(document, filename).map_err(|why| fail(format!("`{filename}`: {why}")))?;
+            std::fs::read(&file).map_err(|e| fail(format!("`{filename}` ({}): {e}", file.display())))
+        })
+        .map_err(|e| {
+            value_err(format!("{} (meshes=False draws the links as capsules)", reach::one_line(&e.to_string())))
+        })?;
+        Ok(Some(urdf))
     }
 }
 
@@ -368,25 +439,6 @@ fn notebook_frame(page: &str) -> String {
         "<iframe srcdoc=\"{escaped}\" style=\"width: 100%; height: 520px; border: 0\" \
          sandbox=\"allow-scripts\"></iframe>"
     )
-}
-
-/// A check report as a dict with a flat verdict: `verdict` is the outcome's name (`free`,
-/// `outside_zone`, `self_collision`, `obstacle`), its fields beside it prefixed `verdict_`
-/// (`verdict_link`, `verdict_obstacle` (0-based index), `verdict_zone`, `verdict_link_a`,
-/// `verdict_link_b`), and `clear` the verdict of the whole check
-/// ([`reach::jobs::CheckReport::is_clear`]: the configuration free and its motion, when
-/// given, proven clear).
-fn flat_check<'py>(py: Python<'py>, report: &jobs::CheckReport) -> PyResult<Bound<'py, PyAny>> {
-    let mut value = serde_json::to_value(report).map_err(|e| value_err(e.to_string()))?;
-    if let Some(map) = value.as_object_mut() {
-        if let Some(serde_json::Value::Object(verdict)) = map.remove("verdict") {
-            for (k, v) in verdict {
-                map.insert(if k == "verdict" { k } else { format!("verdict_{k}") }, v);
-            }
-        }
-        map.insert("clear".into(), report.is_clear().into());
-    }
-    to_python(py, &value)
 }
 
 #[pymethods]
@@ -425,7 +477,7 @@ impl Robot {
         }
         let canonical = std::fs::canonicalize(&path).unwrap_or_else(|_| path.clone());
         let read = |filename: &str| {
-            let file = reach::model::mesh_file_path(&canonical, filename, &|d: &std::path::Path| d.is_dir()).ok()?;
+            let file = mesh_file(&canonical, filename).ok()?;
             file.exists().then(|| std::fs::read(&file).map_err(|e| format!("{}: {e}", file.display())))
         };
         let mut input = RobotInput::urdf(text, &reach::model::UrdfChain { base, tip }, read).map_err(value_err)?;
@@ -435,7 +487,7 @@ impl Robot {
                     .map_err(|e| PyOSError::new_err(format!("cannot read SRDF file `{}`: {e}", srdf.display())))?,
             );
         }
-        Robot::from_input(input)
+        Ok(Robot { urdf_file: Some(canonical), ..Robot::from_input(input)? })
     }
 
     /// A robot from the text of a TOML description.
@@ -476,18 +528,24 @@ impl Robot {
         Robot::dh(&data, width, &prismatic, modified, &name)
     }
 
-    /// Rebuilds a robot from [`Robot::__reduce__`]'s state.
+    /// Rebuilds a robot from [`Robot::__reduce__`]'s state (and the URDF file its views
+    /// draw the meshes of).
     #[staticmethod]
-    fn _restore(state: &str) -> PyResult<Self> {
-        match serde_json::from_str::<State>(state).map_err(|e| value_err(format!("not a reach.Robot state: {e}")))? {
+    #[pyo3(signature = (state, urdf_file=None))]
+    fn _restore(state: &str, urdf_file: Option<std::path::PathBuf>) -> PyResult<Self> {
+        let robot = match serde_json::from_str::<State>(state)
+            .map_err(|e| value_err(format!("not a reach.Robot state: {e}")))?
+        {
             State::Input(input) => Robot::from_input(input),
             State::Dh(d) => Robot::dh(&d.rows, d.width, &d.prismatic, d.modified, &d.name),
-        }
+        }?;
+        Ok(Robot { urdf_file, ..robot })
     }
 
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
         let restore = slf.get_type().getattr("_restore")?;
-        let args = PyTuple::new(slf.py(), [slf.get().state.clone()])?;
+        let this = slf.get();
+        let args = (this.state.clone(), this.urdf_file.clone()).into_pyobject(slf.py())?;
         Ok((restore, args))
     }
 
@@ -529,27 +587,30 @@ impl Robot {
     /// The robot in the 3-D viewer (`reach view`'s page, offline), in an `<iframe srcdoc>` for
     /// a notebook: at home.
     fn _repr_html_(&self) -> PyResult<String> {
-        self.view_html(None, true)
+        self.view_html(None, true, true)
     }
 
     /// `reach view`'s offline page of a view request (the JSON text of a
     /// `reach::jobs::ViewRequest`; `None`: the robot at home), in an `<iframe srcdoc>` for a
-    /// notebook when `frame`.
-    #[pyo3(signature = (request=None, frame=true))]
-    fn _view_html(&self, request: Option<&str>, frame: bool) -> PyResult<String> {
-        self.view_html(request, frame)
+    /// notebook when `frame`; a robot read from a URDF file drawn with its visual meshes
+    /// unless `meshes=False`.
+    #[pyo3(signature = (request=None, frame=true, meshes=true))]
+    fn _view_html(&self, request: Option<&str>, frame: bool, meshes: bool) -> PyResult<String> {
+        self.view_html(request, frame, meshes)
     }
 
     /// A view of the robot (`reach view`): at `q` (SI, or degrees with `degrees=True`;
     /// default home) among the obstacles of `scene` (a `reach.Scene`, a path, or the text of a
     /// scene file). The result shows itself in a notebook (`_repr_html_`); `.html` is the
-    /// full page, `.save(path)` writes it.
-    #[pyo3(signature = (q=None, scene=None, degrees=false))]
+    /// full page, `.save(path)` writes it. A robot read from a URDF file is drawn with its
+    /// visual meshes (read from disk when shown) unless `meshes=False`.
+    #[pyo3(signature = (q=None, scene=None, degrees=false, meshes=true))]
     fn view<'py>(
         slf: &Bound<'py, Self>,
         q: Option<&Bound<'py, PyAny>>,
         scene: Option<&Bound<'py, PyAny>>,
         degrees: bool,
+        meshes: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
         let py = slf.py();
         let this = slf.get();
@@ -565,7 +626,7 @@ impl Robot {
             request.scene = Some(py.import("reach._convert")?.call_method1("scene_text", (scene,))?.extract()?);
         }
         let request = serde_json::to_string(&request).map_err(|e| value_err(e.to_string()))?;
-        py.import("reach._results")?.getattr("View")?.call1((slf, request))
+        py.import("reach._results")?.getattr("View")?.call1((slf, request, meshes))
     }
 
     /// The robot's name.
@@ -1043,13 +1104,14 @@ impl Robot {
     /// a flat verdict: `verdict` the outcome's name (`free`, `obstacle`, `self_collision`,
     /// `outside_zone`), its fields beside it (`verdict_link`, `verdict_obstacle`, …) and
     /// `clear`, whether the whole check (the configuration and its motion, when given) holds.
-    #[pyo3(signature = (request=None, **kwargs))]
+    #[pyo3(signature = (request=None, degrees=false, **kwargs))]
     fn check<'py>(
         slf: &Bound<'py, Self>,
         request: Option<&Bound<'py, PyAny>>,
+        degrees: bool,
         kwargs: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        Robot::workflow(slf, "check", request, kwargs, &[], false)
+        Robot::workflow(slf, "check", request, kwargs, &[], degrees)
     }
 
     /// Runs any workflow: `request` is a dict (or JSON text) of a `reach::jobs::Request`, with

@@ -217,3 +217,37 @@ def test_repr_html_is_the_offline_viewer(tmp_path):
     sdata = json.loads(re.search(r'<script id="reach-view-data" type="application/json">(.*?)</script>', spage, flags=re.S).group(1))
     assert len(sdata["shapes"]) == 1 and bundle in spage
     assert _frame_page(ur5.view(scene=BALL)._repr_html_()) == _cli_page(tmp_path, "ur5", "--scene", BALL)
+
+
+def test_check_and_path_give_joint_values_in_si():
+    ur5 = reach.Robot.preset("ur5")
+    q = [180, -90, 0, -90, 0, 0]
+    r = ur5.check(scene=BALL, q={"deg": q}, to={"deg": START})
+    np.testing.assert_allclose(r["q"], np.radians(q), atol=1e-12)
+    np.testing.assert_allclose(r["motion"]["to"], np.radians(START), atol=1e-12)
+    np.testing.assert_allclose(ur5.check(scene=BALL, q={"deg": q}, degrees=True)["q"], q, atol=1e-12)
+    planar3 = reach.Robot.preset("planar3")
+    p = planar3.path(scene=ROOT / "examples" / "path_planar3_post.toml", duration_s=10.0, **{"from": {"deg": [60, -40, -30]}, "to": {"deg": [0, -30, -30]}})
+    np.testing.assert_allclose(p["waypoints"], np.radians(p["waypoints_deg"]), atol=1e-12)
+
+
+def test_plan_shows_its_motions_in_the_viewer(tmp_path):
+    task = ROOT / "examples" / "seed001_tool_vs_joint.toml"
+    spbu6 = reach.Robot.preset("spbu6")
+    page = _frame_page(spbu6.plan(task=task.read_text())._repr_html_())
+    assert page == _cli_page(tmp_path, "spbu6", "--plan", task)
+
+
+def test_urdf_robot_is_shown_with_its_meshes(tmp_path):
+    urdf = ROOT / "examples" / "urdf" / "kuka_kr16_support" / "urdf" / "kr16_2.urdf"
+    kr16 = reach.Robot.from_file(urdf, tip="tool0")
+    page = kr16.view().html
+    assert page == _cli_page(tmp_path, urdf, "--tip", "tool0")
+    data = json.loads(re.search(r'<script id="reach-view-data" type="application/json">(.*?)</script>', page, flags=re.S).group(1))
+    assert len(data["urdf"]["meshes"]) == 7
+    assert "urdf" not in json.loads(
+        re.search(r'<script id="reach-view-data" type="application/json">(.*?)</script>', kr16.view(meshes=False).html, flags=re.S).group(1)
+    )
+    import pickle
+
+    assert pickle.loads(pickle.dumps(kr16)).view().html == page

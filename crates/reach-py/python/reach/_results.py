@@ -12,14 +12,15 @@ class View:
     data inlined in an ``<iframe srcdoc>``; no network), ``html`` is the whole page,
     ``save(path)`` writes it (what ``reach view -o`` writes)."""
 
-    def __init__(self, robot: Any, request: str) -> None:
+    def __init__(self, robot: Any, request: str, meshes: bool = True) -> None:
         self._robot = robot
         self._request = request
+        self._meshes = meshes
 
     @property
     def html(self) -> str:
         """The self-contained HTML page."""
-        return self._robot._view_html(self._request, frame=False)
+        return self._robot._view_html(self._request, frame=False, meshes=self._meshes)
 
     def save(self, path: Union[str, "os.PathLike[str]"]) -> None:
         """Writes the page to ``path``."""
@@ -27,7 +28,7 @@ class View:
             f.write(self.html)
 
     def _repr_html_(self) -> str:
-        return self._robot._view_html(self._request)
+        return self._robot._view_html(self._request, meshes=self._meshes)
 
     def __repr__(self) -> str:
         return f"View({self._robot.name!r})"
@@ -44,10 +45,10 @@ class Motion(dict):
         self._robot = robot
         self._view = view
 
-    def view(self) -> View:
+    def view(self, meshes: bool = True) -> View:
         """The motion in the viewer (its samples on the timeline, events marked, the scene's
-        obstacles drawn)."""
-        return View(self._robot, self._view)
+        obstacles drawn; a URDF robot's meshes unless ``meshes=False``)."""
+        return View(self._robot, self._view, meshes)
 
     def _repr_html_(self) -> str:
         return self._robot._view_html(self._view)
