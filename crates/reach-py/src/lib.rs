@@ -23,7 +23,7 @@ use reach::jobs::input::MotionSample;
 use reach::jobs::input::{AngleUnit, from_si, to_si};
 use reach::jobs::view::ViewEvent;
 use reach::jobs::{self, IkRequest, Joints, MoveReport, Pose, Request, RobotInput, ViewRequest};
-use reach::model::{Convention, Joint, RobotSpec, presets};
+use reach::model::{Convention, Joint, JointKind, RobotSpec, presets};
 
 pyo3::create_exception!(
     _reach,
@@ -233,7 +233,7 @@ impl Robot {
     /// Runs one request. The report is the CLI's `--json` output as a dict, except that a
     /// sampled motion (`move`, each motion of `plan`, the timed path of `path`) carries its
     /// trajectory as SI arrays ([`Robot::set_trajectory`]) instead of its `samples` list, and
-    /// `check`'s verdict is flat ([`flat_check`]). Motions come back as `reach.Motion` (a dict
+    /// `check`'s verdict is flat ([`Robot::flat_check`]). Motions come back as `reach.Motion` (a dict
     /// that shows itself in a notebook).
     fn run_request<'py>(
         slf: &Bound<'py, Self>,
@@ -373,9 +373,7 @@ impl Robot {
         let page = jobs::view::page(&report.robot, &json, false);
         Ok(if frame { notebook_frame(&page) } else { page })
     }
-}
 
-impl Robot {
     /// A check report as a dict with a flat verdict: `verdict` is the outcome's name (`free`,
     /// `outside_zone`, `self_collision`, `obstacle`), its fields beside it prefixed `verdict_`
     /// (`verdict_link`, `verdict_obstacle` (0-based index), `verdict_zone`, `verdict_link_a`,
@@ -521,7 +519,7 @@ impl Robot {
             let angle = |row: usize, col: usize| col == 1 || col == 3 || (col >= 4 && !prismatic.contains(&row));
             for (k, v) in data.iter_mut().enumerate() {
                 if angle(k / width, k % width) {
-                    *v = to_si(reach::model::JointKind::Revolute, *v, AngleUnit::Deg);
+                    *v = to_si(JointKind::Revolute, *v, AngleUnit::Deg);
                 }
             }
         }
@@ -555,7 +553,7 @@ impl Robot {
     /// picked for it.
     fn __repr__(&self) -> String {
         let joints = self.robot.joints();
-        let kinds: String = joints.iter().map(|j| if j.kind.as_str() == "prismatic" { 'P' } else { 'R' }).collect();
+        let kinds: String = joints.iter().map(|j| if j.kind == JointKind::Prismatic { 'P' } else { 'R' }).collect();
         let number = |v: f64| {
             let text = format!("{v:.3}");
             let text = text.trim_end_matches('0').trim_end_matches('.');
