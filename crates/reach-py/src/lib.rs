@@ -19,9 +19,11 @@ use std::collections::HashMap;
 
 use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 use reach::ik::{IkOptions, SolverKind, numeric::TaskAxes};
+use reach::jobs::input::MotionSample;
 use reach::jobs::input::{AngleUnit, from_si, to_si};
-use reach::jobs::{self, IkRequest, Joints, Pose, Request, RobotInput};
-use reach::model::{Convention, Joint, RobotSpec, presets};
+use reach::jobs::view::ViewEvent;
+use reach::jobs::{self, IkRequest, Joints, MoveReport, Pose, Request, RobotInput, ViewRequest};
+use reach::model::{Convention, Joint, JointKind, RobotSpec, presets};
 
 pyo3::create_exception!(
     _reach,
@@ -126,13 +128,21 @@ struct Robot {
     robot: reach::Robot,
     /// How to rebuild it (pickling, e.g. for Ray workers): JSON, see [`Robot::restore`].
     state: String,
+    /// The URDF file it was read from (canonical path), whose visual meshes its views draw.
+    urdf_file: Option<std::path::PathBuf>,
+}
+
+/// The file a URDF document at `document` (canonical path) names as `filename` (`package://`,
+/// relative or `file://`, [`reach::model::mesh_file_path`]).
+fn mesh_file(document: &std::path::Path, filename: &str) -> Result<std::path::PathBuf, String> {
+    reach::model::mesh_file_path(document, filename, &|d: &std::path::Path| d.is_dir())
 }
 
 impl Robot {
     fn from_input(input: RobotInput) -> PyResult<Self> {
         let robot = input.load().map_err(|e| lib_err(&e))?.robot;
         let state = serde_json::to_string(&State::Input(input)).map_err(|e| value_err(e.to_string()))?;
-        Ok(Robot { robot, state })
+        Ok(Robot { robot, state, urdf_file: None })
     }
 
     fn dh(rows: &[f64], width: usize, prismatic: &[usize], modified: bool, name: &str) -> PyResult<Self> {
@@ -158,7 +168,7 @@ impl Robot {
         let dh =
             DhTable { rows: rows.to_vec(), width, prismatic: prismatic.to_vec(), modified, name: name.to_string() };
         let state = serde_json::to_string(&State::Dh(dh)).map_err(|e| value_err(e.to_string()))?;
-        Ok(Robot { robot, state })
+        Ok(Robot { robot, state, urdf_file: None })
     }
 
     /// Joint values of `q` (the last axis has one value per joint) in SI.
@@ -195,13 +205,14 @@ impl Robot {
     /// Runs the `kind` workflow of a request dict and/or keyword arguments (keywords win;
     /// `defaults` fill fields neither gives).
     fn workflow<'py>(
-        &self,
-        py: Python<'py>,
+        slf: &Bound<'py, Self>,
         kind: &str,
         request: Option<&Bound<'py, PyAny>>,
         kwargs: Option<&Bound<'py, PyDict>>,
         defaults: &[(&str, &str)],
+        degrees: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
+        let py = slf.py();
         let merged = PyDict::new(py);
         for (k, v) in defaults {
             merged.set_item(k, v)?;
@@ -216,13 +227,74 @@ impl Robot {
             py.import("reach._convert")?.call_method1("workflow", (kind, merged, PyDict::new(py)))?.extract()?;
         let request: Request = serde_json::from_str(&text)
             .map_err(|e| value_err(format!("{kind} request: {}", reach::one_line(&e.to_string()))))?;
-        self.run_request(py, &request)
+        Robot::run_request(slf, py, &request, degrees)
     }
 
-    /// Runs one request.
-    fn run_request<'py>(&self, py: Python<'py>, request: &Request) -> PyResult<Bound<'py, PyAny>> {
-        let robot = &self.robot;
+    /// Runs one request. The report is the CLI's `--json` output as a dict, except that a
+    /// sampled motion (`move`, each motion of `plan`, the timed path of `path`) carries its
+    /// trajectory as SI arrays ([`Robot::set_trajectory`]) instead of its `samples` list, and
+    /// `check`'s verdict is flat ([`Robot::flat_check`]). Motions come back as `reach.Motion` (a dict
+    /// that shows itself in a notebook).
+    fn run_request<'py>(
+        slf: &Bound<'py, Self>,
+        py: Python<'py>,
+        request: &Request,
+        degrees: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let this = slf.get();
+        let robot = &this.robot;
+        let motion = |dict: Bound<'py, PyDict>, view: &ViewRequest| -> PyResult<Bound<'py, PyAny>> {
+            let view = serde_json::to_string(view).map_err(|e| value_err(e.to_string()))?;
+            py.import("reach._results")?.getattr("Motion")?.call1((dict, slf, view))
+        };
+        if let Request::Path(r) = request {
+            let run = py.detach(|| jobs::world::path::path_run(robot, r)).map_err(|e| lib_err(&e))?;
+            let dict = to_python(py, &run.report)?.cast_into::<PyDict>()?;
+            let k = run.waypoints.len();
+            dict.set_item(
+                "waypoints",
+                to_numpy(py, this.display(run.waypoints.concat(), degrees), vec![k, robot.dof()])?,
+            )?;
+            let Some(timed) = run.timed else { return Ok(dict.into_any()) };
+            let samples = timed
+                .times
+                .iter()
+                .zip(&timed.q)
+                .map(|(&t_s, q)| MotionSample { t_s, q_deg: this.display(q.clone(), true) })
+                .collect();
+            this.set_trajectory(py, &dict, timed.times, timed.q, timed.qd, None, degrees)?;
+            let xyz: Vec<f64> = timed.tool_xyz_m.iter().flatten().copied().collect();
+            dict.set_item("tool_xyz", to_numpy(py, xyz, vec![timed.tool_xyz_m.len(), 3])?)?;
+            let view = ViewRequest { samples: Some(samples), scene: Some(r.scene.clone()), ..ViewRequest::default() };
+            return motion(dict, &view);
+        }
         let report = py.detach(|| jobs::run(robot, request)).map_err(|e| lib_err(&e))?;
+        match (&report, request) {
+            (jobs::Report::Move(m), Request::Move(r)) => {
+                let dict = this.motion_dict(py, m, degrees)?;
+                let view = ViewRequest {
+                    samples: Some(
+                        m.samples.iter().map(|s| MotionSample { t_s: s.t_s, q_deg: s.q_deg.clone() }).collect(),
+                    ),
+                    events: ViewEvent::of_move(m, 0.0),
+                    scene: r.scene.clone(),
+                    ..ViewRequest::default()
+                };
+                return motion(dict, &view);
+            }
+            (jobs::Report::Plan(p), Request::Plan(r)) => {
+                let dict = to_python(py, p)?.cast_into::<PyDict>()?;
+                let motions = PyList::empty(py);
+                for m in &p.motions {
+                    motions.append(this.motion_dict(py, m, degrees)?)?;
+                }
+                dict.set_item("motions", motions)?;
+                let view = ViewRequest { task: Some(r.task.clone()), scene: r.scene.clone(), ..ViewRequest::default() };
+                return motion(dict, &view);
+            }
+            (jobs::Report::Check(c), _) => return this.flat_check(py, c, degrees),
+            _ => {}
+        }
         // The CLI prints the workflow's own report; `kind` only tags the enum.
         let mut value = serde_json::to_value(&report).map_err(|e| value_err(e.to_string()))?;
         if let Some(map) = value.as_object_mut() {
@@ -230,6 +302,141 @@ impl Robot {
         }
         to_python(py, &value)
     }
+
+    /// Sets a sampled trajectory on `dict` as arrays: `t` `(M,)` seconds and `q`, `qd`, `qdd`
+    /// `(M, dof)` from SI rows (rad or m, per second, per second squared), shown in degrees
+    /// (prismatic metres) per second… with `degrees`. `qdd` when the report has none: the
+    /// library's rate rule on the positions ([`reach::effort::dynamics::joint_rates`]).
+    #[allow(clippy::too_many_arguments, reason = "the four arrays of one trajectory")]
+    fn set_trajectory(
+        &self,
+        py: Python<'_>,
+        dict: &Bound<'_, PyDict>,
+        t: Vec<f64>,
+        q: Vec<Vec<f64>>,
+        qd: Vec<Vec<f64>>,
+        qdd: Option<Vec<Vec<f64>>>,
+        degrees: bool,
+    ) -> PyResult<()> {
+        let qdd = match qdd {
+            Some(qdd) => qdd,
+            None => {
+                reach::effort::dynamics::joint_rates(&self.robot, &t, &q)
+                    .map_err(|e| value_err(format!("samples: {e}")))?
+                    .1
+            }
+        };
+        let (m, dof) = (t.len(), self.robot.dof());
+        dict.set_item("t", to_numpy(py, t, vec![m])?)?;
+        for (key, rows) in [("q", q), ("qd", qd), ("qdd", qdd)] {
+            dict.set_item(key, to_numpy(py, self.display(rows.concat(), degrees), vec![m, dof])?)?;
+        }
+        Ok(())
+    }
+
+    /// A move report as a dict: its `samples` become the trajectory arrays
+    /// ([`Robot::set_trajectory`]) and the tool's path `tool_xyz` `(M, 3)` metres and
+    /// `tool_rpy` `(M, 3)` radians (roll, pitch, yaw); everything else as the CLI prints it.
+    fn motion_dict<'py>(&self, py: Python<'py>, report: &MoveReport, degrees: bool) -> PyResult<Bound<'py, PyDict>> {
+        let dict = to_python(py, report)?.cast_into::<PyDict>()?;
+        dict.del_item("samples")?;
+        let robot = &self.robot;
+        let m = report.samples.len();
+        let (mut t, mut q, mut qd) = (Vec::with_capacity(m), Vec::with_capacity(m), Vec::with_capacity(m));
+        let (mut xyz, mut rpy) = (Vec::with_capacity(3 * m), Vec::with_capacity(3 * m));
+        for (k, s) in report.samples.iter().enumerate() {
+            t.push(s.t_s);
+            q.push(Joints::Deg(s.q_deg.clone()).si(robot, &format!("samples: sample {k}")).map_err(|e| lib_err(&e))?);
+            qd.push(self.si(s.qd_deg_s.clone(), true));
+            xyz.extend(s.xyz_m);
+            rpy.extend(s.rpy_deg.iter().map(|a| a.to_radians()));
+        }
+        self.set_trajectory(py, &dict, t, q, qd, None, degrees)?;
+        dict.set_item("tool_xyz", to_numpy(py, xyz, vec![m, 3])?)?;
+        dict.set_item("tool_rpy", to_numpy(py, rpy, vec![m, 3])?)?;
+        Ok(dict)
+    }
+
+    /// The HTML of a view request (JSON text of a [`ViewRequest`]; `None`: the robot at home):
+    /// `reach view`'s offline page, in an `<iframe srcdoc>` for a notebook when `frame`.
+    fn view_html(&self, request: Option<&str>, frame: bool, meshes: bool) -> PyResult<String> {
+        let mut request: ViewRequest = match request {
+            Some(text) => serde_json::from_str(text)
+                .map_err(|e| value_err(format!("view request: {}", reach::one_line(&e.to_string()))))?,
+            None => ViewRequest::default(),
+        };
+        if meshes && request.urdf.is_none() {
+            request.urdf = self.view_urdf()?;
+        }
+        let report = jobs::view::view(&self.robot, &request).map_err(|e| lib_err(&e))?;
+        let json = serde_json::to_string(&report).map_err(|e| value_err(e.to_string()))?;
+        let page = jobs::view::page(&report.robot, &json, false);
+        Ok(if frame { notebook_frame(&page) } else { page })
+    }
+
+    /// A check report as a dict with a flat verdict: `verdict` is the outcome's name (`free`,
+    /// `outside_zone`, `self_collision`, `obstacle`), its fields beside it prefixed `verdict_`
+    /// (`verdict_link`, `verdict_obstacle` (0-based index), `verdict_zone`, `verdict_link_a`,
+    /// `verdict_link_b`), `clear` the verdict of the whole check
+    /// ([`reach::jobs::CheckReport::is_clear`]: the configuration free and its motion, when
+    /// given, proven clear), and the joint values `q` (and the motion's `to`) in SI (degrees
+    /// with `degrees`) beside the report's `q_deg` (`to_deg`).
+    fn flat_check<'py>(
+        &self,
+        py: Python<'py>,
+        report: &jobs::CheckReport,
+        degrees: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let mut value = serde_json::to_value(report).map_err(|e| value_err(e.to_string()))?;
+        let si = |q: &[f64], field: &str| -> PyResult<Vec<f64>> {
+            let q = Joints::Deg(q.to_vec()).si(&self.robot, field).map_err(|e| lib_err(&e))?;
+            Ok(self.display(q, degrees))
+        };
+        if let Some(map) = value.as_object_mut() {
+            if let Some(serde_json::Value::Object(verdict)) = map.remove("verdict") {
+                for (k, v) in verdict {
+                    map.insert(if k == "verdict" { k } else { format!("verdict_{k}") }, v);
+                }
+            }
+            map.insert("clear".into(), report.is_clear().into());
+            map.insert("q".into(), si(&report.q_deg, "q_deg")?.into());
+            if let (Some(motion), Some(serde_json::Value::Object(m))) = (&report.motion, map.get_mut("motion")) {
+                m.insert("to".into(), si(&motion.to_deg, "to_deg")?.into());
+            }
+        }
+        to_python(py, &value)
+    }
+
+    /// For a robot read from a URDF file: the document with every visual mesh it references,
+    /// read from disk (what `reach view` draws); `None` for other robots.
+    fn view_urdf(&self) -> PyResult<Option<jobs::view::ViewUrdf>> {
+        let (Some(document), Ok(State::Input(RobotInput::Urdf { text, base, tip, .. }))) =
+            (&self.urdf_file, serde_json::from_str::<State>(&self.state))
+        else {
+            return Ok(None);
+        };
+        let chain = reach::model::UrdfChain { base, tip };
+        let urdf = jobs::view::ViewUrdf::read(&text, &chain, |filename| {
+            let fail = |message: String| reach::Error::File { what: "mesh file", message };
+            let file = mesh_file(document, filename).map_err(|why| fail(format!("`{filename}`: {why}")))?;
+            std::fs::read(&file).map_err(|e| fail(format!("`{filename}` ({}): {e}", file.display())))
+        })
+        .map_err(|e| {
+            value_err(format!("{} (meshes=False draws the links as capsules)", reach::one_line(&e.to_string())))
+        })?;
+        Ok(Some(urdf))
+    }
+}
+
+/// A page (the viewer's HTML) as an `<iframe srcdoc>` for a notebook cell: the page is its
+/// own document, so its script runs and its styles stay inside; the attribute is escaped
+/// (`&`, `"`, `<`, `>`), so the page's text cannot end it.
+fn notebook_frame(page: &str) -> String {
+    let escaped = page.replace('&', "&amp;").replace('"', "&quot;").replace('<', "&lt;").replace('>', "&gt;");
+    format!(
+        "<iframe srcdoc=\"{escaped}\" style=\"width: 100%; height: 520px; border: 0\" \
+         sandbox=\"allow-scripts\"></iframe>"
+    )
 }
 
 #[pymethods]
@@ -268,7 +475,7 @@ impl Robot {
         }
         let canonical = std::fs::canonicalize(&path).unwrap_or_else(|_| path.clone());
         let read = |filename: &str| {
-            let file = reach::model::mesh_file_path(&canonical, filename, &|d: &std::path::Path| d.is_dir()).ok()?;
+            let file = mesh_file(&canonical, filename).ok()?;
             file.exists().then(|| std::fs::read(&file).map_err(|e| format!("{}: {e}", file.display())))
         };
         let mut input = RobotInput::urdf(text, &reach::model::UrdfChain { base, tip }, read).map_err(value_err)?;
@@ -278,7 +485,7 @@ impl Robot {
                     .map_err(|e| PyOSError::new_err(format!("cannot read SRDF file `{}`: {e}", srdf.display())))?,
             );
         }
-        Robot::from_input(input)
+        Ok(Robot { urdf_file: Some(canonical), ..Robot::from_input(input)? })
     }
 
     /// A robot from the text of a TOML description.
@@ -312,30 +519,112 @@ impl Robot {
             let angle = |row: usize, col: usize| col == 1 || col == 3 || (col >= 4 && !prismatic.contains(&row));
             for (k, v) in data.iter_mut().enumerate() {
                 if angle(k / width, k % width) {
-                    *v = to_si(reach::model::JointKind::Revolute, *v, AngleUnit::Deg);
+                    *v = to_si(JointKind::Revolute, *v, AngleUnit::Deg);
                 }
             }
         }
         Robot::dh(&data, width, &prismatic, modified, &name)
     }
 
-    /// Rebuilds a robot from [`Robot::__reduce__`]'s state.
+    /// Rebuilds a robot from [`Robot::__reduce__`]'s state (and the URDF file its views
+    /// draw the meshes of).
     #[staticmethod]
-    fn _restore(state: &str) -> PyResult<Self> {
-        match serde_json::from_str::<State>(state).map_err(|e| value_err(format!("not a reach.Robot state: {e}")))? {
+    #[pyo3(signature = (state, urdf_file=None))]
+    fn _restore(state: &str, urdf_file: Option<std::path::PathBuf>) -> PyResult<Self> {
+        let robot = match serde_json::from_str::<State>(state)
+            .map_err(|e| value_err(format!("not a reach.Robot state: {e}")))?
+        {
             State::Input(input) => Robot::from_input(input),
             State::Dh(d) => Robot::dh(&d.rows, d.width, &d.prismatic, d.modified, &d.name),
-        }
+        }?;
+        Ok(Robot { urdf_file, ..robot })
     }
 
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
         let restore = slf.get_type().getattr("_restore")?;
-        let args = PyTuple::new(slf.py(), [slf.get().state.clone()])?;
+        let this = slf.get();
+        let args = (this.state.clone(), this.urdf_file.clone()).into_pyobject(slf.py())?;
         Ok((restore, args))
     }
 
+    /// `Robot(name='ur5', dof=6, joints='RRRRRR', limits_deg=[±360, …], solver='…')`: the
+    /// joint kinds (`R` revolute, `P` prismatic), each joint's limits (revolute degrees,
+    /// prismatic metres; `±a` when symmetric, `free` for a continuous joint) and the IK solver
+    /// picked for it.
     fn __repr__(&self) -> String {
-        format!("Robot('{}', dof={})", self.robot.name(), self.robot.dof())
+        let joints = self.robot.joints();
+        let kinds: String = joints.iter().map(|j| if j.kind == JointKind::Prismatic { 'P' } else { 'R' }).collect();
+        let number = |v: f64| {
+            let text = format!("{v:.3}");
+            let text = text.trim_end_matches('0').trim_end_matches('.');
+            if text == "-0" { "0".to_string() } else { text.to_string() }
+        };
+        let limits: Vec<String> = joints
+            .iter()
+            .map(|j| {
+                let (lo, hi) =
+                    (from_si(j.kind, j.limits.lower, AngleUnit::Deg), from_si(j.kind, j.limits.upper, AngleUnit::Deg));
+                if !lo.is_finite() && !hi.is_finite() {
+                    "free".to_string()
+                } else if lo == -hi {
+                    format!("±{}", number(hi))
+                } else {
+                    format!("{}..{}", number(lo), number(hi))
+                }
+            })
+            .collect();
+        format!(
+            "Robot(name='{}', dof={}, joints='{kinds}', limits_deg=[{}], solver='{}')",
+            self.robot.name().replace('\\', "\\\\").replace('\'', "\\'"),
+            self.robot.dof(),
+            limits.join(", "),
+            SolverKind::detect(&self.robot).as_str()
+        )
+    }
+
+    /// The robot in the 3-D viewer (`reach view`'s page, offline), in an `<iframe srcdoc>` for
+    /// a notebook: at home.
+    fn _repr_html_(&self) -> PyResult<String> {
+        self.view_html(None, true, true)
+    }
+
+    /// `reach view`'s offline page of a view request (the JSON text of a
+    /// `reach::jobs::ViewRequest`; `None`: the robot at home), in an `<iframe srcdoc>` for a
+    /// notebook when `frame`; a robot read from a URDF file drawn with its visual meshes
+    /// unless `meshes=False`.
+    #[pyo3(signature = (request=None, frame=true, meshes=true))]
+    fn _view_html(&self, request: Option<&str>, frame: bool, meshes: bool) -> PyResult<String> {
+        self.view_html(request, frame, meshes)
+    }
+
+    /// A view of the robot (`reach view`): at `q` (SI, or degrees with `degrees=True`;
+    /// default home) among the obstacles of `scene` (a `reach.Scene`, a path, or the text of a
+    /// scene file). The result shows itself in a notebook (`_repr_html_`); `.html` is the
+    /// full page, `.save(path)` writes it. A robot read from a URDF file is drawn with its
+    /// visual meshes (read from disk when shown) unless `meshes=False`.
+    #[pyo3(signature = (q=None, scene=None, degrees=false, meshes=true))]
+    fn view<'py>(
+        slf: &Bound<'py, Self>,
+        q: Option<&Bound<'py, PyAny>>,
+        scene: Option<&Bound<'py, PyAny>>,
+        degrees: bool,
+        meshes: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let py = slf.py();
+        let this = slf.get();
+        let mut request = ViewRequest::default();
+        if let Some(q) = q {
+            let (n, q) = this.joint_rows(py, q, "q", degrees)?;
+            if n.is_some() {
+                return Err(value_err(format!("q: expected shape ({},)", this.robot.dof())));
+            }
+            request.q = Some(Joints::Rad(q));
+        }
+        if let Some(scene) = scene {
+            request.scene = Some(py.import("reach._convert")?.call_method1("scene_text", (scene,))?.extract()?);
+        }
+        let request = serde_json::to_string(&request).map_err(|e| value_err(e.to_string()))?;
+        py.import("reach._results")?.getattr("View")?.call1((slf, request, meshes))
     }
 
     /// The robot's name.
@@ -677,82 +966,88 @@ impl Robot {
     }
 
     /// One motion (`reach move --json`): the `move` request's fields as keyword arguments or a
-    /// dict (`from`, `to`, `space`, `duration_s`, `scene`, …); the report as a dict.
-    #[pyo3(name = "move", signature = (request=None, **kwargs))]
+    /// dict (`from`, `to`, `space`, `duration_s`, `scene`, …); the report as a `reach.Motion`
+    /// (a dict): the CLI's report with its samples as arrays `t` `(M,)` s, `q`, `qd`, `qdd`
+    /// `(M, dof)` and the tool's `tool_xyz` (m), `tool_rpy` (rad) `(M, 3)`. SI (rad, m, per
+    /// second, per second squared) even when the request gives degrees; degrees (prismatic
+    /// joints metres) with `degrees=True`. `qdd` is the library's rate rule on `q`
+    /// (`reach::effort::dynamics::joint_rates`); `qd` is the planner's.
+    #[pyo3(name = "move", signature = (request=None, degrees=false, **kwargs))]
     fn move_<'py>(
-        &self,
-        py: Python<'py>,
+        slf: &Bound<'py, Self>,
         request: Option<&Bound<'py, PyAny>>,
+        degrees: bool,
         kwargs: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.workflow(py, "move", request, kwargs, &[])
+        Robot::workflow(slf, "move", request, kwargs, &[], degrees)
     }
 
     /// A tool-space motion tracked through IK (`reach move --space tool --json`): `move` with
-    /// `space="tool"` unless given.
-    #[pyo3(signature = (request=None, **kwargs))]
+    /// `space="tool"` unless given; the result as `move`'s.
+    #[pyo3(signature = (request=None, degrees=false, **kwargs))]
     fn track<'py>(
-        &self,
-        py: Python<'py>,
+        slf: &Bound<'py, Self>,
         request: Option<&Bound<'py, PyAny>>,
+        degrees: bool,
         kwargs: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.workflow(py, "move", request, kwargs, &[("space", "tool")])
+        Robot::workflow(slf, "move", request, kwargs, &[("space", "tool")], degrees)
     }
 
-    /// Every motion of a task file (`reach plan --json`): `task` (the file's text), ….
-    #[pyo3(signature = (request=None, **kwargs))]
+    /// Every motion of a task file (`reach plan --json`): `task` (the file's text), `scene`;
+    /// a `reach.Motion` whose `motions` are dicts with arrays as `move`'s (SI unless
+    /// `degrees=True`).
+    #[pyo3(signature = (request=None, degrees=false, **kwargs))]
     fn plan<'py>(
-        &self,
-        py: Python<'py>,
+        slf: &Bound<'py, Self>,
         request: Option<&Bound<'py, PyAny>>,
+        degrees: bool,
         kwargs: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.workflow(py, "plan", request, kwargs, &[])
+        Robot::workflow(slf, "plan", request, kwargs, &[], degrees)
     }
 
     /// Seed 000's planar detour around point obstacles (`reach avoid --json`).
     #[pyo3(signature = (request=None, **kwargs))]
     fn avoid<'py>(
-        &self,
-        py: Python<'py>,
+        slf: &Bound<'py, Self>,
         request: Option<&Bound<'py, PyAny>>,
         kwargs: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.workflow(py, "avoid", request, kwargs, &[])
+        Robot::workflow(slf, "avoid", request, kwargs, &[], false)
     }
 
     /// Seed 004's configuration-space grid (`reach cspace --json`).
     #[pyo3(signature = (request=None, **kwargs))]
     fn cspace<'py>(
-        &self,
-        py: Python<'py>,
+        slf: &Bound<'py, Self>,
         request: Option<&Bound<'py, PyAny>>,
         kwargs: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.workflow(py, "cspace", request, kwargs, &[])
+        Robot::workflow(slf, "cspace", request, kwargs, &[], false)
     }
 
     /// Stepper step schedules for a motion (`reach drive --json`).
     #[pyo3(signature = (request=None, **kwargs))]
     fn drive<'py>(
-        &self,
-        py: Python<'py>,
+        slf: &Bound<'py, Self>,
         request: Option<&Bound<'py, PyAny>>,
         kwargs: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.workflow(py, "drive", request, kwargs, &[])
+        Robot::workflow(slf, "drive", request, kwargs, &[], false)
     }
 
-    /// A collision-free timed joint-space path through a scene (`reach path --json`).
-    #[pyo3(signature = (request=None, **kwargs))]
+    /// A collision-free timed joint-space path through a scene (`reach path --json`): when a
+    /// path is found, a `reach.Motion` with the timed path's samples as arrays `t`, `q`,
+    /// `qd`, `qdd` and `tool_xyz` (SI unless `degrees=True`, as `move`'s); else the report.
+    #[pyo3(signature = (request=None, degrees=false, **kwargs))]
     fn path<'py>(
-        &self,
-        py: Python<'py>,
+        slf: &Bound<'py, Self>,
         request: Option<&Bound<'py, PyAny>>,
+        degrees: bool,
         kwargs: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.workflow(py, "path", request, kwargs, &[])
+        Robot::workflow(slf, "path", request, kwargs, &[], degrees)
     }
 
     /// The time-optimal motion through joint waypoints `(N, dof)` (SI, or degrees with
@@ -762,12 +1057,16 @@ impl Robot {
     /// arrays `t` `(M,)`, `q`, `qd`, `qdd` `(M, dof)` in SI. Keywords as the request:
     /// `interpolation` (`"spline"`, default, or `"linear"`), `dt`, `max_velocity_scale`,
     /// `max_acceleration_scale`, `points_per_piece`.
-    #[pyo3(signature = (waypoints, degrees=false, **kwargs))]
+    ///
+    /// `degrees=True` reads the waypoints in degrees (prismatic joints in metres); the arrays
+    /// stay SI unless `degrees_out=True`.
+    #[pyo3(signature = (waypoints, degrees=false, degrees_out=false, **kwargs))]
     fn time_parameterize<'py>(
         &self,
         py: Python<'py>,
         waypoints: &Bound<'py, PyAny>,
         degrees: bool,
+        degrees_out: bool,
         kwargs: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let (n, q) = self.joint_rows(py, waypoints, "waypoints", degrees)?;
@@ -789,35 +1088,37 @@ impl Robot {
         let robot = &self.robot;
         let mut report = py.detach(|| reach::jobs::retime::retime(robot, &request)).map_err(|e| lib_err(&e))?;
         let samples = std::mem::take(&mut report.samples);
-        let (m, dof) = (samples.len(), robot.dof());
-        let column = |f: &dyn Fn(&reach::jobs::retime::RetimeSample) -> &[f64]| {
-            samples.iter().flat_map(|s| f(s).iter().copied()).collect::<Vec<f64>>()
-        };
-        let out = to_python(py, &report)?;
-        let dict = out.cast::<PyDict>()?;
+        let dict = to_python(py, &report)?.cast_into::<PyDict>()?;
         dict.del_item("samples")?;
-        dict.set_item("t", to_numpy(py, samples.iter().map(|s| s.t_s).collect(), vec![m])?)?;
-        dict.set_item("q", to_numpy(py, column(&|s| &s.q), vec![m, dof])?)?;
-        dict.set_item("qd", to_numpy(py, column(&|s| &s.qd), vec![m, dof])?)?;
-        dict.set_item("qdd", to_numpy(py, column(&|s| &s.qdd), vec![m, dof])?)?;
-        Ok(out)
+        let t = samples.iter().map(|s| s.t_s).collect();
+        let column =
+            |f: &dyn Fn(&reach::jobs::retime::RetimeSample) -> &Vec<f64>| samples.iter().map(f).cloned().collect();
+        let (q, qd, qdd) = (column(&|s| &s.q), column(&|s| &s.qd), column(&|s| &s.qdd));
+        self.set_trajectory(py, &dict, t, q, qd, Some(qdd), degrees_out)?;
+        Ok(dict.into_any())
     }
 
-    /// Collisions and clearances of one configuration in a scene (`reach check --json`).
-    #[pyo3(signature = (request=None, **kwargs))]
+    /// Collisions and clearances of one configuration in a scene (`reach check --json`), with
+    /// a flat verdict: `verdict` the outcome's name (`free`, `obstacle`, `self_collision`,
+    /// `outside_zone`), its fields beside it (`verdict_link`, `verdict_obstacle`, …) and
+    /// `clear`, whether the whole check (the configuration and its motion, when given) holds.
+    #[pyo3(signature = (request=None, degrees=false, **kwargs))]
     fn check<'py>(
-        &self,
-        py: Python<'py>,
+        slf: &Bound<'py, Self>,
         request: Option<&Bound<'py, PyAny>>,
+        degrees: bool,
         kwargs: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.workflow(py, "check", request, kwargs, &[])
+        Robot::workflow(slf, "check", request, kwargs, &[], degrees)
     }
 
     /// Runs any workflow: `request` is a dict (or JSON text) of a `reach::jobs::Request`, with
     /// its `"kind"` (`fk`, `ik`, `move`, `plan`, `avoid`, `cspace`, `drive`, …); returns the
-    /// report (the CLI's `--json` output) as a dict, numeric lists as numpy arrays.
-    fn run<'py>(&self, py: Python<'py>, request: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+    /// report (the CLI's `--json` output) as a dict, numeric lists as numpy arrays, motions and
+    /// checks as the workflow methods return them.
+    #[pyo3(signature = (request, degrees=false))]
+    fn run<'py>(slf: &Bound<'py, Self>, request: &Bound<'py, PyAny>, degrees: bool) -> PyResult<Bound<'py, PyAny>> {
+        let py = slf.py();
         let text: String = if let Ok(s) = request.extract::<String>() {
             s
         } else {
@@ -825,7 +1126,7 @@ impl Robot {
         };
         let request: Request = serde_json::from_str(&text)
             .map_err(|e| value_err(format!("request: {}", reach::one_line(&e.to_string()))))?;
-        self.run_request(py, &request)
+        Robot::run_request(slf, py, &request, degrees)
     }
 }
 
@@ -841,10 +1142,37 @@ fn strip_nulls(v: &mut serde_json::Value) {
     }
 }
 
+/// What a scene file holds (`reach.Scene` validates and describes itself with it): the
+/// scene parsed by the library (`reach::jobs::world::parse_scene`, its errors name the entry
+/// and field), as a dict of `obstacles` and `tool_zone` (lists of names), `moving` (names of
+/// the obstacles with a velocity) and, for a TOML scene, its `length_unit` and `angle_unit`
+/// (`None` for a MoveIt planning scene).
+#[pyfunction]
+fn _scene_info<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyDict>> {
+    let scene = jobs::world::parse_scene(text).map_err(|e| lib_err(&e))?;
+    let out = PyDict::new(py);
+    let names = |list: &[reach::world::Obstacle]| list.iter().map(|o| o.name.clone()).collect::<Vec<_>>();
+    out.set_item("obstacles", names(&scene.obstacles))?;
+    out.set_item("tool_zone", names(&scene.tool_zone))?;
+    out.set_item("moving", scene.obstacles.iter().filter(|o| o.moves()).map(|o| o.name.clone()).collect::<Vec<_>>())?;
+    let (mut length, mut angle) = (None, None);
+    if !jobs::world::is_moveit_scene(text) {
+        // The library read the file: its units are strings it accepted ("m"/"mm",
+        // "deg"/"rad", angles in degrees by default).
+        let table: toml::Table = text.parse().map_err(|e: toml::de::Error| value_err(e.to_string()))?;
+        length = table.get("length_unit").and_then(|v| v.as_str()).map(str::to_string);
+        angle = Some(table.get("angle_unit").and_then(|v| v.as_str()).unwrap_or("deg").to_string());
+    }
+    out.set_item("length_unit", length)?;
+    out.set_item("angle_unit", angle)?;
+    Ok(out)
+}
+
 /// The extension module.
 #[pymodule]
 fn _reach(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Robot>()?;
+    m.add_function(wrap_pyfunction!(_scene_info, m)?)?;
     m.add("ReachError", m.py().get_type::<ReachError>())?;
     m.add("MAX_BATCH", reach::batch::MAX_BATCH)?;
     Ok(())

@@ -32,11 +32,24 @@ def _equal(a, b, where):
         assert a == b, where
 
 
+TRAJECTORY = ("t", "q", "qd", "qdd", "tool_xyz", "tool_rpy")
+
+
+def _same_motion(ours, theirs, where="report"):
+    """A motion's report against the CLI's: its arrays against the CLI's samples (in SI),
+    everything else equal."""
+    samples = theirs["samples"]
+    np.testing.assert_allclose(ours["t"], [s["t_s"] for s in samples], rtol=0, atol=0, err_msg=where)
+    np.testing.assert_allclose(ours["tool_xyz"], [s["xyz_m"] for s in samples], rtol=0, atol=1e-12, err_msg=where)
+    assert ours["q"].shape == (len(samples), len(samples[0]["q_deg"])), where
+    _same({k: v for k, v in ours.items() if k not in TRAJECTORY}, {k: v for k, v in theirs.items() if k != "samples"}, where)
+
+
 def test_move_equals_the_cli(cli):
     ur5 = reach.Robot.preset("ur5")
     report = ur5.move(**{"from": {"joints": {"deg": [0, -90, 90, 0, 90, 0]}}, "to": {"joints": {"deg": [30, -60, 60, 30, 60, 30]}}, "duration_s": 2.0})
     theirs = cli("move", "ur5", "--from", "0,-90,90,0,90,0", "--to", "30,-60,60,30,60,30", "--duration", "2")
-    _same(report, theirs)
+    _same_motion(report, theirs)
 
 
 def test_track_is_a_tool_space_move():
@@ -49,7 +62,11 @@ def test_track_is_a_tool_space_move():
 def test_plan_of_an_example_task_file_equals_the_cli(cli):
     task = ROOT / "examples" / "seed001_tool_vs_joint.toml"
     spbu6 = reach.Robot.preset("spbu6")
-    _same(spbu6.plan(task=task.read_text()), cli("plan", task))
+    ours, theirs = spbu6.plan(task=task.read_text()), cli("plan", task)
+    assert len(ours["motions"]) == len(theirs["motions"])
+    for i, (a, b) in enumerate(zip(ours["motions"], theirs["motions"])):
+        _same_motion(a, b, f"motions[{i}]")
+    _same({k: v for k, v in ours.items() if k != "motions"}, {k: v for k, v in theirs.items() if k != "motions"})
 
 
 def test_drive_equals_the_cli(cli):

@@ -4,6 +4,7 @@ values allowed), reports with their numeric lists as numpy arrays."""
 from __future__ import annotations
 
 import json
+import os
 from numbers import Number
 from typing import Any, Mapping, Optional
 
@@ -41,10 +42,32 @@ def _default(x: Any) -> Any:
     raise TypeError(f"cannot put a {type(x).__name__} into a request")
 
 
+def scene_text(scene: Any) -> str:
+    """The text of a scene file from what a workflow's ``scene=`` takes: a ``reach.Scene``, a
+    path (``os.PathLike``, or a one-line string naming an existing file) or the text itself."""
+    from .scene import Scene
+
+    if isinstance(scene, Scene):
+        return scene.to_toml()
+    if isinstance(scene, (str, os.PathLike)):
+        text = os.fspath(scene)
+        looks_like_text = "\n" in text or "=" in text
+        if isinstance(scene, os.PathLike) or (not looks_like_text and os.path.isfile(text)):
+            return Scene.from_file(scene).to_toml()
+        if not looks_like_text and ": " not in text:
+            raise ValueError(f"scene: no such scene file `{text}` (give a reach.Scene, a path or a scene file's text)")
+        return text
+    raise ValueError(f"scene: expected a reach.Scene, a path or a scene file's text, got a {type(scene).__name__}")
+
+
 def request_json(request: Mapping[str, Any]) -> str:
-    """A request dict (numpy arrays allowed) as JSON text."""
+    """A request dict (numpy arrays allowed) as JSON text; its ``scene`` may be any form
+    ``scene_text`` takes."""
+    request = dict(request)
+    if request.get("scene") is not None:
+        request["scene"] = scene_text(request["scene"])
     try:
-        return json.dumps(dict(request), default=_default, allow_nan=False)
+        return json.dumps(request, default=_default, allow_nan=False)
     except ValueError as e:  # NaN or infinity
         raise ValueError(f"request: expected finite numbers ({e})") from None
 
