@@ -69,14 +69,15 @@ fn read_stdin() -> Result<String, CliError> {
         .map_err(|e| CliError::bad_input(format!("cannot read standard input: {e}")))
 }
 
-/// Reads a motion file (`reach move --json`'s output, or any JSON `{"samples": [{"t_s",
-/// "q_deg"}, ...]}`).
+/// Reads a motion file: `reach move --json`'s output (or any JSON `{"samples": [{"t_s",
+/// "q_deg"}, ...]}`, or `reach path --json`), or the CSV of `reach move --csv` /
+/// `reach retime --csv` (`reach::jobs::input::parse_motion_file`).
 ///
 /// # Errors
 /// [`CliError::BadInput`] naming the path when it cannot be read or is not such JSON.
 pub fn read_motion_file(path: &std::path::Path) -> Result<Vec<reach::jobs::input::MotionSample>, CliError> {
     let name = if path == std::path::Path::new("-") { "standard input".into() } else { path.display().to_string() };
-    reach::jobs::input::parse_motion_json(&read_file(path)?)
+    reach::jobs::input::parse_motion_file(&read_file(path)?)
         .map_err(|e| CliError::bad_input(format!("{name}: {}", reach::one_line(&e.to_string()))))
 }
 

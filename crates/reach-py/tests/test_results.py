@@ -76,8 +76,10 @@ def test_track_returns_si_arrays():
     ur5 = reach.Robot.preset("ur5")
     r = ur5.track(**{"from": {"joints": {"deg": START}}, "to": {"joints": {"deg": [10, -80, 80, 0, 90, 0]}}, "duration_s": 1.0})
     assert r["space"] == "tool"
-    # (Which branch the first sample takes is issue 35 point 1, not this one.)
     np.testing.assert_allclose(r["tool_xyz"][0], ur5.fk(np.radians(START))[:3, 3], atol=1e-9)
+    # Issue 35 point 1: the motion starts at the joint values given, on their branch.
+    np.testing.assert_allclose(r["q"][0], np.radians(START), atol=1e-12)
+    assert r["intervals"][0]["decision"] == "start"
     # The tool moves on a straight line: every sample's FK is its tool_xyz.
     np.testing.assert_allclose(ur5.fk(r["q"])[:, :3, 3], r["tool_xyz"], atol=1e-9)
 

@@ -301,7 +301,7 @@ pub fn run(args: &MoveArgs, out: &mut dyn Write) -> Result<(), CliError> {
     // A sample table can be driven (`reach drive --motion`): an infeasible motion's is not
     // written. The report and drawings still show why it is infeasible.
     if let (Some(path), true) = (&args.csv, m.feasible) {
-        write_csv(path, &m)?;
+        write_csv(path, &robot, &m)?;
     }
     if args.json {
         write_json(out, &m)?;

@@ -111,20 +111,20 @@ pub fn write_comparison(out: &mut dyn Write, motions: &[MoveReport]) -> Result<(
     Ok(())
 }
 
-/// `--csv FILE`: a header and one row per sample (t, q, q̇, tool pose).
+/// `--csv FILE`: a header with units (`t_s`, `q1_deg …`, `qd1_deg_s …`, the tool pose) and
+/// one row per sample; `reach drive/view/check --motion` and `reach retime` read it back.
 ///
 /// # Errors
 /// [`CliError::BadInput`] naming the file when it cannot be written.
-pub fn write_csv(path: &Path, m: &MoveReport) -> Result<(), CliError> {
-    let dof = m.samples.first().map_or(0, |s| s.q_deg.len());
-    let mut text = String::from("t_s");
-    for i in 1..=dof {
-        text.push_str(&format!(",q{i}"));
-    }
-    for i in 1..=dof {
-        text.push_str(&format!(",qd{i}"));
-    }
-    text.push_str(",x_m,y_m,z_m,roll_deg,pitch_deg,yaw_deg\n");
+pub fn write_csv(path: &Path, robot: &Robot, m: &MoveReport) -> Result<(), CliError> {
+    use reach::jobs::input::{AngleUnit, joint_columns};
+    let columns: Vec<String> = std::iter::once("t_s".to_string())
+        .chain(joint_columns(robot, AngleUnit::Deg, "q", ""))
+        .chain(joint_columns(robot, AngleUnit::Deg, "qd", "_s"))
+        .chain(["x_m", "y_m", "z_m", "roll_deg", "pitch_deg", "yaw_deg"].map(String::from))
+        .collect();
+    let mut text = columns.join(",");
+    text.push('\n');
     for s in &m.samples {
         let cells: Vec<String> = std::iter::once(s.t_s)
             .chain(s.q_deg.iter().copied())

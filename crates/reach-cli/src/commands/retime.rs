@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
 use reach::Robot;
-use reach::jobs::input::{AngleUnit, from_si, parse_path_file, unit_name};
+use reach::jobs::input::{AngleUnit, from_si, joint_columns, parse_path_file, unit_name};
 use reach::jobs::retime::{Interpolation, RetimeReport, RetimeRequest};
 
 use crate::error::{CliError, flagged};
@@ -148,9 +148,10 @@ pub fn run(args: &RetimeArgs, out: &mut dyn Write) -> Result<(), CliError> {
 fn csv_text(robot: &Robot, r: &RetimeReport, unit: AngleUnit) -> String {
     let joints = robot.joints();
     let mut text = String::from("t_s");
-    for (prefix, per) in [("q", ""), ("qd", "_s"), ("qdd", "_s2")] {
-        for (i, j) in joints.iter().enumerate() {
-            text.push_str(&format!(",{prefix}{}_{}{per}", i + 1, unit_name(j.kind, unit)));
+    for (quantity, per) in [("q", ""), ("qd", "_s"), ("qdd", "_s2")] {
+        for name in joint_columns(robot, unit, quantity, per) {
+            text.push(',');
+            text.push_str(&name);
         }
     }
     text.push('\n');

@@ -295,3 +295,27 @@ fn point8_ik_max_thins_the_list_and_out_of_reach_says_from_where() {
     let line = one_error_line_after_report(&run);
     assert!(line.contains("link 3 (`upper_arm_link`) collides with obstacle `ball`"), "{line}");
 }
+
+/// Point 4: `move --csv` names its units in the header and is read back by the commands that
+/// read a trajectory (`view --motion`, `drive`, `retime`), the same samples as its JSON.
+#[test]
+fn point4_move_csv_has_units_and_is_read_by_view_drive_and_retime() {
+    let dir = crate::common::scratch("issue35-csv");
+    let csv = dir.join("m.csv");
+    let csv_arg = csv.to_str().unwrap();
+    let args = ["move", "ur5", "--from", "0,-90,90,0,90,0", "--to", "45,-60,60,0,90,0", "--duration", "2"];
+    let report = json(&[&args[..], &["--json", "--csv", csv_arg]].concat());
+    let text = std::fs::read_to_string(&csv).unwrap();
+    assert!(text.starts_with("t_s,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,qd1_deg_s,"), "{text}");
+    let samples = reach::jobs::input::parse_motion_file(&text).unwrap();
+    assert_eq!(samples.len(), report["samples"].as_array().unwrap().len());
+    for (s, j) in samples.iter().zip(report["samples"].as_array().unwrap()) {
+        assert_eq!(s.q_deg, nums(&j["q_deg"]));
+    }
+    let html = dir.join("v.html");
+    let line = ok(&["view", "ur5", "--motion", csv_arg, "-o", html.to_str().unwrap()]);
+    assert!(line.contains(&format!("{} states of {} samples", samples.len(), samples.len())), "{line}");
+    ok(&["drive", "ur5", csv_arg]);
+    let retimed = json(&["retime", "ur5", csv_arg, "--json"]);
+    assert_eq!(retimed["waypoints"].as_u64(), Some(samples.len() as u64));
+}

@@ -163,7 +163,7 @@ fn csv_file() {
     let text = std::fs::read_to_string(&path).unwrap();
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(lines.len(), 102);
-    assert!(lines[0].starts_with("t_s,q1,q2,q3,q4,q5,q6,qd1"));
+    assert!(lines[0].starts_with("t_s,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,qd1_deg_s"), "{}", lines[0]);
     let last: Vec<f64> = lines[101].split(',').map(|c| c.parse().unwrap()).collect();
     assert!((last[0] - 10.0).abs() < 1e-12 && (last[1] - 90.0).abs() < 1e-9 && (last[4] - 90.0).abs() < 1e-9);
 }

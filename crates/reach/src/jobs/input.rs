@@ -296,6 +296,126 @@ pub fn unit_name(kind: JointKind, unit: AngleUnit) -> &'static str {
     }
 }
 
+/// The CSV column names of one joint quantity, with their units: `q1_deg … q6_deg` (a
+/// prismatic joint `q3_m`), `qd1_deg_s` with `per = "_s"`, `qdd1_deg_s2` with `per = "_s2"`.
+/// What `reach move --csv` and `reach retime --csv` write and [`parse_motion_csv`] and
+/// [`parse_path_file`] read back.
+pub fn joint_columns<'a>(
+    robot: &'a Robot,
+    unit: AngleUnit,
+    quantity: &'a str,
+    per: &'a str,
+) -> impl Iterator<Item = String> + 'a {
+    robot.joints().iter().enumerate().map(move |(i, j)| format!("{quantity}{}_{}{per}", i + 1, unit_name(j.kind, unit)))
+}
+
+/// A CSV header's time and joint-position columns (0-based): `t_s`, and `q1 … qn`, each
+/// named `qN` or `qN_deg`, `qN_rad`, `qN_m` ([`joint_columns`]); `None` when the row names no
+/// joint column. The unit is that of the revolute columns (`None`: none says; all that say
+/// must agree).
+struct CsvColumns {
+    time: Option<usize>,
+    joints: Vec<usize>,
+    unit: Option<AngleUnit>,
+}
+
+fn csv_columns(cells: &[&str]) -> std::result::Result<Option<CsvColumns>, String> {
+    let mut time = None;
+    let mut joints: Vec<(usize, usize)> = Vec::new();
+    let mut unit: Option<AngleUnit> = None;
+    for (column, cell) in cells.iter().enumerate() {
+        let name = cell.trim();
+        if name == "t_s" {
+            time = Some(column);
+            continue;
+        }
+        let Some(rest) = name.strip_prefix('q') else { continue };
+        let (number, suffix) = rest.split_once('_').unwrap_or((rest, ""));
+        let Ok(index) = number.parse::<usize>() else { continue };
+        let said = match suffix {
+            "" | "m" => None,
+            "deg" => Some(AngleUnit::Deg),
+            "rad" => Some(AngleUnit::Rad),
+            _ => continue,
+        };
+        if let Some(u) = said {
+            if unit.is_some_and(|prev| prev != u) {
+                return Err(format!("column `{name}`: the joint columns mix degrees and radians"));
+            }
+            unit = Some(u);
+        }
+        joints.push((index, column));
+    }
+    if joints.is_empty() {
+        return Ok(None);
+    }
+    joints.sort_unstable();
+    for (k, (index, _)) in joints.iter().enumerate() {
+        if *index != k + 1 {
+            return Err(format!("the joint columns are not q1 … q{}: q{} is missing or repeated", joints.len(), k + 1));
+        }
+    }
+    Ok(Some(CsvColumns { time, joints: joints.into_iter().map(|(_, c)| c).collect(), unit }))
+}
+
+/// The rows of a CSV (values separated by commas and/or blanks; blank lines and `#` comments
+/// skipped) after an optional header row of names, as numbers: the header's cells and the
+/// rows, each row as long as the first. Errors name the line (1-based) and the column.
+fn csv_rows(text: &str) -> std::result::Result<(Option<Vec<String>>, Vec<(usize, Vec<f64>)>), String> {
+    let mut header = None;
+    let mut rows: Vec<(usize, Vec<f64>)> = Vec::new();
+    for (line_index, line) in text.lines().enumerate() {
+        let line = line.split('#').next().unwrap_or("").trim();
+        if line.is_empty() {
+            continue;
+        }
+        let cells: Vec<&str> = line.split([',', ' ', '\t', ';']).filter(|c| !c.trim().is_empty()).collect();
+        let parsed: Vec<Option<f64>> = cells.iter().map(|c| c.trim().parse::<f64>().ok()).collect();
+        if rows.is_empty() && header.is_none() && parsed.iter().all(Option::is_none) {
+            header = Some(cells.iter().map(|c| c.trim().to_string()).collect());
+            continue;
+        }
+        let mut row = Vec::with_capacity(cells.len());
+        for (column, (cell, value)) in cells.iter().zip(&parsed).enumerate() {
+            match value {
+                Some(v) if v.is_finite() => row.push(*v),
+                _ => {
+                    return Err(format!(
+                        "line {}, column {}: expected a finite number, got {cell:?}",
+                        line_index + 1,
+                        column + 1
+                    ));
+                }
+            }
+        }
+        if let Some((_, first)) = rows.first()
+            && first.len() != row.len()
+        {
+            return Err(format!(
+                "line {}: {} values, but the first row has {}",
+                line_index + 1,
+                row.len(),
+                first.len()
+            ));
+        }
+        rows.push((line_index + 1, row));
+    }
+    Ok((header, rows))
+}
+
+/// The header's columns, checked against the rows' width.
+fn header_columns(header: Option<&Vec<String>>, width: usize) -> std::result::Result<Option<CsvColumns>, String> {
+    let Some(header) = header else { return Ok(None) };
+    let cells: Vec<&str> = header.iter().map(String::as_str).collect();
+    let columns = csv_columns(&cells)?;
+    if let Some(c) = &columns
+        && let Some(&beyond) = c.time.iter().chain(&c.joints).find(|&&k| k >= width)
+    {
+        return Err(format!("column `{}` has no values: the rows have {width}", header[beyond]));
+    }
+    Ok(columns)
+}
+
 /// 1-based numbers of the joints whose value (SI) lies outside their limits (with the crate's
 /// [`LIMIT_SLACK`]).
 #[must_use]
@@ -575,6 +695,40 @@ mod tests {
     use super::*;
 
     #[test]
+    fn motion_csv_columns_carry_their_units_and_read_back() {
+        let robot = crate::model::presets::get("ur5").unwrap();
+        let q: Vec<String> = joint_columns(&robot, AngleUnit::Deg, "q", "").collect();
+        assert_eq!(q[0], "q1_deg");
+        assert_eq!(joint_columns(&robot, AngleUnit::Rad, "qdd", "_s2").last().unwrap(), "qdd6_rad_s2");
+        // What `reach move --csv` writes: t, q, q̇, the tool pose; only t and q are read.
+        let text = "t_s,q1_deg,q2_deg,qd1_deg_s,qd2_deg_s,x_m\n0,10,20,0,0,0.5\n0.5,11,21,2,2,0.6\n";
+        let samples = parse_motion_csv(text).unwrap();
+        assert_eq!(
+            samples,
+            [MotionSample { t_s: 0.0, q_deg: vec![10.0, 20.0] }, MotionSample { t_s: 0.5, q_deg: vec![11.0, 21.0] }]
+        );
+        assert_eq!(parse_motion_file(text).unwrap(), samples);
+        // Radians become degrees, metres stay; columns in any order; a bare `qN` is degrees.
+        let rad = parse_motion_csv("q2_m,t_s,q1_rad\n0.25,1,3.141592653589793\n").unwrap();
+        assert_eq!(rad, [MotionSample { t_s: 1.0, q_deg: vec![180.0, 0.25] }]);
+        assert_eq!(parse_motion_csv("t_s,q1,q2\n0,1,2\n").unwrap()[0].q_deg, [1.0, 2.0]);
+        // The path reader takes the joint columns only, in the header's unit.
+        let path = parse_path_file(text, AngleUnit::Rad).unwrap();
+        assert_eq!(path, [Joints::Deg(vec![10.0, 20.0]), Joints::Deg(vec![11.0, 21.0])]);
+        let plain = parse_path_file("1 2\n3 4\n", AngleUnit::Rad).unwrap();
+        assert_eq!(plain[1], Joints::Rad(vec![3.0, 4.0]));
+        // Bad files, one clear message each.
+        let message = |text: &str| parse_motion_csv(text).unwrap_err().to_string();
+        assert!(message("0,1,2\n").contains("needs a header naming `t_s`"));
+        assert!(message("t_s,x_m\n0,1\n").contains("needs a header"));
+        assert!(message("t_s,q1_deg,q2_rad\n0,1,2\n").contains("mix degrees and radians"));
+        assert!(message("t_s,q1_deg,q3_deg\n0,1,2\n").contains("q2 is missing"));
+        assert!(message("t_s,q1_deg,q2_deg\n0,1\n").contains("column `q2_deg` has no values"));
+        assert!(message("t_s,q1_deg\n0,NaN\n").contains("line 2, column 2"));
+        assert!(message("t_s,q1_deg\n").contains("no sample"));
+    }
+
+    #[test]
     fn numbers_in_messages_are_short() {
         assert_eq!(number_text(std::f64::consts::PI.to_degrees()), "180");
         assert_eq!(number_text(-0.0), "0");
@@ -719,8 +873,10 @@ pub fn samples_si(robot: &Robot, samples: &[MotionSample], field: &str) -> Resul
 }
 
 /// The joint waypoints of a path file, in the unit of its revolute values: a CSV (one joint
-/// vector per row, separated by commas and/or blanks; an optional header row of names,
-/// blank lines and `#` comments skipped; revolute values in `csv_unit`, prismatic in metres)
+/// vector per row, separated by commas and/or blanks; blank lines and `#` comments skipped;
+/// revolute values in `csv_unit`, prismatic in metres; an optional header row of names —
+/// when it names joint columns `q1 … qn` ([`joint_columns`], e.g. the CSV of `reach move`
+/// or `reach retime`), only those are read, in the unit their names give)
 /// or the JSON of `reach path` (`waypoints_deg`), `reach approach` (`motion_deg`) or
 /// `reach move` (`samples[].q_deg`), always in degrees.
 ///
@@ -758,52 +914,72 @@ pub fn parse_path_file(text: &str, csv_unit: AngleUnit) -> Result<Vec<Joints>> {
         }
         return Ok(rows.into_iter().map(Joints::Deg).collect());
     }
-    let mut rows: Vec<Vec<f64>> = Vec::new();
-    for (line_index, line) in text.lines().enumerate() {
-        let line = line.split('#').next().unwrap_or("").trim();
-        if line.is_empty() {
-            continue;
-        }
-        let cells: Vec<&str> = line.split([',', ' ', '\t', ';']).filter(|c| !c.trim().is_empty()).collect();
-        let parsed: Vec<Option<f64>> = cells.iter().map(|c| c.trim().parse::<f64>().ok()).collect();
-        if rows.is_empty() && parsed.iter().all(Option::is_none) {
-            continue; // a header row of names
-        }
-        let mut row = Vec::with_capacity(cells.len());
-        for (column, (cell, value)) in cells.iter().zip(&parsed).enumerate() {
-            match value {
-                Some(v) if v.is_finite() => row.push(*v),
-                _ => {
-                    return Err(file_error(format!(
-                        "line {}, column {}: expected a finite number, got {cell:?}",
-                        line_index + 1,
-                        column + 1
-                    )));
-                }
-            }
-        }
-        if let Some(first) = rows.first()
-            && first.len() != row.len()
-        {
-            return Err(file_error(format!(
-                "line {}: {} values, but the first row has {}",
-                line_index + 1,
-                row.len(),
-                first.len()
-            )));
-        }
-        rows.push(row);
-    }
+    let (header, rows) = csv_rows(text).map_err(file_error)?;
     if rows.is_empty() {
         return Err(file_error("no waypoint: expected one row of joint values per line".into()));
     }
+    let columns = header_columns(header.as_ref(), rows[0].1.len()).map_err(file_error)?;
+    let unit = columns.as_ref().and_then(|c| c.unit).unwrap_or(csv_unit);
     Ok(rows
         .into_iter()
-        .map(|r| match csv_unit {
-            AngleUnit::Deg => Joints::Deg(r),
-            AngleUnit::Rad => Joints::Rad(r),
+        .map(|(_, r)| {
+            let q = match &columns {
+                Some(c) => c.joints.iter().map(|&k| r[k]).collect(),
+                None => r,
+            };
+            match unit {
+                AngleUnit::Deg => Joints::Deg(q),
+                AngleUnit::Rad => Joints::Rad(q),
+            }
         })
         .collect())
+}
+
+/// The samples of a motion CSV — the file `reach move --csv` or `reach retime --csv` writes: a
+/// header naming the columns, `t_s` and the joint positions `q1_deg … qn_deg` (`qN_rad` in
+/// radians, `qN_m` for a prismatic joint; a bare `qN`, as older files have, is degrees), other
+/// columns ignored; then one row per sample.
+///
+/// # Errors
+/// [`Error::File`] for a header without `t_s` or without `q1 … qn`, columns that mix degrees
+/// and radians, a value that is not a finite number (its line and column), rows of unequal
+/// length, no row.
+pub fn parse_motion_csv(text: &str) -> Result<Vec<MotionSample>> {
+    let bad = |message: String| Error::File { what: "motion file", message };
+    let (header, rows) = csv_rows(text).map_err(bad)?;
+    if header.is_some() && rows.is_empty() {
+        return Err(bad("no sample: expected one row per sample after the header".into()));
+    }
+    let width = rows.first().map_or(0, |(_, r)| r.len());
+    let columns = header_columns(header.as_ref(), width).map_err(bad)?;
+    let (Some(columns), Some(time)) = (columns.as_ref(), columns.as_ref().and_then(|c| c.time)) else {
+        return Err(bad(
+            "a motion CSV needs a header naming `t_s` and the joint columns `q1_deg` … (as `reach move --csv` writes)"
+                .into(),
+        ));
+    };
+    let to_deg = match columns.unit {
+        Some(AngleUnit::Rad) => f64::to_degrees,
+        _ => |v: f64| v,
+    };
+    let names = header.as_deref().unwrap_or_default();
+    Ok(rows
+        .into_iter()
+        .map(|(_, r)| MotionSample {
+            t_s: r[time],
+            // Metres stay metres; angles become degrees.
+            q_deg: columns.joints.iter().map(|&k| if names[k].ends_with("_m") { r[k] } else { to_deg(r[k]) }).collect(),
+        })
+        .collect())
+}
+
+/// A motion file's samples, JSON ([`parse_motion_json`]) or CSV ([`parse_motion_csv`]),
+/// told apart by the first character (`{`: JSON).
+///
+/// # Errors
+/// As those two.
+pub fn parse_motion_file(text: &str) -> Result<Vec<MotionSample>> {
+    if text.trim_start().starts_with('{') { parse_motion_json(text) } else { parse_motion_csv(text) }
 }
 
 /// The default of a limit's scale (`max_velocity_scale`, `max_acceleration_scale`): 1, the

@@ -352,11 +352,15 @@ impl ViewEvent {
 }
 
 /// The timeline marks of a motion file (`reach move --json`'s `events` and infeasible
-/// `intervals`); none when the file has neither (e.g. samples only).
+/// `intervals`); none when the file has neither (e.g. samples only, or a motion CSV: text
+/// that does not start with `{`).
 ///
 /// # Errors
-/// [`Error::File`] for text that is not JSON or whose `events`/`intervals` are malformed.
+/// [`Error::File`] for JSON that is malformed or whose `events`/`intervals` are.
 pub fn parse_motion_events(text: &str) -> Result<Vec<ViewEvent>> {
+    if !text.trim_start().starts_with('{') {
+        return Ok(Vec::new());
+    }
     #[derive(Deserialize)]
     struct MotionLog {
         #[serde(default)]
