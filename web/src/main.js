@@ -305,7 +305,9 @@ class Viewer {
     if (this.urdfArm) this.urdfArm.set(s);
     const lines = this.report.joint_names.map((n, j) => {
       const unit = this.report.prismatic[j] ? 'm' : '°';
-      return `${n.padEnd(12)} ${s.q_deg[j].toFixed(3).padStart(10)} ${unit}`;
+      // A long (URDF) name is cut to keep the value on the panel; the plot's tooltip has it whole.
+      const name = n.length > 20 ? `${n.slice(0, 19)}…` : n;
+      return `${name.padEnd(12)} ${s.q_deg[j].toFixed(3).padStart(10)} ${unit}`;
     });
     lines.push(`tool xyz (m)  ${s.tool.xyz_m.map((v) => v.toFixed(4)).join(' ')}`);
     this.qText.textContent = lines.join('\n');
