@@ -27,7 +27,7 @@
 //                    the service's send to the page's receipt of each joint state), lastState()
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import { Arm, extent, shapeMesh, toolPath, ghostArms, ghostCollides, contactMarker, fitCamera, cornerPoints, boxCorners } from './scene.js';
+import { Arm, extent, polyline, shapeMesh, toolPath, ghostArms, ghostCollides, ghostVerdict, contactMarker, fitCamera, cornerPoints, boxCorners } from './scene.js';
 import { JointPlot } from './plot.js';
 import { el } from './dom.js';
 import { startLive } from './live.js';
@@ -154,8 +154,8 @@ class Viewer {
 
   /** The points the camera frames (world, metres): the corners of every link's box over the
    * motion (at most 25 states, evenly spaced, first and last included), of its IK ghosts and
-   * contact marker, and of the scene's obstacles where they are near the arm (a floor or a
-   * wall is not framed as a whole). */
+   * contact marker, on the live page the box of the ball the arm can reach, and the scene's
+   * obstacles where they are near all that (a floor or a wall is not framed as a whole). */
   framePoints() {
     const report = this.report;
     const states = report.states;
@@ -174,6 +174,14 @@ class Viewer {
     }
     for (const g of this.ghosts) cornerPoints(g.group, points);
     if (this.contactMarker) cornerPoints(this.contactMarker, points);
+    if (this.liveMode) {
+      // Live, the arm goes wherever the service moves it: frame the ball it can reach, around
+      // the base, of radius the length of its polyline (base, frame origins, tool).
+      const line = polyline(report, states[0]);
+      let radius = Math.max(0, ...report.link_radii_m);
+      for (let k = 1; k < line.length; k++) radius += line[k].distanceTo(line[k - 1]);
+      boxCorners(new THREE.Box3().setFromCenterAndSize(line[0], new THREE.Vector3(2, 2, 2).multiplyScalar(radius)), points);
+    }
     const arm = new THREE.Box3().setFromPoints(points);
     const reach = arm.getSize(new THREE.Vector3());
     const near = arm.clone().expandByScalar(0.5 * Math.max(reach.x, reach.y, reach.z));
@@ -212,7 +220,7 @@ class Viewer {
       item.textContent =
         `${g.chosen ? '● ' : '○ '}${g.branch}` +
         (g.within_limits ? '' : ' (outside limits)') +
-        (collides ? ` — in collision: ${g.check.verdict_text}` : g.check ? ' — free' : '');
+        (collides ? ` — ${ghostVerdict(g)} (${g.check.verdict_text})` : g.check ? ' — free' : '');
     }
   }
 
@@ -422,6 +430,7 @@ function start() {
     legend: () => viewer.plot.legendBoxes(),
   };
   const data = document.getElementById('reach-view-data');
+  viewer.liveMode = Boolean(data && data.dataset.live === '1');
   if (data) viewer.load(JSON.parse(data.textContent));
   if (data && data.dataset.live === '1') window.reachViewer.live = startLive(viewer, viewer.side);
 }

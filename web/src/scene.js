@@ -186,6 +186,12 @@ export function ghostCollides(g) {
   return g.check != null && !g.check.free;
 }
 
+/** What the library's check holds against ghost `g` (one that `ghostCollides`), in words:
+ * "in collision" (an obstacle or two links) or "tool outside the zone". */
+export function ghostVerdict(g) {
+  return g.check.verdict.verdict === 'outside_zone' ? 'tool outside the zone' : 'in collision';
+}
+
 /** Ghost arms of the IK solutions: red when the library's check finds them in collision. */
 export function ghostArms(report, scale) {
   return report.ghosts.map((g) => {

@@ -433,7 +433,7 @@ test('issue 35 point 10, IK ghosts inside an obstacle are drawn red and labelled
     } else {
       collide += 1;
       assert.equal(g.color, 0xd32f2f, `ghost ${g.branch} is red`);
-      assert.ok(g.label.includes(`in collision: ${verdict.verdict_text}`), g.label);
+      assert.ok(g.label.includes(`in collision (${verdict.verdict_text})`), g.label);
     }
   }
   assert.ok(collide >= 1 && collide < drawn.length, `${collide} of ${drawn.length} ghosts collide: the ball must catch some, not all`);

@@ -31,7 +31,7 @@ use crate::model::{UrdfChain, urdf_chain_links, urdf_visual_meshes};
 use crate::world::cspace::GridCounts;
 use crate::world::distance::point_segment_sq;
 use crate::world::sweep::SweepOptions;
-use crate::world::{CollisionChecker, PathSweep, Scene, Shape, SweptPair};
+use crate::world::{CollisionChecker, PathSweep, Scene, Shape, SweptPair, Verdict};
 
 /// Most motion samples a view request accepts.
 pub const MAX_VIEW_INPUT_SAMPLES: usize = 1_000_000;
@@ -504,6 +504,8 @@ pub struct ViewGhost {
 pub struct ViewGhostCheck {
     /// Whether the configuration is free (no collision, tool inside its zone).
     pub free: bool,
+    /// The first failed check (or free), as `reach check` reports it.
+    pub verdict: Verdict,
     /// The verdict in words, naming the link and the obstacle or zone (as `reach check`).
     pub verdict_text: String,
     /// Smallest link–obstacle clearance (`null` without obstacles), metres.
@@ -833,6 +835,7 @@ pub fn view(robot: &Robot, request: &ViewRequest) -> Result<ViewReport> {
                     let r = checker.report(&q)?;
                     Some(ViewGhostCheck {
                         free: r.verdict.is_free(),
+                        verdict: r.verdict,
                         verdict_text: verdict_text(&r.verdict, checker),
                         min_obstacle_clearance_m: r.min_obstacle_clearance_m,
                     })
@@ -988,6 +991,7 @@ mod tests {
             assert_eq!(check.free, checker.check(&q).unwrap().is_free(), "{}", g.branch);
         }
         assert!(!report.ghosts[0].check.as_ref().unwrap().free);
+        assert!(matches!(report.ghosts[0].check.as_ref().unwrap().verdict, Verdict::Obstacle { obstacle: 0, .. }));
         assert!(report.ghosts[0].check.as_ref().unwrap().verdict_text.contains("`ball`"));
         assert!(report.ghosts.iter().any(|g| g.check.as_ref().unwrap().free));
     }
