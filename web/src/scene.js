@@ -12,6 +12,7 @@ const COLORS = {
   zone: 0x2e7d32,
   ghost: 0x00838f,
   ghostChosen: 0x1565c0,
+  collides: 0xd32f2f,
 };
 
 const Y = new THREE.Vector3(0, 1, 0);
@@ -179,18 +180,124 @@ export function toolPath(report) {
   );
 }
 
-/** Ghost arms of the IK solutions. */
+/** Whether the library's check in the report's scene found ghost `g` in collision (or its tool
+ * outside the zone): `g.check` is absent without a scene. */
+export function ghostCollides(g) {
+  return g.check != null && !g.check.free;
+}
+
+/** What the library's check holds against ghost `g` (one that `ghostCollides`), in words:
+ * "in collision" (an obstacle or two links) or "tool outside the zone". */
+export function ghostVerdict(g) {
+  return g.check.verdict.verdict === 'outside_zone' ? 'tool outside the zone' : 'in collision';
+}
+
+/** Ghost arms of the IK solutions: red when the library's check finds them in collision. */
 export function ghostArms(report, scale) {
   return report.ghosts.map((g) => {
+    const collides = ghostCollides(g);
     const arm = new Arm(report, {
-      color: g.chosen ? COLORS.ghostChosen : COLORS.ghost,
-      opacity: g.within_limits ? 0.3 : 0.12,
+      color: collides ? COLORS.collides : g.chosen ? COLORS.ghostChosen : COLORS.ghost,
+      opacity: collides ? 0.35 : g.within_limits ? 0.3 : 0.12,
       axes: false,
       frames: false,
       scale,
     });
     arm.set(g.state);
     arm.group.name = `ghost ${g.branch}`;
+    arm.group.userData.collides = collides;
+    arm.color = collides ? COLORS.collides : g.chosen ? COLORS.ghostChosen : COLORS.ghost;
     return arm;
   });
+}
+
+/** The contact of a motion that the library's swept check does not prove clear
+ * (`report.contact`): a red ball at the contact point and the arm at that instant, drawn red
+ * and translucent. */
+export function contactMarker(report, scale) {
+  const c = report.contact;
+  const group = new THREE.Group();
+  group.name = 'contact';
+  const ball = new THREE.Mesh(
+    new THREE.SphereGeometry(0.03 * scale, 20, 12),
+    new THREE.MeshStandardMaterial({ color: COLORS.collides, depthTest: false, transparent: true, opacity: 0.9 }),
+  );
+  ball.name = 'contact point';
+  ball.renderOrder = 10;
+  ball.position.set(...c.xyz_m);
+  group.add(ball);
+  const arm = new Arm(report, { color: COLORS.collides, opacity: 0.3, axes: false, frames: false, scale });
+  arm.set(c.state);
+  arm.group.name = 'contact arm';
+  group.add(arm.group);
+  return group;
+}
+
+/** Pushes the 8 corners of `box`, mapped by `matrix` when given, onto `points`. */
+export function boxCorners(box, points, matrix = null) {
+  if (box.isEmpty()) return points;
+  for (let i = 0; i < 8; i++) {
+    const p = new THREE.Vector3(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z);
+    points.push(matrix ? p.applyMatrix4(matrix) : p);
+  }
+  return points;
+}
+
+/** Pushes the world-space corners of the bounding box of every visible mesh under
+ * `object` onto `points` (updates the world matrices first). */
+export function cornerPoints(object, points) {
+  object.updateMatrixWorld(true);
+  object.traverseVisible((o) => {
+    if (!o.isMesh || !o.geometry) return;
+    if (!o.geometry.boundingBox) o.geometry.computeBoundingBox();
+    boxCorners(o.geometry.boundingBox, points, o.matrixWorld);
+  });
+  return points;
+}
+
+/**
+ * Puts `camera` looking along −`direction` (unit vector towards the camera) at the points,
+ * as close as it can be with every point inside the view with `margin` (a fraction of the
+ * half-angles) to spare, for the camera's vertical field of view and `aspect` (width /
+ * height): the target is the middle of the points' extents across the view, and the distance
+ * the smallest that keeps each point, at its depth, within the half-angles. Sets near and far
+ * around the points. Returns the target (the orbit centre).
+ */
+export function fitCamera(camera, points, direction, aspect, margin = 0.9) {
+  const back = direction.clone().normalize();
+  const up = camera.up.clone().sub(back.clone().multiplyScalar(camera.up.dot(back)));
+  if (up.lengthSq() < 1e-12) up.set(0, 1, 0).sub(back.clone().multiplyScalar(back.y));
+  up.normalize();
+  const right = new THREE.Vector3().crossVectors(up, back).normalize();
+  const lo = [Infinity, Infinity, Infinity];
+  const hi = [-Infinity, -Infinity, -Infinity];
+  for (const p of points) {
+    [p.dot(right), p.dot(up), p.dot(back)].forEach((v, i) => {
+      lo[i] = Math.min(lo[i], v);
+      hi[i] = Math.max(hi[i], v);
+    });
+  }
+  if (!points.length) [0, 1, 2].forEach((i) => ((lo[i] = -1), (hi[i] = 1)));
+  const mid = [0, 1, 2].map((i) => (lo[i] + hi[i]) / 2);
+  const centre = new THREE.Vector3()
+    .addScaledVector(right, mid[0])
+    .addScaledVector(up, mid[1])
+    .addScaledVector(back, mid[2]);
+  const tanV = Math.tan(THREE.MathUtils.degToRad(camera.fov) / 2) * margin;
+  const tanH = tanV * aspect;
+  // A point at depth z towards the camera and offsets x, y from the target is inside the view
+  // from distance D when |x| ≤ (D − z)·tanH and |y| ≤ (D − z)·tanV.
+  let distance = 1e-3;
+  for (const p of points) {
+    const d = p.clone().sub(centre);
+    const z = d.dot(back);
+    distance = Math.max(distance, z + Math.abs(d.dot(right)) / tanH, z + Math.abs(d.dot(up)) / tanV);
+  }
+  const radius = Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) / 2 || 1;
+  camera.position.copy(centre).addScaledVector(back, distance);
+  camera.near = Math.max(distance - 2 * radius, distance / 1000);
+  camera.far = distance + 20 * radius;
+  camera.lookAt(centre);
+  camera.updateProjectionMatrix();
+  return centre;
 }

@@ -23,12 +23,15 @@ use serde::{Deserialize, Serialize};
 use super::ik::{IkRequest, ik};
 use super::input::{Joints, MotionSample, Pose, q_display, quat_wxyz, samples_si};
 use super::motion::{MoveEvent, MoveInterval, MoveReport, PlanRequest, plan};
-use super::world::{CspaceRequest, cspace_with_grid, parse_scene};
+use super::world::check::verdict_text;
+use super::world::{CspaceRequest, SweptPathReport, cspace_with_grid, parse_scene};
 use crate::Robot;
 use crate::error::{Error, Result};
 use crate::model::{UrdfChain, urdf_chain_links, urdf_visual_meshes};
-use crate::world::Shape;
 use crate::world::cspace::GridCounts;
+use crate::world::distance::point_segment_sq;
+use crate::world::sweep::SweepOptions;
+use crate::world::{CollisionChecker, PathSweep, Scene, Shape, SweptPair, Verdict};
 
 /// Most motion samples a view request accepts.
 pub const MAX_VIEW_INPUT_SAMPLES: usize = 1_000_000;
@@ -494,6 +497,49 @@ pub struct ViewGhost {
     pub chosen: bool,
     /// The arm at the solution.
     pub state: ViewState,
+    /// With a scene: the solution checked in it (the library's collision check, as
+    /// `reach check`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub check: Option<ViewGhostCheck>,
+}
+
+/// One configuration checked in the view's scene ([`CollisionChecker::report`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ViewGhostCheck {
+    /// Whether the configuration is free (no collision, tool inside its zone).
+    pub free: bool,
+    /// The first failed check (or free), as `reach check` reports it.
+    pub verdict: Verdict,
+    /// The verdict in words, naming the link and the obstacle or zone (as `reach check`).
+    pub verdict_text: String,
+    /// Smallest link–obstacle clearance (`null` without obstacles), metres.
+    pub min_obstacle_clearance_m: Option<f64>,
+}
+
+/// Where a motion shown with a scene is not proven clear: the library's swept check of the
+/// piecewise-linear joint path through the motion's samples (as `reach check --samples`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ViewContact {
+    /// The first instant the swept check cannot prove clear (the clearance there is at most
+    /// the contact tolerance), seconds on the motion's clock (as `states[].t_s`).
+    pub t_s: f64,
+    /// The last such instant (the same check run from the end of the path backwards),
+    /// seconds; `null` when the scene has a moving obstacle (its check runs forward in time
+    /// only). The arm is in contact at `t_s` and at `end_s`, and may be free in between.
+    pub end_s: Option<f64>,
+    /// What touches: a link and an obstacle, two links, or the tool point and a zone's boundary.
+    pub pair: SweptPair,
+    /// The same in words, with the link's and the obstacle's or zone's names.
+    pub pair_text: String,
+    /// The link's name (the first link of a pair of links), `null` for the tool point.
+    pub link_name: Option<String>,
+    /// Where the marker is drawn, world, metres, in the configuration at `t_s`: for an
+    /// obstacle, the point of its boundary nearest to the link's stick segment (the segment
+    /// through the link's frame origin); for two links, the point of the first link's segment
+    /// nearest to the other's; for a zone, the tool point. A place to look, not a verdict.
+    pub xyz_m: [f64; 3],
+    /// The arm at `t_s`.
+    pub state: ViewState,
 }
 
 /// Everything the viewer draws.
@@ -535,6 +581,132 @@ pub struct ViewReport {
     /// The C-space section, when asked for.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cspace: Option<ViewCspace>,
+    /// A motion (two or more samples) with a scene: the swept check of the path through all
+    /// its samples (before thinning), as `reach check --samples` reports it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub swept: Option<Box<SweptPathReport>>,
+    /// Where that check is not proven clear, when it is not.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact: Option<Box<ViewContact>>,
+}
+
+/// The point of segment `a`–`b` where the convex function `f` (a signed distance along the
+/// segment) is smallest: a ternary search over the segment's parameter.
+fn nearest_on_segment(a: &Vector3<f64>, b: &Vector3<f64>, f: impl Fn(&Vector3<f64>) -> f64) -> Vector3<f64> {
+    let at = |s: f64| a + (b - a) * s;
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..60 {
+        let (m1, m2) = (lo + (hi - lo) / 3.0, hi - (hi - lo) / 3.0);
+        if f(&at(m1)) <= f(&at(m2)) {
+            hi = m2;
+        } else {
+            lo = m1;
+        }
+    }
+    at(0.5 * (lo + hi))
+}
+
+/// The stick segments that may carry 1-based checker link `link` in `state`, from the
+/// polyline base, frame origins, tool: for a robot without bodies, segment `link − 1`; for a
+/// link with solids fixed to frame `k`, the segments on either side of frame `k`'s origin.
+fn link_segments(robot: &Robot, base: &ViewFrame, state: &ViewState, link: usize) -> Vec<(Vector3<f64>, Vector3<f64>)> {
+    let points: Vec<Vector3<f64>> = std::iter::once(base.xyz_m)
+        .chain(state.frames.iter().map(|f| f.xyz_m))
+        .chain(std::iter::once(state.tool.xyz_m))
+        .map(Vector3::from)
+        .collect();
+    let last = points.len() - 2;
+    let ks = match robot.bodies().get(link.saturating_sub(1)) {
+        Some(body) => vec![body.frame.saturating_sub(1), body.frame.min(last)],
+        None => vec![link.saturating_sub(1).min(last)],
+    };
+    ks.into_iter().map(|k| (points[k], points[k + 1])).collect()
+}
+
+/// Of the segments, the point where the convex function `f` is smallest.
+fn nearest_on_segments(segments: &[(Vector3<f64>, Vector3<f64>)], f: impl Fn(&Vector3<f64>) -> f64) -> Vector3<f64> {
+    segments
+        .iter()
+        .map(|(a, b)| nearest_on_segment(a, b, &f))
+        .min_by(|p, q| f(p).total_cmp(&f(q)))
+        .unwrap_or_else(Vector3::zeros)
+}
+
+/// The point of the boundary of a convex `shape` nearest to `p`: `p` moved by its signed
+/// distance against the distance's gradient (central differences).
+fn onto_boundary(shape: &Shape, p: &Vector3<f64>) -> Vector3<f64> {
+    let h = 1e-7 * (1.0 + p.norm());
+    let grad = Vector3::from_fn(|i, _| {
+        let e = Vector3::from_fn(|j, _| if i == j { h } else { 0.0 });
+        (shape.point_sdf(&(p + e)) - shape.point_sdf(&(p - e))) / (2.0 * h)
+    });
+    match grad.try_normalize(1e-12) {
+        Some(n) => p - n * shape.point_sdf(p),
+        None => *p,
+    }
+}
+
+/// A motion's swept check in a scene and where it is not proven clear (the report's `swept`
+/// and `contact`).
+type MotionCheck = (Option<Box<SweptPathReport>>, Option<Box<ViewContact>>);
+
+/// The swept check of the path through `times_q` (seconds, SI joint values) in `scene`, and
+/// where it is not proven clear.
+fn motion_contact(robot: &Robot, scene: &Scene, base: &ViewFrame, times_q: &[(f64, Vec<f64>)]) -> Result<MotionCheck> {
+    let t0 = times_q.first().map_or(0.0, |p| p.0);
+    let points: Vec<Vec<f64>> = times_q.iter().map(|p| p.1.clone()).collect();
+    let times: Vec<f64> = times_q.iter().map(|p| p.0 - t0).collect();
+    let options = SweepOptions::default();
+    let mut checker = CollisionChecker::new(robot, scene);
+    let Some(path) = checker.swept_path_timed(&points, &times, &options)? else {
+        return Ok((None, None));
+    };
+    let report = Box::new(SweptPathReport::of(&path, &checker));
+    if path.clear {
+        return Ok((Some(report), None));
+    }
+    let along = |segment: usize, at: f64| -> (f64, Vec<f64>) {
+        let (a, b) = (&times_q[segment], &times_q[segment + 1]);
+        (a.0 + at * (b.0 - a.0), a.1.iter().zip(&b.1).map(|(x, y)| x + at * (y - x)).collect())
+    };
+    let (t_s, q) = along(path.segment, path.closest.at);
+    // The last contact: the first one of the reversed path (fixed obstacles only).
+    let end_s = if scene.moving_obstacle().is_none() {
+        let reversed: Vec<Vec<f64>> = points.iter().rev().cloned().collect();
+        let back: Option<PathSweep> = checker.swept_path(&reversed, &options)?;
+        back.filter(|b| !b.clear).map(|b| along(points.len() - 2 - b.segment, 1.0 - b.closest.at).0)
+    } else {
+        None
+    };
+    let state = view_state(robot, t_s, &q)?;
+    let (link_name, point) = match path.pair {
+        SweptPair::ToolZone { .. } => (None, Vector3::from(state.tool.xyz_m)),
+        SweptPair::Obstacle { link, obstacle } => {
+            // The obstacle where it is at `t_s`, the boundary point nearest the link's segment.
+            let o = &scene.obstacles[obstacle];
+            let shift = o.displacement(t_s - t0);
+            let segments = link_segments(robot, base, &state, link);
+            let p = nearest_on_segments(&segments, |p| o.shape.point_sdf(&(p - shift)));
+            (Some(checker.link_name(link).to_string()), onto_boundary(&o.shape, &(p - shift)) + shift)
+        }
+        SweptPair::SelfPair { link_a, link_b } => {
+            let others = link_segments(robot, base, &state, link_b);
+            let gap =
+                |p: &Vector3<f64>| others.iter().map(|(c, d)| point_segment_sq(p, c, d)).fold(f64::INFINITY, f64::min);
+            let segments = link_segments(robot, base, &state, link_a);
+            (Some(checker.link_name(link_a).to_string()), nearest_on_segments(&segments, gap))
+        }
+    };
+    let contact = ViewContact {
+        t_s,
+        end_s,
+        pair: path.pair,
+        pair_text: report.swept.pair_text.clone().unwrap_or_default(),
+        link_name,
+        xyz_m: xyz(&point),
+        state,
+    };
+    Ok((Some(report), Some(Box::new(contact))))
 }
 
 /// The robot at `q` (SI) and time `t_s`.
@@ -630,9 +802,13 @@ pub fn view(robot: &Robot, request: &ViewRequest) -> Result<ViewReport> {
     let events_total = events.len();
     events.truncate(MAX_VIEW_EVENTS);
 
+    let base = ViewFrame::of(&IsometryMatrix3::from_parts(
+        robot.base().translation,
+        robot.base().rotation.to_rotation_matrix(),
+    ));
+    let scene = request.scene.as_deref().map(parse_scene).transpose()?;
     let mut shapes = Vec::new();
-    if let Some(text) = &request.scene {
-        let scene = parse_scene(text)?;
+    if let Some(scene) = &scene {
         let roles = [(ViewRole::Obstacle, &scene.obstacles), (ViewRole::ToolZone, &scene.tool_zone)];
         for (role, list) in roles {
             shapes.extend(list.iter().map(|o| ViewShape {
@@ -655,25 +831,41 @@ pub fn view(robot: &Robot, request: &ViewRequest) -> Result<ViewReport> {
         ik_request.all = true;
         let report = ik(robot, &ik_request)?;
         ik_status = Some(report.status.clone());
+        let mut checker = scene.as_ref().map(|scene| CollisionChecker::new(robot, scene));
         for (k, s) in report.solutions.iter().enumerate() {
             let q = Joints::Deg(s.q_deg.clone()).si(robot, "ik_target")?;
+            let check = match checker.as_mut() {
+                Some(checker) => {
+                    let r = checker.report(&q)?;
+                    Some(ViewGhostCheck {
+                        free: r.verdict.is_free(),
+                        verdict: r.verdict,
+                        verdict_text: verdict_text(&r.verdict, checker),
+                        min_obstacle_clearance_m: r.min_obstacle_clearance_m,
+                    })
+                }
+                None => None,
+            };
             ghosts.push(ViewGhost {
                 branch: s.branch.clone(),
                 within_limits: s.within_limits,
                 chosen: report.chosen == Some(k),
                 state: view_state(robot, 0.0, &q)?,
+                check,
             });
         }
     }
+
+    let (swept, contact) = match &scene {
+        Some(scene) if times_q.len() > 1 => motion_contact(robot, scene, &base, &times_q)?,
+        _ => (None, None),
+    };
 
     Ok(ViewReport {
         robot: robot.name().to_string(),
         joint_names: robot.joints().iter().map(|j| j.name.clone()).collect(),
         prismatic: robot.joints().iter().map(|j| j.kind == crate::model::JointKind::Prismatic).collect(),
-        base: ViewFrame::of(&IsometryMatrix3::from_parts(
-            robot.base().translation,
-            robot.base().rotation.to_rotation_matrix(),
-        )),
+        base,
         link_radii_m: robot.segment_radii(),
         states,
         samples_total,
@@ -686,6 +878,8 @@ pub fn view(robot: &Robot, request: &ViewRequest) -> Result<ViewReport> {
         ghosts,
         urdf: request.urdf.clone(),
         cspace,
+        swept,
+        contact,
     })
 }
 
@@ -738,5 +932,71 @@ mod tests {
             }
         }
         assert_eq!(state.frames.len(), 6);
+    }
+
+    const UR5_BALL: &str = "length_unit = \"m\"\nangle_unit = \"deg\"\n[[obstacles]]\nname = \"ball\"\nshape = \"sphere\"\ncenter = [0, -0.136, 0.3]\nradius = 0.02\n";
+
+    /// The UR5 turning its base from +60° to −60° (upper arm upright), `n` samples over 2 s.
+    fn turn(n: usize) -> Vec<MotionSample> {
+        (0..n)
+            .map(|k| {
+                let f = k as f64 / (n - 1) as f64;
+                MotionSample { t_s: 2.0 * f, q_deg: vec![60.0 - 120.0 * f, -90.0, 0.0, -90.0, 0.0, 0.0] }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn issue_35_point_10_a_colliding_motion_reports_its_contact() {
+        let robot = presets::get("ur5").unwrap();
+        let request = ViewRequest { samples: Some(turn(21)), scene: Some(UR5_BALL.into()), ..ViewRequest::default() };
+        let report = view(&robot, &request).unwrap();
+        let swept = report.swept.as_ref().unwrap();
+        assert!(!swept.swept.clear);
+        let contact = report.contact.as_ref().unwrap();
+        assert_eq!(contact.pair, SweptPair::Obstacle { link: 3, obstacle: 0 });
+        assert_eq!(contact.link_name.as_deref(), Some("upper_arm_link"));
+        // The ball lies at q1 = 0 (t = 1 s): the contact spans it, nearly symmetric about it
+        // (each end is where the conservative check first fails to prove clearance).
+        let end = contact.end_s.unwrap();
+        assert!(contact.t_s > 0.1 && contact.t_s < 1.0 && end > 1.0 && end < 1.9, "{} … {end}", contact.t_s);
+        assert!((contact.t_s + end - 2.0).abs() < 0.02, "{} … {end}", contact.t_s);
+        assert_eq!(Some(contact.t_s), swept.swept.t_s);
+        // The marker is on the ball's surface; the state is the arm at the contact.
+        let d = (Vector3::from(contact.xyz_m) - Vector3::new(0.0, -0.136, 0.3)).norm();
+        assert!((d - 0.02).abs() < 1e-6, "{d}");
+        assert!((contact.state.q_deg[0] - (60.0 - 60.0 * contact.t_s)).abs() < 1e-9);
+        // Moved out of the way: proven clear, no contact.
+        let away = UR5_BALL.replace("center = [0,", "center = [1.5,");
+        let report = view(&robot, &ViewRequest { scene: Some(away), ..request }).unwrap();
+        assert!(report.swept.unwrap().swept.clear);
+        assert!(report.contact.is_none());
+    }
+
+    #[test]
+    fn issue_35_point_10_ghosts_are_checked_in_the_scene() {
+        let robot = presets::get("ur5").unwrap();
+        let target = Pose { xyz_m: Some([0.4, 0.2, 0.3]), rpy_deg: Some([180.0, 0.0, 0.0]), ..Pose::default() };
+        let plain = view(&robot, &ViewRequest { ik_target: Some(target.clone()), ..ViewRequest::default() }).unwrap();
+        assert!(plain.ghosts.iter().all(|g| g.check.is_none()));
+        let elbow = plain.ghosts[0].state.frames[2].xyz_m;
+        let scene = format!(
+            "length_unit = \"m\"\n[[obstacles]]\nname = \"ball\"\nshape = \"sphere\"\ncenter = [{}, {}, {}]\nradius = 0.05\n",
+            elbow[0], elbow[1], elbow[2]
+        );
+        let parsed = parse_scene(&scene).unwrap();
+        let report =
+            view(&robot, &ViewRequest { ik_target: Some(target), scene: Some(scene), ..ViewRequest::default() })
+                .unwrap();
+        let mut checker = CollisionChecker::new(&robot, &parsed);
+        for g in &report.ghosts {
+            let q = Joints::Deg(g.state.q_deg.clone()).si(&robot, "q").unwrap();
+            let check = g.check.as_ref().unwrap();
+            assert_eq!(check.free, checker.check(&q).unwrap().is_free(), "{}", g.branch);
+        }
+        assert!(!report.ghosts[0].check.as_ref().unwrap().free);
+        assert!(matches!(report.ghosts[0].check.as_ref().unwrap().verdict, Verdict::Obstacle { obstacle: 0, .. }));
+        assert!(report.ghosts[0].check.as_ref().unwrap().verdict_text.contains("`ball`"));
+        assert!(report.ghosts.iter().any(|g| g.check.as_ref().unwrap().free));
     }
 }
