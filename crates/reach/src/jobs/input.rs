@@ -358,10 +358,13 @@ fn csv_columns(cells: &[&str]) -> std::result::Result<Option<CsvColumns>, String
     Ok(Some(CsvColumns { time, joints: joints.into_iter().map(|(_, c)| c).collect(), unit }))
 }
 
+/// A CSV's header cells (if any) and its rows of numbers with their 1-based line numbers.
+type CsvTable = (Option<Vec<String>>, Vec<(usize, Vec<f64>)>);
+
 /// The rows of a CSV (values separated by commas and/or blanks; blank lines and `#` comments
 /// skipped) after an optional header row of names, as numbers: the header's cells and the
 /// rows, each row as long as the first. Errors name the line (1-based) and the column.
-fn csv_rows(text: &str) -> std::result::Result<(Option<Vec<String>>, Vec<(usize, Vec<f64>)>), String> {
+fn csv_rows(text: &str) -> std::result::Result<CsvTable, String> {
     let mut header = None;
     let mut rows: Vec<(usize, Vec<f64>)> = Vec::new();
     for (line_index, line) in text.lines().enumerate() {
