@@ -85,6 +85,17 @@ pub fn parse_finite(label: &str, text: &str) -> Result<f64, CliError> {
     }
 }
 
+/// A count typed for `option` (`--max`, `--restarts`, `--max-nodes`): a whole number; the
+/// library checks its range and names the field.
+///
+/// # Errors
+/// [`CliError::BadInput`] naming `option` for text that is not a whole number.
+pub fn parse_count(option: &str, text: &str) -> Result<usize, CliError> {
+    text.trim()
+        .parse::<usize>()
+        .map_err(|_| CliError::bad_input(format!("{option}: expected a whole number ≥ 1, got {text:?}")))
+}
+
 /// Parses a list of finite numbers for `option`: separated by commas and/or blanks
 /// (`0,-90,90`, `"0 -90 90"`, `0, -90, 90`), negative values welcome. The one list parser of
 /// the command line.

@@ -11,7 +11,7 @@ use reach::world::WorldError;
 use crate::commands::check::{read_scene, scene_error};
 use crate::commands::cspace_render;
 use crate::error::CliError;
-use crate::numbers::parse_finite;
+use crate::numbers::{parse_count, parse_finite};
 use crate::output::{Align, Table, write_json};
 use crate::plot::progress::Progress;
 use crate::robot_arg::RobotArgs;
@@ -72,15 +72,7 @@ impl CspaceArgs {
             step_deg: parse_finite("--step", &self.step)?,
             fix,
             fit: self.fit,
-            max_nodes: self
-                .max_nodes
-                .as_deref()
-                .map(|t| {
-                    t.trim().parse::<usize>().map_err(|_| {
-                        CliError::bad_input(format!("--max-nodes: expected a whole number ≥ 1, got {t:?}"))
-                    })
-                })
-                .transpose()?,
+            max_nodes: self.max_nodes.as_deref().map(|t| parse_count("--max-nodes", t)).transpose()?,
         })
     }
 }

@@ -21,7 +21,7 @@ use reach::jobs::{IkRequest, IkScanRequest, Joints, Pose};
 pub use super::ik_render::demo;
 use super::ik_render::{write_report, write_scan, write_scan_csv};
 use crate::error::CliError;
-use crate::numbers::{parse_exact, parse_finite, parse_list};
+use crate::numbers::{parse_count, parse_exact, parse_finite, parse_list};
 use crate::output::{verdict_exit, write_json};
 use crate::pose_arg::{PoseFlags, joints_arg};
 use crate::robot_arg::RobotArgs;
@@ -261,13 +261,8 @@ fn request_of(args: &IkArgs, from: Option<Joints>) -> Result<IkRequest, CliError
     }
     request.free_angle_deg = args.free_angle.as_deref().map(|t| parse_finite("--free-angle", t)).transpose()?;
     request.step_deg = args.step.as_deref().map(|t| parse_finite("--step", t)).transpose()?;
-    let count = |flag: &str, t: &str| {
-        t.trim()
-            .parse::<usize>()
-            .map_err(|_| CliError::bad_input(format!("{flag}: expected a whole number ≥ 1, got {t:?}")))
-    };
-    request.max_solutions = args.max.as_deref().map(|t| count("--max", t)).transpose()?;
-    request.numeric.restarts = args.restarts.as_deref().map(|t| count("--restarts", t)).transpose()?;
+    request.max_solutions = args.max.as_deref().map(|t| parse_count("--max", t)).transpose()?;
+    request.numeric.restarts = args.restarts.as_deref().map(|t| parse_count("--restarts", t)).transpose()?;
     request.numeric.time_budget_s =
         args.time_budget.as_deref().map(|t| parse_finite("--time-budget", t)).transpose()?;
     Ok(request)
