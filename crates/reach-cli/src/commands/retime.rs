@@ -5,9 +5,9 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use clap::{Args, ValueEnum};
+use clap::Args;
 use reach::Robot;
-use reach::jobs::input::{AngleUnit, from_si, joint_columns, parse_path_file, unit_name};
+use reach::jobs::input::{AngleUnit, from_si, joint_columns, number_text, parse_path_file, unit_name};
 use reach::jobs::retime::{Interpolation, RetimeReport, RetimeRequest};
 
 use crate::error::{CliError, flagged};
@@ -15,13 +15,21 @@ use crate::numbers::parse_finite;
 use crate::output::{Align, Table, fixed, read_file, write_file, write_json};
 use crate::robot_arg::RobotArgs;
 
-/// How the waypoints are joined.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum InterpolationArg {
-    /// The not-a-knot cubic spline at uniform parameter (toppra's): no stop at the waypoints.
-    Spline,
-    /// Straight segments, resting at every waypoint.
-    Linear,
+/// `--interpolation`: `spline`, `linear`, `blend` or `blend:TOL` (TOL in radians; metres for
+/// prismatic joints), as the request's interpolation and blend tolerance.
+///
+/// # Errors
+/// [`CliError::BadInput`] for another word or a TOL that is not a finite number.
+pub fn parse_interpolation(text: &str) -> Result<(Interpolation, Option<f64>), CliError> {
+    match text.split_once(':') {
+        None if text == "spline" => Ok((Interpolation::Spline, None)),
+        None if text == "linear" => Ok((Interpolation::Linear, None)),
+        None if text == "blend" => Ok((Interpolation::Blend, None)),
+        Some(("blend", tol)) => Ok((Interpolation::Blend, Some(parse_finite("--interpolation blend:TOL", tol)?))),
+        _ => Err(CliError::bad_input(format!(
+            "--interpolation: `{text}` is not one of spline, linear, blend, blend:TOL (TOL in rad)"
+        ))),
+    }
 }
 
 /// The limits' scales of a time-optimal motion (MoveIt's scaling factors): what `reach retime`
@@ -67,9 +75,13 @@ pub struct RetimeArgs {
     #[arg(value_name = "PATH")]
     pub path: PathBuf,
 
-    /// How the waypoints are joined.
-    #[arg(long, value_enum, default_value_t = InterpolationArg::Spline)]
-    pub interpolation: InterpolationArg,
+    /// How the waypoints are joined: `spline` (the not-a-knot cubic spline at uniform
+    /// parameter, toppra's: no stop at the waypoints), `linear` (straight segments, resting at
+    /// every waypoint), `blend` or `blend:TOL` (straight segments whose corners are cut by
+    /// parabolic blends passing within TOL of each waypoint, joint-space distance in radians —
+    /// metres for prismatic joints; default 0.1, MoveIt's path tolerance; no stop).
+    #[arg(long, value_name = "HOW", default_value = "spline")]
+    pub interpolation: String,
 
     /// Sample step of the output, seconds.
     #[arg(long, value_name = "S", default_value = "0.01")]
@@ -112,12 +124,11 @@ pub fn run(args: &RetimeArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let waypoints = parse_path_file(&text, unit)
         .map_err(|e| CliError::bad_input(format!("{source}: {}", reach::one_line(&e.to_string()))))?;
     let (max_velocity_scale, max_acceleration_scale) = args.scales.parse()?;
+    let (interpolation, blend_tolerance) = parse_interpolation(&args.interpolation)?;
     let request = RetimeRequest {
         waypoints,
-        interpolation: match args.interpolation {
-            InterpolationArg::Spline => Interpolation::Spline,
-            InterpolationArg::Linear => Interpolation::Linear,
-        },
+        interpolation,
+        blend_tolerance,
         dt: Some(parse_finite("--dt", &args.dt)?),
         max_velocity_scale,
         max_acceleration_scale,
@@ -129,6 +140,7 @@ pub fn run(args: &RetimeArgs, out: &mut dyn Write) -> Result<(), CliError> {
             &[
                 ("waypoint", format!("{source} waypoint")),
                 ("dt", "--dt".into()),
+                ("blend tolerance", "--interpolation blend:TOL".into()),
                 (LimitScaleArgs::FLAGS[0].0, LimitScaleArgs::FLAGS[0].1.into()),
                 (LimitScaleArgs::FLAGS[1].0, LimitScaleArgs::FLAGS[1].1.into()),
                 ("points_per_piece", "--points-per-piece".into()),
@@ -170,8 +182,12 @@ fn write_text(robot: &Robot, r: &RetimeReport, unit: AngleUnit, out: &mut dyn Wr
     let mut head = Table::key_value();
     head.pair("robot", format!("{} ({} joints)", robot.name(), robot.dof()));
     let how = match r.interpolation {
-        Interpolation::Spline => "cubic spline (not-a-knot, uniform parameter)",
-        Interpolation::Linear => "straight segments, resting at each waypoint",
+        Interpolation::Spline => "cubic spline (not-a-knot, uniform parameter)".to_string(),
+        Interpolation::Linear => "straight segments, resting at each waypoint".to_string(),
+        Interpolation::Blend => format!(
+            "straight segments blended at the corners within {} rad of each waypoint",
+            number_text(r.blend_tolerance.unwrap_or_default())
+        ),
     };
     head.pair("path", format!("{} waypoints, {how}", r.waypoints));
     head.pair("duration", format!("{} s (time-optimal, rest to rest)", fixed(r.duration_s, 6)));

@@ -28,6 +28,7 @@ fn panda_spline_report_is_the_library_one_and_within_limits() {
     let request = RetimeRequest {
         waypoints: waypoints.clone(),
         interpolation: Interpolation::Spline,
+        blend_tolerance: None,
         dt: Some(0.005),
         max_velocity_scale: 1.0,
         max_acceleration_scale: 0.5,

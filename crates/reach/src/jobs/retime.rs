@@ -19,7 +19,15 @@ pub enum Interpolation {
     Spline,
     /// Straight segments; the motion rests at every corner.
     Linear,
+    /// Straight segments with every corner cut by a parabolic blend within
+    /// `blend_tolerance` of the corner ([`PiecewiseCubic::blended`]): the motion does not stop.
+    Blend,
 }
+
+/// Largest joint-space distance (rad; m for prismatic joints) by which a blend may pass a
+/// corner when the request does not say: MoveIt's default `path_tolerance` for its
+/// time-optimal parameterisation (TOTG).
+pub const DEFAULT_BLEND_TOLERANCE: f64 = 0.1;
 
 /// Time a path of joint waypoints.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
@@ -30,6 +38,10 @@ pub struct RetimeRequest {
     /// How they are joined (default `spline`).
     #[serde(default)]
     pub interpolation: Interpolation,
+    /// `blend` interpolation: how far (joint-space Euclidean distance, rad and m) the path may
+    /// pass from each corner (default [`DEFAULT_BLEND_TOLERANCE`]); 0 rests at every corner.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub blend_tolerance: Option<f64>,
     /// Sample step of the report, s (default 0.01).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dt: Option<f64>,
@@ -66,6 +78,11 @@ pub struct RetimeReport {
     pub robot: String,
     /// How the waypoints were joined.
     pub interpolation: Interpolation,
+    /// `blend` interpolation: the tolerance used (rad and m); `null` otherwise.
+    pub blend_tolerance: Option<f64>,
+    /// The time at which the motion passes each waypoint (a blended corner: the middle of its
+    /// blend), s.
+    pub waypoint_times_s: Vec<f64>,
     /// Number of waypoints.
     pub waypoints: usize,
     /// Duration, s, rest to rest.
@@ -114,9 +131,19 @@ pub fn retime(robot: &Robot, request: &RetimeRequest) -> Result<RetimeReport> {
         super::input::require_within_limits(robot, &q, w.unit(), &field)?;
         waypoints.push(q);
     }
+    let blend_tolerance = match (request.interpolation, request.blend_tolerance) {
+        (Interpolation::Blend, t) => Some(t.unwrap_or(DEFAULT_BLEND_TOLERANCE)),
+        (_, None) => None,
+        (_, Some(_)) => {
+            return Err(Error::request("blend_tolerance", "applies to blend interpolation only"));
+        }
+    };
     let path = match request.interpolation {
         Interpolation::Spline => PiecewiseCubic::spline(&waypoints)?,
         Interpolation::Linear => PiecewiseCubic::polyline(&waypoints)?,
+        Interpolation::Blend => {
+            PiecewiseCubic::blended(&waypoints, blend_tolerance.unwrap_or_default()).map_err(request_error)?
+        }
     };
     let unit = request.waypoints[0].unit();
     for (j, joint) in robot.joints().iter().enumerate() {
@@ -134,14 +161,14 @@ pub fn retime(robot: &Robot, request: &RetimeRequest) -> Result<RetimeReport> {
                          use linear interpolation or add waypoints",
                         match request.interpolation {
                             Interpolation::Spline => "spline",
-                            Interpolation::Linear => "polyline",
+                            Interpolation::Linear | Interpolation::Blend => "polyline",
                         },
                         j + 1,
                         joint.name,
                         shown(bound),
                         unit_name(joint.kind, unit),
-                        at + 1,
-                        at + 2,
+                        path.waypoint_of_piece(at) + 1,
+                        path.waypoint_of_piece(at) + 2,
                         shown(value),
                         unit_name(joint.kind, unit),
                     ),
@@ -162,6 +189,8 @@ pub fn retime(robot: &Robot, request: &RetimeRequest) -> Result<RetimeReport> {
     Ok(RetimeReport {
         robot: robot.name().to_string(),
         interpolation: request.interpolation,
+        blend_tolerance,
+        waypoint_times_s: motion.waypoint_times(),
         waypoints: waypoints.len(),
         duration_s: motion.duration(),
         grid_points: motion.grid_points(),

@@ -53,12 +53,15 @@ pub const MIN_DEFAULT_POINTS_PER_PIECE: usize = 8;
 /// point of the path where every joint rests).
 const X_CAP: f64 = 1e12;
 
-/// A joint path made of cubic pieces: piece `k` covers `[k·h, (k+1)·h]` and joint `j` moves as
-/// `c₀ + c₁t + c₂t² + c₃t³` in the local parameter `t = s − k·h`.
+/// A joint path made of cubic pieces: piece `k` covers `[sₖ, sₖ₊₁]` and joint `j` moves as
+/// `c₀ + c₁t + c₂t² + c₃t³` in the local parameter `t = s − sₖ`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PiecewiseCubic {
-    /// Parameter length of every piece.
-    h: f64,
+    /// The pieces' ends `s₀ = 0 < s₁ < … < sₙ = S`.
+    knots: Vec<f64>,
+    /// The parameter at which the path passes each waypoint it was built from (a blended
+    /// corner: the middle of its blend, the point closest to the waypoint).
+    marks: Vec<f64>,
     /// `coeffs[k][j] = [c₀, c₁, c₂, c₃]` of piece `k`, joint `j`.
     coeffs: Vec<Vec<[f64; 4]>>,
     /// Whether the path's tangent jumps at the start of piece `k` (a polyline's corner): the
@@ -107,7 +110,8 @@ impl PiecewiseCubic {
                     [y[k], slope - h * (2.0 * m[k] + m[k + 1]) / 6.0, m[k] / 2.0, (m[k + 1] - m[k]) / (6.0 * h)];
             }
         }
-        Ok(PiecewiseCubic { h, coeffs, corner: vec![false; n - 1] })
+        let knots = uniform_knots(n, h);
+        Ok(PiecewiseCubic { marks: knots.clone(), knots, coeffs, corner: vec![false; n - 1] })
     }
 
     /// The polyline through `waypoints` at uniform parameter over `[0, 1]`; the motion rests
@@ -136,7 +140,121 @@ impl PiecewiseCubic {
                 }
             })
             .collect();
-        Ok(PiecewiseCubic { h, coeffs, corner })
+        let knots = uniform_knots(n, h);
+        Ok(PiecewiseCubic { marks: knots.clone(), knots, coeffs, corner })
+    }
+
+    /// The polyline through `waypoints` with every corner cut by a parabolic blend that stays
+    /// within `tolerance` of the corner (joint-space Euclidean distance, rad and m as in
+    /// [`crate::world::planner::path_length`]; MoveIt's `path_tolerance`), parameterised by
+    /// joint-space arc length on the straight parts, so the motion need not stop at a corner.
+    ///
+    /// At a corner `w` between the unit directions `d₁` (in) and `d₂` (out), the blend leaves
+    /// the first segment at `w − L·d₁` and joins the second at `w + L·d₂`:
+    /// `q(t) = w − L·d₁ + t·d₁ + t²·(d₂ − d₁)/(4L)`, `t ∈ [0, 2L]` — the quadratic arc (Bézier)
+    /// with control points `w − L·d₁`, `w`, `w + L·d₂`, tangent to both segments, whose point
+    /// farthest from `w` is its middle, at `L·|d₂ − d₁|/4`. So
+    /// `L = min(4·tolerance/|d₂ − d₁|, ℓ₁/2, ℓ₂/2)` (`ℓ`: the segments' lengths, shared by
+    /// the blends at their ends). The path is continuously differentiable; tolerance 0 gives
+    /// the polyline, resting at each corner. Repeated waypoints are passed once.
+    ///
+    /// # Errors
+    /// As [`PiecewiseCubic::spline`]; [`MotionError::InvalidInput`] for a tolerance that is
+    /// not finite and ≥ 0, or waypoints that are all one configuration.
+    pub fn blended(waypoints: &[Vec<f64>], tolerance: f64) -> Result<Self, MotionError> {
+        let dof = check_waypoints(waypoints)?;
+        check_number("blend tolerance", tolerance, false)?;
+        // The distinct corners, and for each waypoint the corner it is.
+        let mut points: Vec<&[f64]> = vec![&waypoints[0]];
+        let mut corner_of = vec![0usize];
+        for w in &waypoints[1..] {
+            let last = points[points.len() - 1];
+            if distance(last, w) > SAME_POINT {
+                points.push(w);
+            }
+            corner_of.push(points.len() - 1);
+        }
+        if points.len() < 2 {
+            return Err(MotionError::InvalidInput {
+                field: "waypoints".into(),
+                reason: "are all one configuration: there is no path to time".into(),
+            });
+        }
+        let m = points.len();
+        let lengths: Vec<f64> = points.windows(2).map(|w| distance(w[0], w[1])).collect();
+        let directions: Vec<Vec<f64>> =
+            points.windows(2).zip(&lengths).map(|(w, l)| (0..dof).map(|j| (w[1][j] - w[0][j]) / l).collect()).collect();
+        // Blend half-lengths per corner (0 at the ends), and whether an unblended corner turns.
+        let mut half = vec![0.0; m];
+        let mut turns = vec![false; m];
+        for c in 1..m - 1 {
+            let turn = distance(&directions[c - 1], &directions[c]);
+            turns[c] = turn > SAME_DIRECTION;
+            if turns[c] && tolerance > 0.0 {
+                half[c] = (4.0 * tolerance / turn).min(lengths[c - 1] / 2.0).min(lengths[c] / 2.0);
+            }
+        }
+        let mut knots = vec![0.0];
+        let mut coeffs = Vec::new();
+        let mut corner = Vec::new();
+        let mut corner_at = vec![0.0; m];
+        let mut push = |piece: Vec<[f64; 4]>, len: f64, rest: bool, knots: &mut Vec<f64>| {
+            knots.push(knots[knots.len() - 1] + len);
+            coeffs.push(piece);
+            corner.push(rest);
+        };
+        for i in 0..m - 1 {
+            let (d, l) = (&directions[i], lengths[i]);
+            let line = l - half[i] - half[i + 1];
+            // A corner passed without a blend is a rest point at the start of this segment.
+            let rest = turns[i] && half[i] == 0.0;
+            if line > SAME_POINT * l.max(1.0) || half[i + 1] == 0.0 {
+                let start: Vec<f64> = (0..dof).map(|j| points[i][j] + half[i] * d[j]).collect();
+                push((0..dof).map(|j| [start[j], d[j], 0.0, 0.0]).collect(), line.max(0.0), rest, &mut knots);
+            }
+            let s_end = knots[knots.len() - 1];
+            if half[i + 1] > 0.0 {
+                let (big_l, next) = (half[i + 1], &directions[i + 1]);
+                corner_at[i + 1] = s_end + big_l;
+                let piece = (0..dof)
+                    .map(|j| [points[i + 1][j] - big_l * d[j], d[j], (next[j] - d[j]) / (4.0 * big_l), 0.0])
+                    .collect();
+                push(piece, 2.0 * big_l, false, &mut knots);
+            } else {
+                corner_at[i + 1] = s_end;
+            }
+        }
+        let marks = corner_of.iter().map(|&c| corner_at[c]).collect();
+        Ok(PiecewiseCubic { knots, marks, coeffs, corner })
+    }
+
+    /// Each piece as the control points of a straight line (2) or a quadratic arc (3, the
+    /// Bézier form: ends and the intersection of the end tangents), for the swept collision
+    /// check ([`crate::world::sweep::JointCurve`]): the pieces of a polyline or a blended path.
+    ///
+    /// # Errors
+    /// [`MotionError::InvalidInput`] when a piece is a true cubic (a spline's): the swept
+    /// check takes lines and arcs.
+    pub fn control_points(&self) -> Result<Vec<Vec<Vec<f64>>>, MotionError> {
+        self.coeffs
+            .iter()
+            .enumerate()
+            .map(|(k, piece)| {
+                let len = self.knots[k + 1] - self.knots[k];
+                let end = || piece.iter().map(|c| c[0] + len * (c[1] + len * (c[2] + len * c[3]))).collect();
+                let start = piece.iter().map(|c| c[0]).collect();
+                if piece.iter().any(|c| c[3] != 0.0) {
+                    Err(MotionError::InvalidInput {
+                        field: "path".into(),
+                        reason: format!("piece {} is a cubic: only lines and quadratic arcs can be swept", k + 1),
+                    })
+                } else if piece.iter().all(|c| c[2] == 0.0) {
+                    Ok(vec![start, end()])
+                } else {
+                    Ok(vec![start, piece.iter().map(|c| c[0] + 0.5 * len * c[1]).collect(), end()])
+                }
+            })
+            .collect()
     }
 
     /// Number of joints.
@@ -151,10 +269,24 @@ impl PiecewiseCubic {
         self.coeffs.len()
     }
 
-    /// Parameter length `S` (1 for the constructors here).
+    /// Parameter length `S`: 1 for [`PiecewiseCubic::spline`] and
+    /// [`PiecewiseCubic::polyline`], the joint-space arc length for
+    /// [`PiecewiseCubic::blended`].
     #[must_use]
     pub fn length(&self) -> f64 {
-        self.h * self.coeffs.len() as f64
+        self.knots[self.knots.len() - 1]
+    }
+
+    /// The 0-based waypoint that piece `k` starts at or after (the segment it lies on).
+    #[must_use]
+    pub fn waypoint_of_piece(&self, k: usize) -> usize {
+        let start = self.knots[k.min(self.coeffs.len() - 1)];
+        self.marks.partition_point(|m| *m <= start).saturating_sub(1).min(self.marks.len().saturating_sub(2))
+    }
+
+    /// Parameter length of piece `k`.
+    fn piece_length(&self, k: usize) -> f64 {
+        self.knots[k + 1] - self.knots[k]
     }
 
     /// The smallest and the largest value joint `j` takes along the whole path (exact: the
@@ -166,8 +298,9 @@ impl PiecewiseCubic {
         let mut roots = Vec::new();
         for (k, piece) in self.coeffs.iter().enumerate() {
             let [c0, c1, c2, c3] = piece[j];
-            roots_in([c1, 2.0 * c2, 3.0 * c3], self.h, &mut roots);
-            for t in [0.0, self.h].iter().chain(&roots) {
+            let len = self.piece_length(k);
+            roots_in([c1, 2.0 * c2, 3.0 * c3], len, &mut roots);
+            for t in [0.0, len].iter().chain(&roots) {
                 let q = c0 + t * (c1 + t * (c2 + t * c3));
                 if q < low.0 {
                     low = (q, k);
@@ -183,8 +316,8 @@ impl PiecewiseCubic {
     /// `(piece, local parameter)` of `s` (clamped to the path).
     fn locate(&self, s: f64) -> (usize, f64) {
         let last = self.coeffs.len() - 1;
-        let k = ((s / self.h).floor().max(0.0) as usize).min(last);
-        (k, (s - k as f64 * self.h).clamp(0.0, self.h))
+        let k = self.knots[1..].partition_point(|x| *x <= s).min(last);
+        (k, (s - self.knots[k]).clamp(0.0, self.piece_length(k)))
     }
 
     /// Joint values, first and second derivatives with respect to `s` at `s` (clamped).
@@ -202,6 +335,22 @@ impl PiecewiseCubic {
             c.iter().map(|c| 2.0 * c[2] + 6.0 * t * c[3]).collect(),
         ]
     }
+}
+
+/// Joint-space distance (rad / m) at or below which two waypoints are one.
+const SAME_POINT: f64 = 1e-12;
+
+/// Distance between unit directions at or below which a corner does not turn.
+const SAME_DIRECTION: f64 = 1e-12;
+
+/// Euclidean distance between two joint vectors.
+fn distance(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| (y - x) * (y - x)).sum::<f64>().sqrt()
+}
+
+/// `0, h, 2h, …` (`n` values).
+fn uniform_knots(n: usize, h: f64) -> Vec<f64> {
+    (0..n).map(|k| k as f64 * h).collect()
 }
 
 /// The second derivatives `m` of the not-a-knot spline through `y` at spacing `h`.
@@ -512,7 +661,7 @@ pub fn time_optimal(
                 path.pieces()
             ),
         })?;
-    let step = path.h / per as f64;
+
     let mut s = Vec::with_capacity(n_int + 1);
     let mut piece = Vec::with_capacity(n_int);
     let mut derivs = IntervalDerivatives {
@@ -523,9 +672,10 @@ pub fn time_optimal(
         dd1: Vec::with_capacity(n_int * dof),
     };
     for (k, coeffs) in path.coeffs.iter().enumerate() {
+        let step = path.piece_length(k) / per as f64;
         for i in 0..per {
             let (t0, t1) = (i as f64 * step, (i + 1) as f64 * step);
-            s.push(k as f64 * path.h + t0);
+            s.push(path.knots[k] + t0);
             piece.push(k);
             for c in coeffs {
                 derivs.d0.push(c[1] + t0 * (2.0 * c[2] + 3.0 * t0 * c[3]));
@@ -635,7 +785,7 @@ impl OptimalMotion {
         let mut roots = Vec::new();
         for i in 0..self.u.len() {
             let k = self.piece[i];
-            let t0 = self.s[i] - k as f64 * self.path.h;
+            let t0 = self.s[i] - self.path.knots[k];
             let len = self.s[i + 1] - self.s[i];
             let (x0, u) = (self.x[i], self.u[i]);
             for j in 0..dof {
@@ -686,14 +836,28 @@ impl OptimalMotion {
         self.slowdown
     }
 
-    /// The time at which the motion passes each waypoint (the path's knots), from 0 to
-    /// [`OptimalMotion::duration`]: one more than the path's pieces.
+    /// The time at which the motion passes each waypoint the path was built from (a blended
+    /// corner: the middle of its blend), from 0 to [`OptimalMotion::duration`].
     #[must_use]
-    pub fn knot_times(&self) -> Vec<f64> {
-        let mut times = vec![0.0];
-        times.extend((1..self.piece.len()).filter(|&i| self.piece[i] != self.piece[i - 1]).map(|i| self.t[i]));
-        times.push(self.duration());
-        times
+    pub fn waypoint_times(&self) -> Vec<f64> {
+        self.path.marks.iter().map(|&m| self.time_at(m)).collect()
+    }
+
+    /// The time at which the motion reaches the parameter `m` (clamped to the path).
+    fn time_at(&self, m: f64) -> f64 {
+        let i = self.s.partition_point(|s| *s <= m).saturating_sub(1).min(self.u.len() - 1);
+        let delta = (m - self.s[i]).max(0.0);
+        if delta == 0.0 {
+            return self.t[i];
+        }
+        if m >= self.s[i + 1] {
+            return self.t[i + 1];
+        }
+        // s − sᵢ = ṡᵢτ + ½uτ², solved for τ without cancellation.
+        let sd0 = self.x[i].sqrt();
+        let root = (sd0 * sd0 + 2.0 * self.u[i] * delta).max(0.0).sqrt();
+        let tau = if sd0 + root > 0.0 { 2.0 * delta / (sd0 + root) } else { 0.0 };
+        (self.t[i] + tau).min(self.t[i + 1])
     }
 
     /// Number of grid points.
@@ -714,7 +878,7 @@ impl OptimalMotion {
         // ṡ is linear in t under constant s̈ (no square root of a rounded x near rest).
         let sd = (sd0 + u * tau).clamp(0.0, self.x[i].max(self.x[i + 1]).sqrt());
         let k = self.piece[i];
-        let [q, dq, ddq] = self.path.eval_in(k, s - k as f64 * self.path.h);
+        let [q, dq, ddq] = self.path.eval_in(k, s - self.path.knots[k]);
         let qd = dq.iter().map(|d| d * sd).collect();
         let qdd = dq.iter().zip(&ddq).map(|(d, dd)| d * u + dd * sd * sd).collect();
         MotionSample { t, q, qd, qdd }

@@ -340,7 +340,7 @@ impl Barrier<'_> {
     /// Clearances within `influence` and their gradients (finite differences).
     fn active(&mut self, q: &[f64], influence: f64) -> Result<Vec<(f64, DVector<f64>)>, WorldError> {
         use super::sweep::Clearances;
-        let rates = self.checker.prepare(q, q)?;
+        let rates = self.checker.prepare(&[q], &vec![0.0; q.len()])?;
         self.h.resize(rates.len(), 0.0);
         self.shifted.resize(rates.len(), 0.0);
         self.checker.evaluate(0.0, q, &mut self.h)?;

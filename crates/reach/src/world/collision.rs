@@ -4,7 +4,7 @@ use nalgebra::{IsometryMatrix3, Vector3};
 use serde::Serialize;
 
 use super::elements::Elements;
-use super::sweep::{Clearances, Sweep, SweepOptions, segment_rate, sweep};
+use super::sweep::{Clearances, JointCurve, Sweep, SweepOptions, segment_rate, sweep_curve};
 use super::{Scene, Touching, WorldError};
 use crate::model::Robot;
 use crate::tolerance::CONTACT;
@@ -764,7 +764,7 @@ impl CollisionChecker<'_> {
         self.swept_in(a, b, Some((span[0], span[1])), options)
     }
 
-    /// The one swept check: untimed (`span = None`, fixed obstacles) or timed.
+    /// A straight motion's check: untimed or timed.
     fn swept_in(
         &mut self,
         a: &[f64],
@@ -772,8 +772,28 @@ impl CollisionChecker<'_> {
         span: Option<(f64, f64)>,
         options: &SweepOptions,
     ) -> Result<(Sweep, SweptPair), WorldError> {
+        self.swept_curve_in(&JointCurve::Line(a, b), span, options)
+    }
+
+    /// The swept check of the untimed motion along `curve` (a straight line as
+    /// [`CollisionChecker::swept`], or a quadratic arc: a blend between two straight motions).
+    ///
+    /// # Errors
+    /// As [`CollisionChecker::swept`].
+    pub fn swept_curve(&mut self, curve: &JointCurve, options: &SweepOptions) -> Result<(Sweep, SweptPair), WorldError> {
+        self.scene.require_fixed("a swept check without the motion's timing")?;
+        self.swept_curve_in(curve, None, options)
+    }
+
+    /// The one swept check: untimed (`span = None`, fixed obstacles) or timed.
+    fn swept_curve_in(
+        &mut self,
+        curve: &JointCurve,
+        span: Option<(f64, f64)>,
+        options: &SweepOptions,
+    ) -> Result<(Sweep, SweptPair), WorldError> {
         self.span = span;
-        let result = sweep(self, a, b, options);
+        let result = sweep_curve(self, curve, options);
         self.span = None;
         let result = result?;
         Ok((result, self.swept_pair(result.constraint)))
@@ -829,10 +849,41 @@ impl CollisionChecker<'_> {
         times: Option<&[f64]>,
         options: &SweepOptions,
     ) -> Result<Option<PathSweep>, WorldError> {
+        let curves: Vec<JointCurve> = points.windows(2).map(|w| JointCurve::Line(&w[0], &w[1])).collect();
+        let spans: Option<Vec<(f64, f64)>> = times.map(|t| t.windows(2).map(|w| (w[0], w[1])).collect());
+        self.swept_curves_in(&curves, spans.as_deref(), options)
+    }
+
+    /// The swept check of the untimed path made of `curves` (each starting where the one
+    /// before ends: lines and the arcs that blend them), each as
+    /// [`CollisionChecker::swept_curve`], stopping at the first curve not proven clear;
+    /// [`PathSweep::segment`] numbers the curves.
+    ///
+    /// # Returns
+    /// `None` without curves.
+    ///
+    /// # Errors
+    /// As [`CollisionChecker::swept`].
+    pub fn swept_curves(
+        &mut self,
+        curves: &[JointCurve],
+        options: &SweepOptions,
+    ) -> Result<Option<PathSweep>, WorldError> {
+        self.scene.require_fixed("a swept check without the motion's timing")?;
+        self.swept_curves_in(curves, None, options)
+    }
+
+    /// The one path check: untimed or timed (`spans`, one time interval per curve).
+    fn swept_curves_in(
+        &mut self,
+        curves: &[JointCurve],
+        spans: Option<&[(f64, f64)]>,
+        options: &SweepOptions,
+    ) -> Result<Option<PathSweep>, WorldError> {
         let mut path: Option<PathSweep> = None;
-        for (k, w) in points.windows(2).enumerate() {
-            let span = times.map(|t| (t[k], t[k + 1]));
-            let (sweep, pair) = self.swept_in(&w[0], &w[1], span, options)?;
+        for (k, curve) in curves.iter().enumerate() {
+            let span = spans.map(|t| t[k]);
+            let (sweep, pair) = self.swept_curve_in(curve, span, options)?;
             let t_s = span.map(|(ta, tb)| ta + sweep.at * (tb - ta));
             let p = path.get_or_insert(PathSweep {
                 clear: true,
@@ -884,37 +935,44 @@ impl CollisionChecker<'_> {
 }
 
 impl Clearances for CollisionChecker<'_> {
-    /// Rates from [`segment_rate`] ([`Elements::rate`]): each chain segment's length is
-    /// bounded by the larger of its lengths at `a` and `b` (a segment vector is affine in a
-    /// prismatic joint's value, so its length is convex along the motion), every revolute
-    /// joint's axis passes through the frame origin before or after it, and every point of a
-    /// solid fixed to frame `f` lies within the solid's farthest distance from `f`'s origin.
-    fn prepare(&mut self, a: &[f64], b: &[f64]) -> Result<Vec<f64>, WorldError> {
-        self.update(a)?;
-        let lengths_a = self.segment_lengths();
-        let pairs_a: Vec<(usize, usize)> = self.pairs.iter().filter(|p| !p.2).map(|&(i, j, _)| (i, j)).collect();
-        self.update(b)?;
-        let lengths: Vec<f64> = self.segment_lengths().iter().zip(&lengths_a).map(|(x, y)| x.max(*y)).collect();
-        let pairs_b: Vec<(usize, usize)> = self.pairs.iter().filter(|p| !p.2).map(|&(i, j, _)| (i, j)).collect();
-        self.sweep_pairs =
-            if self.elements.stick { pairs_a.into_iter().filter(|p| pairs_b.contains(p)).collect() } else { pairs_b };
+    /// Rates from [`segment_rate`] ([`Elements::rate`]) with each joint's speed bound: each
+    /// chain segment's length is bounded by its largest length at the hull's configurations
+    /// (a segment vector is affine in a prismatic joint's value, so its length is convex over
+    /// the hull), every revolute joint's axis passes through the frame origin before or after
+    /// it, and every point of a solid fixed to frame `f` lies within the solid's farthest
+    /// distance from `f`'s origin.
+    fn prepare(&mut self, hull: &[&[f64]], speed: &[f64]) -> Result<Vec<f64>, WorldError> {
+        let mut lengths: Vec<f64> = Vec::new();
+        let mut pairs: Option<Vec<(usize, usize)>> = None;
+        for q in hull {
+            self.update(q)?;
+            let here = self.segment_lengths();
+            lengths = if lengths.is_empty() { here } else { lengths.iter().zip(&here).map(|(x, y)| x.max(*y)).collect() };
+            let active: Vec<(usize, usize)> = self.pairs.iter().filter(|p| !p.2).map(|&(i, j, _)| (i, j)).collect();
+            pairs = Some(match pairs {
+                // A stick figure's pairs are those non-adjacent at every configuration of the
+                // hull; solids' pairs do not depend on the configuration.
+                Some(before) if self.elements.stick => before.into_iter().filter(|p| active.contains(p)).collect(),
+                _ => active,
+            });
+        }
+        self.sweep_pairs = pairs.unwrap_or_default();
         let revolute: Vec<bool> =
             self.robot.joints().iter().map(|j| j.kind == crate::model::JointKind::Revolute).collect();
-        let delta: Vec<f64> = a.iter().zip(b).map(|(x, y)| y - x).collect();
         let segments = lengths.len();
-        let tool = segment_rate(&lengths, &revolute, &delta, 0, segments - 1, 0.0);
+        let tool = segment_rate(&lengths, &revolute, speed, 0, segments - 1, 0.0);
         let mut rates = vec![tool; self.scene.tool_zone.len()];
         // A moving obstacle travels |v|·(t_b − t_a) over the motion: relative to it every link
         // point moves that much farther per unit of s (0 for a fixed obstacle).
         let duration = self.span.map_or(0.0, |(ta, tb)| tb - ta);
         let travel: Vec<f64> = self.scene.obstacles.iter().map(|o| o.velocity.norm() * duration).collect();
         for e in 0..self.elements.list.len() {
-            let r = self.elements.rate(e, &lengths, &revolute, &delta, 0);
+            let r = self.elements.rate(e, &lengths, &revolute, speed, 0);
             rates.extend(travel.iter().map(|t| r + t));
         }
         // Two solids move relative to each other only by the joints between their frames
         // (stick segments i < j: joints i..=j, as joint i moves segment i in modified DH and URDF).
-        rates.extend(self.sweep_pairs.iter().map(|&(i, j)| self.elements.pair_rate(i, j, &lengths, &revolute, &delta)));
+        rates.extend(self.sweep_pairs.iter().map(|&(i, j)| self.elements.pair_rate(i, j, &lengths, &revolute, speed)));
         Ok(rates)
     }
 

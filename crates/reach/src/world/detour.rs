@@ -292,10 +292,9 @@ pub struct PlanarClearances<'a> {
 }
 
 impl Clearances for PlanarClearances<'_> {
-    fn prepare(&mut self, a: &[f64], b: &[f64]) -> Result<Vec<f64>, WorldError> {
-        let delta = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    fn prepare(&mut self, _hull: &[&[f64]], speed: &[f64]) -> Result<Vec<f64>, WorldError> {
         let lengths = self.arm.lengths();
-        Ok((0..3 * self.obstacles.len()).map(|c| segment_rate(&lengths, &[true; 3], &delta, 0, c % 3, 0.0)).collect())
+        Ok((0..3 * self.obstacles.len()).map(|c| segment_rate(&lengths, &[true; 3], speed, 0, c % 3, 0.0)).collect())
     }
 
     fn evaluate(&mut self, _s: f64, q: &[f64], out: &mut [f64]) -> Result<(), WorldError> {

@@ -1,16 +1,22 @@
-//! Continuous collision checking of straight joint-space motions: a motion is called clear
-//! only with a proven positive clearance, never because samples missed the obstacle.
+//! Continuous collision checking of joint-space motions along straight lines and quadratic
+//! arcs: a motion is called clear only with a proven positive clearance, never because samples
+//! missed the obstacle.
 //!
 //! # Method: conservative advancement with certified rates
 //!
-//! Along the motion `q(s) = a + s·(b − a)`, `s ∈ [0, 1]`, every clearance `d_c(s)` (a link
-//! against an obstacle, two links, the tool point against its zone's boundary) changes no
-//! faster than a rate `B_c` fixed before the sweep: the most any point of the bodies involved
-//! can move per unit `s`. For a point of link `k` that is
-//! `Σ_j |Δq_j|·ρ_jk` — over the revolute joints `j` moving link `k`, `ρ_jk` bounding the
-//! point's distance from joint `j`'s axis (the chain length from the joint's frame to the far
-//! end of link `k`, plus the link's radius) — plus `|Δq_j|` for each prismatic joint. Since a
-//! distance between sets moves no faster than the points of the sets,
+//! Along the motion `q(s)`, `s ∈ [0, 1]` — the straight line `a + s·(b − a)` or the quadratic
+//! arc (Bézier) `(1−s)²·p₀ + 2s(1−s)·p₁ + s²·p₂` ([`JointCurve`]) — every clearance `d_c(s)`
+//! (a link against an obstacle, two links, the tool point against its zone's boundary)
+//! changes no faster than a rate `B_c` fixed before the sweep: the most any point of the
+//! bodies involved can move per unit `s`. With `σ_j` a bound of joint `j`'s speed
+//! `|dq_j/ds|` over the motion (`|b_j − a_j|` on a line; on an arc, whose derivative is linear
+//! in `s`, the larger of `2|p₁ − p₀|_j` and `2|p₂ − p₁|_j`), a point of link `k` moves at most
+//! `Σ_j σ_j·ρ_jk` per unit `s` — over the revolute joints `j` moving link `k`, `ρ_jk` bounding
+//! the point's distance from joint `j`'s axis (the chain length from the joint's frame to the
+//! far end of link `k`, plus the link's radius) — plus `σ_j` for each prismatic joint.
+//! Lengths that depend on the configuration are bounded over the motion's convex hull (the
+//! line's ends, the arc's control points: an arc lies in the triangle of its control points).
+//! Since a distance between sets moves no faster than the points of the sets,
 //! `|d_c(s') − d_c(s)| ≤ B_c·|s' − s|`.
 //!
 //! **In time.** When the motion is timed, `s` running over `[t_a, t_b]` at a constant rate,
@@ -45,14 +51,16 @@ pub const SWEEP_FLOOR: f64 = 1e-6;
 /// vectors of clearances.
 pub const MAX_SWEEP_EVALUATIONS: usize = 100_000;
 
-/// Clearances that change at a bounded rate along straight joint-space motions.
+/// Clearances that change at a bounded rate along joint-space motions.
 pub trait Clearances {
-    /// Prepares the motion `a → b` and returns the rate bound of every clearance per unit of
-    /// `s` (metres); its length is the number of clearances [`Clearances::evaluate`] fills.
+    /// Prepares a motion that stays inside the convex hull of the configurations `hull`
+    /// (the two ends of a line, the three control points of an arc) with joint `j`'s speed
+    /// `|dq_j/ds| ≤ speed[j]`, and returns the rate bound of every clearance per unit of `s`
+    /// (metres); its length is the number of clearances [`Clearances::evaluate`] fills.
     ///
     /// # Errors
     /// As [`Clearances::evaluate`].
-    fn prepare(&mut self, a: &[f64], b: &[f64]) -> Result<Vec<f64>, WorldError>;
+    fn prepare(&mut self, hull: &[&[f64]], speed: &[f64]) -> Result<Vec<f64>, WorldError>;
 
     /// Every clearance at `q`, the point `s ∈ [0, 1]` of the motion prepared last, metres,
     /// into `out` (≤ 0: touching or penetrating). `s` places what moves with time along the
@@ -108,6 +116,70 @@ impl Default for SweepOptions {
     }
 }
 
+/// A joint-space motion over `s ∈ [0, 1]` that [`sweep_curve`] checks.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum JointCurve<'a> {
+    /// The straight line `a + s·(b − a)`.
+    Line(&'a [f64], &'a [f64]),
+    /// The quadratic arc (Bézier) `(1−s)²·p₀ + 2s(1−s)·p₁ + s²·p₂` from `p₀` to `p₂`, tangent
+    /// there to `p₁ − p₀` and `p₂ − p₁` (a blend between two straight motions).
+    Quadratic(&'a [f64], &'a [f64], &'a [f64]),
+}
+
+impl JointCurve<'_> {
+    /// The configurations whose convex hull holds the motion.
+    fn hull(&self) -> Vec<&[f64]> {
+        match *self {
+            JointCurve::Line(a, b) => vec![a, b],
+            JointCurve::Quadratic(p0, p1, p2) => vec![p0, p1, p2],
+        }
+    }
+
+    /// The first configuration.
+    #[must_use]
+    pub fn start(&self) -> &[f64] {
+        match *self {
+            JointCurve::Line(a, _) | JointCurve::Quadratic(a, _, _) => a,
+        }
+    }
+
+    /// The last configuration.
+    #[must_use]
+    pub fn end(&self) -> &[f64] {
+        match *self {
+            JointCurve::Line(_, b) | JointCurve::Quadratic(_, _, b) => b,
+        }
+    }
+
+    /// Each joint's largest `|dq_j/ds|` over the motion (exact: the derivative is constant on
+    /// a line and linear on an arc).
+    fn speed(&self) -> Vec<f64> {
+        match *self {
+            JointCurve::Line(a, b) => a.iter().zip(b).map(|(x, y)| (y - x).abs()).collect(),
+            JointCurve::Quadratic(p0, p1, p2) => {
+                (0..p0.len()).map(|j| 2.0 * (p1[j] - p0[j]).abs().max((p2[j] - p1[j]).abs())).collect()
+            }
+        }
+    }
+
+    /// The configuration at `s` into `out`.
+    fn at(&self, s: f64, out: &mut [f64]) {
+        match *self {
+            JointCurve::Line(a, b) => {
+                for ((o, x), y) in out.iter_mut().zip(a).zip(b) {
+                    *o = x + s * (y - x);
+                }
+            }
+            JointCurve::Quadratic(p0, p1, p2) => {
+                let (w0, w1, w2) = ((1.0 - s) * (1.0 - s), 2.0 * s * (1.0 - s), s * s);
+                for (j, o) in out.iter_mut().enumerate() {
+                    *o = w0 * p0[j] + w1 * p1[j] + w2 * p2[j];
+                }
+            }
+        }
+    }
+}
+
 /// Sweeps the straight motion `a → b` (see the module docs).
 ///
 /// # Errors
@@ -119,16 +191,32 @@ pub fn sweep<C: Clearances + ?Sized>(
     b: &[f64],
     options: &SweepOptions,
 ) -> Result<Sweep, WorldError> {
+    sweep_curve(clearances, &JointCurve::Line(a, b), options)
+}
+
+/// Sweeps the motion along `curve` (see the module docs): a straight line as [`sweep`], or a
+/// quadratic arc.
+///
+/// # Errors
+/// [`WorldError::Input`] when the curve's configurations differ in length or hold a
+/// non-finite value; as [`Clearances::evaluate`].
+pub fn sweep_curve<C: Clearances + ?Sized>(
+    clearances: &mut C,
+    curve: &JointCurve,
+    options: &SweepOptions,
+) -> Result<Sweep, WorldError> {
     let cap = options.max_evaluations.min(MAX_SWEEP_EVALUATIONS);
     let closest = options.closest;
-    if a.len() != b.len() || !a.iter().chain(b).all(|v| v.is_finite()) {
+    let hull = curve.hull();
+    let dof = hull[0].len();
+    if hull.iter().any(|p| p.len() != dof || !p.iter().all(|v| v.is_finite())) {
+        let lengths: Vec<String> = hull.iter().map(|p| p.len().to_string()).collect();
         return Err(WorldError::Input(format!(
-            "swept check: the motion's ends must be finite joint vectors of one length, got {} and {} values",
-            a.len(),
-            b.len()
+            "swept check: the motion's configurations must be finite joint vectors of one length, got {} values",
+            lengths.join(", ")
         )));
     }
-    let rates = clearances.prepare(a, b)?;
+    let rates = clearances.prepare(&hull, &curve.speed())?;
     let n = rates.len();
     let mut result = Sweep {
         clear: true,
@@ -141,11 +229,9 @@ pub fn sweep<C: Clearances + ?Sized>(
     if n == 0 {
         return Ok(result);
     }
-    let mut q = a.to_vec();
+    let mut q = vec![0.0; dof];
     let mut eval = |s: f64, result: &mut Sweep, clearances: &mut C| -> Result<Point, WorldError> {
-        for ((o, x), y) in q.iter_mut().zip(a).zip(b) {
-            *o = x + s * (y - x);
-        }
+        curve.at(s, &mut q);
         let mut d = vec![0.0; n];
         clearances.evaluate(s, &q, &mut d)?;
         result.evaluations += 1;
@@ -268,8 +354,8 @@ mod tests {
     }
 
     impl Clearances for Line {
-        fn prepare(&mut self, a: &[f64], b: &[f64]) -> Result<Vec<f64>, WorldError> {
-            Ok(vec![(b[0] - a[0]).abs()])
+        fn prepare(&mut self, _hull: &[&[f64]], speed: &[f64]) -> Result<Vec<f64>, WorldError> {
+            Ok(vec![speed[0]])
         }
         fn evaluate(&mut self, _s: f64, q: &[f64], out: &mut [f64]) -> Result<(), WorldError> {
             out[0] = (q[0] - self.c).abs() - self.gap;
@@ -294,6 +380,19 @@ mod tests {
         assert!((s.min_clearance - 0.01).abs() < 1e-12, "{s:?}");
         assert!(s.lower_bound > 0.0 && s.lower_bound <= 0.01 + 1e-12, "{s:?}");
         assert!(s.lower_bound >= 0.01 * 0.998, "tight: {s:?}");
+    }
+
+    #[test]
+    fn an_arc_is_checked_where_it_bends_not_along_its_chord() {
+        // q(s) = 4s(1 − s): from 0 out to 1 at s = ½ and back; its chord never moves.
+        let arc = JointCurve::Quadratic(&[0.0], &[2.0], &[0.0]);
+        let hit = sweep_curve(&mut Line { c: 0.9, gap: 0.0 }, &arc, &SweepOptions::default()).unwrap();
+        assert!(!hit.clear && (4.0 * hit.at * (1.0 - hit.at) - 0.9).abs() < 1e-5, "{hit:?}");
+        let miss = sweep_curve(&mut Line { c: 1.05, gap: 0.0 }, &arc, &SweepOptions::default()).unwrap();
+        assert!(miss.clear && (miss.min_clearance - 0.05).abs() < 1e-9 && (miss.at - 0.5).abs() < 1e-3, "{miss:?}");
+        assert!(miss.lower_bound > 0.0 && miss.lower_bound <= 0.05, "{miss:?}");
+        let chord = sweep(&mut Line { c: 0.9, gap: 0.0 }, &[0.0], &[0.0], &SweepOptions::default()).unwrap();
+        assert!(chord.clear);
     }
 
     #[test]

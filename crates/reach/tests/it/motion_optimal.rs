@@ -124,11 +124,124 @@ fn polyline_stops_at_corners() {
     let corner = motion.samples(0.001).unwrap().into_iter().find(|s| (s.q[0] - 1.0).abs() < 1e-12).unwrap();
     assert!(corner.qd.iter().all(|v| v.abs() < 1e-6), "{corner:?}");
     // The knot times: each leg takes half the motion, and the motion is at rest on the corner.
-    let knots = motion.knot_times();
+    let knots = motion.waypoint_times();
     assert_eq!(knots.len(), 3);
     assert!((knots[1] - motion.duration() / 2.0).abs() < 1e-12 && knots[2] == motion.duration(), "{knots:?}");
     let at = motion.sample(knots[1]);
     assert!((at.q[0] - 1.0).abs() < 1e-12 && at.q[1].abs() < 1e-12 && at.qd.iter().all(|v| v.abs() < 1e-9), "{at:?}");
+}
+
+/// Distance from `q` to the polyline through `w`.
+fn polyline_distance(q: &[f64], w: &[Vec<f64>]) -> f64 {
+    w.windows(2)
+        .map(|seg| {
+            let d: Vec<f64> = seg[1].iter().zip(&seg[0]).map(|(b, a)| b - a).collect();
+            let dd: f64 = d.iter().map(|x| x * x).sum();
+            let t = if dd > 0.0 {
+                (q.iter().zip(&seg[0]).zip(&d).map(|((q, a), d)| (q - a) * d).sum::<f64>() / dd).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            q.iter().zip(&seg[0]).zip(&d).map(|((q, a), d)| (q - a - t * d).powi(2)).sum::<f64>().sqrt()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// A blended path stays within its tolerance of the polyline and of each corner, starts and
+/// ends on the end waypoints, is continuously differentiable, and its pieces are lines and
+/// quadratic arcs whose middle control point is the corner.
+#[test]
+fn blends_stay_within_the_tolerance_and_are_smooth() {
+    let mut seed = 11;
+    for tol in [0.01, 0.1, 1.0] {
+        let w = random_waypoints(&mut seed, 7, 3);
+        let path = PiecewiseCubic::blended(&w, tol).unwrap();
+        let length = path.length();
+        let polyline: f64 = w.windows(2).map(|p| p[0].iter().zip(&p[1]).map(|(a, b)| (b - a).powi(2)).sum::<f64>().sqrt()).sum();
+        assert!(length <= polyline + 1e-12 && length > 0.5 * polyline, "{length} vs {polyline}");
+        for i in 0..=10_000 {
+            let [q, d, _] = path.eval(length * i as f64 / 10_000.0);
+            let off = polyline_distance(&q, &w);
+            assert!(off <= tol + 1e-12, "tol {tol}: {off} off the polyline");
+            let speed = d.iter().map(|x| x * x).sum::<f64>().sqrt();
+            assert!(speed <= 1.0 + 1e-12, "arc-length parameter: |q'| = {speed}");
+        }
+        for (q, end) in [(path.eval(0.0)[0].clone(), &w[0]), (path.eval(length)[0].clone(), &w[6])] {
+            assert!(q.iter().zip(end).all(|(a, b)| (a - b).abs() < 1e-12), "{q:?} vs {end:?}");
+        }
+        let pieces = path.control_points().unwrap();
+        let mut s = 0.0;
+        let mut arcs = 0;
+        for piece in &pieces {
+            let e = 1e-9;
+            let ([_, dl, _], [_, dr, _]) = (path.eval(s - e), path.eval(s + e));
+            assert!(dl.iter().zip(&dr).all(|(a, b)| (a - b).abs() < 1e-6), "tangent jumps at s = {s}");
+            let chord: f64 =
+                piece[0].iter().zip(piece.last().unwrap()).map(|(a, b)| (b - a).powi(2)).sum::<f64>().sqrt();
+            if piece.len() == 3 {
+                arcs += 1;
+                // The middle control point is a waypoint (the corner the arc cuts), and the
+                // arc's middle, half its parameter length in, is its closest point to it.
+                assert!(w.iter().any(|c| c.iter().zip(&piece[1]).all(|(a, b)| (a - b).abs() < 1e-12)));
+                let half = piece[0].iter().zip(&piece[1]).map(|(a, b)| (b - a).powi(2)).sum::<f64>().sqrt();
+                let [mid, ..] = path.eval(s + half);
+                let gap = mid.iter().zip(&piece[1]).map(|(a, b)| (a - b).powi(2)).sum::<f64>().sqrt();
+                assert!(gap <= tol + 1e-12 && gap < chord, "tol {tol}: the arc passes its corner at {gap}");
+                s += 2.0 * half;
+            } else {
+                // A line is parameterised by its length.
+                s += chord;
+            }
+        }
+        assert_eq!(arcs, 5, "one blend per corner");
+        assert!((s - length).abs() < 1e-9, "{s} vs {length}");
+        // Each waypoint's mark is within the tolerance of it.
+        let limits = PathLimits::new(vec![1.0; 3], vec![2.0; 3]).unwrap();
+        let motion = time_optimal(&path, &limits, 0).unwrap();
+        for (t, wi) in motion.waypoint_times().iter().zip(&w) {
+            let q = motion.sample(*t).q;
+            let gap = q.iter().zip(wi).map(|(a, b)| (a - b).powi(2)).sum::<f64>().sqrt();
+            assert!(gap <= tol + 1e-9, "tol {tol}: passes waypoint {wi:?} at {gap}");
+        }
+    }
+    // Tolerance 0: the polyline, resting at every corner.
+    let w = random_waypoints(&mut seed, 4, 2);
+    assert!(PiecewiseCubic::blended(&w, 0.0).unwrap().control_points().unwrap().iter().all(|p| p.len() == 2));
+}
+
+/// Blending the corner of `(0,0) → (1,0) → (1,1)` lets the motion keep moving there: shorter
+/// than the polyline's stop (4 s), within the limits everywhere (an independent dense
+/// sampling), and a full reversal `0 → 1 → 0` is passed too.
+#[test]
+fn blends_do_not_stop_at_corners() {
+    let limits = PathLimits::new(vec![1.0, 1.0], vec![1.0, 1.0]).unwrap();
+    let w = [vec![0.0, 0.0], vec![1.0, 0.0], vec![1.0, 1.0]];
+    let stop = time_optimal(&PiecewiseCubic::polyline(&w).unwrap(), &limits, 200).unwrap().duration();
+    let mut last = stop;
+    for tol in [0.0, 0.05, 0.2] {
+        let motion = time_optimal(&PiecewiseCubic::blended(&w, tol).unwrap(), &limits, 200).unwrap();
+        let t = motion.duration();
+        if tol == 0.0 {
+            assert!((t - stop).abs() < 1e-9 * stop, "{t} vs {stop}");
+        } else {
+            assert!(t < last, "tol {tol}: {t} not shorter than {last}");
+            let corner = motion.sample(motion.waypoint_times()[1]);
+            assert!(corner.qd.iter().map(|v| v * v).sum::<f64>().sqrt() > 0.1, "{corner:?}");
+        }
+        last = t;
+        let r = motion.worst_ratios();
+        for j in 0..2 {
+            assert!(r.velocity[j] <= 1.0 && r.acceleration[j] <= 1.0, "{r:?}");
+        }
+        for s in motion.samples(t / 20_000.0).unwrap() {
+            assert!(s.qd.iter().chain(&s.qdd).all(|v| v.abs() <= 1.0 + 1e-9), "{s:?}");
+        }
+    }
+    let one = PathLimits::new(vec![1.0], vec![1.0]).unwrap();
+    let back = time_optimal(&PiecewiseCubic::blended(&[vec![0.0], vec![1.0], vec![0.0]], 0.1).unwrap(), &one, 0).unwrap();
+    assert!(back.duration().is_finite() && back.worst_ratios().acceleration[0] <= 1.0);
+    let end = back.sample(back.duration());
+    assert!(end.q[0].abs() < 1e-9 && end.qd[0].abs() < 1e-9, "{end:?}");
 }
 
 #[test]

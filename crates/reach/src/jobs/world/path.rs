@@ -395,7 +395,7 @@ impl TimingLaw {
     /// Duration of each segment, s.
     fn segment_durations(&self) -> Vec<f64> {
         match self {
-            TimingLaw::Optimal(m) => m.knot_times().windows(2).map(|w| w[1] - w[0]).collect(),
+            TimingLaw::Optimal(m) => m.waypoint_times().windows(2).map(|w| w[1] - w[0]).collect(),
             TimingLaw::Cycloidal(p) => p.segments().iter().map(JointMotion::duration).collect(),
         }
     }
@@ -413,7 +413,7 @@ impl TimingLaw {
     /// The motion sampled for drawings and callers (200 to 2000 samples).
     fn timed_path(&self, robot: &Robot) -> Result<TimedPath> {
         let (segments, duration) = match self {
-            TimingLaw::Optimal(m) => (m.knot_times().len() - 1, m.duration()),
+            TimingLaw::Optimal(m) => (m.waypoint_times().len() - 1, m.duration()),
             TimingLaw::Cycloidal(p) => (p.segments().len(), p.duration()),
         };
         let steps = (20 * segments).clamp(200, 2000);
