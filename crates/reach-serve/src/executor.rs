@@ -286,6 +286,7 @@ fn replan(
             timing: None,
             max_velocity_scale: 1.0,
             max_acceleration_scale: 1.0,
+            blend_tolerance: None,
         })
     });
     let detour = request.and_then(|request| {

@@ -7,6 +7,7 @@ use std::io::Write;
 
 use clap::Args;
 use reach::Robot;
+use reach::jobs::input::number_text;
 use reach::jobs::world::{PathReport, PathRequest, PathRun, PathTiming, TimedPath, path_run_with_cancel};
 use reach::jobs::{Joints, Pose};
 
@@ -123,12 +124,20 @@ pub struct PathArgs {
     #[arg(long, value_name = "S", allow_hyphen_values = true)]
     pub duration: Option<String>,
 
-    /// How the path is timed along its straight edges, resting at every waypoint: `optimal`
-    /// (TOPP-RA under the joints' velocity and acceleration limits, proven between samples)
-    /// or `cycloidal` (one synchronised cycloidal segment per edge). Default: optimal when no
-    /// --duration is given and every joint has both limits, else cycloidal.
+    /// How the path is timed: `optimal` (TOPP-RA under the joints' velocity and acceleration
+    /// limits, proven between samples, along the straight edges with their corners blended,
+    /// see --blend) or `cycloidal` (one synchronised cycloidal segment per edge, resting at
+    /// every waypoint). Default: optimal when no --duration is given and every joint has both
+    /// limits, else cycloidal.
     #[arg(long, value_enum, value_name = "LAW")]
     pub timing: Option<TimingArg>,
+
+    /// Optimal timing: how far the motion may pass from each waypoint, cutting the corner with
+    /// a parabolic blend so it need not stop (joint-space distance in radians, metres for
+    /// prismatic joints; default 0.1, MoveIt's path tolerance; 0 rests at every waypoint).
+    /// The blended path is proven clear; a blend that is not is tightened.
+    #[arg(long, value_name = "TOL", allow_hyphen_values = true)]
+    pub blend: Option<String>,
 
     /// --max-velocity-scale, --max-acceleration-scale (optimal timing).
     #[command(flatten)]
@@ -168,6 +177,7 @@ impl PathArgs {
             }),
             max_velocity_scale,
             max_acceleration_scale,
+            blend_tolerance: self.blend.as_deref().map(|b| parse_finite("--blend", b)).transpose()?,
         })
     }
 }
@@ -184,8 +194,16 @@ pub fn run(args: &PathArgs, out: &mut dyn Write) -> Result<(), CliError> {
     args.draw.check_files()?;
     let run = path_run_with_cancel(&robot, &request, crate::interrupt::cancel()).map_err(|e| {
         let [velocity, acceleration] = crate::commands::retime::LimitScaleArgs::FLAGS;
-        args.motion
-            .error(e, &[("duration_s", "--duration"), ("time_budget_s", "--time-budget"), velocity, acceleration])
+        args.motion.error(
+            e,
+            &[
+                ("duration_s", "--duration"),
+                ("time_budget_s", "--time-budget"),
+                ("blend_tolerance", "--blend"),
+                velocity,
+                acceleration,
+            ],
+        )
     })?;
     if let (true, Some(timed)) = (args.draw.any(), &run.timed) {
         args.draw.write(&drawing(&robot, &run, timed))?;
@@ -232,8 +250,12 @@ fn write_report(out: &mut dyn Write, scene: &str, j: &PathReport) -> Result<(), 
         let law = match j.timing {
             PathTiming::Optimal => {
                 let worst = |r: &Option<Vec<f64>>| r.iter().flatten().copied().fold(0.0, f64::max);
+                let corners = match j.blend_tolerance {
+                    Some(t) if t > 0.0 => format!("blends corners within {} rad", number_text(t)),
+                    _ => "rests at waypoints".to_string(),
+                };
                 format!(
-                    "time-optimal under the velocity and acceleration limits ×{} / ×{}, rests at waypoints; \
+                    "time-optimal under the velocity and acceleration limits ×{} / ×{}, {corners}; \
                      worst ratio to a limit: velocity {}, acceleration {}",
                     j.max_velocity_scale,
                     j.max_acceleration_scale,

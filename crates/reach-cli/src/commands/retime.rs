@@ -140,7 +140,7 @@ pub fn run(args: &RetimeArgs, out: &mut dyn Write) -> Result<(), CliError> {
             &[
                 ("waypoint", format!("{source} waypoint")),
                 ("dt", "--dt".into()),
-                ("blend tolerance", "--interpolation blend:TOL".into()),
+                ("blend_tolerance", "--interpolation blend:TOL".into()),
                 (LimitScaleArgs::FLAGS[0].0, LimitScaleArgs::FLAGS[0].1.into()),
                 (LimitScaleArgs::FLAGS[1].0, LimitScaleArgs::FLAGS[1].1.into()),
                 ("points_per_piece", "--points-per-piece".into()),

@@ -192,6 +192,7 @@ fn path_json_is_the_library_report_and_matches_its_schema() {
             timing: None,
             max_velocity_scale: 1.0,
             max_acceleration_scale: 1.0,
+            blend_tolerance: None,
         }),
     };
     let args = [

@@ -41,7 +41,9 @@ use crate::ik::{IkError, IkFailure};
 use crate::kinematics::KinematicsError;
 
 pub use joint_space::{JointMotion, JointPath, SmoothJointPath};
-pub use optimal::{LimitRatios, MotionSample, OptimalMotion, PathLimits, PiecewiseCubic, time_optimal};
+pub use optimal::{
+    LimitRatios, MotionSample, OptimalMotion, PathLimits, PiecewiseCubic, check_blend_tolerance, time_optimal,
+};
 pub use profile::{Profile, ProfileValue};
 pub use sample::{JointSample, JointTrajectory, PathSample, ToolPath};
 pub use timing::{JointRates, Timing};

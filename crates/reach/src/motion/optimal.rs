@@ -163,7 +163,7 @@ impl PiecewiseCubic {
     /// not finite and ≥ 0, or waypoints that are all one configuration.
     pub fn blended(waypoints: &[Vec<f64>], tolerance: f64) -> Result<Self, MotionError> {
         let dof = check_waypoints(waypoints)?;
-        check_number("blend tolerance", tolerance, false)?;
+        check_blend_tolerance(tolerance)?;
         // The distinct corners, and for each waypoint the corner it is.
         let mut points: Vec<&[f64]> = vec![&waypoints[0]];
         let mut corner_of = vec![0usize];
@@ -342,6 +342,21 @@ const SAME_POINT: f64 = 1e-12;
 
 /// Distance between unit directions at or below which a corner does not turn.
 const SAME_DIRECTION: f64 = 1e-12;
+
+/// Checks a blend tolerance ([`PiecewiseCubic::blended`]): finite and ≥ 0.
+///
+/// # Errors
+/// [`MotionError::InvalidInput`] naming `blend_tolerance`.
+pub fn check_blend_tolerance(tolerance: f64) -> Result<(), MotionError> {
+    check_number("blend_tolerance", tolerance, false)?;
+    if tolerance < 0.0 {
+        return Err(MotionError::InvalidInput {
+            field: "blend_tolerance".into(),
+            reason: format!("must be ≥ 0 (rad), got {tolerance}"),
+        });
+    }
+    Ok(())
+}
 
 /// Euclidean distance between two joint vectors.
 fn distance(a: &[f64], b: &[f64]) -> f64 {

@@ -780,7 +780,11 @@ impl CollisionChecker<'_> {
     ///
     /// # Errors
     /// As [`CollisionChecker::swept`].
-    pub fn swept_curve(&mut self, curve: &JointCurve, options: &SweepOptions) -> Result<(Sweep, SweptPair), WorldError> {
+    pub fn swept_curve(
+        &mut self,
+        curve: &JointCurve,
+        options: &SweepOptions,
+    ) -> Result<(Sweep, SweptPair), WorldError> {
         self.scene.require_fixed("a swept check without the motion's timing")?;
         self.swept_curve_in(curve, None, options)
     }
@@ -947,7 +951,8 @@ impl Clearances for CollisionChecker<'_> {
         for q in hull {
             self.update(q)?;
             let here = self.segment_lengths();
-            lengths = if lengths.is_empty() { here } else { lengths.iter().zip(&here).map(|(x, y)| x.max(*y)).collect() };
+            lengths =
+                if lengths.is_empty() { here } else { lengths.iter().zip(&here).map(|(x, y)| x.max(*y)).collect() };
             let active: Vec<(usize, usize)> = self.pairs.iter().filter(|p| !p.2).map(|&(i, j, _)| (i, j)).collect();
             pairs = Some(match pairs {
                 // A stick figure's pairs are those non-adjacent at every configuration of the

@@ -157,7 +157,8 @@ fn blends_stay_within_the_tolerance_and_are_smooth() {
         let w = random_waypoints(&mut seed, 7, 3);
         let path = PiecewiseCubic::blended(&w, tol).unwrap();
         let length = path.length();
-        let polyline: f64 = w.windows(2).map(|p| p[0].iter().zip(&p[1]).map(|(a, b)| (b - a).powi(2)).sum::<f64>().sqrt()).sum();
+        let polyline: f64 =
+            w.windows(2).map(|p| p[0].iter().zip(&p[1]).map(|(a, b)| (b - a).powi(2)).sum::<f64>().sqrt()).sum();
         assert!(length <= polyline + 1e-12 && length > 0.5 * polyline, "{length} vs {polyline}");
         for i in 0..=10_000 {
             let [q, d, _] = path.eval(length * i as f64 / 10_000.0);
@@ -238,7 +239,8 @@ fn blends_do_not_stop_at_corners() {
         }
     }
     let one = PathLimits::new(vec![1.0], vec![1.0]).unwrap();
-    let back = time_optimal(&PiecewiseCubic::blended(&[vec![0.0], vec![1.0], vec![0.0]], 0.1).unwrap(), &one, 0).unwrap();
+    let back =
+        time_optimal(&PiecewiseCubic::blended(&[vec![0.0], vec![1.0], vec![0.0]], 0.1).unwrap(), &one, 0).unwrap();
     assert!(back.duration().is_finite() && back.worst_ratios().acceleration[0] <= 1.0);
     let end = back.sample(back.duration());
     assert!(end.q[0].abs() < 1e-9 && end.qd[0].abs() < 1e-9, "{end:?}");

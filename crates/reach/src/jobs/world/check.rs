@@ -11,8 +11,9 @@ use crate::Robot;
 use crate::error::Error;
 use crate::error::Result;
 use crate::jobs::input::{Joints, MotionSample, positive, samples_si};
+use crate::motion::PiecewiseCubic;
 use crate::motion::sample::JointSample;
-use crate::world::sweep::{Sweep, SweepOptions};
+use crate::world::sweep::{JointCurve, Sweep, SweepOptions};
 use crate::world::{CollisionChecker, Contact, LinkClearance, PathSweep, Scene, SelfClearance, SweptPair, Verdict};
 
 /// One configuration checked against a scene.
@@ -114,6 +115,29 @@ impl SweptPathReport {
             Some(times) => checker.swept_path_timed(points, times, &options)?,
             None => checker.swept_path(points, &options)?,
         };
+        Ok(path.map(|p| Self::of(&p, &checker)))
+    }
+
+    /// The swept check of the untimed path `path` in `scene` — its straight pieces and the
+    /// quadratic arcs that blend them ([`PiecewiseCubic::control_points`],
+    /// [`CollisionChecker::swept_curves`]); `segment` numbers the pieces. `None` when nothing
+    /// is checked.
+    ///
+    /// # Errors
+    /// As [`CollisionChecker::swept_curves`]; [`Error::Request`] for a path with a cubic piece.
+    pub fn check_pieces(robot: &Robot, scene: &Scene, path: &PiecewiseCubic) -> Result<Option<Self>> {
+        let pieces = path.control_points().map_err(crate::jobs::retime::request_error)?;
+        let curves = pieces
+            .iter()
+            .enumerate()
+            .map(|(k, p)| match p.as_slice() {
+                [a, b] => Ok(JointCurve::Line(a, b)),
+                [a, b, c] => Ok(JointCurve::Quadratic(a, b, c)),
+                _ => Err(Error::request("path", format!("piece {} has {} control points, not 2 or 3", k + 1, p.len()))),
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let mut checker = CollisionChecker::new(robot, scene);
+        let path = checker.swept_curves(&curves, &SweepOptions::default())?;
         Ok(path.map(|p| Self::of(&p, &checker)))
     }
 

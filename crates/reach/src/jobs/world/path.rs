@@ -18,9 +18,10 @@ use super::parse_scene;
 use crate::error::{Error, Result};
 use crate::ik::IkOptions;
 use crate::jobs::input::{Joints, MotionSample, Pose, full_scale, positive, q_display, time_budget};
-use crate::jobs::retime::request_error;
+use crate::jobs::retime::{DEFAULT_BLEND_TOLERANCE, request_error};
 use crate::motion::{
-    JointMotion, JointPath, JointRates, OptimalMotion, PathLimits, PiecewiseCubic, Profile, time_optimal,
+    JointMotion, JointPath, JointRates, OptimalMotion, PathLimits, PiecewiseCubic, Profile, check_blend_tolerance,
+    time_optimal,
 };
 use crate::world::Scene;
 use crate::world::planner::{Goal, PlanError, PlanOptions, PlanStats, path_length, plan};
@@ -134,7 +135,18 @@ pub struct PathRequest {
     /// Optimal timing: multiplies every joint's `max_acceleration`, in (0, 1] (default 1).
     #[serde(default = "full_scale")]
     pub max_acceleration_scale: f64,
+    /// Optimal timing: how far (joint-space Euclidean distance, rad and m) the timed motion
+    /// may pass from each interior waypoint, cutting the corner with a parabolic blend so it
+    /// need not stop there (default [`DEFAULT_BLEND_TOLERANCE`], MoveIt's `path_tolerance`;
+    /// 0 rests at every waypoint). A blend that is not proven clear is tightened (halved, at
+    /// most [`BLEND_TIGHTENINGS`] times, then 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub blend_tolerance: Option<f64>,
 }
+
+/// How many times the path workflow halves a blend tolerance whose blended path is not proven
+/// clear before it rests at the waypoints (whose straight edges the planner proved clear).
+pub const BLEND_TIGHTENINGS: usize = 6;
 
 /// Planning statistics.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
@@ -187,11 +199,18 @@ pub struct PathReport {
     pub worst_velocity_ratio: Option<Vec<f64>>,
     /// Optimal timing: per joint, the exact largest `|q̈| / limit` (≤ 1); `null` otherwise.
     pub worst_acceleration_ratio: Option<Vec<f64>>,
+    /// Optimal timing: the blend tolerance of the timed motion (rad and m; the requested one,
+    /// or tighter when a blend was not proven clear; 0: resting at every waypoint); `null` for
+    /// cycloidal timing.
+    #[serde(default)]
+    pub blend_tolerance: Option<f64>,
     /// Whether the timed motion is proven clear by the swept check (`null` without a path).
     pub collision_free: Option<bool>,
-    /// The swept (continuous) check of every segment between waypoints: where the path comes
-    /// closest and the certified lower bound of its clearance over the whole path (`null`
-    /// when no path was found or nothing is checked: no obstacle, zone or link pair).
+    /// The swept (continuous) check of the timed motion's path — the straight edges between
+    /// waypoints, and with blends the arcs that cut their corners (`segment` then numbers the
+    /// lines and arcs in order): where the path comes closest and the certified lower bound of
+    /// its clearance over the whole path (`null` when no path was found or nothing is checked:
+    /// no obstacle, zone or link pair).
     pub swept: Option<SweptPathReport>,
 }
 
@@ -259,6 +278,12 @@ pub fn path_run_with_cancel(robot: &Robot, request: &PathRequest, cancel: &Cance
         PathLimits::from_robot(robot, request.max_velocity_scale, request.max_acceleration_scale)
             .map_err(request_error)?;
     }
+    if let Some(tolerance) = request.blend_tolerance {
+        if timing != PathTiming::Optimal {
+            return Err(Error::request("blend_tolerance", "applies to optimal timing only"));
+        }
+        check_blend_tolerance(tolerance).map_err(request_error)?;
+    }
     let budget = time_budget("time_budget_s", Some(request.time_budget_s))?;
     let same = || Error::request("to", "the same configuration as `from`: nothing to plan");
     // A joint goal is compared before planning; a pose goal only once IK has chosen its
@@ -293,6 +318,7 @@ pub fn path_run_with_cancel(robot: &Robot, request: &PathRequest, cancel: &Cance
         max_acceleration_scale: request.max_acceleration_scale,
         worst_velocity_ratio: None,
         worst_acceleration_ratio: None,
+        blend_tolerance: None,
         collision_free: None,
         swept: None,
     };
@@ -316,6 +342,28 @@ pub fn path_run_with_cancel(robot: &Robot, request: &PathRequest, cancel: &Cance
                 PathTiming::Cycloidal => durations(robot, &p.waypoints, total)?,
                 PathTiming::Optimal => Vec::new(),
             };
+            // The requested blend, tightened until the blended path is proven clear; the
+            // polyline (tolerance 0) is the planner's proven edges.
+            if timing == PathTiming::Optimal {
+                let mut tolerance = request.blend_tolerance.unwrap_or(DEFAULT_BLEND_TOLERANCE);
+                for tightened in 0..=BLEND_TIGHTENINGS + 1 {
+                    if tightened == BLEND_TIGHTENINGS + 1 {
+                        tolerance = 0.0;
+                    }
+                    report.blend_tolerance = Some(tolerance);
+                    report.swept = TimingLaw::path(&p.waypoints, &report)?.map_or_else(
+                        || SweptPathReport::check(robot, &scene, &p.waypoints, None),
+                        |path| SweptPathReport::check_pieces(robot, &scene, &path),
+                    )?;
+                    if tolerance == 0.0 || report.swept.as_ref().is_none_or(|s| s.swept.clear) {
+                        break;
+                    }
+                    tolerance /= 2.0;
+                }
+            } else {
+                report.swept = SweptPathReport::check(robot, &scene, &p.waypoints, None)?;
+            }
+            report.collision_free = Some(report.swept.as_ref().is_none_or(|s| s.swept.clear));
             let law = TimingLaw::new(robot, &p.waypoints, &report, &cycloidal)?;
             let timed = law.timed_path(robot)?;
             report.duration_s = timed.times.last().copied();
@@ -324,8 +372,6 @@ pub fn path_run_with_cancel(robot: &Robot, request: &PathRequest, cancel: &Cance
                 report.worst_velocity_ratio = Some(m.worst_ratios().velocity.clone());
                 report.worst_acceleration_ratio = Some(m.worst_ratios().acceleration.clone());
             }
-            report.swept = SweptPathReport::check(robot, &scene, &p.waypoints, None)?;
-            report.collision_free = Some(report.swept.as_ref().is_none_or(|s| s.swept.clear));
             let waypoints_tool_xyz_m = tool_points(robot, &p.waypoints)?;
             return Ok(PathRun { report, scene, waypoints: p.waypoints, waypoints_tool_xyz_m, timed: Some(timed) });
         }
@@ -379,17 +425,25 @@ impl TimingLaw {
     /// The law of `report.timing` along `waypoints`: optimal with the report's scales, or
     /// cycloidal with `durations` per segment.
     fn new(robot: &Robot, waypoints: &[Vec<f64>], report: &PathReport, durations: &[f64]) -> Result<TimingLaw> {
-        match report.timing {
-            PathTiming::Optimal => {
+        match Self::path(waypoints, report)? {
+            Some(path) => {
                 let limits = PathLimits::from_robot(robot, report.max_velocity_scale, report.max_acceleration_scale)
                     .map_err(request_error)?;
-                let path = PiecewiseCubic::polyline(waypoints)?;
                 Ok(TimingLaw::Optimal(Box::new(time_optimal(&path, &limits, 0).map_err(request_error)?)))
             }
-            PathTiming::Cycloidal => {
-                Ok(TimingLaw::Cycloidal(JointPath::through(robot, waypoints, durations, 0.0, Profile::Cycloidal)?))
-            }
+            None => Ok(TimingLaw::Cycloidal(JointPath::through(robot, waypoints, durations, 0.0, Profile::Cycloidal)?)),
         }
+    }
+
+    /// Optimal timing's geometric path: the waypoints' polyline blended with the report's
+    /// tolerance (the polyline without one); `None` for cycloidal timing.
+    fn path(waypoints: &[Vec<f64>], report: &PathReport) -> Result<Option<PiecewiseCubic>> {
+        Ok(match report.timing {
+            PathTiming::Optimal => {
+                Some(PiecewiseCubic::blended(waypoints, report.blend_tolerance.unwrap_or(0.0)).map_err(request_error)?)
+            }
+            PathTiming::Cycloidal => None,
+        })
     }
 
     /// Duration of each segment, s.
