@@ -199,3 +199,39 @@ fn a_planned_path_is_timed_optimally_by_default() {
         &["joint 1", "--joint-limits"],
     );
 }
+
+/// Blends: `retime --interpolation blend[:TOL]` passes the corners without stopping (shorter
+/// than `linear`, within the limits), `path --blend` times the planned path the same way, and
+/// a bad tolerance or word is one line naming the flag.
+#[test]
+fn blends_cut_the_corners_of_retime_and_path() {
+    let path = example(PANDA);
+    let duration = |extra: &[&str]| {
+        let v = crate::common::json(&[&["retime", "panda", &path, "--json"][..], extra].concat());
+        let worst: Vec<f64> =
+            nums(&v["worst_velocity_ratio"]).into_iter().chain(nums(&v["worst_acceleration_ratio"])).collect();
+        assert!(worst.iter().all(|&r| r <= 1.0), "{worst:?}");
+        (v["duration_s"].as_f64().unwrap(), v)
+    };
+    let (linear, _) = duration(&["--interpolation", "linear"]);
+    let (blend, v) = duration(&["--interpolation", "blend"]);
+    let (tight, _) = duration(&["--interpolation", "blend:0.01"]);
+    assert_eq!(v["interpolation"], "blend");
+    assert_eq!(v["blend_tolerance"], 0.1);
+    assert_eq!(nums(&v["waypoint_times_s"]).len(), v["waypoints"].as_u64().unwrap() as usize);
+    assert!(blend < tight && tight < linear, "blend {blend}, blend:0.01 {tight}, linear {linear}");
+    fails(&["retime", "panda", &path, "--interpolation", "blend:-1"], 2, &["--interpolation blend:TOL", "≥ 0"]);
+    fails(&["retime", "panda", &path, "--interpolation", "wobble"], 2, &["--interpolation", "spline, linear, blend"]);
+
+    let scene = example("../../examples/ur5_ball.toml");
+    let base = ["path", "ur5", &scene, "--from", "90,-90,90,-90,-90,0", "--to", "-90,-60,60,-90,-90,0", "--json"];
+    let blended = crate::common::json(&base);
+    let stop = crate::common::json(&[&base[..], &["--blend", "0"]].concat());
+    assert!(blended["blend_tolerance"].as_f64().unwrap() > 0.0 && stop["blend_tolerance"] == 0.0);
+    assert_eq!(blended["collision_free"], true);
+    assert!(blended["duration_s"].as_f64().unwrap() <= stop["duration_s"].as_f64().unwrap());
+    let text = ok(&base[..base.len() - 1]);
+    assert!(text.contains("blends corners within"), "{text}");
+    fails(&[&base[..], &["--blend", "x"]].concat(), 2, &["--blend"]);
+    fails(&[&base[..], &["--blend", "0.1", "--duration", "5"]].concat(), 2, &["--blend", "optimal timing only"]);
+}
