@@ -1,14 +1,17 @@
 //! The `path` workflow: a collision-free joint-space path through a scene (RRT-Connect with
-//! shortcutting, [`crate::world::planner`]), timed waypoint to waypoint and re-checked.
+//! shortcutting, [`crate::world::planner`]), timed and re-checked.
 //!
-//! The path is timed along the planner's straight joint-space edges, resting at every
-//! waypoint, in one of two ways ([`PathTiming`]): time-optimal under the joints' velocity and
-//! acceleration limits ([`crate::motion::optimal`], TOPP-RA on the polyline, with the exact
-//! worst ratio to each limit), or one cycloidal segment per edge ([`JointPath`]) taking the
-//! fastest synchronised time within the speed limits or a share of `duration_s` proportional
-//! to its joint-space length. Either way the timed motion stays on the straight edges, so the
-//! swept check of the edges ([`SweptPathReport`]) proves the timed motion clear: the report
-//! gives its certified clearance, where the path comes closest and on which link.
+//! The path is timed in one of two ways ([`PathTiming`]): time-optimal under the joints'
+//! velocity and acceleration limits ([`crate::motion::optimal`], TOPP-RA, with the exact worst
+//! ratio to each limit) along the planner's straight edges with every corner cut by a
+//! parabolic blend within [`PathRequest::blend_tolerance`] of its waypoint
+//! ([`PiecewiseCubic::blended`]; 0 rests at each waypoint), or one cycloidal segment per edge
+//! ([`JointPath`]), resting at every waypoint, taking the fastest synchronised time within the
+//! speed limits or a share of `duration_s` proportional to its joint-space length. The swept
+//! check runs on the path that is timed — the edges, and the blends' arcs
+//! ([`SweptPathReport::check_pieces`]) — so the timed motion is proven clear: the report gives
+//! its certified clearance, where the path comes closest and on which link. A blended path
+//! not proven clear is blended tighter ([`BLEND_TIGHTENINGS`]), at last not at all.
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -39,7 +42,7 @@ fn default_time_budget_s() -> f64 {
 /// the start and the goal are one configuration and there is nothing to plan.
 const SAME_CONFIGURATION: f64 = 1e-12;
 
-/// How a planned path is timed. Both stay on the straight edges and rest at every waypoint.
+/// How a planned path is timed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum PathTiming {
@@ -342,26 +345,26 @@ pub fn path_run_with_cancel(robot: &Robot, request: &PathRequest, cancel: &Cance
                 PathTiming::Cycloidal => durations(robot, &p.waypoints, total)?,
                 PathTiming::Optimal => Vec::new(),
             };
-            // The requested blend, tightened until the blended path is proven clear; the
-            // polyline (tolerance 0) is the planner's proven edges.
-            if timing == PathTiming::Optimal {
-                let mut tolerance = request.blend_tolerance.unwrap_or(DEFAULT_BLEND_TOLERANCE);
-                for tightened in 0..=BLEND_TIGHTENINGS + 1 {
-                    if tightened == BLEND_TIGHTENINGS + 1 {
-                        tolerance = 0.0;
-                    }
-                    report.blend_tolerance = Some(tolerance);
-                    report.swept = TimingLaw::path(&p.waypoints, &report)?.map_or_else(
-                        || SweptPathReport::check(robot, &scene, &p.waypoints, None),
-                        |path| SweptPathReport::check_pieces(robot, &scene, &path),
-                    )?;
-                    if tolerance == 0.0 || report.swept.as_ref().is_none_or(|s| s.swept.clear) {
-                        break;
-                    }
-                    tolerance /= 2.0;
+            // Optimal timing: the requested blend, halved until the blended path is proven
+            // clear, at last 0 (the polyline, whose edges the planner proved clear).
+            // Cycloidal timing: the edges.
+            let mut tries: Vec<Option<f64>> = match timing {
+                PathTiming::Optimal => {
+                    let requested = request.blend_tolerance.unwrap_or(DEFAULT_BLEND_TOLERANCE);
+                    (0..=BLEND_TIGHTENINGS as i32).map(|k| Some(requested / 2f64.powi(k))).chain([Some(0.0)]).collect()
                 }
-            } else {
-                report.swept = SweptPathReport::check(robot, &scene, &p.waypoints, None)?;
+                PathTiming::Cycloidal => vec![None],
+            };
+            tries.dedup();
+            for tolerance in tries {
+                report.blend_tolerance = tolerance;
+                report.swept = match TimingLaw::path(&p.waypoints, &report)? {
+                    Some(path) => SweptPathReport::check_pieces(robot, &scene, &path)?,
+                    None => SweptPathReport::check(robot, &scene, &p.waypoints, None)?,
+                };
+                if report.swept.as_ref().is_none_or(|s| s.swept.clear) {
+                    break;
+                }
             }
             report.collision_free = Some(report.swept.as_ref().is_none_or(|s| s.swept.clear));
             let law = TimingLaw::new(robot, &p.waypoints, &report, &cycloidal)?;
@@ -415,7 +418,7 @@ fn durations(robot: &Robot, waypoints: &[Vec<f64>], total: Option<f64>) -> Resul
 /// Time, joint positions and joint speeds (SI).
 type TimedSample = (f64, Vec<f64>, Vec<f64>);
 
-/// The timed motion along the straight edges between waypoints ([`PathTiming`]).
+/// The timed motion along the path between waypoints ([`PathTiming`]).
 enum TimingLaw {
     Optimal(Box<OptimalMotion>),
     Cycloidal(JointPath),
