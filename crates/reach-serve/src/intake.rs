@@ -11,7 +11,7 @@ use serde_json::Value;
 use crate::error::ApiError;
 
 /// The kinds of job the service runs.
-pub const ACCEPTED_KINDS: [&str; 5] = ["move", "plan", "path", "tasks", "avoid"];
+pub const ACCEPTED_KINDS: [&str; 6] = ["move", "plan", "path", "approach", "tasks", "avoid"];
 
 /// The shorthand for a joint-space move, read like `reach move`'s options:
 /// `{"kind": "move", "from_deg": [...], "to_deg": [...], "duration_s": 6}`. Without
@@ -155,6 +155,12 @@ pub fn refusal(report: &Report) -> Option<String> {
         Report::Path(p) if !p.found => Some(p.reason.clone().unwrap_or_else(|| "no path found".into())),
         Report::Path(p) if p.collision_free == Some(false) => {
             Some("the timed path is not proven clear of the scene".into())
+        }
+        Report::Approach(a) if !a.arrives() => {
+            Some(format!("the goal is not reached: {}", a.reason.as_deref().unwrap_or("no motion to it")))
+        }
+        Report::Approach(a) if a.collision_free == Some(false) => {
+            Some("the timed motion is not proven to keep the safe distance".into())
         }
         Report::Tasks(t) if t.plan.is_none() => Some("no plan visits the task's points".into()),
         _ => None,

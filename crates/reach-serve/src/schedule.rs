@@ -116,6 +116,10 @@ pub fn motion_of(robot: &Robot, request: &Request, report: &Report) -> Result<Op
             let samples = p.motion(robot, PATH_DT_S).map_err(|e| e.to_string())?;
             (samples.len() >= 2).then_some(DriveMotion::Samples(samples))
         }
+        (_, Report::Approach(a)) => {
+            let samples = a.motion(robot, PATH_DT_S).map_err(|e| e.to_string())?;
+            (samples.len() >= 2).then_some(DriveMotion::Samples(samples))
+        }
         _ => None,
     })
 }

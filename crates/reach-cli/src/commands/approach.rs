@@ -5,9 +5,11 @@
 use std::io::Write;
 
 use clap::Args;
+use reach::jobs::world::approach::ApproachTiming;
 use reach::jobs::world::{ApproachReport, ApproachRequest, FastRegionRequest, approach_with_cancel};
 
-use crate::commands::path::{Ends, SceneMotionArgs};
+use crate::commands::path::{Ends, SceneMotionArgs, optimal_law_text};
+use crate::commands::retime::LimitScaleArgs;
 use crate::error::CliError;
 use crate::numbers::parse_finite;
 use crate::output::{Table, fixed, fixeds, verdict_exit, write_json};
@@ -37,9 +39,36 @@ pub struct ApproachArgs {
     #[arg(long)]
     pub fast_region: bool,
 
+    /// How the motion is timed: `optimal` (TOPP-RA along the samples, and the planner's path
+    /// after a handover, under the joints' velocity and acceleration limits — their own or
+    /// their stepper drives' — proven between samples, with the corners blended, see --blend)
+    /// or `none` (the samples only). Default: optimal when every joint has both limits.
+    #[arg(long, value_enum, value_name = "LAW")]
+    pub timing: Option<ApproachTimingArg>,
+
+    /// Optimal timing: how far the motion may pass from each sample, cutting the corners with
+    /// parabolic blends (joint-space distance in radians, metres for prismatic joints; default
+    /// 0.1; 0 rests at every sample). The blended path is proven to keep the safe distance; a
+    /// blend that is not is tightened.
+    #[arg(long, value_name = "TOL", allow_hyphen_values = true)]
+    pub blend: Option<String>,
+
+    /// --max-velocity-scale, --max-acceleration-scale (optimal timing).
+    #[command(flatten)]
+    pub scales: LimitScaleArgs,
+
     /// Print the report as JSON (docs/schemas/approach.report.schema.json).
     #[arg(long)]
     pub json: bool,
+}
+
+/// How `reach approach` times its motion.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ApproachTimingArg {
+    /// Time-optimal under the velocity and acceleration limits.
+    Optimal,
+    /// Not timed.
+    None,
 }
 
 impl ApproachArgs {
@@ -51,6 +80,7 @@ impl ApproachArgs {
     pub fn request(&self) -> Result<ApproachRequest, CliError> {
         let Ends { scene, from, to, to_pose } = self.motion.ends()?;
         let defaults = ApproachRequest::new(scene, from);
+        let (max_velocity_scale, max_acceleration_scale) = self.scales.parse()?;
         Ok(ApproachRequest {
             to,
             to_pose,
@@ -61,6 +91,13 @@ impl ApproachArgs {
             },
             handover: !self.no_handover,
             fast_region: self.fast_region.then(FastRegionRequest::default),
+            timing: self.timing.map(|t| match t {
+                ApproachTimingArg::Optimal => ApproachTiming::Optimal,
+                ApproachTimingArg::None => ApproachTiming::None,
+            }),
+            max_velocity_scale,
+            max_acceleration_scale,
+            blend_tolerance: self.blend.as_deref().map(|b| parse_finite("--blend", b)).transpose()?,
             ..defaults
         })
     }
@@ -76,8 +113,16 @@ pub fn run(args: &ApproachArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let robot = args.motion.robot.load()?.robot;
     let request = args.request()?;
     let report = approach_with_cancel(&robot, &request, crate::interrupt::cancel()).map_err(|e| {
-        let fixed =
-            [("safe_distance_m", "--safe-distance"), ("max_step_deg", "--max-step"), ("fast_region", "--fast-region")];
+        let [velocity, acceleration] = LimitScaleArgs::FLAGS;
+        let fixed = [
+            ("safe_distance_m", "--safe-distance"),
+            ("max_step_deg", "--max-step"),
+            ("fast_region", "--fast-region"),
+            ("blend_tolerance", "--blend"),
+            ("timing", "--timing"),
+            velocity,
+            acceleration,
+        ];
         args.motion.error(e, &fixed)
     })?;
     if args.json {
@@ -85,9 +130,14 @@ pub fn run(args: &ApproachArgs, out: &mut dyn Write) -> Result<(), CliError> {
     } else {
         write_report(out, &args.motion.scene, &report)?;
     }
-    let reason =
-        || format!("goal not reached ({:?}): {}", report.outcome, report.reason.as_deref().unwrap_or_default());
-    verdict_exit(out, report.failed().then(reason))
+    let reason = if report.failed() {
+        Some(format!("goal not reached ({:?}): {}", report.outcome, report.reason.as_deref().unwrap_or_default()))
+    } else if report.collision_free == Some(false) {
+        Some("the timed motion is not proven to keep the safe distance".to_string())
+    } else {
+        None
+    };
+    verdict_exit(out, reason)
 }
 
 fn write_report(out: &mut dyn Write, scene: &str, r: &ApproachReport) -> Result<(), CliError> {
@@ -132,6 +182,26 @@ fn write_report(out: &mut dyn Write, scene: &str, r: &ApproachReport) -> Result<
             format!("planner found no path: {}", h.reason.as_deref().unwrap_or(""))
         };
         head.pair("handed over", text);
+    }
+    if let Some(duration) = r.duration_s {
+        let law = optimal_law_text(
+            r.max_velocity_scale,
+            r.max_acceleration_scale,
+            r.blend_tolerance,
+            r.worst_velocity_ratio.as_deref(),
+            r.worst_acceleration_ratio.as_deref(),
+            "samples",
+        );
+        head.pair("duration", format!("{} s ({law})", fixed(duration, 3)));
+    }
+    if let Some(p) = &r.swept {
+        head.pair(
+            "swept check",
+            format!(
+                "{} (links grown by the safe distance)",
+                crate::commands::check::swept_text(&p.swept, Some(p.segment))
+            ),
+        );
     }
     head.write(out, "")?;
     if let Some(last) = r.motion_deg.last() {

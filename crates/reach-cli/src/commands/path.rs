@@ -248,21 +248,14 @@ fn write_report(out: &mut dyn Write, scene: &str, j: &PathReport) -> Result<(), 
             ),
         );
         let law = match j.timing {
-            PathTiming::Optimal => {
-                let worst = |r: &Option<Vec<f64>>| r.iter().flatten().copied().fold(0.0, f64::max);
-                let corners = match j.blend_tolerance {
-                    Some(t) if t > 0.0 => format!("blends corners within {} rad", number_text(t)),
-                    _ => "rests at waypoints".to_string(),
-                };
-                format!(
-                    "time-optimal under the velocity and acceleration limits ×{} / ×{}, {corners}; \
-                     worst ratio to a limit: velocity {}, acceleration {}",
-                    j.max_velocity_scale,
-                    j.max_acceleration_scale,
-                    fixed(worst(&j.worst_velocity_ratio), 4),
-                    fixed(worst(&j.worst_acceleration_ratio), 4)
-                )
-            }
+            PathTiming::Optimal => optimal_law_text(
+                j.max_velocity_scale,
+                j.max_acceleration_scale,
+                j.blend_tolerance,
+                j.worst_velocity_ratio.as_deref(),
+                j.worst_acceleration_ratio.as_deref(),
+                "waypoints",
+            ),
             PathTiming::Cycloidal => "cycloidal, stops at waypoints".to_string(),
         };
         head.pair("duration", format!("{} s ({law})", fixed(j.duration_s.unwrap_or(0.0), 3)));
@@ -278,6 +271,29 @@ fn write_report(out: &mut dyn Write, scene: &str, j: &PathReport) -> Result<(), 
         }
     }
     Ok(())
+}
+
+/// How a time-optimal motion is timed, in words: its scales, its blends (resting at its
+/// `points` without), its worst ratio to a limit.
+pub fn optimal_law_text(
+    velocity_scale: f64,
+    acceleration_scale: f64,
+    blend_tolerance: Option<f64>,
+    worst_velocity: Option<&[f64]>,
+    worst_acceleration: Option<&[f64]>,
+    points: &str,
+) -> String {
+    let worst = |r: Option<&[f64]>| r.iter().copied().flatten().copied().fold(0.0, f64::max);
+    let corners = match blend_tolerance {
+        Some(t) if t > 0.0 => format!("blends corners within {} rad", number_text(t)),
+        _ => format!("rests at {points}"),
+    };
+    format!(
+        "time-optimal under the velocity and acceleration limits ×{velocity_scale} / ×{acceleration_scale}, \
+         {corners}; worst ratio to a limit: velocity {}, acceleration {}",
+        fixed(worst(worst_velocity), 4),
+        fixed(worst(worst_acceleration), 4)
+    )
 }
 
 fn drawing(robot: &Robot, run: &PathRun, timed: &TimedPath) -> crate::plot::Svg {

@@ -171,3 +171,95 @@ async fn an_obstacle_on_the_rest_of_the_motion_makes_a_detour_to_the_goal() {
         assert!((got - want).abs() < 0.05, "at the goal: {q:?}");
     }
 }
+
+/// A ball on the log loader's straight swing from (0, 0, 0)° to (90, 0, 0)°.
+const LOG_LOADER_BALL: &str = include_str!("../../../../examples/log_loader_ball.toml");
+
+/// The step counts the service commits at the end of every segment of `job`'s motion: its
+/// own rule (`reach_serve::schedule`) on the stored request and report.
+fn committed_counts(robot: &reach::Robot, job: &serde_json::Value) -> Vec<Vec<i64>> {
+    use reach_serve::schedule::{Timeline, drive, motion_of};
+    let request: reach::jobs::Request = serde_json::from_value(job["request"].clone()).expect("a request");
+    let report = match &request {
+        reach::jobs::Request::Path(_) => {
+            reach::jobs::Report::Path(serde_json::from_value(job["report"].clone()).expect("a path report"))
+        }
+        reach::jobs::Request::Approach(_) => {
+            reach::jobs::Report::Approach(serde_json::from_value(job["report"].clone()).expect("an approach report"))
+        }
+        other => panic!("not a path or approach job: {other:?}"),
+    };
+    let motion = motion_of(robot, &request, &report).unwrap().expect("a motion");
+    let timeline = Timeline::of(&drive(robot, motion).unwrap());
+    assert_eq!(job["segments"].as_i64(), Some(timeline.segments()), "{job}");
+    (0..=timeline.segments()).map(|k| timeline.steps_at(timeline.segment_end(k))).collect()
+}
+
+/// Issue 33: seed 000's log loader, whose only limits are its stepper drives (500 Hz and
+/// 2000 steps/s² at 33.3 steps per degree: 15°/s, 60°/s²), runs a path job timed
+/// time-optimally with blended corners and an approach job timed the same way; the step counts
+/// committed every 50 ms stay within the motors' rate and ramp.
+#[tokio::test(flavor = "multi_thread")]
+async fn blended_path_and_approach_jobs_stay_within_the_motor_limits() {
+    let dir = scratch("motor-limits");
+    let service = open(&config("log-loader", &dir, 20.0));
+    let router = service.router();
+    let robot = reach::model::presets::get("log-loader").unwrap();
+    let scene = serde_json::to_string(LOG_LOADER_BALL).unwrap();
+    let path = submit(
+        &router,
+        &format!(r#"{{"kind": "path", "scene": {scene}, "from": {{"deg": [0, 0, 0]}}, "to": {{"deg": [90, 0, 0]}}}}"#),
+    )
+    .await;
+    let path = wait_status(&router, path, "done").await;
+    let report = &path["report"];
+    assert_eq!(
+        (report["timing"].as_str(), report["collision_free"].as_bool()),
+        (Some("optimal"), Some(true)),
+        "{path}"
+    );
+    assert!(report["blend_tolerance"].as_f64().unwrap() > 0.0, "the corners are blended: {report}");
+    assert!(report["waypoints_deg"].as_array().unwrap().len() > 2, "around the ball: {report}");
+    let approach = submit(
+        &router,
+        &format!(
+            r#"{{"kind": "approach", "scene": {scene}, "from": {{"deg": [90, 0, 0]}}, "to": {{"deg": [90, 60, -90]}}}}"#
+        ),
+    )
+    .await;
+    let approach = wait_status(&router, approach, "done").await;
+    let report = &approach["report"];
+    assert_eq!(
+        (report["timing"].as_str(), report["collision_free"].as_bool()),
+        (Some("optimal"), Some(true)),
+        "{approach}"
+    );
+    // 33.3 steps per degree: the end, as committed.
+    let end = integers(&get(&router, "/state").await["steps"]);
+    assert_eq!(end, vec![3000, 2000, -3000]);
+    let segment = reach_serve::schedule::SEGMENT_S;
+    for job in [&path, &approach] {
+        let counts = committed_counts(&robot, job);
+        for (j, joint) in robot.joints().iter().enumerate() {
+            let drive = joint.drive.as_ref().unwrap();
+            let at = |k: usize| counts[k][j];
+            // Quantisation: a count is within half a step of the exact motion, so one
+            // segment's difference carries at most one step more, a change of two at most two.
+            let max_steps = drive.max_step_rate * segment + 1.0;
+            let max_change = drive.max_acceleration.unwrap() * segment * segment + 2.0;
+            for k in 1..counts.len() {
+                let steps = (at(k) - at(k - 1)) as f64;
+                assert!(steps.abs() <= max_steps, "joint {}: {steps} steps in segment {k}", j + 1);
+                if k >= 2 {
+                    let change = steps - (at(k - 1) - at(k - 2)) as f64;
+                    assert!(change.abs() <= max_change, "joint {}: rate change {change} steps at segment {k}", j + 1);
+                }
+            }
+        }
+        // The motion runs at the motors' limits: the fastest segment is within a step of the
+        // rate limit.
+        let fastest = counts.windows(2).flat_map(|w| w[1].iter().zip(&w[0]).map(|(b, a)| (b - a).abs())).max();
+        assert!(fastest >= Some(24), "{fastest:?} steps per 50 ms at most: not at the 500 Hz limit");
+    }
+    assert_eq!(committed_counts(&robot, &approach).last(), Some(&end));
+}

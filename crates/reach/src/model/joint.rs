@@ -233,6 +233,18 @@ impl Joint {
         if self.wraps() { crate::angle::shortest_difference(from, to) } else { to - from }
     }
 
+    /// The joint speed and acceleration its stepper drive allows, rad/s and rad/s² (m/s, m/s²
+    /// for a prismatic joint): `max_step_rate` and the drive's `max_acceleration` divided by
+    /// the steps per unit. `None` where the joint has no drive, the drive no ramp limit, or a
+    /// prismatic drive no `lead`.
+    #[must_use]
+    pub fn drive_limits(&self) -> (Option<f64>, Option<f64>) {
+        let Some((drive, per_unit)) = self.drive.as_ref().and_then(|d| Some((d, d.steps_per_unit(self.kind)?))) else {
+            return (None, None);
+        };
+        (Some(drive.max_step_rate / per_unit), drive.max_acceleration.map(|a| a / per_unit))
+    }
+
     /// A revolute standard/modified DH joint with no limits; adjust the fields as needed.
     #[must_use]
     pub fn revolute(a: f64, alpha: f64, d: f64, theta_offset: f64) -> Self {

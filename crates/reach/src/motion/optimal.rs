@@ -445,8 +445,11 @@ impl PathLimits {
         Ok(PathLimits { velocity, acceleration })
     }
 
-    /// The robot's `max_velocity` and `max_acceleration`, each multiplied by its scale
-    /// (MoveIt's `max_velocity_scaling_factor` / `max_acceleration_scaling_factor`, in `(0, 1]`).
+    /// The robot's `max_velocity` and `max_acceleration` — for a joint with a stepper drive the
+    /// tighter of them and the motor's ([`crate::model::Joint::drive_limits`]), so the step
+    /// schedule of the motion stays within the motor's rate and ramp — each multiplied by its
+    /// scale (MoveIt's `max_velocity_scaling_factor` / `max_acceleration_scaling_factor`, in
+    /// `(0, 1]`).
     ///
     /// # Errors
     /// [`MotionError::InvalidInput`] naming the first joint without a limit, or a scale
@@ -470,12 +473,22 @@ impl PathLimits {
         for (i, joint) in robot.joints().iter().enumerate() {
             let missing = |field: &str| MotionError::InvalidInput {
                 field: format!("joint {} ({}) {field}", i + 1, joint.name),
-                reason: "is not given in the robot description: add it to the joint in the TOML file, \
-                         or give a URDF a MoveIt joint_limits.yaml (--joint-limits)"
+                reason: "is not given in the robot description, nor by the joint's stepper drive: add it to \
+                         the joint in the TOML file, or give a URDF a MoveIt joint_limits.yaml (--joint-limits)"
                     .into(),
             };
-            velocity.push(joint.max_velocity.ok_or_else(|| missing("max_velocity"))? * velocity_scale);
-            acceleration.push(joint.max_acceleration.ok_or_else(|| missing("max_acceleration"))? * acceleration_scale);
+            let (drive_velocity, drive_acceleration) = joint.drive_limits();
+            let tighter = |a: Option<f64>, b: Option<f64>| match (a, b) {
+                (Some(a), Some(b)) => Some(a.min(b)),
+                (a, b) => a.or(b),
+            };
+            velocity.push(
+                tighter(joint.max_velocity, drive_velocity).ok_or_else(|| missing("max_velocity"))? * velocity_scale,
+            );
+            acceleration.push(
+                tighter(joint.max_acceleration, drive_acceleration).ok_or_else(|| missing("max_acceleration"))?
+                    * acceleration_scale,
+            );
         }
         PathLimits::new(velocity, acceleration)
     }
@@ -899,7 +912,9 @@ impl OptimalMotion {
         MotionSample { t, q, qd, qdd }
     }
 
-    /// Samples every `dt` seconds from 0, and the end.
+    /// Samples every `dt` seconds from 0, and the end; an end less than `dt / 2` after the
+    /// last regular sample replaces it, so every interval lasts at least `dt / 2` (a drive
+    /// differentiating the samples never divides by a sliver of time).
     ///
     /// # Errors
     /// [`MotionError::InvalidInput`] for `dt` not finite and > 0, or more than
@@ -914,6 +929,9 @@ impl OptimalMotion {
             });
         }
         let mut out: Vec<MotionSample> = (0..=count as usize).map(|i| self.sample(i as f64 * dt)).collect();
+        if out.len() > 1 && out.last().is_some_and(|s| self.duration() - s.t < 0.5 * dt) {
+            out.pop();
+        }
         if out.last().is_none_or(|s| s.t < self.duration()) {
             out.push(self.sample(self.duration()));
         }

@@ -6,11 +6,14 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use super::check::swept_pair_text;
+use super::check::{SweptPathReport, swept_pair_text};
 use super::parse_scene;
+use super::timed::{clear_blend, motion_samples, optimal_motion};
 use crate::error::{Error, Result};
 use crate::ik::IkTarget;
-use crate::jobs::input::{Joints, Pose, positive, q_display, time_budget};
+use crate::jobs::input::{Joints, MotionSample, Pose, full_scale, positive, q_display, time_budget};
+use crate::jobs::retime::{DEFAULT_BLEND_TOLERANCE, request_error};
+use crate::motion::{PathLimits, check_blend_tolerance};
 use crate::world::approach::{
     ApproachGoal, ApproachOptions, ApproachStats, FastRegion, MAX_SAMPLES, Outcome, approach as synthesise, grown_robot,
 };
@@ -90,6 +93,37 @@ pub struct ApproachRequest {
     /// candidate increments.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fast_region: Option<FastRegionRequest>,
+    /// How the motion is timed (default: `optimal` when every joint has a velocity and an
+    /// acceleration limit, its own or its stepper drive's; else `none`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub timing: Option<ApproachTiming>,
+    /// Optimal timing: multiplies every joint's velocity limit, in (0, 1] (default 1).
+    #[serde(default = "full_scale")]
+    pub max_velocity_scale: f64,
+    /// Optimal timing: multiplies every joint's acceleration limit, in (0, 1] (default 1).
+    #[serde(default = "full_scale")]
+    pub max_acceleration_scale: f64,
+    /// Optimal timing: how far (joint-space Euclidean distance, rad and m) the timed motion may
+    /// pass from each sample, cutting the corners with parabolic blends (default
+    /// [`DEFAULT_BLEND_TOLERANCE`]; 0 rests at every sample). A blend not proven to keep the
+    /// safe distance is tightened (halved, at most [`super::timed::BLEND_TIGHTENINGS`] times,
+    /// then 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub blend_tolerance: Option<f64>,
+}
+
+/// How an approach motion is timed.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum ApproachTiming {
+    /// Time-optimal (TOPP-RA) along the samples — and after a handover the planner's
+    /// waypoints — with their corners blended, under every joint's velocity and acceleration
+    /// limits (its own, or its stepper drive's) times their scales, proven within them between
+    /// samples; the blended path is proven to keep the safe distance.
+    Optimal,
+    /// Not timed: the samples only (a robot without velocity or acceleration limits).
+    #[default]
+    None,
 }
 
 impl ApproachRequest {
@@ -109,6 +143,10 @@ impl ApproachRequest {
             handover: true,
             planner_time_budget_s: default_time_budget_s(),
             fast_region: None,
+            timing: None,
+            max_velocity_scale: 1.0,
+            max_acceleration_scale: 1.0,
+            blend_tolerance: None,
         }
     }
 }
@@ -185,6 +223,40 @@ pub struct ApproachReport {
     /// After a deadlock with `handover`: the planner's attempt.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub handover: Option<HandoverReport>,
+    /// How the motion is timed.
+    #[serde(default)]
+    pub timing: ApproachTiming,
+    /// Duration of the timed motion — the samples, then the planner's waypoints when it found
+    /// a path — s (`null` untimed or without a motion).
+    #[serde(default)]
+    pub duration_s: Option<f64>,
+    /// The velocity limits' scale (1 untimed).
+    #[serde(default = "full_scale")]
+    pub max_velocity_scale: f64,
+    /// The acceleration limits' scale (1 untimed).
+    #[serde(default = "full_scale")]
+    pub max_acceleration_scale: f64,
+    /// The blend tolerance of the timed motion (rad and m; the requested one, or tighter when
+    /// a blend was not proven to keep the safe distance; 0: resting at every sample); `null`
+    /// untimed.
+    #[serde(default)]
+    pub blend_tolerance: Option<f64>,
+    /// Per joint, the exact largest `|q̇| / limit` over the timed motion (≤ 1); `null`
+    /// untimed.
+    #[serde(default)]
+    pub worst_velocity_ratio: Option<Vec<f64>>,
+    /// Per joint, the exact largest `|q̈| / limit` (≤ 1); `null` untimed.
+    #[serde(default)]
+    pub worst_acceleration_ratio: Option<Vec<f64>>,
+    /// Whether the timed (blended) motion is proven to keep the safe distance (`null`
+    /// untimed or without a motion).
+    #[serde(default)]
+    pub collision_free: Option<bool>,
+    /// The swept check of the timed motion's path with every link grown by the safe distance
+    /// (its clearances are margins beyond the safe distance; `segment` numbers the lines and
+    /// blend arcs in order); `null` untimed, without a motion, or with nothing to check.
+    #[serde(default)]
+    pub swept: Option<SweptPathReport>,
 }
 
 impl ApproachReport {
@@ -192,6 +264,44 @@ impl ApproachReport {
     #[must_use]
     pub fn failed(&self) -> bool {
         self.outcome != Outcome::Reached
+    }
+
+    /// Whether the motion ends at the goal: reached by the synthesis, or after a deadlock by
+    /// the planner's path.
+    #[must_use]
+    pub fn arrives(&self) -> bool {
+        !self.failed() || self.handover.as_ref().is_some_and(|h| h.found)
+    }
+
+    /// The timed motion ([`ApproachReport::motion_deg`], then the planner's waypoints when it
+    /// found a path, with the report's blend and scales) sampled every `dt_s` seconds (and at
+    /// the end), as a drive follows it; empty without a motion.
+    ///
+    /// # Errors
+    /// [`Error::Request`] naming `timing` for an untimed report, bad samples, or a `dt_s` that
+    /// is not positive or gives too many samples.
+    pub fn motion(&self, robot: &Robot, dt_s: f64) -> Result<Vec<MotionSample>> {
+        if self.timing != ApproachTiming::Optimal {
+            return Err(Error::request(
+                "timing",
+                "the approach is not timed (give every joint max_velocity and max_acceleration, or a stepper drive \
+                 with a ramp limit)",
+            ));
+        }
+        let handover = self.handover.iter().filter(|h| h.found).flat_map(|h| h.waypoints_deg.iter().skip(1));
+        let waypoints = self
+            .motion_deg
+            .iter()
+            .chain(handover)
+            .map(|w| Joints::Deg(w.clone()).si(robot, "motion_deg"))
+            .collect::<Result<Vec<_>>>()?;
+        if waypoints.len() < 2 {
+            return Ok(Vec::new());
+        }
+        let tolerance = self.blend_tolerance.unwrap_or(0.0);
+        let motion =
+            optimal_motion(robot, &waypoints, tolerance, self.max_velocity_scale, self.max_acceleration_scale)?;
+        motion_samples(robot, &motion, dt_s)
     }
 }
 
@@ -227,6 +337,32 @@ pub fn approach_with_cancel(robot: &Robot, request: &ApproachRequest, cancel: &C
         ));
     }
     let budget = time_budget("planner_time_budget_s", Some(request.planner_time_budget_s))?;
+    let timing = request.timing.unwrap_or(if PathLimits::from_robot(robot, 1.0, 1.0).is_ok() {
+        ApproachTiming::Optimal
+    } else {
+        ApproachTiming::None
+    });
+    match timing {
+        // Bad limits or scales are refused before the synthesis.
+        ApproachTiming::Optimal => {
+            PathLimits::from_robot(robot, request.max_velocity_scale, request.max_acceleration_scale)
+                .map_err(request_error)?;
+            if let Some(tolerance) = request.blend_tolerance {
+                check_blend_tolerance(tolerance).map_err(request_error)?;
+            }
+        }
+        ApproachTiming::None => {
+            for (field, given) in [
+                ("max_velocity_scale", request.max_velocity_scale != 1.0),
+                ("max_acceleration_scale", request.max_acceleration_scale != 1.0),
+                ("blend_tolerance", request.blend_tolerance.is_some()),
+            ] {
+                if given {
+                    return Err(Error::request(field, "applies to optimal timing only, and the approach is not timed"));
+                }
+            }
+        }
+    }
     let grown = grown_robot(robot, d)?;
     let verdict = CollisionChecker::try_new(&grown, &scene)?.check(&start)?;
     if !verdict.is_free() {
@@ -250,18 +386,22 @@ pub fn approach_with_cancel(robot: &Robot, request: &ApproachRequest, cancel: &C
         ApproachGoal::Target(IkTarget::Position(_)) => (Some(a.error), None, None),
         ApproachGoal::Target(IkTarget::Pose(_)) => (Some(a.error), Some(a.orientation_error.to_degrees()), None),
     };
+    let mut planned: Vec<Vec<f64>> = Vec::new();
     let handover = if a.outcome == Outcome::Deadlock && request.handover {
         let from = a.samples.last().cloned().unwrap_or_else(|| start.clone());
         let target = goal.clone();
         let ik = crate::ik::IkOptions { cancel: cancel.clone(), ..crate::ik::IkOptions::default() };
         let options = PlanOptions { max_time: budget, ik, first_test: fast.clone(), ..PlanOptions::default() };
         Some(match plan(&grown, &scene, &from, &target, &options) {
-            Ok(p) => HandoverReport {
-                found: true,
-                first_test_rejections: p.stats.first_test_rejections,
-                reason: None,
-                waypoints_deg: p.waypoints.iter().map(|q| q_display(robot, q)).collect(),
-            },
+            Ok(p) => {
+                planned = p.waypoints;
+                HandoverReport {
+                    found: true,
+                    first_test_rejections: p.stats.first_test_rejections,
+                    reason: None,
+                    waypoints_deg: planned.iter().map(|q| q_display(robot, q)).collect(),
+                }
+            }
             Err(e) => HandoverReport {
                 found: false,
                 first_test_rejections: 0,
@@ -272,7 +412,7 @@ pub fn approach_with_cancel(robot: &Robot, request: &ApproachRequest, cancel: &C
     } else {
         None
     };
-    Ok(ApproachReport {
+    let mut report = ApproachReport {
         robot: robot.name().to_string(),
         outcome: a.outcome,
         reason: a.reason,
@@ -287,7 +427,37 @@ pub fn approach_with_cancel(robot: &Robot, request: &ApproachRequest, cancel: &C
         motion_deg: a.samples.iter().map(|q| q_display(robot, q)).collect(),
         stats: a.stats,
         handover,
-    })
+        timing,
+        duration_s: None,
+        max_velocity_scale: request.max_velocity_scale,
+        max_acceleration_scale: request.max_acceleration_scale,
+        blend_tolerance: None,
+        worst_velocity_ratio: None,
+        worst_acceleration_ratio: None,
+        collision_free: None,
+        swept: None,
+    };
+    // The motion the arm follows: the samples, then the planner's path (its first waypoint is
+    // the last sample), blended as widely as stays proven at the safe distance, then timed.
+    let waypoints: Vec<Vec<f64>> = a.samples.into_iter().chain(planned.into_iter().skip(1)).collect();
+    if timing == ApproachTiming::Optimal && waypoints.len() >= 2 {
+        let requested = request.blend_tolerance.unwrap_or(DEFAULT_BLEND_TOLERANCE);
+        let blend = clear_blend(&grown, &scene, &waypoints, requested)?;
+        let motion = optimal_motion(
+            robot,
+            &waypoints,
+            blend.tolerance,
+            request.max_velocity_scale,
+            request.max_acceleration_scale,
+        )?;
+        report.duration_s = Some(motion.duration());
+        report.worst_velocity_ratio = Some(motion.worst_ratios().velocity.clone());
+        report.worst_acceleration_ratio = Some(motion.worst_ratios().acceleration.clone());
+        report.blend_tolerance = Some(blend.tolerance);
+        report.collision_free = Some(super::timed::proven_clear(blend.swept.as_ref()));
+        report.swept = blend.swept;
+    }
+    Ok(report)
 }
 
 /// The largest joint error of the last sample against the goal, degrees (prismatic metres).

@@ -14,6 +14,7 @@ pub mod check;
 pub mod cspace;
 pub mod path;
 pub mod sense;
+pub mod timed;
 
 pub use approach::{
     ApproachReport, ApproachRequest, FastRegionRequest, HandoverReport, approach, approach_with_cancel,

@@ -5,7 +5,7 @@
 //! velocity and acceleration limits ([`crate::motion::optimal`], TOPP-RA, with the exact worst
 //! ratio to each limit) along the planner's straight edges with every corner cut by a
 //! parabolic blend within [`PathRequest::blend_tolerance`] of its waypoint
-//! ([`PiecewiseCubic::blended`]; 0 rests at each waypoint), or one cycloidal segment per edge
+//! ([`crate::motion::PiecewiseCubic::blended`]; 0 rests at each waypoint), or one cycloidal segment per edge
 //! ([`JointPath`]), resting at every waypoint, taking the fastest synchronised time within the
 //! speed limits or a share of `duration_s` proportional to its joint-space length. The swept
 //! check runs on the path that is timed — the edges, and the blends' arcs
@@ -18,14 +18,13 @@ use serde::{Deserialize, Serialize};
 
 use super::check::SweptPathReport;
 use super::parse_scene;
+pub use super::timed::BLEND_TIGHTENINGS;
+use super::timed::{clear_blend, optimal_motion, proven_clear};
 use crate::error::{Error, Result};
 use crate::ik::IkOptions;
 use crate::jobs::input::{Joints, MotionSample, Pose, full_scale, positive, q_display, time_budget};
 use crate::jobs::retime::{DEFAULT_BLEND_TOLERANCE, request_error};
-use crate::motion::{
-    JointMotion, JointPath, JointRates, OptimalMotion, PathLimits, PiecewiseCubic, Profile, check_blend_tolerance,
-    time_optimal,
-};
+use crate::motion::{JointMotion, JointPath, JointRates, OptimalMotion, PathLimits, Profile, check_blend_tolerance};
 use crate::world::Scene;
 use crate::world::planner::{Goal, PlanError, PlanOptions, PlanStats, path_length, plan};
 use crate::{Cancel, Robot};
@@ -56,13 +55,14 @@ pub enum PathTiming {
 
 impl PathTiming {
     /// The timing a request gets: the one it names, else `optimal` when no `duration_s` is
-    /// given and every joint has a velocity and an acceleration limit, else `cycloidal`.
+    /// given and every joint has a velocity and an acceleration limit (its own, or its stepper
+    /// drive's: [`PathLimits::from_robot`]), else `cycloidal`.
     ///
     /// # Errors
     /// [`Error::Request`] for `optimal` with a `duration_s` (the limits set the duration), or
     /// a scale other than 1 with `cycloidal` timing.
     pub fn resolve(robot: &Robot, request: &PathRequest) -> Result<PathTiming> {
-        let limited = robot.joints().iter().all(|j| j.max_velocity.is_some() && j.max_acceleration.is_some());
+        let limited = PathLimits::from_robot(robot, 1.0, 1.0).is_ok();
         let timing = request.timing.unwrap_or(if request.duration_s.is_none() && limited {
             PathTiming::Optimal
         } else {
@@ -146,10 +146,6 @@ pub struct PathRequest {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub blend_tolerance: Option<f64>,
 }
-
-/// How many times the path workflow halves a blend tolerance whose blended path is not proven
-/// clear before it rests at the waypoints (whose straight edges the planner proved clear).
-pub const BLEND_TIGHTENINGS: usize = 6;
 
 /// Planning statistics.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
@@ -345,28 +341,18 @@ pub fn path_run_with_cancel(robot: &Robot, request: &PathRequest, cancel: &Cance
                 PathTiming::Cycloidal => durations(robot, &p.waypoints, total)?,
                 PathTiming::Optimal => Vec::new(),
             };
-            // Optimal timing: the requested blend, halved until the blended path is proven
-            // clear, at last 0 (the polyline, whose edges the planner proved clear).
-            // Cycloidal timing: the edges.
-            let mut tries: Vec<Option<f64>> = match timing {
+            // Optimal timing: the widest blend proven clear, at last 0 (the polyline, whose
+            // edges the planner proved clear). Cycloidal timing: the edges.
+            match timing {
                 PathTiming::Optimal => {
                     let requested = request.blend_tolerance.unwrap_or(DEFAULT_BLEND_TOLERANCE);
-                    (0..=BLEND_TIGHTENINGS as i32).map(|k| Some(requested / 2f64.powi(k))).chain([Some(0.0)]).collect()
+                    let blend = clear_blend(robot, &scene, &p.waypoints, requested)?;
+                    report.blend_tolerance = Some(blend.tolerance);
+                    report.swept = blend.swept;
                 }
-                PathTiming::Cycloidal => vec![None],
-            };
-            tries.dedup();
-            for tolerance in tries {
-                report.blend_tolerance = tolerance;
-                report.swept = match TimingLaw::path(&p.waypoints, &report)? {
-                    Some(path) => SweptPathReport::check_pieces(robot, &scene, &path)?,
-                    None => SweptPathReport::check(robot, &scene, &p.waypoints, None)?,
-                };
-                if report.swept.as_ref().is_none_or(|s| s.swept.clear) {
-                    break;
-                }
+                PathTiming::Cycloidal => report.swept = SweptPathReport::check(robot, &scene, &p.waypoints, None)?,
             }
-            report.collision_free = Some(report.swept.as_ref().is_none_or(|s| s.swept.clear));
+            report.collision_free = Some(proven_clear(report.swept.as_ref()));
             let law = TimingLaw::new(robot, &p.waypoints, &report, &cycloidal)?;
             let timed = law.timed_path(robot)?;
             report.duration_s = timed.times.last().copied();
@@ -428,24 +414,17 @@ impl TimingLaw {
     /// The law of `report.timing` along `waypoints`: optimal with the report's scales, or
     /// cycloidal with `durations` per segment.
     fn new(robot: &Robot, waypoints: &[Vec<f64>], report: &PathReport, durations: &[f64]) -> Result<TimingLaw> {
-        match Self::path(waypoints, report)? {
-            Some(path) => {
-                let limits = PathLimits::from_robot(robot, report.max_velocity_scale, report.max_acceleration_scale)
-                    .map_err(request_error)?;
-                Ok(TimingLaw::Optimal(Box::new(time_optimal(&path, &limits, 0).map_err(request_error)?)))
-            }
-            None => Ok(TimingLaw::Cycloidal(JointPath::through(robot, waypoints, durations, 0.0, Profile::Cycloidal)?)),
-        }
-    }
-
-    /// Optimal timing's geometric path: the waypoints' polyline blended with the report's
-    /// tolerance (the polyline without one); `None` for cycloidal timing.
-    fn path(waypoints: &[Vec<f64>], report: &PathReport) -> Result<Option<PiecewiseCubic>> {
         Ok(match report.timing {
-            PathTiming::Optimal => {
-                Some(PiecewiseCubic::blended(waypoints, report.blend_tolerance.unwrap_or(0.0)).map_err(request_error)?)
+            PathTiming::Optimal => TimingLaw::Optimal(Box::new(optimal_motion(
+                robot,
+                waypoints,
+                report.blend_tolerance.unwrap_or(0.0),
+                report.max_velocity_scale,
+                report.max_acceleration_scale,
+            )?)),
+            PathTiming::Cycloidal => {
+                TimingLaw::Cycloidal(JointPath::through(robot, waypoints, durations, 0.0, Profile::Cycloidal)?)
             }
-            PathTiming::Cycloidal => None,
         })
     }
 
