@@ -5,7 +5,7 @@
 //! * [`Config`] — how the service is started; [`Service::open`] opens (or creates) the state
 //!   and starts the executor thread; [`Service::router`] is the axum router (tests call it
 //!   in-process); [`serve`] runs it on a socket until Ctrl-C.
-//! * A job is a library request ([`reach::jobs::Request`], kinds move, plan, path, tasks,
+//! * A job is a library request ([`reach::jobs::Request`], kinds move, plan, path, approach, tasks,
 //!   avoid; plus the move shorthand of [`intake::parse_request`]). `POST /jobs` plans it with
 //!   [`reach::jobs::run`]: bad input is a 400 with the library's message, an infeasible plan is
 //!   recorded `refused` with its report. The executor ([`executor`]) turns a queued job's motion
