@@ -27,6 +27,7 @@
 //! `t/(t1 − t0)` is right only for `t0 = 0`, notes 001 §6.1 item 11). Times outside the
 //! interval are clamped: the motion rests at its end points.
 
+pub mod jerk;
 pub mod joint_space;
 pub mod optimal;
 pub mod profile;
@@ -40,6 +41,7 @@ use thiserror::Error;
 use crate::ik::{IkError, IkFailure};
 use crate::kinematics::KinematicsError;
 
+pub use jerk::{JerkLimitedMotion, jerk_limited, jerk_limits};
 pub use joint_space::{JointMotion, JointPath, SmoothJointPath};
 pub use optimal::{
     LimitRatios, MotionSample, OptimalMotion, PathLimits, PiecewiseCubic, check_blend_tolerance, time_optimal,

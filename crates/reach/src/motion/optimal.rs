@@ -58,15 +58,15 @@ const X_CAP: f64 = 1e12;
 #[derive(Debug, Clone, PartialEq)]
 pub struct PiecewiseCubic {
     /// The pieces' ends `s₀ = 0 < s₁ < … < sₙ = S`.
-    knots: Vec<f64>,
+    pub(super) knots: Vec<f64>,
     /// The parameter at which the path passes each waypoint it was built from (a blended
     /// corner: the middle of its blend, the point closest to the waypoint).
-    marks: Vec<f64>,
+    pub(super) marks: Vec<f64>,
     /// `coeffs[k][j] = [c₀, c₁, c₂, c₃]` of piece `k`, joint `j`.
-    coeffs: Vec<Vec<[f64; 4]>>,
+    pub(super) coeffs: Vec<Vec<[f64; 4]>>,
     /// Whether the path's tangent jumps at the start of piece `k` (a polyline's corner): the
     /// motion must rest there.
-    corner: Vec<bool>,
+    pub(super) corner: Vec<bool>,
 }
 
 fn check_waypoints(waypoints: &[Vec<f64>]) -> Result<usize, MotionError> {
@@ -285,7 +285,7 @@ impl PiecewiseCubic {
     }
 
     /// Parameter length of piece `k`.
-    fn piece_length(&self, k: usize) -> f64 {
+    pub(super) fn piece_length(&self, k: usize) -> f64 {
         self.knots[k + 1] - self.knots[k]
     }
 
@@ -314,7 +314,7 @@ impl PiecewiseCubic {
     }
 
     /// `(piece, local parameter)` of `s` (clamped to the path).
-    fn locate(&self, s: f64) -> (usize, f64) {
+    pub(super) fn locate(&self, s: f64) -> (usize, f64) {
         let last = self.coeffs.len() - 1;
         let k = self.knots[1..].partition_point(|x| *x <= s).min(last);
         (k, (s - self.knots[k]).clamp(0.0, self.piece_length(k)))
@@ -327,7 +327,7 @@ impl PiecewiseCubic {
         self.eval_in(k, t)
     }
 
-    fn eval_in(&self, k: usize, t: f64) -> [Vec<f64>; 3] {
+    pub(super) fn eval_in(&self, k: usize, t: f64) -> [Vec<f64>; 3] {
         let c = &self.coeffs[k];
         [
             c.iter().map(|c| c[0] + t * (c[1] + t * (c[2] + t * c[3]))).collect(),
@@ -507,17 +507,17 @@ pub struct LimitRatios {
 /// A time-optimal motion along a [`PiecewiseCubic`] path.
 #[derive(Debug, Clone)]
 pub struct OptimalMotion {
-    path: PiecewiseCubic,
+    pub(super) path: PiecewiseCubic,
     /// Grid parameter values.
-    s: Vec<f64>,
+    pub(super) s: Vec<f64>,
     /// `ṡ²` at each grid point.
-    x: Vec<f64>,
+    pub(super) x: Vec<f64>,
     /// `s̈` on each grid interval.
-    u: Vec<f64>,
+    pub(super) u: Vec<f64>,
     /// Time at each grid point.
-    t: Vec<f64>,
+    pub(super) t: Vec<f64>,
     /// Piece of each grid interval.
-    piece: Vec<usize>,
+    pub(super) piece: Vec<usize>,
     ratios: LimitRatios,
     slowdown: f64,
 }
@@ -920,21 +920,32 @@ impl OptimalMotion {
     /// [`MotionError::InvalidInput`] for `dt` not finite and > 0, or more than
     /// [`MAX_GRID_POINTS`] samples.
     pub fn samples(&self, dt: f64) -> Result<Vec<MotionSample>, MotionError> {
-        check_number("dt", dt, true)?;
-        let count = (self.duration() / dt).floor();
-        if count >= MAX_GRID_POINTS as f64 {
-            return Err(MotionError::InvalidInput {
-                field: "dt".into(),
-                reason: format!("{dt} s gives more than {MAX_GRID_POINTS} samples over {:.6} s", self.duration()),
-            });
-        }
-        let mut out: Vec<MotionSample> = (0..=count as usize).map(|i| self.sample(i as f64 * dt)).collect();
-        if out.len() > 1 && out.last().is_some_and(|s| self.duration() - s.t < 0.5 * dt) {
-            out.pop();
-        }
-        if out.last().is_none_or(|s| s.t < self.duration()) {
-            out.push(self.sample(self.duration()));
-        }
-        Ok(out)
+        Ok(sample_times(self.duration(), dt)?.into_iter().map(|t| self.sample(t)).collect())
     }
+}
+
+/// The sample times of a motion of `duration` seconds: every `dt` from 0, and the end; an end
+/// less than `dt / 2` after the last regular sample replaces it (the rule of
+/// [`OptimalMotion::samples`]).
+///
+/// # Errors
+/// [`MotionError::InvalidInput`] for `dt` not finite and > 0, or more than
+/// [`MAX_GRID_POINTS`] samples.
+pub(super) fn sample_times(duration: f64, dt: f64) -> Result<Vec<f64>, MotionError> {
+    check_number("dt", dt, true)?;
+    let count = (duration / dt).floor();
+    if count >= MAX_GRID_POINTS as f64 {
+        return Err(MotionError::InvalidInput {
+            field: "dt".into(),
+            reason: format!("{dt} s gives more than {MAX_GRID_POINTS} samples over {duration:.6} s"),
+        });
+    }
+    let mut out: Vec<f64> = (0..=count as usize).map(|i| i as f64 * dt).collect();
+    if out.len() > 1 && out.last().is_some_and(|t| duration - t < 0.5 * dt) {
+        out.pop();
+    }
+    if out.last().is_none_or(|t| *t < duration) {
+        out.push(duration);
+    }
+    Ok(out)
 }

@@ -36,6 +36,7 @@ mod kinematics_reference;
 mod model_errors;
 mod model_joint_limits;
 mod motion_blends;
+mod motion_jerk;
 mod motion_optimal;
 mod motion_paths;
 mod motion_profiles_timing;
