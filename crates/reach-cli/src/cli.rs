@@ -418,10 +418,13 @@ pub enum Command {
             --json prints the report (docs/schemas/retime.report.schema.json, SI units): \
             {\"robot\", \"interpolation\", \"waypoints\", \"duration_s\", \"grid_points\", \
             \"slowdown\", \"velocity_limits\", \"acceleration_limits\", \"worst_velocity_ratio\", \
-            \"worst_acceleration_ratio\", \"samples\": [{\"t_s\", \"q\", \"qd\", \"qdd\"}]}.",
+            \"worst_acceleration_ratio\", \"samples\": [{\"t_s\", \"q\", \"qd\", \"qdd\"}]}. \
+            --ros FILE writes the motion as the ROS 2 message trajectory_msgs/JointTrajectory \
+            (docs/schemas/joint_trajectory.schema.json; YAML for .yaml/.yml, JSON for .json).",
         after_help = "Examples:\n  \
             reach retime panda examples/panda_waypoints.csv\n  \
             reach retime panda examples/panda_waypoints.csv --max-velocity-scale 0.5 --csv timed.csv\n  \
+            reach retime panda examples/panda_waypoints.csv --ros timed.yaml\n  \
             reach path ur5 examples/ur5_ball.toml --from 90,-90,90,-90,-90,0 --to -90,-60,60,-90,-90,0 --json | reach retime ur5 - --json"
     )]
     Retime(crate::commands::retime::RetimeArgs),

@@ -1,12 +1,13 @@
 //! `reach retime` — the time-optimal motion through a path's waypoints under the joints'
 //! velocity and acceleration limits (`reach::jobs::retime`; `--json` prints its report,
-//! `--csv FILE` writes its samples).
+//! `--csv FILE` writes its samples, `--ros FILE` the ROS `JointTrajectory` message).
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
 use reach::Robot;
+use reach::jobs::JointTrajectory;
 use reach::jobs::input::{AngleUnit, from_si, joint_columns, number_text, parse_path_file, unit_name};
 use reach::jobs::retime::{Interpolation, RetimeReport, RetimeRequest};
 
@@ -107,6 +108,50 @@ pub struct RetimeArgs {
     /// (degrees, or radians with --rad; prismatic metres), named in the header.
     #[arg(long, value_name = "FILE")]
     pub csv: Option<PathBuf>,
+
+    /// Write the motion to FILE as the ROS 2 message `trajectory_msgs/msg/JointTrajectory`
+    /// (docs/schemas/joint_trajectory.schema.json): the robot's joint names, one point per
+    /// sample with positions, velocities and accelerations in SI units (rad, m, s) and
+    /// `time_from_start` to the nanosecond. YAML when FILE ends in `.yaml` or `.yml` (a message
+    /// file, `ros2 topic pub`'s form), JSON when it ends in `.json`.
+    #[arg(long, value_name = "FILE")]
+    pub ros: Option<PathBuf>,
+}
+
+/// How `--ros FILE` writes the message, by FILE's extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum RosFormat {
+    Yaml,
+    Json,
+}
+
+/// The format of `--ros FILE`: YAML for `.yaml`/`.yml`, JSON for `.json` (any case).
+fn ros_format(path: &Path) -> Result<RosFormat, CliError> {
+    let extension = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    match extension.as_deref() {
+        Some("yaml" | "yml") => Ok(RosFormat::Yaml),
+        Some("json") => Ok(RosFormat::Json),
+        _ => Err(CliError::bad_input(format!(
+            "--ros {}: the file name must end in .yaml or .yml (YAML) or .json (JSON)",
+            path.display()
+        ))),
+    }
+}
+
+/// Writes the motion as the ROS `JointTrajectory` message to `path` in `format`.
+fn write_ros(robot: &Robot, report: &RetimeReport, path: &Path, format: RosFormat) -> Result<(), CliError> {
+    let names = robot.joints().iter().map(|j| j.name.clone()).collect();
+    let message = JointTrajectory::from_retime(report, names)
+        .map_err(|e| CliError::bad_input(format!("--ros {}: {}", path.display(), reach::one_line(&e.to_string()))))?;
+    let text = match format {
+        RosFormat::Yaml => message.to_yaml().map_err(|e| CliError::internal(e.to_string()))?.into_bytes(),
+        RosFormat::Json => {
+            let mut text = Vec::new();
+            write_json(&mut text, &message)?;
+            text
+        }
+    };
+    write_file("--ros", path, text)
 }
 
 /// Times the path and prints the report.
@@ -115,6 +160,7 @@ pub struct RetimeArgs {
 /// [`CliError::BadInput`] for a bad robot, path file, number or limit (the message names the
 /// flag, the file's line or the joint).
 pub fn run(args: &RetimeArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let ros_format = args.ros.as_deref().map(ros_format).transpose()?;
     let loaded = args.robot.load()?;
     let robot = &loaded.robot;
     let unit = if args.rad { AngleUnit::Rad } else { AngleUnit::Deg };
@@ -149,6 +195,9 @@ pub fn run(args: &RetimeArgs, out: &mut dyn Write) -> Result<(), CliError> {
     })?;
     if let Some(path) = &args.csv {
         write_file("--csv", path, csv_text(robot, &report, unit))?;
+    }
+    if let (Some(path), Some(format)) = (&args.ros, ros_format) {
+        write_ros(robot, &report, path, format)?;
     }
     if args.json {
         return write_json(out, &report);
@@ -220,7 +269,7 @@ fn write_text(robot: &Robot, r: &RetimeReport, unit: AngleUnit, out: &mut dyn Wr
     let step = r.samples.get(1).map_or(0.0, |s| s.t_s);
     writeln!(
         out,
-        "{} samples every {} s (--json prints them, --csv FILE writes them)",
+        "{} samples every {} s (--json prints them, --csv FILE writes them, --ros FILE as a ROS JointTrajectory)",
         r.samples.len(),
         fixed(step, 6)
     )?;

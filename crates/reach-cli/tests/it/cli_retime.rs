@@ -1,6 +1,7 @@
 //! End-to-end tests of `reach retime`: the report equals the library's and its schema, the
 //! samples respect the limits and pass the waypoints, the CSV carries units, the output of
-//! `reach path --json` chains in through standard input, and bad input is one line.
+//! `reach path --json` chains in through standard input, `--ros FILE` writes the ROS
+//! `JointTrajectory` message (JSON or YAML), and bad input is one line.
 
 use std::io::Write;
 use std::process::Stdio;
@@ -8,7 +9,9 @@ use std::process::Stdio;
 use reach::jobs::retime::{Interpolation, RetimeRequest};
 use reach::jobs::{Job, Joints, Request, RobotInput};
 
-use crate::common::{Run, assert_report, fails, nums, ok, reach_command, stdout_json, temp_file};
+use crate::common::{
+    Run, assert_report, assert_valid, fails, nums, ok, reach_command, scratch, stdout_json, temp_file,
+};
 
 const PANDA: &str = "../../examples/panda_waypoints.csv";
 
@@ -98,6 +101,74 @@ fn text_summary_and_csv_with_units() {
     let top_speed = rows.iter().map(speed).fold(0.0, f64::max);
     assert!(distance(nearest) < 1.0, "{nearest:?}");
     assert!(speed(nearest) < 0.1 * top_speed, "{nearest:?} against top speed {top_speed}");
+}
+
+/// `--ros x.json`: the ROS 2 `trajectory_msgs/JointTrajectory` of the same motion as `--json`:
+/// the robot's joint names, one point per sample with its SI values, `time_from_start` the
+/// sample's time to the nanosecond and strictly increasing; the file matches its schema.
+#[test]
+fn ros_json_is_the_joint_trajectory_of_the_report() {
+    let path = example(PANDA);
+    let dir = scratch("ros");
+    let file = dir.join("timed.json");
+    let report =
+        crate::common::json(&["retime", "panda", &path, "--dt", "0.05", "--ros", file.to_str().unwrap(), "--json"]);
+    let message: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
+    assert_valid("joint_trajectory", &message);
+    let robot = reach::jobs::RobotInput::Preset("panda".into()).load().unwrap().robot;
+    let names: Vec<&str> = robot.joints().iter().map(|j| j.name.as_str()).collect();
+    let got: Vec<&str> = message["joint_names"].as_array().unwrap().iter().map(|n| n.as_str().unwrap()).collect();
+    assert_eq!(got, names);
+    assert_eq!(message["header"], serde_json::json!({"stamp": {"sec": 0, "nanosec": 0}, "frame_id": ""}));
+    let samples = report["samples"].as_array().unwrap();
+    let points = message["points"].as_array().unwrap();
+    assert!(samples.len() > 10);
+    assert_eq!(points.len(), samples.len());
+    let mut previous: Option<(i64, u64)> = None;
+    for (p, s) in points.iter().zip(samples) {
+        let time = &p["time_from_start"];
+        let (sec, nanosec) = (time["sec"].as_i64().unwrap(), time["nanosec"].as_u64().unwrap());
+        assert!(nanosec < 1_000_000_000, "{time}");
+        let t = sec as f64 + nanosec as f64 * 1e-9;
+        assert!((t - s["t_s"].as_f64().unwrap()).abs() <= 1e-9, "{time} against {}", s["t_s"]);
+        assert!(previous.is_none_or(|before| before < (sec, nanosec)), "{previous:?} then {time}");
+        previous = Some((sec, nanosec));
+        assert_eq!(p["positions"], s["q"]);
+        assert_eq!(p["velocities"], s["qd"]);
+        assert_eq!(p["accelerations"], s["qdd"]);
+        assert_eq!(p["effort"], serde_json::json!([]));
+    }
+}
+
+/// `--ros x.yaml` writes the same message as YAML, which reads back to the JSON one.
+#[test]
+fn ros_yaml_reads_back_to_the_json_message() {
+    let path = example(PANDA);
+    let dir = scratch("ros");
+    let (json, yaml) = (dir.join("timed.json"), dir.join("timed.yaml"));
+    for file in [&json, &yaml] {
+        ok(&["retime", "panda", &path, "--interpolation", "blend", "--dt", "0.1", "--ros", file.to_str().unwrap()]);
+    }
+    let text = std::fs::read_to_string(&yaml).unwrap();
+    assert!(text.starts_with("header:") && text.contains("time_from_start:"), "{text}");
+    let from_yaml = reach::jobs::JointTrajectory::from_yaml(&text).unwrap();
+    let from_json: reach::jobs::JointTrajectory =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert!(!from_yaml.points.is_empty());
+    assert_eq!(from_yaml, from_json);
+}
+
+/// `--ros` with another extension is one line naming the flag and the accepted extensions,
+/// before any work, and writes nothing.
+#[test]
+fn ros_with_another_extension_is_one_line_and_no_file() {
+    let path = example(PANDA);
+    let dir = scratch("ros");
+    for name in ["timed.txt", "timed"] {
+        let file = dir.join(name);
+        fails(&["retime", "panda", &path, "--ros", file.to_str().unwrap()], 2, &["--ros", ".yaml", ".yml", ".json"]);
+        assert!(!file.exists(), "{} was written", file.display());
+    }
 }
 
 #[test]

@@ -37,7 +37,7 @@ fn tour_commands() -> Vec<(Vec<String>, i32)> {
 }
 
 /// Options whose value is a file or directory the command writes.
-const OUTPUT_OPTIONS: [&str; 5] = ["--svg", "--png", "-o", "--csv", "--state"];
+const OUTPUT_OPTIONS: [&str; 6] = ["--svg", "--png", "-o", "--csv", "--ros", "--state"];
 
 /// A `reach serve` line runs until Ctrl-C: it must start and say where it listens (on a free
 /// loopback port, with its state in the scratch directory); then it is killed.

@@ -21,6 +21,7 @@ pub mod drive;
 pub mod dynamics;
 pub mod ik;
 pub mod input;
+pub mod joint_trajectory;
 pub mod kinematics;
 pub mod model;
 pub mod motion;
@@ -37,6 +38,7 @@ pub use drive::{DriveReport, DriveRequest};
 pub use dynamics::{DynamicsReport, DynamicsRequest};
 pub use ik::{IkReport, IkRequest, IkScanReport, IkScanRequest};
 pub use input::{AngleUnit, Joints, LoadedRobot, Pose, PoseReport, RobotInput};
+pub use joint_trajectory::JointTrajectory;
 pub use kinematics::{FkReport, FkRequest, JacobianReport, JacobianRequest};
 pub use model::{ModelReport, ModelRequest, PresetEntry};
 pub use motion::{MoveReport, MoveRequest, PlanReport, PlanRequest};
@@ -194,7 +196,8 @@ pub fn run(robot: &Robot, request: &Request) -> Result<Report> {
 }
 
 /// The JSON Schema of every request and report, by file name (`fk.request`, `fk.report`, …,
-/// and `job` for [`Job`]), as kept in `docs/schemas/<name>.schema.json`.
+/// `job` for [`Job`], and `joint_trajectory` for the ROS message of `reach retime --ros`,
+/// [`JointTrajectory`]), as kept in `docs/schemas/<name>.schema.json`.
 #[must_use]
 pub fn schemas() -> Vec<(&'static str, serde_json::Value)> {
     fn of<T: JsonSchema>() -> serde_json::Value {
@@ -241,6 +244,7 @@ pub fn schemas() -> Vec<(&'static str, serde_json::Value)> {
         ("view.report", of::<ViewReport>()),
         ("retime.request", of::<RetimeRequest>()),
         ("retime.report", of::<RetimeReport>()),
+        ("joint_trajectory", of::<JointTrajectory>()),
     ]
 }
 
