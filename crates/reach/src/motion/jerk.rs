@@ -221,12 +221,9 @@ fn bounds(path: &PiecewiseCubic, law: &Law, limits: &PathLimits, jerk: &[f64]) -
     for i in 0..law.jerk.len() {
         let h = law.t[i + 1] - law.t[i];
         let (v0, a0, j) = (law.sd[i], law.sdd[i], law.jerk[i]);
-        let mut sd_values = vec![v0, law.sd[i + 1], v0 + h * (a0 + 0.5 * h * j)];
-        if j != 0.0 && (0.0..=h).contains(&(-a0 / j)) {
-            let tau = -a0 / j;
-            sd_values.push(v0 + tau * (a0 + 0.5 * tau * j));
-        }
-        let sd = Span::of(&sd_values);
+        // ṡ's vertex, where s̈ = 0 inside the interval (else a repeated end).
+        let tau = if j != 0.0 { (-a0 / j).clamp(0.0, h) } else { 0.0 };
+        let sd = Span::of(&[v0, law.sd[i + 1], v0 + h * (a0 + 0.5 * h * j), v0 + tau * (a0 + 0.5 * tau * j)]);
         let sdd = Span::of(&[a0, law.sdd[i + 1], a0 + h * j]);
         let sd2 = sd.mul(sd);
         let (s_lo, s_hi) = (law.s[i].min(law.s[i + 1]), law.s[i].max(law.s[i + 1]));
@@ -237,12 +234,10 @@ fn bounds(path: &PiecewiseCubic, law: &Law, limits: &PathLimits, jerk: &[f64]) -
             let z1 = (s_hi - path.knots[p]).clamp(z0, path.piece_length(p));
             for (jn, c) in piece.iter().enumerate() {
                 let d1 = |z: f64| c[1] + z * (2.0 * c[2] + 3.0 * z * c[3]);
-                let mut d1_values = vec![d1(z0), d1(z1)];
-                if c[3] != 0.0 && (z0..=z1).contains(&(-c[2] / (3.0 * c[3]))) {
-                    d1_values.push(d1(-c[2] / (3.0 * c[3])));
-                }
+                // q′'s vertex inside [z0, z1] (else a repeated end).
+                let vertex = if c[3] != 0.0 { (-c[2] / (3.0 * c[3])).clamp(z0, z1) } else { z0 };
                 let spans = [
-                    Span::of(&d1_values),
+                    Span::of(&[d1(z0), d1(z1), d1(vertex)]),
                     Span::of(&[2.0 * c[2] + 6.0 * c[3] * z0, 2.0 * c[2] + 6.0 * c[3] * z1]),
                     Span::point(6.0 * c[3]),
                 ];
@@ -344,21 +339,36 @@ pub fn jerk_limited(
             (best, best_e) = (c, e as f64);
         }
     }
-    let (mut lo, mut hi) = (best_e - 1.0, best_e + 1.0);
+    // Golden-section search: each step keeps one of its two interior points.
     let ratio = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut lo, mut hi) = (best_e - 1.0, best_e + 1.0);
+    let at = |e: f64| candidate(optimal / e.exp2());
+    let (mut e1, mut e2) = (hi - ratio * (hi - lo), lo + ratio * (hi - lo));
+    let (mut c1, mut c2) = (at(e1), at(e2));
     for _ in 0..WINDOW_REFINEMENTS {
-        let (e1, e2) = (hi - ratio * (hi - lo), lo + ratio * (hi - lo));
-        let (c1, c2) = (candidate(optimal / e1.exp2()), candidate(optimal / e2.exp2()));
         if c1.0 <= c2.0 {
-            hi = e2;
-            if c1.0 < best.0 {
-                best = c1;
+            (hi, e2) = (e2, e1);
+            e1 = hi - ratio * (hi - lo);
+            let next = at(e1);
+            let kept = std::mem::replace(&mut c1, next);
+            if kept.0 < best.0 {
+                best = kept.clone();
             }
+            c2 = kept;
         } else {
-            lo = e1;
-            if c2.0 < best.0 {
-                best = c2;
+            (lo, e1) = (e1, e2);
+            e2 = lo + ratio * (hi - lo);
+            let next = at(e2);
+            let kept = std::mem::replace(&mut c2, next);
+            if kept.0 < best.0 {
+                best = kept.clone();
             }
+            c1 = kept;
+        }
+    }
+    for c in [c1, c2] {
+        if c.0 < best.0 {
+            best = c;
         }
     }
     let (_, window, law, k) = best;
